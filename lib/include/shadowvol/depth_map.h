@@ -1,0 +1,91 @@
+// A light's depth map: W x H depths plus the light's matrices, enough to unproject every texel.
+//
+// Depth quantity: the distance along the light's view axis, in world units, from the light's
+// view origin (a spot light's apex; for a directional light the plane through Light::position
+// perpendicular to the direction) to the surface: depth = -z of the point in light view space.
+// It is NOT the distance along the ray and NOT the nonlinear NDC/window z.
+// A texel whose ray hits nothing in [near, far] holds DepthMap::kNoHit (+infinity).
+//
+// Texel (i, j): i to the right, j up (row 0 is the bottom row, as in OpenGL textures), stored at
+// index j * width + i. Texel centre in light NDC: ((i + 0.5) / W * 2 - 1, (j + 0.5) / H * 2 - 1).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "shadowvol/light.h"
+
+namespace shadowvol {
+
+enum class CaptureMode { Front, Back, Midpoint };
+
+const char* toString(CaptureMode mode);
+/// Parses "front", "back" or "midpoint"; returns false for anything else.
+bool parseCaptureMode(const std::string& text, CaptureMode& mode);
+
+struct DepthMap {
+  static constexpr float kNoHit = std::numeric_limits<float>::infinity();
+
+  int width = 0;
+  int height = 0;
+  std::vector<float> depth;           ///< width * height, see the header comment
+  LightType lightType = LightType::Spot;
+  glm::dmat4 lightView{1.0};          ///< world -> light view
+  glm::dmat4 lightProjection{1.0};    ///< light view -> light clip
+  double nearPlane = 0.0;             ///< light view distance of the near plane
+  double farPlane = 0.0;              ///< light view distance of the far plane
+  CaptureMode capture = CaptureMode::Back;
+
+  std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(width) + std::size_t(i); }
+  float at(int i, int j) const { return depth[index(i, j)]; }
+  static bool isNoHit(float d) { return d == kNoHit; }
+
+  /// Light NDC (x, y) of the centre of texel (i, j); i, j may be fractional.
+  glm::dvec2 texelNdc(double i, double j) const;
+
+  /// Light-view point of texel (i, j) at view depth d (d > 0), computed in double through the
+  /// inverse projection. For a perspective light the point lies on the ray through the apex.
+  glm::dvec3 lightViewPoint(double i, double j, double d) const;
+
+  /// World point of texel (i, j) at view depth d, in double.
+  glm::dvec3 worldPoint(double i, double j, double d) const;
+
+  /// The light-view depth of a world point (-z in light view).
+  double viewDepthOf(const glm::dvec3& world) const;
+
+  /// Continuous texel coordinates (i, j) of a world point, texel centres at integers; the light's
+  /// window spans [-0.5, W - 0.5] x [-0.5, H - 0.5].
+  glm::dvec2 texelOf(const glm::dvec3& world) const;
+
+  std::size_t hitCount() const;  ///< texels that are not kNoHit
+};
+
+/// Texel -> world unprojection with the inverse matrices computed once (double precision).
+/// Gives the same points as DepthMap::worldPoint; use it in loops over texels.
+class TexelUnprojector {
+ public:
+  explicit TexelUnprojector(const DepthMap& map);
+  /// World point of texel (i, j) (fractional allowed) at light-view depth d > 0.
+  glm::dvec3 worldPoint(double i, double j, double d) const;
+  /// Light-view point of texel (i, j) at light-view depth d > 0.
+  glm::dvec3 lightViewPoint(double i, double j, double d) const;
+
+ private:
+  glm::dmat4 invProjection_, invView_, projection_;
+  double width_, height_;
+};
+
+/// Makes an empty depth map (all kNoHit) for the light at W x H; aspect is W / H.
+DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode capture);
+
+/// Bytes a W x H depth map and its derived buffers would need, to refuse absurd resolutions
+/// before allocating. Limits of the command line: see maxResolution in README.
+std::uint64_t depthMapBytes(int width, int height);
+
+}  // namespace shadowvol

@@ -1,0 +1,22 @@
+// CPU depth capture by ray casting with Embree 3: the no-GPU way to get a light's DepthMap.
+#pragma once
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol {
+
+/// One ray per texel centre (see depth_map.h), from the light (spot: from the apex; directional:
+/// from the plane through Light::position, along the direction), limited to [near, far].
+/// Modes, for closed meshes and for single-sided geometry (an open plane, a lone quad):
+///  - Front: the first surface hit, whatever its facing.
+///  - Back: the first surface whose geometric normal faces away from the light (the light sees
+///    its back side), as the GPU does with front-face culling. A single-sided surface facing the
+///    light (a ground plane lit from above) is skipped, so it casts no shadow and receives none
+///    from itself; the texel is kNoHit unless a back face lies behind it.
+///  - Midpoint: the mean of the first and second surface hit (any facing). With only one surface
+///    on the ray, the second is the far plane (as the GPU's cleared second layer).
+/// Parallel over rows (TBB) and deterministic: each texel is computed independently.
+DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode);
+
+}  // namespace shadowvol

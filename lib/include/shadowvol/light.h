@@ -1,0 +1,38 @@
+// The light: spot (perspective) or directional (orthographic), and its matrices.
+// Spaces: world -> light view (lightView) -> light clip/NDC (lightProjection). OpenGL conventions:
+// the light looks down -Z of its view space, NDC z in [-1, 1], right-handed world, Y up.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace shadowvol {
+
+enum class LightType { Spot, Directional };
+
+struct Light {
+  LightType type = LightType::Spot;
+  glm::dvec3 position{0.0, 10.0, 0.0};    ///< world; spot: apex. Directional: origin of the view
+                                          ///< (fitted behind the scene when fitPosition is true)
+  bool fitPosition = false;               ///< directional only: place position from the scene bounds
+  glm::dvec3 direction{0.0, -1.0, 0.0};   ///< world, unit length: the way the light shines
+  glm::dvec3 up{0.0, 0.0, 0.0};           ///< world; zero = pick deterministically (see lightUp)
+  double fovYDegrees = 60.0;              ///< spot only: full vertical (= horizontal) opening angle
+  double halfExtent = 0.0;                ///< directional only: half width of the square view, world units
+  double nearPlane = 0.0;                 ///< distance along the light axis, world units (> 0 for
+                                          ///< spot); 0 = fitted to the scene by fitLightAndCamera
+  double farPlane = 0.0;                  ///< distance along the light axis (> near); 0 = fitted
+};
+
+/// The up vector used for the light's view: Light::up when non-zero, else world +Y, or world -Z
+/// when the direction is within about 2.6 degrees of +-Y (|dir.y| > 0.999).
+glm::dvec3 lightUp(const Light& light);
+
+/// World -> light view. The light sits at `position` looking along `direction`.
+glm::dmat4 lightView(const Light& light);
+
+/// Light view -> light clip. Square aspect (the depth map is W x H texels over a square window
+/// only when W == H; otherwise aspect W/H). Perspective for spot, orthographic for directional.
+glm::dmat4 lightProjection(const Light& light, double aspect = 1.0);
+
+}  // namespace shadowvol

@@ -1,0 +1,58 @@
+// A scene: world-space triangle meshes, one light, one camera. Loaded from the JSON format
+// documented in README.md ("Scene files"), or the built-in default scene.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "shadowvol/camera.h"
+#include "shadowvol/light.h"
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol {
+
+/// One object of the scene with its transform already applied.
+struct SceneObject {
+  std::string name;   ///< "name" from the file, else "<type>#<index>"
+  std::string type;   ///< plane, sphere, box, cylinder, tree, mesh
+  TriangleMesh mesh;  ///< world space
+};
+
+struct Scene {
+  std::string source = "default";  ///< file path it was loaded from, or "default"
+  std::vector<SceneObject> objects;
+  Light light;     ///< near/far (and for directional lights position/extent) fitted when not given
+  Camera camera;   ///< near/far fitted when not given
+
+  std::size_t triangleCount() const;
+  Bounds3 bounds() const;        ///< of all objects, world space
+  TriangleMesh merged() const;   ///< all objects in one mesh, in object order
+};
+
+/// Warnings collected while loading (for example a light inside a closed mesh).
+struct SceneLoadResult {
+  Scene scene;
+  std::vector<std::string> warnings;
+};
+
+/// Reads a JSON scene file. Relative mesh paths are resolved against the scene file's folder.
+/// Throws InputError naming the file, the JSON pointer of the field and the value on bad input.
+SceneLoadResult loadScene(const std::filesystem::path& path);
+
+/// Parses scene JSON text; `source` names it in errors, `baseDir` resolves mesh paths.
+SceneLoadResult parseScene(const std::string& jsonText, const std::string& source,
+                           const std::filesystem::path& baseDir);
+
+/// The built-in default scene: a sphere floating above a ground plane under a spot light.
+Scene defaultScene();
+
+/// Fills in what the file left open: light near/far (and a directional light's position and
+/// half extent) from the scene bounds, camera near/far likewise. Only zero fields are fitted.
+void fitLightAndCamera(Scene& scene);
+
+/// Writes the scene's world-space triangles as PLY (binary) or OBJ, chosen by the extension.
+/// Writes to a temporary file and renames, so a failure leaves no partial file.
+void exportSceneMesh(const Scene& scene, const std::filesystem::path& path);
+
+}  // namespace shadowvol

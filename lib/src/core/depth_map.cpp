@@ -1,0 +1,100 @@
+#include "shadowvol/depth_map.h"
+
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol {
+
+const char* toString(CaptureMode mode) {
+  switch (mode) {
+    case CaptureMode::Front: return "front";
+    case CaptureMode::Back: return "back";
+    case CaptureMode::Midpoint: return "midpoint";
+  }
+  return "?";
+}
+
+bool parseCaptureMode(const std::string& text, CaptureMode& mode) {
+  if (text == "front") mode = CaptureMode::Front;
+  else if (text == "back") mode = CaptureMode::Back;
+  else if (text == "midpoint") mode = CaptureMode::Midpoint;
+  else return false;
+  return true;
+}
+
+glm::dvec2 DepthMap::texelNdc(double i, double j) const {
+  return {(i + 0.5) / double(width) * 2.0 - 1.0, (j + 0.5) / double(height) * 2.0 - 1.0};
+}
+
+glm::dvec3 DepthMap::lightViewPoint(double i, double j, double d) const {
+  return TexelUnprojector(*this).lightViewPoint(i, j, d);
+}
+
+glm::dvec3 DepthMap::worldPoint(double i, double j, double d) const {
+  return TexelUnprojector(*this).worldPoint(i, j, d);
+}
+
+TexelUnprojector::TexelUnprojector(const DepthMap& map)
+    : invProjection_(glm::inverse(map.lightProjection)),
+      invView_(glm::inverse(map.lightView)),
+      projection_(map.lightProjection),
+      width_(map.width),
+      height_(map.height) {}
+
+glm::dvec3 TexelUnprojector::lightViewPoint(double i, double j, double d) const {
+  const double x = (i + 0.5) / width_ * 2.0 - 1.0;
+  const double y = (j + 0.5) / height_ * 2.0 - 1.0;
+  // Clip z and w depend only on view z (column-major: m[col][row]); z_view = -d.
+  const double clipZ = projection_[2][2] * -d + projection_[3][2];
+  const double clipW = projection_[2][3] * -d + projection_[3][3];
+  const glm::dvec4 v = invProjection_ * glm::dvec4(x, y, clipZ / clipW, 1.0);
+  glm::dvec3 result = glm::dvec3(v) / v.w;
+  result.z = -d;  // exact by construction; removes the inverse's round-off in z
+  return result;
+}
+
+glm::dvec3 TexelUnprojector::worldPoint(double i, double j, double d) const {
+  return glm::dvec3(invView_ * glm::dvec4(lightViewPoint(i, j, d), 1.0));
+}
+
+double DepthMap::viewDepthOf(const glm::dvec3& world) const {
+  return -(lightView * glm::dvec4(world, 1.0)).z;
+}
+
+glm::dvec2 DepthMap::texelOf(const glm::dvec3& world) const {
+  const glm::dvec4 clip = lightProjection * lightView * glm::dvec4(world, 1.0);
+  const double x = clip.x / clip.w, y = clip.y / clip.w;
+  return {(x + 1.0) * 0.5 * double(width) - 0.5, (y + 1.0) * 0.5 * double(height) - 0.5};
+}
+
+std::size_t DepthMap::hitCount() const {
+  std::size_t n = 0;
+  for (float d : depth) n += isNoHit(d) ? 0 : 1;
+  return n;
+}
+
+DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode capture) {
+  SV_CHECK_GT(width, 0);
+  SV_CHECK_GT(height, 0);
+  DepthMap map;
+  map.width = width;
+  map.height = height;
+  map.depth.assign(std::size_t(width) * std::size_t(height), DepthMap::kNoHit);
+  map.lightType = light.type;
+  map.lightView = lightView(light);
+  map.lightProjection = lightProjection(light, double(width) / double(height));
+  map.nearPlane = light.nearPlane;
+  map.farPlane = light.farPlane;
+  map.capture = capture;
+  return map;
+}
+
+std::uint64_t depthMapBytes(int width, int height) {
+  const std::uint64_t texels = std::uint64_t(width) * std::uint64_t(height);
+  // depths (4 B) + volume vertices (3 doubles) + ~2 triangles per texel (2 x 3 x 4 B)
+  return texels * (4 + 24 + 24);
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,481 @@
+#include "shadowvol/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/primitives.h"
+
+namespace shadowvol {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxImageSide = 16384;
+constexpr std::size_t kMaxSceneTriangles = 50'000'000;
+
+std::string show(const json& v) {
+  std::string s = v.dump();
+  if (s.size() > 80) s = s.substr(0, 77) + "...";
+  return s;
+}
+
+/// A JSON object being read: every key must be consumed, so unknown fields are errors.
+class ObjectReader {
+ public:
+  ObjectReader(const json& obj, std::string pointer, const std::string& source)
+      : obj_(obj), pointer_(std::move(pointer)), source_(source) {
+    if (!obj_.is_object()) fail("", obj_, "expected a JSON object");
+  }
+
+  bool has(const std::string& key) const { return obj_.contains(key); }
+  std::string pointer(const std::string& key) const { return pointer_ + "/" + key; }
+  const std::string& source() const { return source_; }
+
+  [[noreturn]] void fail(const std::string& key, const json& value, const std::string& problem) const {
+    throw InputError(source_, key.empty() ? (pointer_.empty() ? "/" : pointer_) : pointer(key), show(value),
+                     problem);
+  }
+
+  const json& raw(const std::string& key) {
+    used_.insert(key);
+    return obj_.at(key);
+  }
+
+  double number(const std::string& key, std::optional<double> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (!fallback) fail(key, json(), "required field is missing");
+      return *fallback;
+    }
+    const json& v = raw(key);
+    if (!v.is_number()) fail(key, v, "expected a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(key, v, "expected a finite number");
+    return d;
+  }
+
+  double positive(const std::string& key, std::optional<double> fallback = std::nullopt) {
+    const double d = number(key, fallback);
+    if (!(d > 0.0)) fail(key, json(d), "must be greater than zero");
+    return d;
+  }
+
+  int integer(const std::string& key, int fallback, int lo, int hi) {
+    if (!has(key)) return fallback;
+    const json& v = raw(key);
+    if (!v.is_number_integer()) fail(key, v, "expected a whole number");
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi)
+      fail(key, v, "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+    return int(i);
+  }
+
+  std::string string(const std::string& key, std::optional<std::string> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (!fallback) fail(key, json(), "required field is missing");
+      return *fallback;
+    }
+    const json& v = raw(key);
+    if (!v.is_string()) fail(key, v, "expected a string");
+    return v.get<std::string>();
+  }
+
+  glm::dvec3 vec3(const std::string& key, std::optional<glm::dvec3> fallback = std::nullopt) {
+    if (!has(key)) {
+      if (!fallback) fail(key, json(), "required field is missing");
+      return *fallback;
+    }
+    const json& v = raw(key);
+    if (!v.is_array() || v.size() != 3) fail(key, v, "expected an array of 3 numbers");
+    glm::dvec3 r;
+    for (int k = 0; k < 3; ++k) {
+      if (!v[k].is_number() || !std::isfinite(v[k].get<double>())) fail(key, v, "expected 3 finite numbers");
+      r[k] = v[k].get<double>();
+    }
+    return r;
+  }
+
+  /// A number (all axes equal) or an array of n positive numbers.
+  std::vector<double> sizes(const std::string& key, int n, double fallback) {
+    if (!has(key)) return std::vector<double>(n, fallback);
+    const json& v = raw(key);
+    std::vector<double> r;
+    if (v.is_number()) r.assign(n, v.get<double>());
+    else if (v.is_array() && int(v.size()) == n && std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number(); }))
+      for (const auto& e : v) r.push_back(e.get<double>());
+    else fail(key, v, "expected a number or an array of " + std::to_string(n) + " numbers");
+    for (double d : r)
+      if (!std::isfinite(d) || d <= 0.0) fail(key, v, "sizes must be finite and greater than zero");
+    return r;
+  }
+
+  /// Call when done: any key not read is an unknown field.
+  void finish() const {
+    for (auto it = obj_.begin(); it != obj_.end(); ++it)
+      if (!used_.count(it.key())) fail(it.key(), it.value(), "unknown field");
+  }
+
+ private:
+  const json& obj_;
+  std::string pointer_;
+  const std::string& source_;
+  std::set<std::string> used_;
+};
+
+glm::dmat4 readTransform(ObjectReader& parent) {
+  if (!parent.has("transform")) return glm::dmat4(1.0);
+  ObjectReader r(parent.raw("transform"), parent.pointer("transform"), parent.source());
+  glm::dmat4 m(1.0);
+  if (r.has("matrix")) {
+    if (r.has("translate") || r.has("rotate") || r.has("scale"))
+      r.fail("matrix", r.raw("matrix"), "give either matrix or translate/rotate/scale, not both");
+    const json& v = r.raw("matrix");
+    if (!v.is_array() || v.size() != 16) r.fail("matrix", v, "expected 16 numbers (row-major 4x4)");
+    for (int k = 0; k < 16; ++k) {
+      if (!v[k].is_number() || !std::isfinite(v[k].get<double>())) r.fail("matrix", v, "expected 16 finite numbers");
+      m[k % 4][k / 4] = v[k].get<double>();  // row-major in the file, column-major in GLM
+    }
+    if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-12) r.fail("matrix", v, "the matrix is singular");
+  } else {
+    const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0));
+    const glm::dvec3 rot = r.vec3("rotate", glm::dvec3(0.0));
+    const std::vector<double> s = r.sizes("scale", 3, 1.0);
+    m = glm::translate(m, t);
+    m = glm::rotate(m, glm::radians(rot.z), glm::dvec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(rot.y), glm::dvec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(rot.x), glm::dvec3(1, 0, 0));
+    m = glm::scale(m, glm::dvec3(s[0], s[1], s[2]));
+  }
+  r.finish();
+  return m;
+}
+
+void applyTransform(TriangleMesh& mesh, const glm::dmat4& m) {
+  for (auto& p : mesh.positions) p = glm::vec3(glm::dvec3(m * glm::dvec4(glm::dvec3(p), 1.0)));
+  if (glm::determinant(glm::dmat3(m)) < 0.0)  // a mirror flips the winding: restore outward faces
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+}
+
+SceneObject readObject(const json& v, std::size_t index, const std::string& source,
+                       const std::filesystem::path& baseDir) {
+  ObjectReader r(v, "/objects/" + std::to_string(index), source);
+  SceneObject obj;
+  obj.type = r.string("type");
+  obj.name = r.string("name", obj.type + "#" + std::to_string(index));
+  const std::string& t = obj.type;
+  if (t == "plane") {
+    const auto s = r.sizes("size", 2, 10.0);
+    obj.mesh = makePlane(s[0], s[1], r.integer("subdivisions", 1, 1, 4096));
+  } else if (t == "sphere") {
+    const double radius = r.positive("radius", 1.0);
+    const std::string tess = r.string("tessellation", std::string("ico"));
+    if (tess == "ico") {
+      obj.mesh = makeIcoSphere(radius, r.integer("detail", 3, 0, 8));
+    } else if (tess == "uv") {
+      const int segments = r.integer("segments", 32, 3, 8192);
+      obj.mesh = makeUvSphere(radius, segments, r.integer("rings", 16, 2, 8192));
+    } else {
+      r.fail("tessellation", json(tess), "expected \"ico\" or \"uv\"");
+    }
+  } else if (t == "hemisphere") {
+    const double radius = r.positive("radius", 1.0);
+    const int segments = r.integer("segments", 64, 3, 8192);
+    obj.mesh = makeHemisphere(radius, segments, r.integer("rings", 16, 1, 8192));
+  } else if (t == "box") {
+    const auto s = r.sizes("size", 3, 1.0);
+    obj.mesh = makeBox(s[0], s[1], s[2]);
+  } else if (t == "cylinder") {
+    const double radius = r.positive("radius", 0.5);
+    const double height = r.positive("height", 1.0);
+    obj.mesh = makeCylinder(radius, height, r.integer("segments", 32, 3, 8192));
+  } else if (t == "tree") {
+    const double trunkRadius = r.positive("trunkRadius", 0.08);
+    const double trunkHeight = r.positive("trunkHeight", 2.0);
+    const double crownRadius = r.positive("crownRadius", 0.8);
+    obj.mesh = makeTree(trunkRadius, trunkHeight, crownRadius, r.integer("detail", 3, 0, 8));
+  } else if (t == "mesh") {
+    const std::string file = r.string("file");
+    std::filesystem::path p(file);
+    if (p.is_relative()) p = baseDir / p;
+    try {
+      obj.mesh = readTriangleMesh(p);
+    } catch (const InputError& e) {
+      throw InputError(source, r.pointer("file"), show(json(file)), e.what());
+    }
+  } else {
+    r.fail("type", json(t), "unknown object type (plane, sphere, hemisphere, box, cylinder, tree, mesh)");
+  }
+  applyTransform(obj.mesh, readTransform(r));
+  r.finish();
+  for (const auto& p : obj.mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      r.fail("transform", json(), "the transform makes coordinates non-finite");
+  return obj;
+}
+
+Light readLight(const json& v, const std::string& source) {
+  ObjectReader r(v, "/light", source);
+  Light light;
+  const std::string type = r.string("type");
+  if (type == "spot") light.type = LightType::Spot;
+  else if (type == "directional") light.type = LightType::Directional;
+  else r.fail("type", json(type), "expected \"spot\" or \"directional\"");
+
+  if (light.type == LightType::Spot || r.has("position")) light.position = r.vec3("position");
+  light.fitPosition = light.type == LightType::Directional && !r.has("position");
+  if (r.has("target") && r.has("direction"))
+    r.fail("target", r.raw("target"), "give either direction or target, not both");
+  if (r.has("target")) {
+    if (light.type == LightType::Directional && !r.has("position"))
+      r.fail("target", r.raw("target"), "a directional light with a target needs a position too");
+    light.direction = r.vec3("target") - light.position;
+    if (glm::length(light.direction) < 1e-12)
+      r.fail("target", json::array({light.position.x, light.position.y, light.position.z}),
+             "target equals position: the direction is zero");
+  } else {
+    light.direction = r.vec3("direction");
+    if (glm::length(light.direction) < 1e-12) r.fail("direction", r.raw("direction"), "the direction is zero");
+  }
+  light.direction = glm::normalize(light.direction);
+  light.up = r.vec3("up", glm::dvec3(0.0));
+  if (glm::length(light.up) > 0.0 && glm::length(glm::cross(glm::normalize(light.up), light.direction)) < 1e-6)
+    r.fail("up", r.raw("up"), "up is parallel to the light direction");
+
+  if (light.type == LightType::Spot) {
+    light.fovYDegrees = r.number("fov", 60.0);
+    if (!(light.fovYDegrees > 0.0 && light.fovYDegrees < 179.0))
+      r.fail("fov", json(light.fovYDegrees), "a spot light's field of view must be in (0, 179) degrees");
+  } else if (r.has("extent")) {
+    light.halfExtent = r.positive("extent");
+  }
+  if (r.has("near")) {
+    light.nearPlane = r.number("near");
+    const bool ok = light.type == LightType::Spot ? light.nearPlane > 0.0 : true;
+    if (!ok) r.fail("near", json(light.nearPlane), "a spot light's near plane must be greater than zero");
+  }
+  if (r.has("far")) {
+    light.farPlane = r.number("far");
+    if (r.has("near") && !(light.farPlane > light.nearPlane))
+      r.fail("far", json(light.farPlane), "far must be greater than near (" + std::to_string(light.nearPlane) + ")");
+    if (light.type == LightType::Spot && !(light.farPlane > 0.0))
+      r.fail("far", json(light.farPlane), "must be greater than zero");
+  }
+  r.finish();
+  return light;
+}
+
+Camera readCamera(const json& v, const std::string& source) {
+  ObjectReader r(v, "/camera", source);
+  Camera c;
+  c.eye = r.vec3("eye");
+  c.target = r.vec3("target");
+  c.up = r.vec3("up", glm::dvec3(0.0, 1.0, 0.0));
+  const glm::dvec3 view = c.target - c.eye;
+  if (glm::length(view) < 1e-12) r.fail("target", r.raw("target"), "target equals eye: the view direction is zero");
+  if (glm::length(c.up) < 1e-12) r.fail("up", r.raw("up"), "the up vector is zero");
+  if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-6)
+    r.fail("up", r.raw("up"), "up is parallel to the view direction (target - eye)");
+  c.fovYDegrees = r.number("fov", 45.0);
+  if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 179.0))
+    r.fail("fov", json(c.fovYDegrees), "the camera's field of view must be in (0, 179) degrees");
+  c.width = r.integer("width", 640, 1, kMaxImageSide);
+  c.height = r.integer("height", 480, 1, kMaxImageSide);
+  if (r.has("near")) c.nearPlane = r.positive("near");
+  if (r.has("far")) {
+    c.farPlane = r.positive("far");
+    if (c.nearPlane > 0.0 && !(c.farPlane > c.nearPlane))
+      r.fail("far", json(c.farPlane), "far must be greater than near");
+  }
+  r.finish();
+  return c;
+}
+
+// Depth range of the box's corners along an axis from an origin.
+std::pair<double, double> depthRange(const Bounds3& b, const glm::dvec3& origin, const glm::dvec3& axis) {
+  double lo = 1e300, hi = -1e300;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+    const double d = glm::dot(c - origin, axis);
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  return {lo, hi};
+}
+
+// Parity of crossings of a ray with a closed mesh, in double; odd = inside.
+bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5377, 0.8421, 0.0419));  // skewed: avoids edges
+  int crossings = 0;
+  for (const auto& t : m.triangles) {
+    const glm::dvec3 a(m.positions[t[0]]), b(m.positions[t[1]]), c(m.positions[t[2]]);
+    const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(dir, e2);
+    const double det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-300) continue;
+    const glm::dvec3 s = origin - a;
+    const double u = glm::dot(s, p) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double w = glm::dot(dir, q) / det;
+    if (w < 0.0 || u + w > 1.0) continue;
+    if (glm::dot(e2, q) / det > 0.0) ++crossings;
+  }
+  return crossings % 2 == 1;
+}
+
+bool isClosed(const TriangleMesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+  if (edges.empty()) return false;
+  for (const auto& [e, n] : edges)
+    if (n != 2) return false;
+  return true;
+}
+
+}  // namespace
+
+std::size_t Scene::triangleCount() const {
+  std::size_t n = 0;
+  for (const auto& o : objects) n += o.mesh.triangleCount();
+  return n;
+}
+
+Bounds3 Scene::bounds() const {
+  Bounds3 b;
+  for (const auto& o : objects) b.extend(o.mesh.bounds());
+  return b;
+}
+
+TriangleMesh Scene::merged() const {
+  TriangleMesh m;
+  for (const auto& o : objects) m.append(o.mesh);
+  return m;
+}
+
+void fitLightAndCamera(Scene& scene) {
+  const Bounds3 b = scene.bounds();
+  if (b.empty()) return;
+  const double radius = std::max(b.radius(), 1e-6);
+  Light& l = scene.light;
+  l.direction = glm::normalize(l.direction);
+  if (l.type == LightType::Directional) {
+    if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
+    if (l.halfExtent <= 0.0) {
+      const glm::dmat4 v = lightView(l);
+      double e = 0.0;
+      for (int k = 0; k < 8; ++k) {
+        const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+        const glm::dvec4 p = v * glm::dvec4(c, 1.0);
+        e = std::max({e, std::abs(p.x), std::abs(p.y)});
+      }
+      l.halfExtent = e * 1.02;  // 2% margin so the far-plane border ring stays off the geometry
+    }
+  }
+  const auto [lo, hi] = depthRange(b, l.position, l.direction);
+  if (l.farPlane == 0.0) l.farPlane = std::max(hi, 1e-3 * radius) + 0.01 * radius;
+  if (l.nearPlane == 0.0 && l.type == LightType::Directional)
+    l.nearPlane = lo - 0.01 * radius;
+  if (l.nearPlane == 0.0 && l.type == LightType::Spot)
+    l.nearPlane = std::max(lo - 0.01 * radius, l.farPlane * 1e-3);
+  if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
+
+  Camera& c = scene.camera;
+  const glm::dvec3 axis = glm::normalize(c.target - c.eye);
+  const auto [clo, chi] = depthRange(b, c.eye, axis);
+  if (c.farPlane <= 0.0) c.farPlane = std::max(chi, 1e-3 * radius) * 1.01 + 1e-6;
+  if (c.nearPlane <= 0.0) c.nearPlane = std::max(clo * 0.99, c.farPlane * 1e-3);
+  if (c.farPlane <= c.nearPlane) c.farPlane = c.nearPlane * 2.0 + radius;
+}
+
+SceneLoadResult parseScene(const std::string& text, const std::string& source,
+                           const std::filesystem::path& baseDir) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Turn the byte offset into line:column for the message.
+    std::size_t line = 1, col = 1;
+    for (std::size_t k = 0; k + 1 < e.byte && k < text.size(); ++k) {
+      if (text[k] == '\n') { ++line; col = 1; } else { ++col; }
+    }
+    throw InputError(source, "", "", "malformed JSON at line " + std::to_string(line) + ", column " +
+                                         std::to_string(col) + ": " + e.what());
+  }
+  SceneLoadResult result;
+  Scene& scene = result.scene;
+  scene.source = source;
+  ObjectReader top(doc, "", source);
+  if (top.has("description")) top.string("description");
+  if (!top.has("objects")) top.fail("objects", json(), "required field is missing");
+  const json& objects = top.raw("objects");
+  if (!objects.is_array() || objects.empty())
+    top.fail("objects", objects, "expected a non-empty array of objects");
+  for (std::size_t k = 0; k < objects.size(); ++k) scene.objects.push_back(readObject(objects[k], k, source, baseDir));
+  if (!top.has("light")) top.fail("light", json(), "required field is missing");
+  scene.light = readLight(top.raw("light"), source);
+  if (!top.has("camera")) top.fail("camera", json(), "required field is missing");
+  scene.camera = readCamera(top.raw("camera"), source);
+  top.finish();
+
+  if (scene.triangleCount() == 0) throw InputError(source, "/objects", "", "the scene has no triangles");
+  if (scene.triangleCount() > kMaxSceneTriangles)
+    throw InputError(source, "/objects", std::to_string(scene.triangleCount()) + " triangles",
+                     "more than the limit of " + std::to_string(kMaxSceneTriangles));
+  const Light given = scene.light;
+  fitLightAndCamera(scene);
+  if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
+    throw InputError(source, "/light/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
+  if (scene.light.type == LightType::Spot) {
+    for (const auto& o : scene.objects)
+      if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
+        result.warnings.push_back(source + ": /light/position: the spot light is inside the closed mesh \"" + o.name +
+                                  "\": everything it lights will be in shadow");
+  }
+  return result;
+}
+
+SceneLoadResult loadScene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "", "cannot open the scene file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(path.string(), "", "", "cannot read the scene file");
+  return parseScene(ss.str(), path.string(), path.parent_path());
+}
+
+Scene defaultScene() {
+  Scene s;
+  s.source = "default";
+  SceneObject ground{"ground", "plane", makePlane(20.0, 20.0, 1)};
+  SceneObject sphere{"sphere", "sphere", makeIcoSphere(1.0, 4)};
+  for (auto& p : sphere.mesh.positions) p.y += 2.0f;
+  s.objects = {std::move(ground), std::move(sphere)};
+  s.light.type = LightType::Spot;
+  s.light.position = {3.0, 9.0, 2.0};
+  s.light.direction = glm::normalize(glm::dvec3(-0.3, 0.0, -0.2) - s.light.position);
+  s.light.fovYDegrees = 55.0;
+  s.camera.eye = {0.0, 6.0, 11.0};
+  s.camera.target = {0.0, 1.0, 0.0};
+  s.camera.fovYDegrees = 45.0;
+  s.camera.width = 640;
+  s.camera.height = 480;
+  fitLightAndCamera(s);
+  return s;
+}
+
+void exportSceneMesh(const Scene& scene, const std::filesystem::path& path) {
+  writeTriangleMesh(scene.merged(), path);
+}
+
+}  // namespace shadowvol
