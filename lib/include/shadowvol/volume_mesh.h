@@ -1,0 +1,29 @@
+// The explicit shadow volume: a closed, consistently oriented triangle mesh in world space.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol {
+
+/// Vertices and triangles of a shadow volume, world space, double precision.
+/// Triangles are counter-clockwise seen from outside (outward normals), so the sheet faces the
+/// light and the far cap faces away from it. Vertices are not tied to texel centres: a vertex
+/// is just a point (later refinements may move sheet vertices off texel centres).
+struct VolumeMesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+
+  std::size_t vertexCount() const { return positions.size(); }
+  std::size_t triangleCount() const { return triangles.size(); }
+  /// Single-precision copy (for OpenGL upload, Embree, and the mesh writers).
+  TriangleMesh toTriangleMesh() const;
+};
+
+}  // namespace shadowvol
