@@ -250,7 +250,7 @@ Light readLight(const json& v, const std::string& source) {
   light.direction = glm::normalize(light.direction);
   light.up = r.vec3("up", glm::dvec3(0.0));
   if (glm::length(light.up) > 0.0 && glm::length(glm::cross(glm::normalize(light.up), light.direction)) < 1e-6)
-    r.fail("up", r.raw("up"), "up is parallel to the light direction");
+    r.fail("up", json::array({light.up.x, light.up.y, light.up.z}), "up is parallel to the light direction");
 
   if (light.type == LightType::Spot) {
     light.fovYDegrees = r.number("fov", 60.0);
@@ -283,9 +283,10 @@ Camera readCamera(const json& v, const std::string& source) {
   c.up = r.vec3("up", glm::dvec3(0.0, 1.0, 0.0));
   const glm::dvec3 view = c.target - c.eye;
   if (glm::length(view) < 1e-12) r.fail("target", r.raw("target"), "target equals eye: the view direction is zero");
-  if (glm::length(c.up) < 1e-12) r.fail("up", r.raw("up"), "the up vector is zero");
+  const json upValue = json::array({c.up.x, c.up.y, c.up.z});
+  if (glm::length(c.up) < 1e-12) r.fail("up", upValue, "the up vector is zero");
   if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-6)
-    r.fail("up", r.raw("up"), "up is parallel to the view direction (target - eye)");
+    r.fail("up", upValue, "up is parallel to the view direction (target - eye)");
   c.fovYDegrees = r.number("fov", 45.0);
   if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 179.0))
     r.fail("fov", json(c.fovYDegrees), "the camera's field of view must be in (0, 179) degrees");

@@ -1,0 +1,43 @@
+// Move-only RAII wrappers for Embree 3 (style.md point 7) and a scene built from triangle meshes.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol {
+
+/// An Embree device with an error callback that turns Embree errors into messages on stderr and
+/// remembers the first one; throwIfError() raises it as std::runtime_error.
+class EmbreeDevice {
+ public:
+  EmbreeDevice();
+  RTCDevice get() const { return device_.get(); }
+  void throwIfError() const;
+
+ private:
+  struct Deleter {
+    void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
+  };
+  std::unique_ptr<RTCDeviceTy, Deleter> device_;
+  std::shared_ptr<std::string> firstError_;
+};
+
+/// A committed, robust (watertight) Embree scene of one triangle geometry per mesh; geometry ID k
+/// is meshes[k]. Context filter functions are enabled, so a query can bring its own filter.
+class EmbreeScene {
+ public:
+  EmbreeScene(const EmbreeDevice& device, const std::vector<const TriangleMesh*>& meshes);
+  RTCScene get() const { return scene_.get(); }
+
+ private:
+  struct Deleter {
+    void operator()(RTCScene s) const { rtcReleaseScene(s); }
+  };
+  std::unique_ptr<RTCSceneTy, Deleter> scene_;
+};
+
+}  // namespace shadowvol

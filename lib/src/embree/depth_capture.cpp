@@ -1,0 +1,108 @@
+#include "shadowvol/embree/depth_capture.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/embree/embree_scene.h"
+
+namespace shadowvol {
+namespace {
+
+// Extended intersect context: Embree hands the RTCIntersectContext* to the filter, and it is the
+// first member here, so the filter can reach the per-ray state (style of Embree's tutorials).
+struct CaptureContext {
+  RTCIntersectContext ctx;
+  float t1 = INFINITY;  // midpoint: nearest distinct hit distance
+  float t2 = INFINITY;  // midpoint: second nearest distinct hit distance
+};
+
+// Two hits within this relative distance are the same surface (a ray through a shared edge or
+// vertex reports each adjacent triangle).
+constexpr float kSameSurface = 1e-5f;
+
+// Back capture: accept only hits on back faces (geometric normal along the ray). Embree's Ng for a
+// counter-clockwise triangle points to its front side, the same convention as OpenGL.
+void backFaceFilter(const RTCFilterFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  const float dx = RTCRayN_dir_x(args->ray, args->N, 0), dy = RTCRayN_dir_y(args->ray, args->N, 0),
+              dz = RTCRayN_dir_z(args->ray, args->N, 0);
+  const float nx = RTCHitN_Ng_x(args->hit, args->N, 0), ny = RTCHitN_Ng_y(args->hit, args->N, 0),
+              nz = RTCHitN_Ng_z(args->hit, args->N, 0);
+  if (!(dx * nx + dy * ny + dz * nz > 0.0f)) args->valid[0] = 0;
+}
+
+// Midpoint capture: reject every hit (so traversal sees all of them) and keep the two nearest
+// distinct distances.
+void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  auto* c = reinterpret_cast<CaptureContext*>(const_cast<RTCIntersectContext*>(args->context));
+  const float t = RTCRayN_tfar(args->ray, args->N, 0);
+  args->valid[0] = 0;
+  auto same = [](float a, float b) { return std::abs(a - b) <= kSameSurface * std::max(a, b); };
+  if (same(t, c->t1) || same(t, c->t2)) {
+    // a duplicate of a known surface: keep the smaller distance for determinism
+    if (same(t, c->t1)) c->t1 = std::min(c->t1, t);
+    else c->t2 = std::min(c->t2, t);
+    return;
+  }
+  if (t < c->t1) {
+    c->t2 = c->t1;
+    c->t1 = t;
+  } else if (t < c->t2) {
+    c->t2 = t;
+  }
+}
+
+}  // namespace
+
+DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
+  DepthMap map = makeDepthMap(scene.light, width, height, mode);
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  const EmbreeDevice device;
+  const EmbreeScene rtScene(device, meshes);
+  const TexelUnprojector unproject(map);
+  const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      for (int i = 0; i < width; ++i) {
+        // Points of the texel's ray at view depths 1 and 2: the direction has a view-z component
+        // of exactly -1, so the ray parameter t equals the light-view depth.
+        const glm::dvec3 p1 = unproject.worldPoint(i, j, 1.0), p2 = unproject.worldPoint(i, j, 2.0);
+        const glm::dvec3 dir = p2 - p1, org = p1 - dir;
+        RTCRayHit rh{};
+        rh.ray.org_x = float(org.x);
+        rh.ray.org_y = float(org.y);
+        rh.ray.org_z = float(org.z);
+        rh.ray.dir_x = float(dir.x);
+        rh.ray.dir_y = float(dir.y);
+        rh.ray.dir_z = float(dir.z);
+        rh.ray.tnear = tNear;
+        rh.ray.tfar = tFar;
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        CaptureContext c;
+        rtcInitIntersectContext(&c.ctx);
+        if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
+        if (mode == CaptureMode::Midpoint) c.ctx.filter = twoLayerFilter;
+        rtcIntersect1(rtScene.get(), &c.ctx, &rh);
+        float d = DepthMap::kNoHit;
+        if (mode == CaptureMode::Midpoint) {
+          if (std::isfinite(c.t1)) d = 0.5f * (c.t1 + (std::isfinite(c.t2) ? c.t2 : tFar));
+        } else if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+          d = rh.ray.tfar;
+        }
+        map.depth[map.index(i, j)] = d;
+      }
+    }
+  });
+  device.throwIfError();
+  return map;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,53 @@
+#include "shadowvol/embree/embree_scene.h"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol {
+namespace {
+
+void onEmbreeError(void* user, RTCError code, const char* message) {
+  auto* first = static_cast<std::string*>(user);
+  std::fprintf(stderr, "shadowvol: Embree error %d: %s\n", int(code), message ? message : "");
+  if (first->empty()) first->assign("Embree error " + std::to_string(int(code)) + ": " + (message ? message : ""));
+}
+
+}  // namespace
+
+EmbreeDevice::EmbreeDevice() : firstError_(std::make_shared<std::string>()) {
+  device_.reset(rtcNewDevice(nullptr));
+  if (!device_) throw std::runtime_error("cannot create an Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(device_.get(), onEmbreeError, firstError_.get());
+}
+
+void EmbreeDevice::throwIfError() const {
+  if (!firstError_->empty()) throw std::runtime_error(*firstError_);
+}
+
+EmbreeScene::EmbreeScene(const EmbreeDevice& device, const std::vector<const TriangleMesh*>& meshes) {
+  scene_.reset(rtcNewScene(device.get()));
+  rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+  rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);
+  for (const TriangleMesh* mesh : meshes) {
+    SV_CHECK(mesh != nullptr);
+    RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree-owned buffers (padded as Embree requires), filled by copy.
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), mesh->positions.size()));
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh->triangles.size()));
+    if (v && !mesh->positions.empty()) std::memcpy(v, mesh->positions.data(), mesh->positions.size() * 12);
+    if (idx && !mesh->triangles.empty()) std::memcpy(idx, mesh->triangles.data(), mesh->triangles.size() * 12);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_.get(), geom);  // IDs are assigned 0, 1, 2, ... in order
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene_.get());
+  device.throwIfError();
+}
+
+}  // namespace shadowvol

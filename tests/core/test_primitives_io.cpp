@@ -1,0 +1,145 @@
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <glm/geometric.hpp>
+
+#include "shadowvol/depth_map_io.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/primitives.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+// Every directed edge once and its reverse once: closed and consistently oriented.
+bool closedAndOriented(const TriangleMesh& m) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  for (const auto& [e, n] : directed)
+    if (n != 1 || directed.count({e.second, e.first}) != 1) return false;
+  return !directed.empty();
+}
+
+double signedVolume(const TriangleMesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += glm::dot(glm::dvec3(m.positions[t[0]]),
+                  glm::cross(glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]]))) / 6.0;
+  return v;
+}
+
+TEST(Primitives, ClosedOutwardAndOfTheRightVolume) {
+  const double pi = 3.14159265358979323846;
+  struct Case {
+    const char* name;
+    TriangleMesh mesh;
+    double volume, tolerance;
+  } cases[] = {
+      {"box", makeBox(1, 2, 3), 6.0, 1e-6},
+      {"icosphere", makeIcoSphere(1, 5), 4.0 / 3 * pi, 2e-3},
+      {"uvsphere", makeUvSphere(1, 256, 128), 4.0 / 3 * pi, 2e-3},
+      {"cylinder", makeCylinder(0.5, 2, 256), pi * 0.25 * 2, 1e-3},
+      {"hemisphere", makeHemisphere(1, 256, 128), 2.0 / 3 * pi, 2e-3},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    EXPECT_TRUE(closedAndOriented(c.mesh));
+    EXPECT_NEAR(signedVolume(c.mesh), c.volume, c.tolerance * c.volume);  // > 0: outward
+  }
+  EXPECT_EQ(makeIcoSphere(1, 3).triangleCount(), 20u * 64);
+  const TriangleMesh tree = makeTree(0.1, 2, 0.8, 2);
+  EXPECT_GT(signedVolume(tree), 0.0);
+}
+
+TEST(Primitives, PlaneFacesUp) {
+  const TriangleMesh p = makePlane(2, 4, 3);
+  EXPECT_EQ(p.triangleCount(), 18u);
+  for (const auto& t : p.triangles) {
+    const glm::dvec3 n = glm::cross(glm::dvec3(p.positions[t[1]] - p.positions[t[0]]),
+                                    glm::dvec3(p.positions[t[2]] - p.positions[t[0]]));
+    EXPECT_GT(n.y, 0.0);
+  }
+}
+
+using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+TEST(MeshIo, EveryFormatReadsBackThroughOpenMesh) {
+  const auto dir = test::tempDir();
+  const TriangleMesh box = makeBox(1, 2, 3);
+  for (const char* ext : {".ply", ".obj", ".off", ".stl"}) {
+    SCOPED_TRACE(ext);
+    const auto path = dir / (std::string("box") + ext);
+    writeTriangleMesh(box, path);
+    OMesh m;
+    OpenMesh::IO::Options opt;
+    ASSERT_TRUE(OpenMesh::IO::read_mesh(m, path.string(), opt));
+    EXPECT_EQ(m.n_faces(), 12u);
+    const TriangleMesh back = readTriangleMesh(path);
+    EXPECT_EQ(back.triangleCount(), 12u);
+    EXPECT_NEAR(signedVolume(back), 6.0, 1e-5);
+  }
+  // No temporary files are left beside the outputs.
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST(MeshIo, UnknownExtensionWritesNothing) {
+  const auto dir = test::tempDir();
+  EXPECT_THROW(writeTriangleMesh(makeBox(1, 1, 1), dir / "box.xyz"), InputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  EXPECT_THROW(writeTriangleMesh(makeBox(1, 1, 1), dir / "missing-folder" / "box.ply"), InputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
+  const auto dir = test::tempDir();
+  Light l;
+  l.position = {0, 5, 0};
+  l.direction = {0, -1, 0};
+  l.nearPlane = 1;
+  l.farPlane = 9;
+  DepthMap map = makeDepthMap(l, 5, 3, CaptureMode::Midpoint);
+  for (std::size_t k = 0; k < map.depth.size(); ++k) map.depth[k] = k % 4 == 0 ? DepthMap::kNoHit : 1.0f + 0.5f * float(k);
+  writeDepthMap(map, dir / "d.pfm");
+  const DepthMap back = readDepthMap(dir / "d.pfm");
+  EXPECT_EQ(back.width, 5);
+  EXPECT_EQ(back.height, 3);
+  EXPECT_EQ(back.capture, CaptureMode::Midpoint);
+  EXPECT_EQ(back.lightType, LightType::Spot);
+  EXPECT_EQ(back.depth, map.depth);
+  EXPECT_EQ(back.lightView, map.lightView);
+  EXPECT_EQ(back.lightProjection, map.lightProjection);
+  EXPECT_EQ(back.hitCount(), map.hitCount());
+}
+
+TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
+  const auto dir = test::tempDir();
+  auto expectError = [&](const std::string& name, const std::string& phrase) {
+    try {
+      readDepthMap(dir / name);
+      FAIL() << name;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  expectError("none.pfm", "cannot open");
+  test::writeText(dir / "rgb.pfm", "PF\n2 2\n-1.0\n");
+  expectError("rgb.pfm", "Pf");
+  test::writeText(dir / "short.pfm", "Pf\n4 4\n-1.0\n0123");
+  expectError("short.pfm", "shorter");
+  // A good PFM without its side file.
+  Light l;
+  l.nearPlane = 1;
+  l.farPlane = 2;
+  writeDepthMap(makeDepthMap(l, 2, 2, CaptureMode::Back), dir / "ok.pfm");
+  std::filesystem::remove(depthSidecarPath(dir / "ok.pfm"));
+  expectError("ok.pfm", "side file");
+}
+
+}  // namespace
+}  // namespace shadowvol

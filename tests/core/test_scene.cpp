@@ -1,0 +1,260 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "shadowvol/error.h"
+#include "shadowvol/scene.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+const char* kGood = R"({
+  "description": "a box on a plane",
+  "objects": [
+    {"type": "plane", "size": [8, 6], "subdivisions": 2},
+    {"type": "box", "name": "crate", "size": 1, "transform": {"translate": [0, 0.5, 0], "rotate": [0, 45, 0]}},
+    {"type": "sphere", "tessellation": "uv", "segments": 12, "rings": 6, "transform": {"translate": [2, 1, 0]}},
+    {"type": "cylinder", "radius": 0.3, "height": 2, "segments": 10},
+    {"type": "hemisphere", "radius": 1, "segments": 16, "rings": 4},
+    {"type": "tree", "detail": 1}
+  ],
+  "light": {"type": "spot", "position": [0, 10, 0], "target": [0, 0, 0], "fov": 50},
+  "camera": {"eye": [0, 5, 10], "target": [0, 0, 0], "width": 320, "height": 240}
+})";
+
+SceneLoadResult parse(const std::string& text) { return parseScene(text, "test.json", "."); }
+
+/// Expects an InputError whose message names the file, the field and (when given) the value.
+void expectError(const std::string& text, const std::string& field, const std::string& value = "") {
+  try {
+    parse(text);
+    FAIL() << "no error for field " << field;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "test.json");
+    EXPECT_EQ(e.field(), field) << e.what();
+    if (!value.empty()) EXPECT_NE(std::string(e.what()).find(value), std::string::npos) << e.what();
+  }
+}
+
+std::string withLight(const std::string& light) {
+  return R"({"objects":[{"type":"box"}],"light":)" + light + R"(,"camera":{"eye":[0,0,5],"target":[0,0,0]}})";
+}
+std::string withCamera(const std::string& camera) {
+  return R"({"objects":[{"type":"box"}],"light":{"type":"directional","direction":[0,-1,0]},"camera":)" + camera +
+         "}";
+}
+std::string withObject(const std::string& object) {
+  return R"({"objects":[)" + object +
+         R"(],"light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})";
+}
+
+TEST(SceneParser, ReadsAllPrimitivesAndFields) {
+  const auto r = parse(kGood);
+  const Scene& s = r.scene;
+  ASSERT_EQ(s.objects.size(), 6u);
+  EXPECT_EQ(s.objects[0].mesh.triangleCount(), 8u);          // 2 x 2 cells
+  EXPECT_EQ(s.objects[1].name, "crate");
+  EXPECT_EQ(s.objects[2].name, "sphere#2");
+  EXPECT_EQ(s.objects[2].mesh.triangleCount(), 2u * 12 * 5);  // uv sphere formula
+  EXPECT_EQ(s.objects[3].mesh.triangleCount(), 4u * 10);
+  EXPECT_EQ(s.camera.width, 320);
+  EXPECT_DOUBLE_EQ(s.light.fovYDegrees, 50.0);
+  EXPECT_NEAR(glm::length(s.light.direction), 1.0, 1e-12);
+  EXPECT_TRUE(r.warnings.empty());
+  // The rotated box: its corners lie at distance sqrt(0.5) from the Y axis after the 45 degree turn.
+  double maxX = 0;
+  for (const auto& p : s.objects[1].mesh.positions) maxX = std::max(maxX, double(p.x));
+  EXPECT_NEAR(maxX, std::sqrt(0.5), 1e-6);
+}
+
+TEST(SceneParser, FitsNearFarAroundTheScene) {
+  const Scene s = parse(kGood).scene;
+  const Bounds3 b = s.bounds();
+  EXPECT_GT(s.light.nearPlane, 0.0);
+  EXPECT_GT(s.light.farPlane, s.light.nearPlane);
+  // Every bounding-box corner lies within [near, far] along the light axis.
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+    const double d = glm::dot(c - s.light.position, s.light.direction);
+    EXPECT_GE(d, s.light.nearPlane);
+    EXPECT_LE(d, s.light.farPlane);
+  }
+  EXPECT_GT(s.camera.farPlane, s.camera.nearPlane);
+}
+
+TEST(SceneParser, DirectionalLightFitsPositionExtentAndRange) {
+  const Scene s = parse(withLight(R"({"type":"directional","direction":[0,-1,0]})")).scene;
+  EXPECT_EQ(s.light.type, LightType::Directional);
+  EXPECT_NEAR(s.light.halfExtent, 0.5 * 1.02, 1e-9);  // the unit box seen from above, 2% margin
+  const Bounds3 b = s.bounds();
+  EXPECT_LT(s.light.nearPlane, glm::dot(b.max - s.light.position, s.light.direction));
+  EXPECT_GT(s.light.farPlane, glm::dot(b.min - s.light.position, s.light.direction));
+}
+
+TEST(SceneParser, GivenNearFarAreKept) {
+  const Scene s = parse(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":0.5,"far":50})")).scene;
+  EXPECT_DOUBLE_EQ(s.light.nearPlane, 0.5);
+  EXPECT_DOUBLE_EQ(s.light.farPlane, 50.0);
+}
+
+TEST(SceneParser, MalformedJsonNamesLineAndColumn) {
+  try {
+    parse("{\n  \"objects\": [\n  }");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("test.json"), std::string::npos);
+  }
+}
+
+TEST(SceneParser, UnknownFieldsAreErrors) {
+  expectError(R"({"objects":[{"type":"box"}],"lights":{},"light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})",
+              "/lights");
+  expectError(withObject(R"({"type":"box","radius":2})"), "/objects/0/radius", "2");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"colour":1})"), "/light/colour");
+  expectError(withObject(R"({"type":"box","transform":{"shift":[1,2,3]}})"), "/objects/0/transform/shift");
+}
+
+TEST(SceneParser, BadObjects) {
+  expectError(withObject(R"({"type":"torus"})"), "/objects/0/type", "torus");
+  expectError(withObject(R"({"type":"sphere","radius":-1})"), "/objects/0/radius", "-1");
+  expectError(withObject(R"({"type":"sphere","radius":"big"})"), "/objects/0/radius", "big");
+  expectError(withObject(R"({"type":"sphere","detail":99})"), "/objects/0/detail", "99");
+  expectError(withObject(R"({"type":"box","size":[1,0,1]})"), "/objects/0/size");
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]}})"),
+              "/objects/0/transform/matrix");
+  expectError(R"({"objects":[],"light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})",
+              "/objects");
+}
+
+TEST(SceneParser, MissingUnreadableAndBadMeshes) {
+  const auto dir = test::tempDir();
+  auto sceneWith = [&](const std::string& file) {
+    return withObject(R"({"type":"mesh","file":")" + file + R"("})");
+  };
+  auto expectMeshError = [&](const std::string& file, const std::string& phrase) {
+    try {
+      parseScene(sceneWith(file), "test.json", dir);
+      FAIL() << file;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "/objects/0/file");
+      EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  expectMeshError("nothere.obj", "not found");
+  test::writeText(dir / "garbage.off", "this is not an OFF file\n");
+  expectMeshError("garbage.off", "cannot read");
+  test::writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  expectMeshError("points.obj", "no triangles");
+  {
+    // Binary PLY with one NaN coordinate (text readers do not parse "nan"; OpenMesh's STL reader
+    // welds vertices through a point map, which NaN breaks before we see it).
+    std::string ply =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const float v[9] = {0, 0, 0, std::numeric_limits<float>::quiet_NaN(), 0, 0, 0, 1, 0};
+    ply.append(reinterpret_cast<const char*>(v), sizeof v);
+    const unsigned char three = 3;
+    const std::int32_t idx[3] = {0, 1, 2};
+    ply.append(reinterpret_cast<const char*>(&three), 1);
+    ply.append(reinterpret_cast<const char*>(idx), sizeof idx);
+    test::writeText(dir / "nan.ply", ply);
+    expectMeshError("nan.ply", "non-finite");
+  }
+  expectMeshError("mesh.xyz", "unsupported");
+  test::writeText(dir / "ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(parseScene(sceneWith("ok.obj"), "test.json", dir).scene.triangleCount(), 1u);
+}
+
+TEST(SceneParser, BadLights) {
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,0,0]})"), "/light/direction");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"target":[0,5,0]})"), "/light/target");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"fov":0})"), "/light/fov", "0");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"fov":-30})"), "/light/fov", "-30");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"fov":180})"), "/light/fov");
+  expectError(withLight(R"({"type":"spot","direction":[0,-1,0]})"), "/light/position");
+  expectError(withLight(R"({"type":"area","direction":[0,-1,0]})"), "/light/type", "area");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":2,"far":1})"), "/light/far");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":-1})"), "/light/near");
+  expectError(withLight(R"({"type":"directional","direction":[0,-1,0],"extent":0})"), "/light/extent");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"up":[0,2,0]})"), "/light/up");
+}
+
+TEST(SceneParser, DegenerateCameras) {
+  expectError(withCamera(R"({"eye":[1,2,3],"target":[1,2,3]})"), "/camera/target");
+  expectError(withCamera(R"({"eye":[0,5,0],"target":[0,0,0]})"), "/camera/up");  // up parallel to view
+  expectError(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"fov":0})"), "/camera/fov");
+  expectError(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"width":0})"), "/camera/width", "0");
+  expectError(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"height":100000})"), "/camera/height", "100000");
+  expectError(withCamera(R"({"eye":[0,0,"x"],"target":[0,0,0]})"), "/camera/eye");
+  expectError(withCamera(R"({"target":[0,0,0]})"), "/camera/eye");
+}
+
+TEST(SceneParser, LightInsideAClosedMeshWarns) {
+  const auto r = parse(R"({"objects":[{"type":"sphere","name":"shell","radius":3}],
+    "light":{"type":"spot","position":[0,0.5,0],"direction":[0,-1,0]},
+    "camera":{"eye":[0,0,9],"target":[0,0,0]}})");
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("shell"), std::string::npos);
+  EXPECT_TRUE(parse(kGood).warnings.empty());
+}
+
+TEST(SceneParser, MissingFileIsAnError) {
+  EXPECT_THROW(loadScene("/nonexistent/scene.json"), InputError);
+}
+
+TEST(SceneParser, EveryShippedSceneLoads) {
+  int count = 0;
+  for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / "data/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    SCOPED_TRACE(e.path().string());
+    try {
+      const auto r = loadScene(e.path());
+      EXPECT_GT(r.scene.triangleCount(), 0u);
+      ++count;
+    } catch (const InputError& err) {
+      // Scenes of real meshes need scripts/fetch_meshes.sh first; anything else is a defect.
+      const std::string msg = err.what();
+      EXPECT_NE(msg.find("data/meshes"), std::string::npos) << msg;
+    }
+  }
+  EXPECT_GE(count, 3);
+}
+
+TEST(DefaultScene, IsTheFloatingSphere) {
+  const Scene s = defaultScene();
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.light.type, LightType::Spot);
+  const Bounds3 sphere = s.objects[1].mesh.bounds();
+  EXPECT_GT(sphere.min.y, 0.5);  // floats above the ground at y = 0
+  EXPECT_GT(s.light.farPlane, s.light.nearPlane);
+}
+
+}  // namespace
+}  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+TEST(DefaultScene, TheShippedFileIsTheBuiltInScene) {
+  const Scene file = loadScene(test::sourceDir() / "data/scenes/default.json").scene;
+  const Scene built = defaultScene();
+  ASSERT_EQ(file.objects.size(), built.objects.size());
+  for (std::size_t k = 0; k < file.objects.size(); ++k) {
+    EXPECT_EQ(file.objects[k].mesh.positions, built.objects[k].mesh.positions) << k;
+    EXPECT_EQ(file.objects[k].mesh.triangles, built.objects[k].mesh.triangles) << k;
+  }
+  EXPECT_NEAR(glm::length(file.light.position - built.light.position), 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(file.light.direction - built.light.direction), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(file.light.fovYDegrees, built.light.fovYDegrees);
+  EXPECT_NEAR(file.light.nearPlane, built.light.nearPlane, 1e-9);
+  EXPECT_NEAR(file.light.farPlane, built.light.farPlane, 1e-9);
+  EXPECT_EQ(file.camera.eye, built.camera.eye);
+  EXPECT_EQ(file.camera.width, built.camera.width);
+}
+
+}  // namespace
+}  // namespace shadowvol

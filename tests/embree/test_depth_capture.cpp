@@ -1,0 +1,155 @@
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/primitives.h"
+
+namespace shadowvol {
+namespace {
+
+Light makeLight(LightType type) {
+  Light l;
+  l.type = type;
+  l.position = {0.1, 10, 0.05};
+  l.direction = glm::normalize(glm::dvec3(0.02, -1, 0.01));
+  l.fovYDegrees = 30;
+  l.halfExtent = 2.5;
+  l.nearPlane = 1;
+  l.farPlane = 20;
+  return l;
+}
+
+Scene sceneOf(const Light& light, std::vector<TriangleMesh> meshes) {
+  Scene s;
+  for (auto& m : meshes) s.objects.push_back({"obj", "mesh", std::move(m)});
+  s.light = light;
+  return s;
+}
+
+// The ray of texel (i, j) as the capture builds it: t is the light-view depth.
+struct Ray {
+  glm::dvec3 org, dir;
+};
+Ray texelRay(const DepthMap& map, int i, int j) {
+  const TexelUnprojector u(map);
+  const glm::dvec3 p1 = u.worldPoint(i, j, 1.0), p2 = u.worldPoint(i, j, 2.0);
+  return {p1 - (p2 - p1), p2 - p1};
+}
+
+class CaptureAnalytic : public ::testing::TestWithParam<LightType> {};
+
+TEST_P(CaptureAnalytic, TiltedPlaneAtKnownDistance) {
+  TriangleMesh plane = makePlane(60, 60, 1);
+  // Tilt by 20 degrees about X and lower to y = 1: plane through (0, 1, 0), normal n.
+  const double a = 20.0 * 3.14159265358979323846 / 180.0;
+  const glm::dvec3 n(0, std::cos(a), std::sin(a));
+  for (auto& p : plane.positions) {
+    const double y = p.y * std::cos(a) - p.z * std::sin(a), z = p.y * std::sin(a) + p.z * std::cos(a);
+    p = glm::vec3(p.x, float(y + 1.0), float(z));
+  }
+  const Scene s = sceneOf(makeLight(GetParam()), {plane});
+  const DepthMap map = captureDepthEmbree(s, 48, 40, CaptureMode::Front);
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      const Ray r = texelRay(map, i, j);
+      const double t = glm::dot(glm::dvec3(0, 1, 0) - r.org, n) / glm::dot(r.dir, n);
+      ASSERT_NEAR(map.at(i, j), t, 1e-5 * t) << i << "," << j;
+    }
+  // A single-sided plane facing the light is no back face: back capture sees nothing.
+  const DepthMap back = captureDepthEmbree(s, 48, 40, CaptureMode::Back);
+  EXPECT_EQ(back.hitCount(), 0u);
+  // Midpoint with one layer: the second layer is the far plane.
+  const DepthMap mid = captureDepthEmbree(s, 48, 40, CaptureMode::Midpoint);
+  for (std::size_t k = 0; k < map.depth.size(); ++k)
+    ASSERT_NEAR(mid.depth[k], 0.5 * (map.depth[k] + map.farPlane), 1e-5 * map.farPlane);
+}
+
+TEST_P(CaptureAnalytic, SphereFrontBackAndMidpoint) {
+  // Icosphere of detail 7: 327,680 triangles, radial deviation <= 1e-5 of the radius, so depths
+  // away from the silhouette agree with the analytic sphere within 1e-5 relative.
+  const glm::dvec3 centre(0.3, 2.0, -0.2);
+  const double radius = 1.0;
+  TriangleMesh sphere = makeIcoSphere(radius, 7);
+  for (auto& p : sphere.positions) p += glm::vec3(centre);
+  const Scene s = sceneOf(makeLight(GetParam()), {sphere});
+  const int n = 40;
+  const DepthMap front = captureDepthEmbree(s, n, n, CaptureMode::Front);
+  const DepthMap back = captureDepthEmbree(s, n, n, CaptureMode::Back);
+  const DepthMap mid = captureDepthEmbree(s, n, n, CaptureMode::Midpoint);
+  int inside = 0, missed = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Ray r = texelRay(front, i, j);
+      // Solve |org + t dir - c|^2 = R^2 in double.
+      const glm::dvec3 oc = r.org - centre;
+      const double A = glm::dot(r.dir, r.dir), B = glm::dot(oc, r.dir), C = glm::dot(oc, oc) - radius * radius;
+      const double disc = B * B - A * C;
+      // Impact parameter: distance of the centre from the ray's line.
+      const double impact = glm::length(glm::cross(oc, r.dir)) / std::sqrt(A);
+      if (impact < 0.9 * radius) {
+        ++inside;
+        const double t0 = (-B - std::sqrt(disc)) / A, t1 = (-B + std::sqrt(disc)) / A;
+        ASSERT_NEAR(front.at(i, j), t0, 1e-5 * t0) << i << "," << j;
+        ASSERT_NEAR(back.at(i, j), t1, 1e-5 * t1) << i << "," << j;
+        ASSERT_NEAR(mid.at(i, j), 0.5 * (t0 + t1), 1e-5 * t1) << i << "," << j;
+      } else if (impact > 1.01 * radius) {
+        ++missed;
+        EXPECT_TRUE(DepthMap::isNoHit(front.at(i, j)));
+        EXPECT_TRUE(DepthMap::isNoHit(back.at(i, j)));
+        EXPECT_TRUE(DepthMap::isNoHit(mid.at(i, j)));
+      }
+    }
+  EXPECT_GT(inside, 100);  // the test looked at something
+  EXPECT_GT(missed, 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothLights, CaptureAnalytic, ::testing::Values(LightType::Spot, LightType::Directional));
+
+TEST(Capture, BackModeSeesTheUndersideOfAFloatingBoxOverAGround) {
+  TriangleMesh box = makeBox(2, 0.5, 2);
+  for (auto& p : box.positions) p.y += 3.0f;  // from y = 2.75 to 3.25
+  const Light l = makeLight(LightType::Directional);
+  const Scene s = sceneOf(l, {makePlane(40, 40, 1), box});
+  const DepthMap back = captureDepthEmbree(s, 32, 32, CaptureMode::Back);
+  const DepthMap front = captureDepthEmbree(s, 32, 32, CaptureMode::Front);
+  const int c = 16;
+  // Straight below the light: front sees the top (y = 3.25), back the bottom (y = 2.75);
+  // depths along the light axis differ by the box's height over the axis's cosine.
+  const double cosine = -glm::normalize(l.direction).y;
+  EXPECT_NEAR(back.at(c, c) - front.at(c, c), 0.5 / cosine, 1e-4);
+  // Near the edge of the map only the ground is seen: front hits it, back does not.
+  EXPECT_FALSE(DepthMap::isNoHit(front.at(0, 0)));
+  EXPECT_TRUE(DepthMap::isNoHit(back.at(0, 0)));
+}
+
+TEST(Capture, IsDeterministic) {
+  const Scene s = sceneOf(makeLight(LightType::Spot), {makeIcoSphere(1.5, 4), makePlane(30, 30, 8)});
+  for (CaptureMode m : {CaptureMode::Front, CaptureMode::Back, CaptureMode::Midpoint}) {
+    const DepthMap a = captureDepthEmbree(s, 64, 64, m), b = captureDepthEmbree(s, 64, 64, m);
+    EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float))) << toString(m);
+  }
+}
+
+TEST(Capture, NearAndFarClipLikeTheGpu) {
+  // A sphere cut by the near plane: texels whose front surface is before near see the next
+  // surface beyond near (GL clips the triangle, so the back side shows), never a depth < near.
+  Light l = makeLight(LightType::Spot);
+  l.nearPlane = 8.0;  // the sphere's top is at 10 - 2 - 1 = 7 along the axis
+  TriangleMesh sphere = makeIcoSphere(1.0, 4);
+  for (auto& p : sphere.positions) p.y += 2.0f;
+  const DepthMap map = captureDepthEmbree(sceneOf(l, {sphere}), 32, 32, CaptureMode::Front);
+  std::size_t hits = 0;
+  for (float d : map.depth)
+    if (!DepthMap::isNoHit(d)) {
+      ++hits;
+      EXPECT_GE(d, 8.0f);
+      EXPECT_LE(d, 20.0f);
+    }
+  EXPECT_GT(hits, 0u);
+}
+
+}  // namespace
+}  // namespace shadowvol
