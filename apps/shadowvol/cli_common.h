@@ -1,0 +1,58 @@
+// Plumbing shared by the shadowvol subcommands: scene loading, option checks, JSON output,
+// exit codes (0 ok, 1 bad input, 2 usage, 3 validation failed, 4 runtime failure such as no EGL
+// display or an Embree error).
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol::cli {
+
+enum ExitCode { kOk = 0, kBadInput = 1, kUsage = 2, kValidationFailed = 3, kRuntimeFailure = 4 };
+
+/// Options most subcommands share.
+struct SceneOptions {
+  std::string scene;       ///< path; empty = the built-in default scene
+  bool json = false;       ///< print one JSON document on stdout instead of text
+};
+
+void addSceneOptions(CLI::App& cmd, SceneOptions& o);
+void addJsonOption(CLI::App& cmd, bool& json);
+
+/// Loads the scene (or the default one), printing its warnings to stderr.
+Scene loadSceneOrDefault(const std::string& path);
+
+/// Largest side accepted for a depth map (texels).
+inline constexpr int kMaxResolution = 16384;
+
+/// Refuses a resolution that is not positive, above kMaxResolution, or whose buffers would not
+/// fit in this machine's memory, before anything is allocated. Throws InputError naming the option.
+void checkResolution(const std::string& option, int resolution);
+
+/// Refuses an output path whose folder does not exist (before any work is done).
+void checkOutputPath(const std::string& option, const std::string& path);
+
+/// Milliseconds since `start`.
+double msSince(std::chrono::steady_clock::time_point start);
+
+/// JSON description of the scene as used: source, triangle count, light and camera.
+nlohmann::json describeScene(const Scene& scene);
+
+/// Registers the subcommand `name` whose body runs `run` and returns an exit code.
+using Runner = std::function<int()>;
+
+void registerSceneCommand(CLI::App& app, Runner& run);
+void registerDepthCommand(CLI::App& app, Runner& run);
+void registerBuildCommand(CLI::App& app, Runner& run);
+#ifdef SHADOWVOL_WITH_GL
+void registerRenderCommand(CLI::App& app, Runner& run);
+#endif
+
+}  // namespace shadowvol::cli

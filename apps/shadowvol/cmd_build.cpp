@@ -1,0 +1,149 @@
+// shadowvol build: depth map -> closed shadow-volume mesh, exported as PLY/OBJ/OFF/STL.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cli_common.h"
+#include "shadowvol/depth_map_io.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol::cli {
+
+void registerBuildCommand(CLI::App& app, Runner& run) {
+  struct Options {
+    SceneOptions scene;
+    std::string depth;
+    int resolution = 512;
+    std::string capture = "back";
+    std::string triangulation = "perfect";
+    bool blur = false;
+    double blurOffset = 0.0;
+    std::optional<double> bias;
+    std::string cap = "exact";
+    bool noFlatten = false;
+    std::string out;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "build", "Build the explicit shadow volume of the light: capture the depth map (Embree) or read one, turn it "
+               "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl)");
+  addSceneOptions(*cmd, o->scene);
+  auto* depthOpt = cmd->add_option("--depth", o->depth,
+                                   "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
+                                   "capturing one from the scene")
+                       ->check(CLI::ExistingFile);
+  auto* resOpt = cmd->add_option("--resolution", o->resolution,
+                                 "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
+                     ->capture_default_str();
+  auto* capOpt = cmd->add_option("--capture", o->capture,
+                                 "Surface recorded per texel: back (thesis default, bias 0), front (needs the bias), "
+                                 "midpoint (between the first two surfaces)")
+                     ->check(CLI::IsMember({"back", "front", "midpoint"}))
+                     ->capture_default_str();
+  depthOpt->excludes(resOpt)->excludes(capOpt);
+  cmd->get_option("--scene")->excludes(depthOpt);
+  cmd->add_option("--triangulation", o->triangulation,
+                  "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "
+                  "fixed (one diagonal everywhere, the thesis's strips)")
+      ->check(CLI::IsMember({"fixed", "perfect"}))
+      ->capture_default_str();
+  cmd->add_flag("--blur", o->blur, "Depth blurring: each depth becomes the mean of 9 bilinear samples 1.5 texels apart");
+  cmd->add_option("--blur-offset", o->blurOffset, "World units added to blurred depths, away from the light (with --blur)")
+      ->capture_default_str();
+  cmd->add_option("--bias", o->bias,
+                  "World units pushing the sheet away from the light; default: 0 for back capture, a value derived "
+                  "from the texel footprint and depth precision otherwise (README 'Bias')");
+  cmd->add_option("--cap", o->cap,
+                  "Far cap: exact (drop far-plane quads, close each region with a flattened far cap) or quad (the "
+                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
+      ->check(CLI::IsMember({"exact", "quad"}))
+      ->capture_default_str();
+  cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
+  cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off or .stl")->required();
+  cmd->callback([&run, o] {
+    run = [o] {
+      checkOutputPath("--out", o->out);
+      const std::string ext = std::filesystem::path(o->out).extension().string();
+      if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
+        throw InputError("command line", "--out", o->out, "unsupported mesh format (use .ply, .obj, .off or .stl)");
+      if (o->blurOffset != 0.0 && !o->blur)
+        throw InputError("command line", "--blur-offset", std::to_string(o->blurOffset), "needs --blur");
+      if (!std::isfinite(o->blurOffset))
+        throw InputError("command line", "--blur-offset", std::to_string(o->blurOffset), "must be finite");
+      if (o->bias && (!std::isfinite(*o->bias) || *o->bias < 0.0))
+        throw InputError("command line", "--bias", std::to_string(*o->bias), "must be finite and >= 0");
+      VolumeBuildOptions options;
+      parseTriangulation(o->triangulation, options.triangulation);
+      parseFarCap(o->cap, options.cap);
+      options.blur = o->blur;
+      options.blurOffset = o->blurOffset;
+      options.bias = o->bias;
+      options.flattenCap = !o->noFlatten;
+
+      nlohmann::json j;
+      DepthMap map;
+      double msCapture = 0.0;
+      if (!o->depth.empty()) {
+        map = readDepthMap(o->depth);
+        j["depth"] = o->depth;
+      } else {
+        checkResolution("--resolution", o->resolution);
+        CaptureMode mode{};
+        parseCaptureMode(o->capture, mode);
+        const Scene scene = loadSceneOrDefault(o->scene.scene);
+        const auto t0 = std::chrono::steady_clock::now();
+        map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
+        msCapture = msSince(t0);
+        j["scene"] = describeScene(scene);
+      }
+      const VolumeBuildResult r = buildVolume(map, options);
+      const auto t1 = std::chrono::steady_clock::now();
+      writeTriangleMesh(r.mesh.toTriangleMesh(), o->out);
+      const double msWrite = msSince(t1);
+      const VolumeBuildStats& s = r.stats;
+      j.update({{"resolution", {map.width, map.height}},
+                {"capture", toString(map.capture)},
+                {"triangulation", o->triangulation},
+                {"blur", o->blur},
+                {"blurOffset", o->blurOffset},
+                {"bias", s.biasUsed},
+                {"cap", o->cap},
+                {"flattenCap", options.flattenCap},
+                {"vertices", r.mesh.vertexCount()},
+                {"triangles", r.mesh.triangleCount()},
+                {"quads", s.quads},
+                {"droppedQuads", s.droppedQuads},
+                {"flippedQuads", s.flippedQuads},
+                {"flippedFraction", s.quads ? double(s.flippedQuads) / double(s.quads) : 0.0},
+                {"capTrianglesBefore", s.capTrianglesBefore},
+                {"capTrianglesAfter", s.capTrianglesAfter},
+                {"splitVertices", s.splitVertices},
+                {"ms", {{"capture", msCapture}, {"blur", s.msBlur}, {"sheet", s.msSheet}, {"cap", s.msCap},
+                        {"build", s.msTotal}, {"write", msWrite}}},
+                {"out", o->out}});
+      if (o->scene.json) {
+        std::cout << j.dump(2) << '\n';
+      } else {
+        std::printf("volume of %s, %dx%d %s capture, %s triangulation%s, %s cap\n",
+                    o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(), map.width,
+                    map.height, toString(map.capture), o->triangulation.c_str(), o->blur ? ", blur" : "",
+                    o->cap.c_str());
+        std::printf("  %zu vertices, %zu triangles; %zu of %zu quads dropped (far plane), %zu flipped (%.1f%%)\n",
+                    r.mesh.vertexCount(), r.mesh.triangleCount(), s.droppedQuads, s.quads, s.flippedQuads,
+                    s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
+        std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
+                    s.capTrianglesAfter, s.splitVertices, s.biasUsed);
+        std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, cap %.1f ms, build %.1f ms, write %.1f ms\n",
+                    msCapture, s.msBlur, s.msSheet, s.msCap, s.msTotal, msWrite);
+        std::printf("wrote %s\n", o->out.c_str());
+      }
+      return kOk;
+    };
+  });
+}
+
+}  // namespace shadowvol::cli

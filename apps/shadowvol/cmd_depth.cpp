@@ -1,0 +1,75 @@
+// shadowvol depth: capture the light's depth map on the CPU with Embree and write it as PFM + JSON.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "cli_common.h"
+#include "shadowvol/depth_map_io.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/error.h"
+
+namespace shadowvol::cli {
+
+void registerDepthCommand(CLI::App& app, Runner& run) {
+  struct Options {
+    SceneOptions scene;
+    int resolution = 512;
+    std::string capture = "back";
+    std::string out;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("depth", "Capture the light's depth map by ray casting (Embree, CPU) and write it as "
+                                          "a PFM with a JSON side file (matrices, near/far, capture mode)");
+  addSceneOptions(*cmd, o->scene);
+  cmd->add_option("--resolution", o->resolution, "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
+      ->capture_default_str();
+  cmd->add_option("--capture", o->capture,
+                  "Which surface each texel records: back (first back face: the thesis's default; single-sided "
+                  "geometry facing the light is skipped), front (first surface), midpoint (mean of the first two "
+                  "surfaces; the far plane stands in for a missing second one)")
+      ->check(CLI::IsMember({"back", "front", "midpoint"}))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
+  cmd->callback([&run, o] {
+    run = [o] {
+      checkResolution("--resolution", o->resolution);
+      checkOutputPath("--out", o->out);
+      CaptureMode mode{};
+      parseCaptureMode(o->capture, mode);
+      const Scene scene = loadSceneOrDefault(o->scene.scene);
+      const auto t0 = std::chrono::steady_clock::now();
+      const DepthMap map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
+      const double msCapture = msSince(t0);
+      writeDepthMap(map, o->out);
+      float lo = DepthMap::kNoHit, hi = 0.0f;
+      for (float d : map.depth)
+        if (!DepthMap::isNoHit(d)) {
+          lo = std::min(lo, d);
+          hi = std::max(hi, d);
+        }
+      const std::size_t hits = map.hitCount();
+      nlohmann::json j = {{"scene", describeScene(scene)},
+                          {"resolution", o->resolution},
+                          {"capture", o->capture},
+                          {"texels", map.depth.size()},
+                          {"hits", hits},
+                          {"depthMin", hits ? nlohmann::json(lo) : nlohmann::json()},
+                          {"depthMax", hits ? nlohmann::json(hi) : nlohmann::json()},
+                          {"msCapture", msCapture},
+                          {"out", o->out},
+                          {"sidecar", depthSidecarPath(o->out).string()}};
+      if (o->scene.json) {
+        std::cout << j.dump(2) << '\n';
+      } else {
+        std::printf("depth %dx%d (%s capture) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
+                    o->capture.c_str(), scene.source.c_str(), hits, map.depth.size());
+        if (hits) std::printf(", depth %.6g .. %.6g", lo, hi);
+        std::printf("\ncapture %.1f ms\nwrote %s and %s\n", msCapture, o->out.c_str(),
+                    depthSidecarPath(o->out).string().c_str());
+      }
+      return kOk;
+    };
+  });
+}
+
+}  // namespace shadowvol::cli

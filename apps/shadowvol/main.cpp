@@ -1,0 +1,39 @@
+// shadowvol: explicit shadow-volume meshes from light depth maps. One subcommand per job.
+#include <cstdio>
+#include <exception>
+
+#include "cli_common.h"
+#include "shadowvol/error.h"
+
+int main(int argc, char** argv) {
+  using namespace shadowvol;
+  CLI::App app{
+      "shadowvol: turn a light's depth map into a closed shadow-volume mesh, render it with OpenGL "
+      "(z-fail stencil) and check it by ray casting.\n"
+      "Exit codes: 0 ok, 1 bad input (file, field and value named on stderr), 2 usage, 3 validation failed, "
+      "4 runtime failure (no EGL display, Embree error)."};
+  app.set_version_flag("--version", "shadowvol 0.1.0");
+  app.require_subcommand(1);
+  cli::Runner run;
+  cli::registerSceneCommand(app, run);
+  cli::registerDepthCommand(app, run);
+  cli::registerBuildCommand(app, run);
+#ifdef SHADOWVOL_WITH_GL
+  cli::registerRenderCommand(app, run);
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? cli::kOk : cli::kUsage;
+  }
+  try {
+    return run();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "shadowvol: error: %s\n", e.what());
+    return cli::kBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "shadowvol: error: %s\n", e.what());
+    return cli::kRuntimeFailure;
+  }
+}

@@ -1,0 +1,131 @@
+// The shadowvol command line, run as a user runs it: exit codes, messages, outputs, no partial files.
+#include <array>
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+struct Run {
+  int code;
+  std::string out;  // stdout and stderr together
+};
+
+Run run(const std::string& args) {
+  const std::string cmd = std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  Run r{-1, ""};
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string scene(const char* name) { return (test::sourceDir() / "data/scenes" / name).string(); }
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+TEST(Cli, HelpAndUsage) {
+  const Run help = run("--help");
+  EXPECT_EQ(help.code, 0);
+  for (const char* sub : {"scene", "depth", "build"}) EXPECT_TRUE(contains(help.out, sub)) << sub;
+  EXPECT_EQ(run("").code, 2);                 // a subcommand is required
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("depth --out x.pfm --no-such-option").code, 2);
+  const Run depthHelp = run("depth --help");
+  EXPECT_EQ(depthHelp.code, 0);
+  EXPECT_TRUE(contains(depthHelp.out, "--capture"));
+  EXPECT_TRUE(contains(depthHelp.out, "midpoint"));
+}
+
+TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "d.pfm").string();
+  for (const char* res : {"0", "-4", "100000"}) {
+    const Run r = run(std::string("depth --resolution ") + res + " --out " + out);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_TRUE(contains(r.out, "--resolution")) << r.out;
+    EXPECT_TRUE(contains(r.out, res)) << r.out;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+TEST(Cli, BadSceneNamesFileFieldAndValueAndWritesNothing) {
+  const auto dir = test::tempDir();
+  const auto bad = dir / "bad.json";
+  test::writeText(bad, R"({"objects":[{"type":"sphere","radius":-2}],
+    "light":{"type":"spot","position":[0,5,0],"direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})");
+  for (const char* sub : {"depth --resolution 16 --out ", "build --resolution 16 --out "}) {
+    const std::string out = (dir / (std::string(sub).substr(0, 5) + ".out.ply")).string();
+    const Run r = run(std::string(sub) + out + " --scene " + bad.string());
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_TRUE(contains(r.out, "bad.json")) << r.out;
+    EXPECT_TRUE(contains(r.out, "/objects/0/radius")) << r.out;
+    EXPECT_TRUE(contains(r.out, "-2")) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const Run missing = run("scene --scene " + (dir / "none.json").string());
+  EXPECT_EQ(missing.code, 2);  // CLI11's ExistingFile check: a usage error naming the path
+  EXPECT_TRUE(contains(missing.out, "none.json"));
+}
+
+TEST(Cli, MissingOutputFolderIsRefused) {
+  const Run r = run("depth --resolution 8 --out /nonexistent-folder/d.pfm");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.out, "/nonexistent-folder"));
+}
+
+TEST(Cli, SceneDescribesAndExports) {
+  const auto dir = test::tempDir();
+  const std::string ply = (dir / "plate.ply").string();
+  const Run r = run("scene --json --scene " + scene("plate.json") + " --export " + ply);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["triangles"], 2 + 12);
+  EXPECT_EQ(j["light"]["type"], "directional");
+  EXPECT_TRUE(std::filesystem::exists(ply));
+}
+
+TEST(Cli, DepthWritesPfmAndSideFile) {
+  const auto dir = test::tempDir();
+  const std::string pfm = (dir / "d.pfm").string();
+  const Run r = run("depth --json --resolution 32 --capture front --out " + pfm);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["texels"], 32 * 32);
+  EXPECT_GT(j["hits"].get<int>(), 0);
+  EXPECT_EQ(j["scene"]["source"], "default");
+  EXPECT_TRUE(std::filesystem::exists(pfm));
+  EXPECT_TRUE(std::filesystem::exists(pfm + ".json"));
+}
+
+TEST(Cli, BuildFromSceneAndFromDepthFile) {
+  const auto dir = test::tempDir();
+  const std::string pfm = (dir / "d.pfm").string(), a = (dir / "a.ply").string(), b = (dir / "b.obj").string();
+  ASSERT_EQ(run("depth --resolution 48 --scene " + scene("plate.json") + " --out " + pfm).code, 0);
+  const Run fromScene = run("build --json --resolution 48 --scene " + scene("plate.json") + " --out " + a);
+  ASSERT_EQ(fromScene.code, 0) << fromScene.out;
+  const Run fromDepth = run("build --json --depth " + pfm + " --out " + b);
+  ASSERT_EQ(fromDepth.code, 0) << fromDepth.out;
+  const auto ja = nlohmann::json::parse(fromScene.out), jb = nlohmann::json::parse(fromDepth.out);
+  EXPECT_EQ(ja["triangles"], jb["triangles"]);  // same depth map, same mesh
+  EXPECT_GT(ja["triangles"].get<int>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(a));
+  EXPECT_TRUE(std::filesystem::exists(b));
+  // --depth with --scene is a usage error.
+  EXPECT_EQ(run("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
+  // --blur-offset without --blur is bad input.
+  EXPECT_EQ(run("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
+}
+
+}  // namespace
+}  // namespace shadowvol
