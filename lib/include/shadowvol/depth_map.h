@@ -71,6 +71,9 @@ struct DepthMap {
 class TexelUnprojector {
  public:
   explicit TexelUnprojector(const DepthMap& map);
+  /// The same for any view + projection over a W x H pixel grid (a camera: pixel (x, y) with
+  /// y = 0 the bottom row, centres as for texels).
+  TexelUnprojector(const glm::dmat4& view, const glm::dmat4& projection, int width, int height);
   /// World point of texel (i, j) (fractional allowed) at light-view depth d > 0.
   glm::dvec3 worldPoint(double i, double j, double d) const;
   /// Light-view point of texel (i, j) at light-view depth d > 0.

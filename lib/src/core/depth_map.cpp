@@ -37,11 +37,14 @@ glm::dvec3 DepthMap::worldPoint(double i, double j, double d) const {
 }
 
 TexelUnprojector::TexelUnprojector(const DepthMap& map)
-    : invProjection_(glm::inverse(map.lightProjection)),
-      invView_(glm::inverse(map.lightView)),
-      projection_(map.lightProjection),
-      width_(map.width),
-      height_(map.height) {}
+    : TexelUnprojector(map.lightView, map.lightProjection, map.width, map.height) {}
+
+TexelUnprojector::TexelUnprojector(const glm::dmat4& view, const glm::dmat4& projection, int width, int height)
+    : invProjection_(glm::inverse(projection)),
+      invView_(glm::inverse(view)),
+      projection_(projection),
+      width_(width),
+      height_(height) {}
 
 glm::dvec3 TexelUnprojector::lightViewPoint(double i, double j, double d) const {
   const double x = (i + 0.5) / width_ * 2.0 - 1.0;

@@ -1,0 +1,72 @@
+// Ray queries that validate the shadow volume (issue 5): primary rays through pixel centres as
+// the GL camera samples them, exact shadow rays, and signed crossing counts of the volume.
+//
+// Every per-pixel array is in image order: index r * width + x with row r = 0 at the TOP (as in
+// the PNG files); GL's window row is height - 1 - r. Pixel centres: camera NDC
+// ((x + 0.5) / W * 2 - 1, (y_gl + 0.5) / H * 2 - 1), exactly where OpenGL samples.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "shadowvol/camera.h"
+#include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/light.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol {
+
+/// What the camera sees at each pixel.
+struct CameraHits {
+  int width = 0, height = 0;
+  std::vector<float> depth;        ///< camera view depth (-z in camera view) of the visible point; +inf = background
+  std::vector<glm::dvec3> point;   ///< world position of the visible point (undefined for background)
+  std::vector<glm::vec3> normal;   ///< unit geometric normal, turned to face the camera
+  bool isBackground(std::size_t k) const { return !(depth[k] < INFINITY); }
+};
+
+/// Casts one primary ray per pixel centre, limited to the camera's [near, far] (the GL clip
+/// range), through the scene's geometry. Parallel and deterministic.
+CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera);
+
+enum class PixelClass : std::uint8_t {
+  Background = 0,    ///< the camera ray hits nothing
+  FacingAway = 1,    ///< the surface faces away from the light (n . L <= 0): dark, not a shadow error
+  OutsideLight = 2,  ///< outside the light's frustum (or [near, far]): the light does not reach it
+  Lit = 3,
+  Shadowed = 4,
+};
+
+/// The documented shadow-ray offset: 1e-4 of the scene's bounding radius, along the normal
+/// towards the light side. Scales with the scene; far below a texel at any tested resolution.
+double shadowRayOffset(const Scene& scene);
+
+/// Exact shadows: one occlusion ray per visible point towards the light (to the spot light's
+/// apex; along -direction for a directional light), started `offset` off the surface along its
+/// normal. Parallel and deterministic.
+std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
+                                     double offset);
+
+/// Signed crossing counts of a closed volume along each camera ray.
+///  zfail[k]: from the visible point to infinity, +1 for each crossing that leaves the volume
+///            (geometric normal along the ray), -1 for each that enters: the GPU's z-fail stencil.
+///  zpass[k]: from the eye to the visible point, +1 entering, -1 leaving: the z-pass count.
+/// Background pixels (nothing visible) get zfail = zpass = 0.
+/// Merge rule: a ray through a shared edge or vertex may report one crossing several times
+/// (Embree's robust mode guarantees no crossing is missed, not that it is reported once). Hits
+/// whose distances differ by at most kCrossingMergeTolerance (relative) form one event whose sign
+/// is the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
+/// grazes a fold without crossing). Edge-on hits (normal perpendicular to the ray) count 0.
+/// A crossing at the visible point's own distance (within the tolerance) counts as behind it,
+/// as the GPU's GL_LESS depth test fails it.
+struct CrossingCounts {
+  int width = 0, height = 0;
+  std::vector<std::int32_t> zfail, zpass;
+};
+inline constexpr double kCrossingMergeTolerance = 1e-6;
+
+CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits);
+
+}  // namespace shadowvol

@@ -1,0 +1,188 @@
+#include "shadowvol/embree/ray_queries.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/depth_map.h"
+
+namespace shadowvol {
+namespace {
+
+RTCRayHit makeRay(const glm::dvec3& org, const glm::dvec3& dir, float tnear, float tfar) {
+  RTCRayHit rh{};
+  rh.ray.org_x = float(org.x);
+  rh.ray.org_y = float(org.y);
+  rh.ray.org_z = float(org.z);
+  rh.ray.dir_x = float(dir.x);
+  rh.ray.dir_y = float(dir.y);
+  rh.ray.dir_z = float(dir.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+// The ray of pixel (x, image row r): origin at the eye, direction with camera view-z = -1, so the
+// ray parameter is the camera view depth.
+struct PixelRay {
+  glm::dvec3 org, dir;
+};
+PixelRay pixelRay(const TexelUnprojector& u, int x, int r, int height) {
+  const int yGl = height - 1 - r;
+  const glm::dvec3 p1 = u.worldPoint(x, yGl, 1.0), p2 = u.worldPoint(x, yGl, 2.0);
+  return {p1 - (p2 - p1), p2 - p1};
+}
+
+struct Crossing {
+  double t;
+  int sign;  // +1 leaving (normal along the ray), -1 entering, 0 edge-on
+};
+
+struct CollectContext {
+  RTCIntersectContext ctx;
+  std::vector<Crossing>* hits;
+};
+
+void collectAll(const RTCFilterFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  auto* c = reinterpret_cast<CollectContext*>(const_cast<RTCIntersectContext*>(args->context));
+  const float dx = RTCRayN_dir_x(args->ray, args->N, 0), dy = RTCRayN_dir_y(args->ray, args->N, 0),
+              dz = RTCRayN_dir_z(args->ray, args->N, 0);
+  const float nx = RTCHitN_Ng_x(args->hit, args->N, 0), ny = RTCHitN_Ng_y(args->hit, args->N, 0),
+              nz = RTCHitN_Ng_z(args->hit, args->N, 0);
+  const double d = double(dx) * nx + double(dy) * ny + double(dz) * nz;
+  c->hits->push_back({double(RTCRayN_tfar(args->ray, args->N, 0)), d > 0 ? 1 : (d < 0 ? -1 : 0)});
+  args->valid[0] = 0;  // reject: traversal goes on and reports every hit
+}
+
+}  // namespace
+
+CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
+  CameraHits h;
+  h.width = camera.width;
+  h.height = camera.height;
+  const std::size_t n = std::size_t(h.width) * std::size_t(h.height);
+  h.depth.assign(n, INFINITY);
+  h.point.assign(n, glm::dvec3(0.0));
+  h.normal.assign(n, glm::vec3(0.0f));
+  const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int r = rows.begin(); r != rows.end(); ++r)
+      for (int x = 0; x < h.width; ++x) {
+        const PixelRay pr = pixelRay(u, x, r, h.height);
+        RTCRayHit rh = makeRay(pr.org, pr.dir, float(camera.nearPlane), float(camera.farPlane));
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        rtcIntersect1(scene.get(), &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+        const std::size_t k = std::size_t(r) * std::size_t(h.width) + std::size_t(x);
+        h.depth[k] = rh.ray.tfar;
+        h.point[k] = pr.org + double(rh.ray.tfar) * pr.dir;
+        glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+        const float len = glm::length(ng);
+        ng = len > 0.0f ? ng / len : glm::vec3(0.0f);
+        if (glm::dot(glm::dvec3(ng), pr.dir) > 0.0) ng = -ng;  // face the camera
+        h.normal[k] = ng;
+      }
+  });
+  return h;
+}
+
+double shadowRayOffset(const Scene& scene) { return 1e-4 * std::max(scene.bounds().radius(), 1e-9); }
+
+std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
+                                     double offset) {
+  const Light& light = description.light;
+  const glm::dmat4 lv = lightView(light), lp = lightProjection(light);
+  const glm::dvec3 towardsLight = -glm::normalize(light.direction);
+  std::vector<PixelClass> out(hits.depth.size(), PixelClass::Background);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const tbb::blocked_range<std::size_t>& b) {
+    for (std::size_t k = b.begin(); k != b.end(); ++k) {
+      if (hits.isBackground(k)) continue;
+      const glm::dvec3 p = hits.point[k], n(hits.normal[k]);
+      // Inside the light's frustum and depth range?
+      const glm::dvec4 v = lv * glm::dvec4(p, 1.0);
+      const glm::dvec4 c = lp * v;
+      const double depth = -v.z;
+      if (!(c.w > 0.0) || std::abs(c.x / c.w) > 1.0 || std::abs(c.y / c.w) > 1.0 || depth < light.nearPlane ||
+          depth > light.farPlane) {
+        out[k] = PixelClass::OutsideLight;
+        continue;
+      }
+      glm::dvec3 l;
+      double tfar = INFINITY;
+      if (light.type == LightType::Spot) {
+        l = light.position - p;
+        tfar = glm::length(l);
+        l /= tfar;
+      } else {
+        l = towardsLight;
+      }
+      if (!(glm::dot(n, l) > 0.0)) {
+        out[k] = PixelClass::FacingAway;
+        continue;
+      }
+      const glm::dvec3 org = p + n * offset;
+      RTCRay ray = makeRay(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - offset : INFINITY)).ray;
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      rtcOccluded1(scene.get(), &ctx, &ray);
+      out[k] = ray.tfar < 0.0f ? PixelClass::Shadowed : PixelClass::Lit;  // Embree sets tfar = -inf on a hit
+    }
+  });
+  return out;
+}
+
+CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits) {
+  CrossingCounts out;
+  out.width = hits.width;
+  out.height = hits.height;
+  out.zfail.assign(hits.depth.size(), 0);
+  out.zpass.assign(hits.depth.size(), 0);
+  const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
+  tbb::enumerable_thread_specific<std::vector<Crossing>> buffers;
+  tbb::parallel_for(tbb::blocked_range<int>(0, hits.height), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<Crossing>& buf = buffers.local();
+    for (int r = rows.begin(); r != rows.end(); ++r)
+      for (int x = 0; x < hits.width; ++x) {
+        const std::size_t k = std::size_t(r) * std::size_t(hits.width) + std::size_t(x);
+        if (hits.isBackground(k)) continue;
+        const PixelRay pr = pixelRay(u, x, r, hits.height);
+        buf.clear();
+        RTCRayHit rh = makeRay(pr.org, pr.dir, 0.0f, INFINITY);
+        CollectContext c;
+        rtcInitIntersectContext(&c.ctx);
+        c.ctx.filter = collectAll;
+        c.hits = &buf;
+        rtcIntersect1(volume.get(), &c.ctx, &rh);
+        std::sort(buf.begin(), buf.end(), [](const Crossing& a, const Crossing& b) {
+          return a.t < b.t || (a.t == b.t && a.sign < b.sign);
+        });
+        const double tVisible = hits.depth[k];
+        int zfail = 0, zpass = 0;
+        for (std::size_t g = 0; g < buf.size();) {
+          // One event: every hit within the tolerance of the group's first hit.
+          const double t0 = buf[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
+          int sum = 0;
+          std::size_t e = g;
+          while (e < buf.size() && buf[e].t - t0 <= tol) sum += buf[e++].sign;
+          const int sign = (sum > 0) - (sum < 0);
+          if (t0 >= tVisible * (1.0 - kCrossingMergeTolerance)) zfail += sign;
+          else zpass -= sign;
+          g = e;
+        }
+        out.zfail[k] = zfail;
+        out.zpass[k] = zpass;
+      }
+  });
+  return out;
+}
+
+}  // namespace shadowvol
