@@ -1,0 +1,143 @@
+// The GPU production path (issue 4): a renderer that keeps an EGL context, its programs and
+// framebuffers alive between frames (style.md point 3).
+//
+// Passes of one frame (docs/gpu.md has the full story):
+//   light     the scene's depth from the light into a W x H DEPTH_COMPONENT32F texture, culling
+//             per CaptureMode (front: none; back: front faces; midpoint: two layers by peeling);
+//   resolve   (gpu volume, or midpoint shadow maps) the depth texture(s) -> light-view depth
+//             (R32F, world units) and, for midpoint, the mean's window depth for the shadow maps;
+//   blur      (gpu volume with blur) the 9-sample depth blur of volume_builder.h, R32F -> R32F;
+//   camera    depth + ambient of the scene from the camera;
+//   volume    (hybrid) the shadow volume, two-sided stencil z-fail with depth clamp;
+//   lighting  (hybrid) diffuse light added where the stencil is 0;
+//   shade     (shadowmap, pcf3, pcf5, none) ambient + diffuse x visibility in one pass.
+// Lighting: colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit), N the flat face
+// normal turned toward the camera, L toward the light; lit = 0 outside the light's frustum
+// (a spot light lights only inside its pyramid between its near and far planes; a directional
+// light only inside its box), in shadow (stencil != 0, or the shadow-map test failing), and 1
+// otherwise.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/gl/egl_context.h"
+#include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
+#include "shadowvol/volume_mesh.h"
+
+namespace shadowvol::gl {
+
+enum class ShadowMethod {
+  Hybrid,     ///< the shadow volume from the depth map, stencil z-fail (the project's method)
+  ShadowMap,  ///< plain shadow mapping, hardware depth compare, one nearest tap
+  Pcf3,       ///< percentage-closer filtering over 3 x 3 texels
+  Pcf5,       ///< percentage-closer filtering over 5 x 5 texels
+  None,       ///< no shadows (the frustum still limits the light)
+};
+const char* toString(ShadowMethod m);
+bool parseShadowMethod(const std::string& text, ShadowMethod& m);
+
+enum class VolumeSource {
+  Gpu,       ///< drawn straight from the depth texture, no read-back (production default)
+  Explicit,  ///< depth read back, buildVolume() on the CPU, the mesh uploaded each frame
+};
+const char* toString(VolumeSource v);
+bool parseVolumeSource(const std::string& text, VolumeSource& v);
+
+enum class TimingMethod {
+  GpuTimer,   ///< GL_TIME_ELAPSED queries, one per pass (hardware drivers)
+  WallClock,  ///< glFinish before and after each pass, steady_clock in between (no timer queries,
+              ///< a software rasteriser such as llvmpipe, or RenderOptions::forceWallClock)
+};
+const char* toString(TimingMethod t);
+
+struct RendererOptions {
+  ContextOptions context;            ///< which EGL platform (auto = device, surfaceless, default)
+  std::filesystem::path shaderDir;   ///< empty = $SHADOWVOL_SHADER_DIR if set, else embedded shaders
+};
+
+struct RenderOptions {
+  ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
+  VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
+  int depthWidth = 256;                        ///< light depth map texels (> 1)
+  int depthHeight = 256;                       ///< light depth map texels (> 1)
+  CaptureMode capture = CaptureMode::Back;     ///< back faces: no self-shadow acne on lit faces
+  VolumeBuildOptions volumeOptions;            ///< hybrid: triangulation, blur, blurOffset, bias,
+                                               ///< cap (flattenCap applies to explicit only)
+  int imageWidth = 0;                          ///< camera image pixels; 0 = scene camera's width
+  int imageHeight = 0;                         ///< camera image pixels; 0 = scene camera's height
+  double ambient = 0.2;                        ///< ambient factor of the albedo
+  double diffuse = 0.8;                        ///< diffuse factor of the albedo
+  double shadowBiasConstant = 0.0;             ///< shadow maps: world units subtracted from the
+                                               ///< receiver's light-view depth before the compare
+  double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
+                                               ///< units at the receiver) x tan(angle to light),
+                                               ///< tan clamped to 10
+  bool readStencil = true;                     ///< hybrid: read the stencil counts back
+  bool readDepthMap = false;                   ///< read the light depth back into the result
+  bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
+};
+
+struct PassTime {
+  std::string name;  ///< light, resolve, blur, readback, build, upload, camera, volume, lighting, shade
+  double ms = 0.0;   ///< GPU time (timer query) or wall clock, see RenderResult::timing; CPU
+                     ///< passes (readback, build, upload) are always wall clock
+};
+
+struct RenderResult {
+  int width = 0, height = 0;              ///< image pixels
+  std::vector<std::uint8_t> rgba;         ///< width * height * 4, RGBA8, rows top first
+  std::vector<std::uint8_t> stencil;      ///< width * height stencil counts (8-bit, wrapping),
+                                          ///< rows top first; empty unless hybrid and readStencil
+  std::optional<DepthMap> depthMap;       ///< light depth (read back) when readDepthMap or explicit
+  std::vector<PassTime> passes;           ///< in execution order
+  TimingMethod timing = TimingMethod::WallClock;
+  double totalMs = 0.0;                   ///< sum of passes
+  std::size_t volumeTriangles = 0;        ///< triangles drawn for the volume (gpu: including the
+                                          ///< degenerate ones of dropped quads)
+  double biasUsed = 0.0;                  ///< hybrid: the volume bias in world units
+};
+
+/// Owns the context, programs, samplers and framebuffers; reuse it for many frames. Not thread
+/// safe; all calls on the creating thread.
+class Renderer {
+ public:
+  /// Creates the EGL context and compiles every program. Throws GlError (no display, no context,
+  /// a shader error with the file name and log).
+  explicit Renderer(const RendererOptions& options = {});
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const ContextInfo& info() const;
+
+  /// Uploads the scene's triangles (world space) and keeps its light and camera. The light and
+  /// camera must have their near/far planes set (loadScene and defaultScene fit them).
+  void setScene(const Scene& scene);
+
+  /// Light pass + read-back: the same quantity as captureDepthEmbree (depth_map.h: light-view
+  /// depth, kNoHit where the light sees nothing, row 0 at the bottom). Window depth is converted
+  /// in double. Throws InputError for a size below 2 or too large for the GL implementation.
+  DepthMap captureDepth(int width, int height, CaptureMode mode);
+
+  /// One frame with the scene's camera. Throws InputError on bad options, GlError on GL failure.
+  RenderResult render(const RenderOptions& options);
+
+  /// Hybrid frame with a caller-built volume (world space, outward-facing triangles) instead of
+  /// one derived from the depth map; options.method/volume are ignored.
+  RenderResult renderWithVolume(const RenderOptions& options, const VolumeMesh& volume);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shadowvol::gl

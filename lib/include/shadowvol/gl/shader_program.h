@@ -1,0 +1,59 @@
+// GLSL programs built from the shaders/ sources: embedded at build time, or read from an override
+// directory at run time (a file there replaces the embedded file of the same name).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <unordered_map>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "shadowvol/gl/gl_objects.h"
+
+namespace shadowvol::gl {
+
+/// The embedded text of shaders/<name>, or nullopt (generated at build time).
+std::optional<std::string> embeddedShader(const std::string& name);
+
+/// Finds shader sources: `overrideDir`/<name> when that file exists, else the embedded copy.
+/// An empty overrideDir uses the SHADOWVOL_SHADER_DIR environment variable when it is set.
+class ShaderLibrary {
+ public:
+  explicit ShaderLibrary(std::filesystem::path overrideDir = {});
+  /// The source text and where it came from ("shaders/<name> (embedded)" or the file path).
+  /// Throws GlError if the name is neither in the directory nor embedded.
+  std::pair<std::string, std::string> load(const std::string& name) const;
+  const std::filesystem::path& overrideDir() const { return dir_; }
+
+ private:
+  std::filesystem::path dir_;
+};
+
+/// A linked program. Compile and link logs are reported in GlError with the file names.
+class Program {
+ public:
+  Program() = default;
+  Program(const ShaderLibrary& library, const std::string& vertexFile, const std::string& fragmentFile);
+
+  GLuint id() const { return program_.id(); }
+  void use() const;
+  /// Uniform location (cached); -1 for a uniform the compiler removed (setting it is a no-op).
+  GLint location(const char* name) const;
+  void set(const char* name, int v) const;
+  void set(const char* name, float v) const;
+  void set(const char* name, const glm::vec2& v) const;
+  void set(const char* name, const glm::vec3& v) const;
+  void set(const char* name, const glm::vec4& v) const;
+  void set(const char* name, const glm::ivec2& v) const;
+  void set(const char* name, const glm::mat4& v) const;
+
+ private:
+  ProgramName program_;
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
+
+}  // namespace shadowvol::gl

@@ -1,0 +1,766 @@
+#include "shadowvol/gl/renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+
+#include "shadowvol/camera.h"
+#include "shadowvol/check.h"
+#include "shadowvol/depth_blur.h"
+#include "shadowvol/error.h"
+#include "shadowvol/gl/gl_error.h"
+#include "shadowvol/gl/gl_objects.h"
+#include "shadowvol/gl/shader_program.h"
+#include "shadowvol/light.h"
+
+namespace shadowvol::gl {
+
+const char* toString(ShadowMethod m) {
+  switch (m) {
+    case ShadowMethod::Hybrid: return "hybrid";
+    case ShadowMethod::ShadowMap: return "shadowmap";
+    case ShadowMethod::Pcf3: return "pcf3";
+    case ShadowMethod::Pcf5: return "pcf5";
+    case ShadowMethod::None: return "none";
+  }
+  return "?";
+}
+
+bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
+  if (text == "hybrid") m = ShadowMethod::Hybrid;
+  else if (text == "shadowmap") m = ShadowMethod::ShadowMap;
+  else if (text == "pcf3") m = ShadowMethod::Pcf3;
+  else if (text == "pcf5") m = ShadowMethod::Pcf5;
+  else if (text == "none") m = ShadowMethod::None;
+  else return false;
+  return true;
+}
+
+const char* toString(VolumeSource v) { return v == VolumeSource::Gpu ? "gpu" : "explicit"; }
+
+bool parseVolumeSource(const std::string& text, VolumeSource& v) {
+  if (text == "gpu") v = VolumeSource::Gpu;
+  else if (text == "explicit") v = VolumeSource::Explicit;
+  else return false;
+  return true;
+}
+
+const char* toString(TimingMethod t) { return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish"; }
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+glm::mat4 toFloat(const glm::dmat4& m) { return glm::mat4(m); }
+
+/// Light projection coefficients (column-major m[col][row]) as the shaders take them.
+glm::vec4 depthParams(const glm::dmat4& p) {
+  return glm::vec4(float(p[2][2]), float(p[3][2]), float(p[2][3]), float(p[3][3]));
+}
+
+/// Window depth in [0, 1] -> light-view depth (world units), in double (the read-back path).
+double viewDepthFromWindow(const glm::dmat4& p, double window) {
+  const double ndc = 2.0 * window - 1.0;
+  const double z = (ndc * p[3][3] - p[3][2]) / (p[2][2] - ndc * p[2][3]);
+  return -z;
+}
+
+glm::vec3 albedoFor(const SceneObject& o, int& colourIndex) {
+  if (o.type == "plane") return {0.85f, 0.85f, 0.80f};
+  static const glm::vec3 palette[] = {{0.90f, 0.35f, 0.30f}, {0.30f, 0.55f, 0.90f}, {0.40f, 0.80f, 0.40f},
+                                      {0.90f, 0.75f, 0.30f}, {0.70f, 0.45f, 0.85f}};
+  return palette[std::size_t(colourIndex++) % 5];
+}
+
+/// Times passes: GL_TIME_ELAPSED queries (kept in a pool between frames) or glFinish + wall clock.
+class PassTimer {
+ public:
+  PassTimer(std::vector<Query>& pool, bool gpu) : pool_(pool), gpu_(gpu) {}
+
+  void begin(const char* name) {
+    entries_.push_back({name, -1, 0.0});
+    if (gpu_) {
+      const std::size_t k = used_++;
+      if (k >= pool_.size()) pool_.push_back(makeQuery());
+      entries_.back().query = int(k);
+      SV_GL(glBeginQuery(GL_TIME_ELAPSED, pool_[k].id()));
+    } else {
+      glFinish();
+      t0_ = Clock::now();
+    }
+  }
+  void end() {
+    if (gpu_) {
+      SV_GL(glEndQuery(GL_TIME_ELAPSED));
+    } else {
+      glFinish();
+      entries_.back().ms = msSince(t0_);
+    }
+  }
+  /// A CPU step measured by the caller (read-back, build, upload): always wall clock.
+  void cpu(const char* name, double ms) { entries_.push_back({name, -1, ms}); }
+
+  std::vector<PassTime> results() {
+    std::vector<PassTime> out;
+    for (const auto& e : entries_) {
+      double ms = e.ms;
+      if (e.query >= 0) {
+        GLuint64 ns = 0;
+        SV_GL(glGetQueryObjectui64v(pool_[std::size_t(e.query)].id(), GL_QUERY_RESULT, &ns));
+        ms = double(ns) * 1e-6;
+      }
+      out.push_back({e.name, ms});
+    }
+    return out;
+  }
+
+ private:
+  struct Entry {
+    std::string name;
+    int query;
+    double ms;
+  };
+  std::vector<Query>& pool_;
+  bool gpu_;
+  std::size_t used_ = 0;
+  std::vector<Entry> entries_;
+  Clock::time_point t0_;
+};
+
+/// RAII begin/end of one timed pass.
+class TimedPass {
+ public:
+  TimedPass(PassTimer& t, const char* name) : t_(t) { t_.begin(name); }
+  ~TimedPass() { t_.end(); }
+  TimedPass(const TimedPass&) = delete;
+  TimedPass& operator=(const TimedPass&) = delete;
+
+ private:
+  PassTimer& t_;
+};
+
+Texture makeTexture2D(GLenum internalFormat, GLenum format, GLenum type, int w, int h) {
+  Texture t = makeTexture();
+  SV_GL(glBindTexture(GL_TEXTURE_2D, t.id()));
+  SV_GL(glTexImage2D(GL_TEXTURE_2D, 0, GLint(internalFormat), w, h, 0, format, type, nullptr));
+  // No mipmaps: a non-mipmap filter keeps the texture complete (texelFetch needs that too).
+  SV_GL(glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST));
+  SV_GL(glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST));
+  SV_GL(glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE));
+  SV_GL(glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE));
+  SV_GL(glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0));
+  SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
+  return t;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  // Declared first: destroyed last, so every GL object below is deleted with its context current.
+  EglContext context;
+  ShaderLibrary shaders;
+  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
+  Sampler fetchSampler, shadowSampler;
+  VertexArray emptyVao;
+  std::vector<Query> queryPool;
+  GLint maxTextureSize = 0, maxRenderbufferSize = 0;
+  GLint maxViewport[2] = {0, 0};
+
+  // Scene
+  bool hasScene = false;
+  Light light;
+  Camera camera;
+  VertexArray sceneVao;
+  Buffer sceneVbo, sceneEbo;
+  GLsizei sceneIndexCount = 0;
+
+  // Explicit volume
+  VertexArray volumeVao;
+  Buffer volumeVbo, volumeEbo;
+
+  // Light targets (W x H)
+  int lightW = 0, lightH = 0;
+  Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
+  Framebuffer layer0Fbo, layer1Fbo, resolveFbo, blurFbo;
+
+  // Camera targets
+  int camW = 0, camH = 0;
+  Renderbuffer colorRb, depthStencilRb;
+  Framebuffer cameraFbo;
+
+  Impl(const RendererOptions& options)
+      : context(EglContext::create(options.context)), shaders(options.shaderDir) {
+    lightProgram = Program(shaders, "light.vert", "depth_only.frag");
+    peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
+    resolveProgram = Program(shaders, "fullscreen.vert", "resolve.frag");
+    blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
+    sceneProgram = Program(shaders, "scene.vert", "scene.frag");
+    volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
+    volumeGpuProgram = Program(shaders, "volume_gpu.vert", "depth_only.frag");
+
+    fetchSampler = makeSampler();
+    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) SV_GL(glSamplerParameteri(fetchSampler.id(), p, GL_NEAREST));
+    for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+      SV_GL(glSamplerParameteri(fetchSampler.id(), p, GL_CLAMP_TO_EDGE));
+    SV_GL(glSamplerParameteri(fetchSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE));
+    shadowSampler = makeSampler();
+    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_NEAREST));
+    for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
+      SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_CLAMP_TO_EDGE));
+    SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE));
+    SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL));
+
+    emptyVao = makeVertexArray();
+    sceneVao = makeVertexArray();
+    sceneVbo = makeBuffer();
+    sceneEbo = makeBuffer();
+    volumeVao = makeVertexArray();
+    volumeVbo = makeBuffer();
+    volumeEbo = makeBuffer();
+    SV_GL(glBindVertexArray(volumeVao.id()));
+    SV_GL(glBindBuffer(GL_ARRAY_BUFFER, volumeVbo.id()));
+    SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, volumeEbo.id()));
+    SV_GL(glEnableVertexAttribArray(0));
+    SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr));
+    SV_GL(glBindVertexArray(0));
+
+    SV_GL(glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize));
+    SV_GL(glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbufferSize));
+    SV_GL(glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport));
+    SV_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+    SV_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  }
+
+  void requireScene() const {
+    if (!hasScene) throw InputError("renderer", "", "", "no scene: call setScene() before rendering");
+  }
+
+  void checkSize(const char* field, int w, int h, int limit) const {
+    if (w < 2 || h < 2 || w > limit || h > limit)
+      throw InputError("command line", field, std::to_string(w) + "x" + std::to_string(h),
+                       "must be between 2 and " + std::to_string(limit) + " per side on this OpenGL implementation");
+  }
+
+  // ---- light targets -------------------------------------------------------------------------
+
+  void ensureLightTargets(int w, int h) {
+    if (w == lightW && h == lightH) return;
+    layer0 = makeTexture2D(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, w, h);
+    layer1 = makeTexture2D(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, w, h);
+    resolvedDepth = makeTexture2D(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, w, h);
+    linearDepth = makeTexture2D(GL_R32F, GL_RED, GL_FLOAT, w, h);
+    blurredDepth = makeTexture2D(GL_R32F, GL_RED, GL_FLOAT, w, h);
+    auto depthFbo = [](const Texture& depth, const char* what) {
+      Framebuffer f = makeFramebuffer();
+      SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, f.id()));
+      SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0));
+      SV_GL(glDrawBuffer(GL_NONE));
+      SV_GL(glReadBuffer(GL_NONE));
+      checkFramebufferComplete(what);
+      return f;
+    };
+    layer0Fbo = depthFbo(layer0, "light depth (first layer)");
+    layer1Fbo = depthFbo(layer1, "light depth (second layer)");
+    resolveFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.id()));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, linearDepth.id(), 0));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, resolvedDepth.id(), 0));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("light depth resolve");
+    blurFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, blurFbo.id()));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, blurredDepth.id(), 0));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("depth blur");
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+    lightW = w;
+    lightH = h;
+  }
+
+  void ensureCameraTargets(int w, int h) {
+    if (w == camW && h == camH) return;
+    colorRb = makeRenderbuffer();
+    SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, colorRb.id()));
+    SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h));
+    depthStencilRb = makeRenderbuffer();
+    SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, depthStencilRb.id()));
+    SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h));
+    SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, 0));
+    cameraFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorRb.id()));
+    SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthStencilRb.id()));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("camera");
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+    camW = w;
+    camH = h;
+  }
+
+  // ---- passes --------------------------------------------------------------------------------
+
+  void resetState() {
+    SV_GL(glDisable(GL_BLEND));
+    SV_GL(glDisable(GL_STENCIL_TEST));
+    SV_GL(glDisable(GL_DEPTH_CLAMP));
+    SV_GL(glDisable(GL_CULL_FACE));
+    SV_GL(glFrontFace(GL_CCW));
+    SV_GL(glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE));
+    SV_GL(glDepthMask(GL_TRUE));
+    SV_GL(glStencilMask(0xFF));
+    SV_GL(glEnable(GL_DEPTH_TEST));
+    SV_GL(glDepthFunc(GL_LESS));
+  }
+
+  void drawScene() {
+    SV_GL(glBindVertexArray(sceneVao.id()));
+    SV_GL(glDrawElements(GL_TRIANGLES, sceneIndexCount, GL_UNSIGNED_INT, nullptr));
+    SV_GL(glBindVertexArray(0));
+  }
+
+  /// The light's depth into layer0 (and layer1 for midpoint): window depth, cleared to 1.
+  void lightPass(int w, int h, CaptureMode mode) {
+    ensureLightTargets(w, h);
+    resetState();
+    const glm::dmat4 worldToLightClip = lightProjection(light, double(w) / double(h)) * lightView(light);
+    SV_GL(glViewport(0, 0, w, h));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer0Fbo.id()));
+    SV_GL(glClearDepth(1.0));
+    SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
+    if (mode == CaptureMode::Back) {
+      SV_GL(glEnable(GL_CULL_FACE));
+      SV_GL(glCullFace(GL_FRONT));
+    }
+    lightProgram.use();
+    lightProgram.set("worldToLightClip", toFloat(worldToLightClip));
+    drawScene();
+    SV_GL(glDisable(GL_CULL_FACE));
+    if (mode == CaptureMode::Midpoint) {
+      SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer1Fbo.id()));
+      SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
+      peelProgram.use();
+      peelProgram.set("worldToLightClip", toFloat(worldToLightClip));
+      peelProgram.set("firstLayer", 0);
+      bindTexture(0, layer0, fetchSampler);
+      drawScene();
+      bindTexture(0, Texture(), fetchSampler);
+    }
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  void bindTexture(int unit, const Texture& tex, const Sampler& sampler) {
+    SV_GL(glActiveTexture(GLenum(GL_TEXTURE0 + unit)));
+    SV_GL(glBindTexture(GL_TEXTURE_2D, tex.id()));
+    SV_GL(glBindSampler(GLuint(unit), tex ? sampler.id() : 0));
+    SV_GL(glActiveTexture(GL_TEXTURE0));
+  }
+
+  /// layer0 (+ layer1) -> linearDepth (R32F, light-view depth, farPlane = no hit) and
+  /// resolvedDepth (window depth of the same, for the shadow maps).
+  void resolvePass(CaptureMode mode) {
+    resetState();
+    const glm::dmat4 proj = lightProjection(light, double(lightW) / double(lightH));
+    SV_GL(glViewport(0, 0, lightW, lightH));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.id()));
+    SV_GL(glDepthFunc(GL_ALWAYS));
+    resolveProgram.use();
+    resolveProgram.set("layer0", 0);
+    resolveProgram.set("layer1", 1);
+    resolveProgram.set("midpoint", mode == CaptureMode::Midpoint ? 1 : 0);
+    resolveProgram.set("depthParams", depthParams(proj));
+    resolveProgram.set("farPlane", float(light.farPlane));
+    bindTexture(0, layer0, fetchSampler);
+    bindTexture(1, layer1, fetchSampler);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+    SV_GL(glDepthFunc(GL_LESS));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  void blurPass(double blurOffset) {
+    resetState();
+    SV_GL(glDisable(GL_DEPTH_TEST));
+    SV_GL(glViewport(0, 0, lightW, lightH));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, blurFbo.id()));
+    blurProgram.use();
+    blurProgram.set("lightDepth", 0);
+    blurProgram.set("size", glm::ivec2(lightW, lightH));
+    blurProgram.set("farSnap", float(light.farPlane * (1.0 - kFarSnap)));
+    blurProgram.set("blurOffset", float(blurOffset));
+    bindTexture(0, linearDepth, fetchSampler);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  DepthMap readBack(CaptureMode mode) {
+    DepthMap map = makeDepthMap(light, lightW, lightH, mode);
+    const std::size_t n = std::size_t(lightW) * std::size_t(lightH);
+    std::vector<float> w0(n), w1;
+    SV_GL(glBindTexture(GL_TEXTURE_2D, layer0.id()));
+    SV_GL(glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w0.data()));
+    if (mode == CaptureMode::Midpoint) {
+      w1.resize(n);
+      SV_GL(glBindTexture(GL_TEXTURE_2D, layer1.id()));
+      SV_GL(glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w1.data()));
+    }
+    SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
+    const glm::dmat4& p = map.lightProjection;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (w0[k] >= 1.0f) continue;  // cleared: the light saw nothing (kNoHit)
+      double d = viewDepthFromWindow(p, double(w0[k]));
+      if (mode == CaptureMode::Midpoint)
+        d = 0.5 * (d + (w1[k] >= 1.0f ? map.farPlane : viewDepthFromWindow(p, double(w1[k]))));
+      map.depth[k] = float(d);
+    }
+    return map;
+  }
+
+  struct CameraSetup {
+    glm::dmat4 view, proj;
+    int w, h;
+  };
+
+  CameraSetup cameraSetup(const RenderOptions& o) const {
+    if (o.imageWidth < 0 || o.imageHeight < 0)
+      throw InputError("command line", "--size", std::to_string(o.imageWidth) + "x" + std::to_string(o.imageHeight),
+                       "must be positive (0 = the scene camera's size)");
+    Camera c = camera;
+    if (o.imageWidth > 0) c.width = o.imageWidth;
+    if (o.imageHeight > 0) c.height = o.imageHeight;
+    return {cameraView(c), cameraProjection(c), c.width, c.height};
+  }
+
+  /// Uniforms of sceneProgram shared by every mode.
+  void setSceneUniforms(const CameraSetup& cam, const RenderOptions& o, int shadowTaps, int mapW, int mapH) {
+    const double aspect = double(mapW) / double(mapH);
+    const glm::dmat4 lp = lightProjection(light, aspect);
+    const glm::dmat4 lv = lightView(light);
+    sceneProgram.use();
+    sceneProgram.set("worldToClip", toFloat(cam.proj * cam.view));
+    sceneProgram.set("cameraPosition", glm::vec3(camera.eye));
+    sceneProgram.set("lightIsSpot", light.type == LightType::Spot ? 1 : 0);
+    sceneProgram.set("lightPosition", glm::vec3(light.position));
+    sceneProgram.set("lightDirection", glm::vec3(glm::normalize(light.direction)));
+    sceneProgram.set("worldToLightClip", toFloat(lp * lv));
+    sceneProgram.set("worldToLightView", toFloat(lv));
+    sceneProgram.set("lightDepthParams", depthParams(lp));
+    sceneProgram.set("ambient", float(o.ambient));
+    sceneProgram.set("diffuse", float(o.diffuse));
+    sceneProgram.set("shadowTaps", shadowTaps);
+    sceneProgram.set("shadowMap", 2);
+    sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
+    sceneProgram.set("biasConstant", float(o.shadowBiasConstant));
+    sceneProgram.set("biasSlope", float(o.shadowBiasSlope));
+    sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
+  }
+
+  void beginCamera(const CameraSetup& cam) {
+    ensureCameraTargets(cam.w, cam.h);
+    resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));
+    SV_GL(glClearDepth(1.0));
+    SV_GL(glClearStencil(0));
+    SV_GL(glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT));
+  }
+
+  /// Volume state: z-fail, two-sided, wrap; colour and depth writes off; depth clamp on.
+  void beginVolume() {
+    SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
+    SV_GL(glDepthMask(GL_FALSE));
+    SV_GL(glDepthFunc(GL_LESS));
+    SV_GL(glEnable(GL_DEPTH_CLAMP));
+    SV_GL(glDisable(GL_CULL_FACE));
+    SV_GL(glEnable(GL_STENCIL_TEST));
+    SV_GL(glStencilMask(0xFF));
+    SV_GL(glStencilFunc(GL_ALWAYS, 0, 0xFF));
+    SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP));
+    SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP));
+  }
+
+  void endVolume() {
+    SV_GL(glDisable(GL_DEPTH_CLAMP));
+    SV_GL(glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE));
+  }
+
+  /// Diffuse light where stencil == 0, added onto the ambient image.
+  void lightingPass() {
+    SV_GL(glEnable(GL_STENCIL_TEST));
+    SV_GL(glStencilFunc(GL_EQUAL, 0, 0xFF));
+    SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP));
+    SV_GL(glDepthMask(GL_FALSE));
+    SV_GL(glDepthFunc(GL_LEQUAL));
+    SV_GL(glEnable(GL_BLEND));
+    SV_GL(glBlendFunc(GL_ONE, GL_ONE));
+    sceneProgram.use();
+    sceneProgram.set("mode", 1);
+    sceneProgram.set("shadowTaps", 0);
+    drawScene();
+    resetState();
+  }
+
+  void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
+                     RenderResult& result) {
+    const glm::dmat4 lp = lightProjection(light, double(lightW) / double(lightH));
+    const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
+    volumeGpuProgram.use();
+    volumeGpuProgram.set("lightDepth", 0);
+    volumeGpuProgram.set("size", glm::ivec2(lightW, lightH));
+    volumeGpuProgram.set("farPlane", float(light.farPlane));
+    volumeGpuProgram.set("nearPlane", float(light.nearPlane));
+    volumeGpuProgram.set("farSnap", float(light.farPlane * (1.0 - kFarSnap)));
+    volumeGpuProgram.set("bias", float(bias));
+    volumeGpuProgram.set("projXY", glm::vec4(float(lp[0][0]), float(lp[1][1]), float(lp[3][0]), float(lp[3][1])));
+    volumeGpuProgram.set("projShear", glm::vec2(float(lp[2][0]), float(lp[2][1])));
+    volumeGpuProgram.set("projZW", depthParams(lp));
+    volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
+    volumeGpuProgram.set("perfect", vo.triangulation == Triangulation::Perfect ? 1 : 0);
+    volumeGpuProgram.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
+    volumeGpuProgram.set("planarTolerance", float(kPlanarTolerance));
+    bindTexture(0, depth, fetchSampler);
+    const GLsizei quads = GLsizei(lightW - 1) * GLsizei(lightH - 1);
+    const GLsizei count = vo.cap == FarCap::Exact ? quads * 12 : quads * 6 + 6;
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, count));
+    SV_GL(glBindVertexArray(0));
+    result.volumeTriangles = std::size_t(count) / 3;
+  }
+
+  void uploadVolume(const VolumeMesh& volume) {
+    const TriangleMesh m = volume.toTriangleMesh();
+    SV_GL(glBindBuffer(GL_ARRAY_BUFFER, volumeVbo.id()));
+    SV_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m.positions.size() * sizeof(glm::vec3)), m.positions.data(),
+                       GL_STREAM_DRAW));
+    SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
+    SV_GL(glBindVertexArray(volumeVao.id()));
+    SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(m.triangles.size() * sizeof(m.triangles[0])),
+                       m.triangles.data(), GL_STREAM_DRAW));
+    SV_GL(glBindVertexArray(0));
+  }
+
+  void drawExplicitVolume(const CameraSetup& cam, std::size_t triangles, RenderResult& result) {
+    volumeProgram.use();
+    volumeProgram.set("worldToClip", toFloat(cam.proj * cam.view));
+    SV_GL(glBindVertexArray(volumeVao.id()));
+    SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(triangles * 3), GL_UNSIGNED_INT, nullptr));
+    SV_GL(glBindVertexArray(0));
+    result.volumeTriangles = triangles;
+  }
+
+  void readImages(const CameraSetup& cam, bool stencil, RenderResult& r) {
+    const int w = cam.w, h = cam.h;
+    r.width = w;
+    r.height = h;
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    std::vector<std::uint8_t> buf(std::size_t(w) * std::size_t(h) * 4);
+    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+    SV_GL(glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, buf.data()));
+    r.rgba.resize(buf.size());
+    const std::size_t row = std::size_t(w) * 4;
+    for (int y = 0; y < h; ++y)  // GL row 0 is the bottom; images start at the top
+      std::copy_n(buf.data() + std::size_t(h - 1 - y) * row, row, r.rgba.data() + std::size_t(y) * row);
+    if (stencil) {
+      std::vector<std::uint8_t> s(std::size_t(w) * std::size_t(h));
+      SV_GL(glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, s.data()));
+      r.stencil.resize(s.size());
+      for (int y = 0; y < h; ++y)
+        std::copy_n(s.data() + std::size_t(h - 1 - y) * std::size_t(w), std::size_t(w),
+                    r.stencil.data() + std::size_t(y) * std::size_t(w));
+    }
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  void validate(const RenderOptions& o, const CameraSetup& cam) const {
+    requireScene();
+    checkSize("--resolution", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
+    if (cam.w < 1 || cam.h < 1 || cam.w > maxRenderbufferSize || cam.h > maxRenderbufferSize)
+      throw InputError("command line", "--size", std::to_string(cam.w) + "x" + std::to_string(cam.h),
+                       "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
+    if (!std::isfinite(o.ambient) || !std::isfinite(o.diffuse) || o.ambient < 0 || o.diffuse < 0)
+      throw InputError("command line", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
+                       "must be finite and >= 0");
+    if (!std::isfinite(o.shadowBiasConstant) || !std::isfinite(o.shadowBiasSlope))
+      throw InputError("command line", "shadow bias", "", "must be finite");
+    if (!std::isfinite(o.volumeOptions.blurOffset) || (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias)))
+      throw InputError("command line", "--bias/--blur-offset", "", "must be finite");
+  }
+
+  RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
+    context.makeCurrent();
+    const CameraSetup cam = cameraSetup(o);
+    validate(o, cam);
+    RenderResult result;
+    const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
+    result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
+    PassTimer timer(queryPool, gpuTimer);
+    const bool hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
+    const VolumeBuildOptions& vo = o.volumeOptions;
+
+    if (!givenVolume && o.method != ShadowMethod::None) {
+      TimedPass t(timer, "light");
+      lightPass(o.depthWidth, o.depthHeight, o.capture);
+    }
+
+    std::size_t explicitTriangles = 0;
+    const Texture* volumeDepth = nullptr;
+    if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
+      auto t0 = Clock::now();
+      result.depthMap = readBack(o.capture);
+      timer.cpu("readback", msSince(t0));
+      t0 = Clock::now();
+      VolumeBuildResult built = buildVolume(*result.depthMap, vo);
+      timer.cpu("build", msSince(t0));
+      result.biasUsed = built.stats.biasUsed;
+      t0 = Clock::now();
+      uploadVolume(built.mesh);
+      glFinish();
+      timer.cpu("upload", msSince(t0));
+      explicitTriangles = built.mesh.triangleCount();
+    } else if (givenVolume) {
+      const auto t0 = Clock::now();
+      uploadVolume(*givenVolume);
+      glFinish();
+      timer.cpu("upload", msSince(t0));
+      explicitTriangles = givenVolume->triangleCount();
+    } else if (hybrid) {
+      {
+        TimedPass t(timer, "resolve");
+        resolvePass(o.capture);
+      }
+      volumeDepth = &linearDepth;
+      if (vo.blur) {
+        TimedPass t(timer, "blur");
+        blurPass(vo.blurOffset);
+        volumeDepth = &blurredDepth;
+      }
+      result.biasUsed = vo.bias ? *vo.bias : defaultBias(makeDepthMap(light, lightW, lightH, o.capture));
+    } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
+      TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
+      resolvePass(o.capture);
+    }
+
+    if (hybrid) {
+      {
+        TimedPass t(timer, "camera");
+        beginCamera(cam);
+        setSceneUniforms(cam, o, 0, std::max(lightW, 2), std::max(lightH, 2));
+        sceneProgram.set("mode", 0);
+        drawScene();
+      }
+      {
+        TimedPass t(timer, "volume");
+        beginVolume();
+        if (volumeDepth)
+          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
+        else
+          drawExplicitVolume(cam, explicitTriangles, result);
+        endVolume();
+      }
+      {
+        TimedPass t(timer, "lighting");
+        lightingPass();
+      }
+    } else {
+      TimedPass t(timer, "shade");
+      const int taps = o.method == ShadowMethod::ShadowMap ? 1
+                       : o.method == ShadowMethod::Pcf3    ? 3
+                       : o.method == ShadowMethod::Pcf5    ? 5
+                                                           : 0;
+      beginCamera(cam);
+      const int mw = taps ? lightW : o.depthWidth, mh = taps ? lightH : o.depthHeight;
+      setSceneUniforms(cam, o, taps, mw, mh);
+      sceneProgram.set("mode", 2);
+      if (taps) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+      drawScene();
+      bindTexture(2, Texture(), shadowSampler);
+    }
+    readImages(cam, hybrid && o.readStencil, result);
+    if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None)
+      result.depthMap = readBack(o.capture);
+    result.passes = timer.results();
+    for (const auto& p : result.passes) result.totalMs += p.ms;
+    return result;
+  }
+};
+
+Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Renderer::~Renderer() {
+  if (impl_) impl_->context.makeCurrent();
+}
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+const ContextInfo& Renderer::info() const { return impl_->context.info(); }
+
+void Renderer::setScene(const Scene& scene) {
+  Impl& s = *impl_;
+  s.context.makeCurrent();
+  if (!(scene.light.farPlane > scene.light.nearPlane) || !(scene.camera.farPlane > scene.camera.nearPlane) ||
+      !(scene.camera.nearPlane > 0.0))
+    throw InputError(scene.source, "/light or /camera", "", "near and far planes are not set (fitLightAndCamera)");
+  if (scene.light.type == LightType::Spot && !(scene.light.nearPlane > 0.0))
+    throw InputError(scene.source, "/light/near", std::to_string(scene.light.nearPlane), "a spot light needs near > 0");
+  struct Vertex {
+    glm::vec3 position, albedo;
+  };
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  int colourIndex = 0;
+  for (const auto& o : scene.objects) {
+    const glm::vec3 albedo = albedoFor(o, colourIndex);
+    const auto base = std::uint32_t(vertices.size());
+    for (const auto& p : o.mesh.positions) vertices.push_back({p, albedo});
+    for (const auto& t : o.mesh.triangles)
+      for (auto k : t) indices.push_back(base + k);
+  }
+  if (indices.size() > std::size_t(std::numeric_limits<GLsizei>::max()))
+    throw InputError(scene.source, "", std::to_string(indices.size() / 3), "too many triangles for one draw call");
+  SV_GL(glBindVertexArray(s.sceneVao.id()));
+  SV_GL(glBindBuffer(GL_ARRAY_BUFFER, s.sceneVbo.id()));
+  SV_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), GL_STATIC_DRAW));
+  SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.sceneEbo.id()));
+  SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(),
+                     GL_STATIC_DRAW));
+  SV_GL(glEnableVertexAttribArray(0));
+  SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, position))));
+  SV_GL(glEnableVertexAttribArray(1));
+  SV_GL(glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, albedo))));
+  SV_GL(glBindVertexArray(0));
+  SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
+  s.sceneIndexCount = GLsizei(indices.size());
+  s.light = scene.light;
+  s.camera = scene.camera;
+  s.hasScene = true;
+}
+
+DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
+  Impl& s = *impl_;
+  s.context.makeCurrent();
+  s.requireScene();
+  s.checkSize("--resolution", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
+  s.lightPass(width, height, mode);
+  return s.readBack(mode);
+}
+
+RenderResult Renderer::render(const RenderOptions& options) { return impl_->render(options, nullptr); }
+
+RenderResult Renderer::renderWithVolume(const RenderOptions& options, const VolumeMesh& volume) {
+  return impl_->render(options, &volume);
+}
+
+}  // namespace shadowvol::gl

@@ -1,0 +1,99 @@
+#include "shadowvol/gl/shader_program.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "shadowvol/gl/gl_error.h"
+
+namespace shadowvol::gl {
+
+ShaderLibrary::ShaderLibrary(std::filesystem::path overrideDir) : dir_(std::move(overrideDir)) {
+  if (dir_.empty()) {
+    if (const char* env = std::getenv("SHADOWVOL_SHADER_DIR"); env && *env) dir_ = env;
+  }
+}
+
+std::pair<std::string, std::string> ShaderLibrary::load(const std::string& name) const {
+  if (!dir_.empty()) {
+    const std::filesystem::path p = dir_ / name;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(p, ec)) {
+      std::ifstream in(p, std::ios::binary);
+      std::ostringstream s;
+      s << in.rdbuf();
+      if (!in.good() && !in.eof()) throw GlError(p.string() + ": cannot read the shader file");
+      return {s.str(), p.string()};
+    }
+  }
+  auto text = embeddedShader(name);
+  if (!text) throw GlError("shaders/" + name + ": no such shader (neither embedded nor in the override directory)");
+  return {*text, "shaders/" + name + " (embedded)"};
+}
+
+namespace {
+
+Shader compile(GLenum type, const std::string& text, const std::string& origin) {
+  Shader s(glCreateShader(type));
+  if (!s) throw GlError(origin + ": glCreateShader failed");
+  const char* src = text.c_str();
+  glShaderSource(s.id(), 1, &src, nullptr);
+  glCompileShader(s.id());
+  GLint ok = 0, len = 0;
+  glGetShaderiv(s.id(), GL_COMPILE_STATUS, &ok);
+  glGetShaderiv(s.id(), GL_INFO_LOG_LENGTH, &len);
+  if (!ok) {
+    std::string log(std::size_t(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(s.id(), len, nullptr, log.data());
+    throw GlError(origin + ": compile failed:\n" + log);
+  }
+  return s;
+}
+
+}  // namespace
+
+Program::Program(const ShaderLibrary& library, const std::string& vertexFile, const std::string& fragmentFile) {
+  const auto [vsText, vsOrigin] = library.load(vertexFile);
+  const auto [fsText, fsOrigin] = library.load(fragmentFile);
+  Shader vs = compile(GL_VERTEX_SHADER, vsText, vsOrigin);
+  Shader fs = compile(GL_FRAGMENT_SHADER, fsText, fsOrigin);
+  program_ = ProgramName(glCreateProgram());
+  if (!program_) throw GlError(vsOrigin + " + " + fsOrigin + ": glCreateProgram failed");
+  glAttachShader(program_.id(), vs.id());
+  glAttachShader(program_.id(), fs.id());
+  glLinkProgram(program_.id());
+  GLint ok = 0, len = 0;
+  glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
+  glGetProgramiv(program_.id(), GL_INFO_LOG_LENGTH, &len);
+  glDetachShader(program_.id(), vs.id());
+  glDetachShader(program_.id(), fs.id());
+  if (!ok) {
+    std::string log(std::size_t(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program_.id(), len, nullptr, log.data());
+    throw GlError(vsOrigin + " + " + fsOrigin + ": link failed:\n" + log);
+  }
+}
+
+void Program::use() const { SV_GL(glUseProgram(program_.id())); }
+
+GLint Program::location(const char* name) const {
+  auto it = locations_.find(name);
+  if (it != locations_.end()) return it->second;
+  const GLint loc = glGetUniformLocation(program_.id(), name);
+  locations_.emplace(name, loc);
+  return loc;
+}
+
+void Program::set(const char* name, int v) const { SV_GL(glUniform1i(location(name), v)); }
+void Program::set(const char* name, float v) const { SV_GL(glUniform1f(location(name), v)); }
+void Program::set(const char* name, const glm::vec2& v) const { SV_GL(glUniform2fv(location(name), 1, glm::value_ptr(v))); }
+void Program::set(const char* name, const glm::vec3& v) const { SV_GL(glUniform3fv(location(name), 1, glm::value_ptr(v))); }
+void Program::set(const char* name, const glm::vec4& v) const { SV_GL(glUniform4fv(location(name), 1, glm::value_ptr(v))); }
+void Program::set(const char* name, const glm::ivec2& v) const { SV_GL(glUniform2iv(location(name), 1, glm::value_ptr(v))); }
+void Program::set(const char* name, const glm::mat4& v) const {
+  SV_GL(glUniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(v)));
+}
+
+}  // namespace shadowvol::gl

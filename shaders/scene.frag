@@ -1,0 +1,59 @@
+#version 330 core
+// Shading of the camera pass (docs/gpu.md "Lighting"):
+//   colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit)
+// N: the flat face normal (from screen-space derivatives) turned toward the camera; L: toward the
+// light (spot: toward its apex; directional: against its direction). lit = 0 outside the light's
+// frustum (|x|, |y|, |z| <= w in light clip space), times the shadow-map visibility when
+// shadowTaps > 0. mode 0: ambient only; 1: the diffuse term only (hybrid: added where the stencil
+// is 0); 2: ambient + diffuse.
+in vec3 worldPos;
+in vec3 color;
+uniform int mode;
+uniform vec3 cameraPosition;      // world
+uniform int lightIsSpot;
+uniform vec3 lightPosition;       // world, spot apex
+uniform vec3 lightDirection;      // world, unit, the way the light shines
+uniform mat4 worldToLightClip;    // P_light * V_light
+uniform mat4 worldToLightView;    // V_light
+uniform vec4 lightDepthParams;    // light projection P22, P32, P23, P33
+uniform float ambient;
+uniform float diffuse;
+uniform int shadowTaps;           // 0: no shadow test; 1: one tap; 3 or 5: PCF n x n
+uniform sampler2DShadow shadowMap;  // window depth, compare LEQUAL, nearest
+uniform vec2 shadowMapSize;       // texels
+uniform float biasConstant;       // world units
+uniform float biasSlope;          // x texel footprint x tan(angle)
+uniform float texelFootprint;     // world size of a texel: spot at unit depth, directional overall
+layout(location = 0) out vec4 fragColor;
+
+float shadowVisibility(vec4 lightClip, float cosTheta) {
+  float d = -(worldToLightView * vec4(worldPos, 1.0)).z;
+  float footprint = lightIsSpot != 0 ? texelFootprint * d : texelFootprint;
+  float c = clamp(cosTheta, 1e-4, 1.0);
+  float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / c, 10.0);
+  float z = -(d - (biasConstant + biasSlope * footprint * tanTheta));
+  float ndc = (lightDepthParams.x * z + lightDepthParams.y) / (lightDepthParams.z * z + lightDepthParams.w);
+  float ref = 0.5 * ndc + 0.5;
+  vec2 uv = lightClip.xy / lightClip.w * 0.5 + 0.5;
+  int r = shadowTaps / 2;
+  float sum = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x) sum += texture(shadowMap, vec3(uv + vec2(float(x), float(y)) / shadowMapSize, ref));
+  return sum / float((2 * r + 1) * (2 * r + 1));
+}
+
+void main() {
+  if (mode == 0) {
+    fragColor = vec4(color * ambient, 1.0);
+    return;
+  }
+  vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
+  if (dot(n, cameraPosition - worldPos) < 0.0) n = -n;
+  vec3 l = lightIsSpot != 0 ? normalize(lightPosition - worldPos) : -lightDirection;
+  float ndl = dot(n, l);
+  vec4 lc = worldToLightClip * vec4(worldPos, 1.0);
+  float lit = (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
+  if (lit > 0.0 && ndl > 0.0 && shadowTaps > 0) lit *= shadowVisibility(lc, ndl);
+  vec3 direct = color * diffuse * max(ndl, 0.0) * lit;
+  fragColor = vec4(mode == 1 ? direct : color * ambient + direct, 1.0);
+}

@@ -1,0 +1,75 @@
+// Shared pieces of the GL tests: one renderer for the whole test program (creating a context and
+// compiling the shaders once), programmatic scenes, and small image helpers.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "shadowvol/gl/renderer.h"
+#include "shadowvol/primitives.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol::gltest {
+
+inline gl::Renderer& sharedRenderer() {
+  static gl::Renderer renderer;
+  return renderer;
+}
+
+inline SceneObject translated(std::string name, std::string type, TriangleMesh mesh, glm::vec3 offset) {
+  for (auto& p : mesh.positions) p += offset;
+  return SceneObject{std::move(name), std::move(type), std::move(mesh)};
+}
+
+/// A closed square plate (2 x 0.1 x 2, centre at height 2) over a single-sided 10 x 10 ground,
+/// under a slightly tilted directional light (fitted box). The camera is set by the caller.
+inline Scene plateScene() {
+  Scene s;
+  s.source = "plate (test)";
+  s.objects.push_back(SceneObject{"ground", "plane", makePlane(10.0, 10.0, 1)});
+  s.objects.push_back(translated("plate", "box", makeBox(2.0, 0.1, 2.0), {0.13f, 2.0f, -0.07f}));
+  s.light.type = LightType::Directional;
+  s.light.direction = glm::normalize(glm::dvec3(0.15, -1.0, 0.1));
+  s.light.fitPosition = true;
+  s.camera.eye = {0.0, 8.0, 7.0};
+  s.camera.target = {0.0, 0.0, 0.0};
+  s.camera.width = 192;
+  s.camera.height = 144;
+  fitLightAndCamera(s);
+  return s;
+}
+
+/// Several closed bodies on a closed ground slab under a spot light: a sphere, a box, a tree (a
+/// thin trunk), so the volume has steep walls, thin occluders and flat regions.
+inline Scene clutterScene() {
+  Scene s;
+  s.source = "clutter (test)";
+  s.objects.push_back(translated("ground", "box", makeBox(12.0, 0.2, 12.0), {0.0f, -0.1f, 0.0f}));
+  s.objects.push_back(translated("sphere", "sphere", makeIcoSphere(1.0, 3), {-1.0f, 1.6f, 0.5f}));
+  s.objects.push_back(translated("box", "box", makeBox(1.2, 1.0, 0.8), {1.8f, 0.5f, -0.6f}));
+  s.objects.push_back(translated("tree", "tree", makeTree(0.12, 1.5, 0.6, 2), {0.4f, 0.0f, 2.0f}));
+  s.light.type = LightType::Spot;
+  s.light.position = {2.5, 8.0, 3.0};
+  s.light.direction = glm::normalize(glm::dvec3(0.0, 0.5, 0.0) - s.light.position);
+  s.light.fovYDegrees = 70.0;
+  s.camera.eye = {-2.0, 6.5, 9.0};
+  s.camera.target = {0.3, 0.5, 0.0};
+  s.camera.width = 192;
+  s.camera.height = 144;
+  fitLightAndCamera(s);
+  return s;
+}
+
+/// Share of equal bytes of two equally sized buffers.
+inline double agreement(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+  if (a.size() != b.size() || a.empty()) return 0.0;
+  std::size_t same = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) same += a[k] == b[k];
+  return double(same) / double(a.size());
+}
+
+}  // namespace shadowvol::gltest

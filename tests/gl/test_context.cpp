@@ -1,0 +1,99 @@
+// The EGL context, shader loading and error reporting.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "gl_test_support.h"
+#include "shadowvol/error.h"
+#include "shadowvol/gl/gl_error.h"
+#include "shadowvol/gl/image_io.h"
+#include "shadowvol/gl/shader_program.h"
+
+using namespace shadowvol;
+
+TEST(GlContext, ReportsPlatformAndDriver) {
+  const gl::ContextInfo& info = gltest::sharedRenderer().info();
+  EXPECT_TRUE(info.platform == "device" || info.platform == "surfaceless" || info.platform == "default");
+  EXPECT_FALSE(info.glVendor.empty());
+  EXPECT_FALSE(info.glRenderer.empty());
+  EXPECT_FALSE(info.glVersion.empty());
+  EXPECT_GE(info.glMajor * 10 + info.glMinor, 33);
+  EXPECT_FALSE(info.attempts.empty());
+  std::printf("EGL platform %s (%s), %s / %s / %s\n", info.platform.c_str(), info.device.c_str(),
+              info.glVendor.c_str(), info.glRenderer.c_str(), info.glVersion.c_str());
+}
+
+TEST(GlContext, UnknownPlatformIsAnInputError) {
+  gl::RendererOptions o;
+  o.context.platform = "wayland";
+  EXPECT_THROW(gl::Renderer{o}, InputError);
+}
+
+TEST(GlContext, EveryPlatformEitherWorksOrThrowsGlError) {
+  for (const char* p : {"device", "surfaceless", "default"}) {
+    gl::RendererOptions o;
+    o.context.platform = p;
+    try {
+      gl::Renderer r(o);
+      EXPECT_EQ(r.info().platform, p);
+    } catch (const gl::GlError& e) {
+      EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(GlShaders, EmbeddedSourcesArePresent) {
+  for (const char* name : {"light.vert", "volume_gpu.vert", "scene.frag", "blur.frag", "resolve.frag"}) {
+    auto text = gl::embeddedShader(name);
+    ASSERT_TRUE(text.has_value()) << name;
+    EXPECT_NE(text->find("#version"), std::string::npos);
+  }
+  EXPECT_FALSE(gl::embeddedShader("no_such.frag").has_value());
+}
+
+TEST(GlShaders, OverrideDirectoryReplacesAFileAndCompileErrorsNameIt) {
+  const auto dir = std::filesystem::temp_directory_path() / "shadowvol_shader_override_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(dir / "blur.frag");
+    f << "#version 330 core\nvoid main() { this is not glsl; }\n";
+  }
+  gl::ShaderLibrary lib(dir);
+  EXPECT_EQ(lib.load("blur.frag").second, (dir / "blur.frag").string());
+  EXPECT_NE(lib.load("light.vert").second.find("embedded"), std::string::npos);
+  gl::RendererOptions o;
+  o.shaderDir = dir;
+  try {
+    gl::Renderer r(o);
+    FAIL() << "a broken shader must not compile";
+  } catch (const gl::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("blur.frag"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("compile failed"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(GlRenderer, RejectsBadSizesAndMissingScene) {
+  gl::Renderer& r = gltest::sharedRenderer();
+  r.setScene(defaultScene());
+  EXPECT_THROW(r.captureDepth(1, 64, CaptureMode::Back), InputError);
+  EXPECT_THROW(r.captureDepth(64, 1 << 20, CaptureMode::Back), InputError);
+  gl::RenderOptions o;
+  o.imageWidth = -3;
+  EXPECT_THROW(r.render(o), InputError);
+}
+
+TEST(GlImageIo, PngRoundTripKeepsRowsTopFirst) {
+  const auto path = std::filesystem::temp_directory_path() / "shadowvol_png_roundtrip.png";
+  std::vector<std::uint8_t> px = {10, 20, 30, 255, 40, 50, 60, 255, 70, 80, 90, 255, 1, 2, 3, 4};
+  gl::writePng(path, 2, 2, 4, px);
+  const gl::Image8 img = gl::readPng(path);
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.height, 2);
+  EXPECT_EQ(img.channels, 4);
+  EXPECT_EQ(img.pixels, px);
+  std::filesystem::remove(path);
+  EXPECT_THROW(gl::writePng("/nonexistent_dir/x.png", 2, 2, 4, px), InputError);
+  EXPECT_THROW(gl::readPng("/nonexistent_dir/x.png"), InputError);
+}
