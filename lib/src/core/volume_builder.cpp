@@ -1,0 +1,442 @@
+#include "shadowvol/volume_builder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/vec4.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/check.h"
+#include "shadowvol/depth_blur.h"
+#include "shadowvol/error.h"
+#include "shadowvol/far_cap.h"
+
+namespace shadowvol {
+
+const char* toString(FarCap c) { return c == FarCap::Exact ? "exact" : "quad"; }
+
+bool parseFarCap(const std::string& text, FarCap& c) {
+  if (text == "exact") c = FarCap::Exact;
+  else if (text == "quad") c = FarCap::Quad;
+  else return false;
+  return true;
+}
+
+double defaultBias(const DepthMap& map) {
+  if (map.capture != CaptureMode::Front) return 0.0;
+  // Texel footprint at the far plane (the largest over the map for a spot light; constant for a
+  // directional one): the depth change across one texel of a receiver tilted 45 degrees.
+  const TexelUnprojector unproject(map);
+  const double w2 = 0.5 * (map.width - 1), h2 = 0.5 * (map.height - 1);
+  const glm::dvec3 c = unproject.lightViewPoint(w2, h2, map.farPlane);
+  const double footprint = std::max(glm::length(unproject.lightViewPoint(w2 + 1.0, h2, map.farPlane) - c),
+                                    glm::length(unproject.lightViewPoint(w2, h2 + 1.0, map.farPlane) - c));
+  // Float depth precision: 4 ulps of a float at the far plane (2^-23 relative per ulp).
+  const double precision = 4.0 * map.farPlane * std::ldexp(1.0, -23);
+  return footprint + precision;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Tri = std::array<std::uint32_t, 3>;
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Per-quad code: the diagonal and which of its two triangles the mesh keeps.
+constexpr std::uint8_t kFlip = 1, kKeep0 = 2, kKeep1 = 4;
+constexpr std::uint8_t keepBit(int t) { return t == 0 ? kKeep0 : kKeep1; }
+
+// Corners 0..3 = A (i, j), B (i + 1, j), C (i + 1, j + 1), D (i, j + 1) of quad (i, j).
+constexpr int kCornerDi[4] = {0, 1, 1, 0};
+constexpr int kCornerDj[4] = {0, 0, 1, 1};
+// kTriCorners[flip][t]: fixed (B-D): ABD, BCD; flipped (A-C): ABC, ACD (triangulation.h).
+constexpr int kTriCorners[2][2][3] = {{{0, 1, 3}, {1, 2, 3}}, {{0, 1, 2}, {0, 2, 3}}};
+
+struct QuadGrid {
+  int qw = 0, qh = 0;
+  const std::uint8_t* code = nullptr;
+  std::uint8_t at(int qi, int qj) const {
+    return (qi < 0 || qj < 0 || qi >= qw || qj >= qh) ? std::uint8_t(0) : code[std::size_t(qj) * qw + qi];
+  }
+  bool kept(int qi, int qj, int t) const { return (at(qi, qj) & keepBit(t)) != 0; }
+  // Triangle of quad (qi, qj) holding its right (B-C) or left (D-A) edge.
+  int rightTri(int qi, int qj) const { return (at(qi, qj) & kFlip) ? 0 : 1; }
+  int leftTri(int qi, int qj) const { return (at(qi, qj) & kFlip) ? 1 : 0; }
+
+  // Is the triangle across edge k (from corner k to corner k + 1) of triangle t of quad (qi, qj) kept?
+  bool neighbourKept(int qi, int qj, int t, int k) const {
+    const bool flip = (at(qi, qj) & kFlip) != 0;
+    if (!flip) {
+      if (t == 0) {  // A B D
+        if (k == 0) return kept(qi, qj - 1, 1);
+        if (k == 1) return kept(qi, qj, 1);
+        return kept(qi - 1, qj, rightTri(qi - 1, qj));
+      }
+      // B C D
+      if (k == 0) return kept(qi + 1, qj, leftTri(qi + 1, qj));
+      if (k == 1) return kept(qi, qj + 1, 0);
+      return kept(qi, qj, 0);
+    }
+    if (t == 0) {  // A B C
+      if (k == 0) return kept(qi, qj - 1, 1);
+      if (k == 1) return kept(qi + 1, qj, leftTri(qi + 1, qj));
+      return kept(qi, qj, 1);
+    }
+    // A C D
+    if (k == 0) return kept(qi, qj, 0);
+    if (k == 1) return kept(qi, qj + 1, 0);
+    return kept(qi - 1, qj, rightTri(qi - 1, qj));
+  }
+};
+
+void validateInput(const DepthMap& map, const VolumeBuildOptions& options) {
+  SV_CHECK_GT(map.width, 0);
+  SV_CHECK_GT(map.height, 0);
+  SV_CHECK_EQ(map.depth.size(), std::size_t(map.width) * std::size_t(map.height));
+  SV_CHECK_GT(map.farPlane, map.nearPlane);
+  SV_CHECK_GE(map.nearPlane, 0.0);
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      const float d = map.at(i, j);
+      if (std::isnan(d) || d < 0.0f) {
+        std::ostringstream field, value;
+        field << "depth of texel (" << i << ", " << j << ")";
+        value << d;
+        throw InputError("depth map", field.str(), value.str(),
+                         "depths must be non-negative light-view distances (world units) or +inf for no hit");
+      }
+    }
+  auto finite = [](const char* name, double v) {
+    if (!std::isfinite(v)) {
+      std::ostringstream value;
+      value << v;
+      throw InputError("volume options", name, value.str(), "must be a finite number of world units");
+    }
+  };
+  finite("blur offset", options.blurOffset);
+  if (options.bias) finite("bias", *options.bias);
+}
+
+}  // namespace
+
+VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& options) {
+  const auto tStart = Clock::now();
+  validateInput(map, options);
+  VolumeBuildResult result;
+  VolumeBuildStats& stats = result.stats;
+  const double bias = options.bias.value_or(defaultBias(map));
+  stats.biasUsed = bias;
+
+  const int w = map.width, h = map.height;
+  if (w < 2 || h < 2) {
+    stats.msTotal = msSince(tStart);
+    return result;  // no quad: an empty volume
+  }
+  const int qw = w - 1, qh = h - 1;
+  const std::size_t texels = std::size_t(w) * h, quadCount = std::size_t(qw) * qh;
+  stats.quads = quadCount;
+  const double farPlane = map.farPlane, nearPlane = map.nearPlane;
+  const bool exact = options.cap == FarCap::Exact;
+
+  // --- Phase 1: final depths (blur, offsets, clamp, border ring), light-view distances. ---
+  auto t0 = Clock::now();
+  std::vector<double> depth(texels);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < w; ++i) {
+        double d = map.at(i, j);
+        const bool ring = i == 0 || j == 0 || i == w - 1 || j == h - 1;
+        if (ring || isFarDepth(d, farPlane)) {
+          d = farPlane;
+        } else {
+          if (options.blur) d = blurredDepth(map, i, j) + options.blurOffset;
+          d = std::clamp(d + bias, nearPlane, farPlane);
+          if (isFarDepth(d, farPlane)) d = farPlane;
+        }
+        depth[std::size_t(j) * w + i] = d;
+      }
+  });
+  stats.msBlur = msSince(t0);
+
+  // --- Phase 2: light-view points, diagonals, kept triangles. ---
+  t0 = Clock::now();
+  const TexelUnprojector unproject(map);
+  std::vector<glm::dvec3> view(texels);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::size_t t = std::size_t(j) * w + i;
+        view[t] = unproject.lightViewPoint(i, j, depth[t]);
+      }
+  });
+  std::vector<double>().swap(depth);
+  // z = -depth exactly (TexelUnprojector), so far vertices are exactly those with z == -far.
+  auto isFar = [&](std::size_t t) { return view[t].z <= -farPlane; };
+
+  std::vector<std::uint8_t> code(quadCount);
+  std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::uint32_t flips = 0, dropped = 0, tris = 0;
+      for (int qi = 0; qi < qw; ++qi) {
+        const std::size_t a = std::size_t(qj) * w + qi, b = a + 1, c = a + w + 1, d = a + w;
+        const bool far[4] = {isFar(a), isFar(b), isFar(c), isFar(d)};
+        std::uint8_t q = 0;
+        if (!(far[0] && far[1] && far[2] && far[3]) || !exact) {
+          if (options.triangulation == Triangulation::Perfect && flipDiagonal(view[a], view[b], view[c], view[d]))
+            q |= kFlip;
+          const int f = q & kFlip;
+          for (int t = 0; t < 2; ++t) {
+            const int* cs = kTriCorners[f][t];
+            if (!exact || !(far[cs[0]] && far[cs[1]] && far[cs[2]])) q |= keepBit(t);
+          }
+        }
+        flips += q & kFlip;
+        dropped += (q & (kKeep0 | kKeep1)) == 0;
+        tris += ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
+        code[std::size_t(qj) * qw + qi] = q;
+      }
+      rowFlips[qj] = flips;
+      rowDropped[qj] = dropped;
+      rowTris[qj + 1] = tris;
+    }
+  });
+  const QuadGrid grid{qw, qh, code.data()};
+  for (int qj = 0; qj < qh; ++qj) {
+    stats.flippedQuads += rowFlips[qj];
+    stats.droppedQuads += rowDropped[qj];
+  }
+
+  // Vertices: one per texel used by a kept triangle, in texel order.
+  auto usesCorner = [&](int qi, int qj, int corner) {
+    const std::uint8_t q = grid.at(qi, qj);
+    const int f = q & kFlip;
+    for (int t = 0; t < 2; ++t) {
+      if (!(q & keepBit(t))) continue;
+      const int* cs = kTriCorners[f][t];
+      if (cs[0] == corner || cs[1] == corner || cs[2] == corner) return true;
+    }
+    return false;
+  };
+  std::vector<std::uint32_t> vertexIndex(texels, kNone);
+  std::vector<std::uint64_t> rowVerts(h + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      std::uint32_t n = 0;
+      for (int i = 0; i < w; ++i) {
+        const bool used = usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
+                          usesCorner(i, j - 1, 3);
+        vertexIndex[std::size_t(j) * w + i] = used ? n++ : kNone;
+      }
+      rowVerts[j + 1] = n;
+    }
+  });
+  for (int j = 0; j < h; ++j) rowVerts[j + 1] += rowVerts[j];
+  std::vector<std::uint64_t> rowTriOffset(qh + 1, 0);
+  for (int qj = 0; qj < qh; ++qj) rowTriOffset[qj + 1] = rowTriOffset[qj] + rowTris[qj + 1];
+  SV_CHECK_LT(3 * std::uint64_t(texels), std::uint64_t(kNone));  // sheet + pinch copies + cap vertices
+  const std::uint64_t sheetTriangles = rowTriOffset[qh];
+
+  VolumeMesh& mesh = result.mesh;
+  mesh.positions.resize(rowVerts[h]);
+  mesh.triangles.resize(sheetTriangles);
+  const glm::dmat4 invView = glm::inverse(map.lightView);
+  std::vector<std::uint32_t> quadTri(quadCount);  // index of each quad's first kept triangle
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::size_t t = std::size_t(j) * w + i;
+        if (vertexIndex[t] == kNone) continue;
+        vertexIndex[t] += std::uint32_t(rowVerts[j]);
+        mesh.positions[vertexIndex[t]] = glm::dvec3(invView * glm::dvec4(view[t], 1.0));
+      }
+  });
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::size_t next = rowTriOffset[qj];
+      for (int qi = 0; qi < qw; ++qi) {
+        const std::size_t qIndex = std::size_t(qj) * qw + qi;
+        const std::uint8_t q = code[qIndex];
+        quadTri[qIndex] = std::uint32_t(next);
+        const int f = q & kFlip;
+        for (int t = 0; t < 2; ++t) {
+          if (!(q & keepBit(t))) continue;
+          Tri& tri = mesh.triangles[next++];
+          for (int k = 0; k < 3; ++k) {
+            const int corner = kTriCorners[f][t][k];
+            tri[k] = vertexIndex[std::size_t(qj + kCornerDj[corner]) * w + qi + kCornerDi[corner]];
+          }
+        }
+      }
+    }
+  });
+
+  // --- Pinches and cuts. A far vertex is a boundary vertex when its fan of
+  // triangles has a gap (a dropped triangle or the grid border). An edge between two far boundary
+  // vertices with kept triangles on both sides (a "slit": the sheet touches the far plane along it)
+  // is cut open, so the cap cannot reuse it. Each boundary vertex then gets one vertex per run of
+  // its fan between gaps and cuts: regions touching at a point or along a cut are split apart and
+  // the closed mesh stays a 2-manifold. Far vertices without a gap stay single (sheet only). ---
+  struct Slot {
+    bool kept;
+    std::uint32_t tri;       // mesh triangle holding this corner (when kept)
+    int k;                   // position of the vertex in that triangle
+    std::size_t ccwTexel;    // texel at the far end of the slot's counter-clockwise edge
+  };
+  // The up to 6 triangle slots around texel (i, j), counter-clockwise from +i; a missing quad is
+  // one gap slot. Returns the slot count.
+  auto collectSlots = [&](int i, int j, Slot* slots) {
+    int n = 0;
+    const int quads[4][3] = {{i, j, 0}, {i - 1, j, 1}, {i - 1, j - 1, 2}, {i, j - 1, 3}};  // NE, NW, SW, SE
+    for (const auto& [qi, qj, corner] : quads) {
+      if (qi < 0 || qj < 0 || qi >= qw || qj >= qh) {
+        slots[n++] = {false, 0, 0, 0};
+        continue;
+      }
+      const std::size_t qIndex = std::size_t(qj) * qw + qi;
+      const std::uint8_t q = code[qIndex];
+      const int f = q & kFlip;
+      int order[2] = {0, 1};  // counter-clockwise order of the quad's triangles around this corner
+      if ((corner == 1 && !f) || (corner == 2 && f)) std::swap(order[0], order[1]);
+      for (int t : order) {
+        const int* cs = kTriCorners[f][t];
+        const int k = cs[0] == corner ? 0 : cs[1] == corner ? 1 : cs[2] == corner ? 2 : -1;
+        if (k < 0) continue;
+        const int ccw = cs[(k + 2) % 3];
+        slots[n++] = {(q & keepBit(t)) != 0, quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u), k,
+                      std::size_t(qj + kCornerDj[ccw]) * w + qi + kCornerDi[ccw]};
+      }
+    }
+    return n;
+  };
+  std::vector<std::uint8_t> boundary(texels, 0);
+  {  // also for the quad cap, whose sheet has edges between border-ring vertices at the corners
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+      for (int j = rows.begin(); j != rows.end(); ++j)
+        for (int i = 0; i < w; ++i) {
+          const std::size_t t = std::size_t(j) * w + i;
+          if (vertexIndex[t] == kNone || !isFar(t)) continue;
+          Slot slots[8];
+          const int n = collectSlots(i, j, slots);
+          for (int s = 0; s < n; ++s)
+            if (!slots[s].kept) boundary[t] = 1;
+        }
+    });
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const std::size_t t = std::size_t(j) * w + i;
+        if (!boundary[t]) continue;
+        Slot slots[8];
+        const int n = collectSlots(i, j, slots);
+        int gap = 0;
+        while (slots[gap].kept) ++gap;
+        int fans = 0;
+        std::uint32_t copy = vertexIndex[t];
+        for (int s = 1; s <= n; ++s) {
+          const Slot& slot = slots[(gap + s) % n];
+          const Slot& prev = slots[(gap + s - 1) % n];
+          if (!slot.kept) continue;
+          const bool cut = prev.kept && isFar(prev.ccwTexel) && boundary[prev.ccwTexel];
+          if ((!prev.kept || cut) && fans++ > 0) {  // a second (third, ...) run starts here
+            copy = std::uint32_t(mesh.positions.size());
+            mesh.positions.push_back(mesh.positions[vertexIndex[t]]);
+            ++stats.splitVertices;
+          }
+          mesh.triangles[slot.tri][slot.k] = copy;
+        }
+      }
+  }
+  stats.msSheet = msSince(t0);
+
+  // --- Phase 3: far cap. ---
+  t0 = Clock::now();
+  std::vector<std::vector<CapEdge>> rowEdges(qh);
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    for (int qj = rows.begin(); qj != rows.end(); ++qj)
+      for (int qi = 0; qi < qw; ++qi) {
+        const std::size_t qIndex = std::size_t(qj) * qw + qi;
+        const std::uint8_t q = code[qIndex];
+        const int f = q & kFlip;
+        for (int t = 0; t < 2; ++t) {
+          if (!(q & keepBit(t))) continue;
+          const Tri& tri = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
+          for (int k = 0; k < 3; ++k) {
+            const int c0 = kTriCorners[f][t][k], c1 = kTriCorners[f][t][(k + 1) % 3];
+            const std::size_t t0 = std::size_t(qj + kCornerDj[c0]) * w + qi + kCornerDi[c0];
+            const std::size_t t1 = std::size_t(qj + kCornerDj[c1]) * w + qi + kCornerDi[c1];
+            const bool cut = boundary[t0] && boundary[t1] && isFar(t0) && isFar(t1);
+            if (grid.neighbourKept(qi, qj, t, k) && !cut) continue;
+            rowEdges[qj].push_back({tri[k], tri[(k + 1) % 3], {qi + kCornerDi[c0], qj + kCornerDj[c0]},
+                                    {qi + kCornerDi[c1], qj + kCornerDj[c1]}});
+          }
+        }
+      }
+  });
+  std::vector<CapEdge> edges;
+  {
+    std::size_t n = 0;
+    for (const auto& r : rowEdges) n += r.size();
+    edges.reserve(n);
+    for (auto& r : rowEdges) {
+      edges.insert(edges.end(), r.begin(), r.end());
+      std::vector<CapEdge>().swap(r);
+    }
+  }
+  stats.capTrianglesBefore = sheetTriangles;
+  if (!exact || options.flattenCap) {
+    const auto cap = triangulateCapLoops(edges);
+    mesh.triangles.reserve(mesh.triangles.size() + cap.size());
+    for (const Tri& c : cap) mesh.triangles.push_back({c[0], c[2], c[1]});  // faces away from the light
+    stats.capTrianglesAfter = cap.size();
+  } else {
+    // Unflattened: the mirror image of every kept sheet triangle on the far plane. Boundary vertices
+    // are shared with the sheet (the sheet triangle already names the right pinch copy); every other
+    // texel gets one far-plane cap vertex.
+    std::vector<std::uint8_t> onBoundary(mesh.positions.size(), 0);
+    for (const CapEdge& e : edges) onBoundary[e.from] = onBoundary[e.to] = 1;
+    std::vector<std::uint32_t> capVertex(texels, kNone);
+    mesh.triangles.reserve(mesh.triangles.size() + sheetTriangles);
+    for (int qj = 0; qj < qh; ++qj)
+      for (int qi = 0; qi < qw; ++qi) {
+        const std::size_t qIndex = std::size_t(qj) * qw + qi;
+        const std::uint8_t q = code[qIndex];
+        const int f = q & kFlip;
+        for (int t = 0; t < 2; ++t) {
+          if (!(q & keepBit(t))) continue;
+          const Tri sheet = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
+          Tri cap{};
+          for (int k = 0; k < 3; ++k) {
+            if (onBoundary[sheet[k]]) {
+              cap[k] = sheet[k];
+              continue;
+            }
+            const int corner = kTriCorners[f][t][k];
+            const int i = qi + kCornerDi[corner], j = qj + kCornerDj[corner];
+            std::uint32_t& v = capVertex[std::size_t(j) * w + i];
+            if (v == kNone) {
+              v = std::uint32_t(mesh.positions.size());
+              mesh.positions.push_back(unproject.worldPoint(i, j, farPlane));
+            }
+            cap[k] = v;
+          }
+          mesh.triangles.push_back({cap[0], cap[2], cap[1]});
+        }
+      }
+    stats.capTrianglesAfter = sheetTriangles;
+  }
+  stats.msCap = msSince(t0);
+  stats.msTotal = msSince(tStart);
+  return result;
+}
+
+}  // namespace shadowvol

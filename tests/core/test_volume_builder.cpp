@@ -1,0 +1,245 @@
+// buildVolume without CGAL: combinatorial invariants on synthetic depth maps, input errors, bias,
+// the analytic plate's vertices. The CGAL-checked invariants on real scenes are in tests/cgal.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "shadowvol/error.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol {
+namespace {
+
+Light directionalDown(double farPlane = 12.0) {
+  Light light;
+  light.type = LightType::Directional;
+  light.position = {0, 5, 0};
+  light.direction = {0, -1, 0};
+  light.halfExtent = 4.0;
+  light.nearPlane = 0.5;
+  light.farPlane = farPlane;
+  return light;
+}
+
+Light spot() {
+  Light light;
+  light.type = LightType::Spot;
+  light.position = {1, 8, 2};
+  light.direction = glm::normalize(glm::dvec3(-0.1, -1, -0.2));
+  light.fovYDegrees = 50;
+  light.nearPlane = 1.0;
+  light.farPlane = 15.0;
+  return light;
+}
+
+std::uint64_t lcg(std::uint64_t& s) {
+  s = s * 6364136223846793005ull + 1442695040888963407ull;
+  return s >> 33;
+}
+
+// Closed, consistently oriented 2-manifold: every directed edge once and its opposite once, each
+// vertex a single fan, no isolated vertex, finite, positive signed volume (divergence theorem).
+::testing::AssertionResult closedOrientedManifold(const VolumeMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  std::vector<std::map<std::uint32_t, std::uint32_t>> link(mesh.vertexCount());
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+      if (a >= mesh.vertexCount()) return ::testing::AssertionFailure() << "index out of range";
+      if (++edges[{a, b}] > 1) return ::testing::AssertionFailure() << "directed edge used twice " << a << "->" << b;
+      link[a][b] = c;
+    }
+  for (const auto& [e, n] : edges)
+    if (!edges.count({e.second, e.first}))
+      return ::testing::AssertionFailure() << "boundary edge " << e.first << "->" << e.second;
+  for (std::size_t v = 0; v < link.size(); ++v) {
+    if (link[v].empty()) return ::testing::AssertionFailure() << "isolated vertex " << v;
+    std::uint32_t at = link[v].begin()->first;
+    std::size_t steps = 0;
+    do {
+      auto it = link[v].find(at);
+      if (it == link[v].end()) return ::testing::AssertionFailure() << "broken fan at " << v;
+      at = it->second;
+      ++steps;
+    } while (at != link[v].begin()->first && steps <= link[v].size());
+    if (steps != link[v].size()) return ::testing::AssertionFailure() << "vertex " << v << " has several fans";
+  }
+  double volume = 0.0;
+  for (const auto& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return ::testing::AssertionFailure() << "non-finite vertex";
+  for (const auto& t : mesh.triangles) {
+    const auto &p = mesh.positions[t[0]], &q = mesh.positions[t[1]], &r = mesh.positions[t[2]];
+    if (glm::length(glm::cross(q - p, r - p)) == 0.0) return ::testing::AssertionFailure() << "zero-area triangle";
+    volume += glm::dot(p, glm::cross(q, r)) / 6.0;
+  }
+  if (!mesh.triangles.empty() && !(volume > 0.0))
+    return ::testing::AssertionFailure() << "signed volume " << volume << " not positive";
+  return ::testing::AssertionSuccess();
+}
+
+// Random hit / no-hit patterns with random depths: pinches, slits, holes, islands, diagonal
+// contacts. Every option combination must give a closed oriented manifold.
+TEST(VolumeBuilder, RandomMapsGiveClosedOrientedManifolds) {
+  std::uint64_t seed = 42;
+  std::size_t splits = 0, dropped = 0, flips = 0, builds = 0;
+  for (int n = 0; n < 40; ++n) {
+    const bool perspective = n % 2 == 1;
+    const int w = 10 + int(lcg(seed) % 12), h = 10 + int(lcg(seed) % 12);
+    DepthMap m = makeDepthMap(perspective ? spot() : directionalDown(), w, h,
+                              n % 3 == 0 ? CaptureMode::Front : CaptureMode::Back);
+    const int density = 20 + int(lcg(seed) % 70);
+    for (auto& d : m.depth)
+      if (int(lcg(seed) % 100) < density) d = float(m.nearPlane + 0.5 + (lcg(seed) % 1000) * 0.009);
+    for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect})
+      for (bool blur : {false, true})
+        for (int cap = 0; cap < 3; ++cap) {
+          VolumeBuildOptions o;
+          o.triangulation = tri;
+          o.blur = blur;
+          o.cap = cap == 2 ? FarCap::Quad : FarCap::Exact;
+          o.flattenCap = cap == 0;
+          const auto r = buildVolume(m, o);
+          ASSERT_TRUE(closedOrientedManifold(r.mesh)) << "map " << n << " " << toString(tri) << " blur " << blur
+                                                      << " cap " << cap;
+          splits += r.stats.splitVertices;
+          dropped += r.stats.droppedQuads;
+          flips += r.stats.flippedQuads;
+          if (cap == 0) EXPECT_LE(r.stats.capTrianglesAfter, r.stats.capTrianglesBefore);
+          ++builds;
+        }
+  }
+  EXPECT_EQ(builds, 40u * 12u);
+  EXPECT_GT(splits, 0u);  // the pinch path is exercised
+  EXPECT_GT(dropped, 0u);
+  EXPECT_GT(flips, 0u);
+}
+
+TEST(VolumeBuilder, DiagonalContactIsSplit) {
+  // Hits at (3, 4) and (5, 4), everything else no-hit: with the fixed diagonal their kept
+  // triangles meet only at the far texel (4, 4) (two fans there), which must be split.
+  DepthMap m = makeDepthMap(directionalDown(), 10, 10, CaptureMode::Back);
+  m.depth[m.index(3, 4)] = 2.0f;
+  m.depth[m.index(5, 4)] = 2.0f;
+  VolumeBuildOptions o;
+  o.triangulation = Triangulation::Fixed;
+  const auto r = buildVolume(m, o);
+  EXPECT_TRUE(closedOrientedManifold(r.mesh));
+  EXPECT_GE(r.stats.splitVertices, 1u);
+  const glm::dvec3 pinch = m.worldPoint(4, 4, m.farPlane);
+  EXPECT_EQ(std::count_if(r.mesh.positions.begin(), r.mesh.positions.end(),
+                          [&](const glm::dvec3& p) { return glm::length(p - pinch) < 1e-9; }),
+            2);
+}
+
+TEST(VolumeBuilder, EmptyAndTinyMaps) {
+  DepthMap m = makeDepthMap(directionalDown(), 16, 16, CaptureMode::Back);
+  auto r = buildVolume(m);
+  EXPECT_EQ(r.mesh.triangleCount(), 0u);
+  EXPECT_EQ(r.stats.droppedQuads, 15u * 15u);
+  VolumeBuildOptions quad;
+  quad.cap = FarCap::Quad;
+  r = buildVolume(m, quad);  // the full far sheet plus the cancel cap: closed, zero volume
+  EXPECT_EQ(r.mesh.triangleCount(), 2u * 15u * 15u + r.stats.capTrianglesAfter);
+  for (auto& d : m.depth) d = 3.0f;  // everything hit: only the border ring is far
+  r = buildVolume(m);
+  EXPECT_TRUE(closedOrientedManifold(r.mesh));
+  DepthMap tiny = makeDepthMap(directionalDown(), 1, 5, CaptureMode::Back);
+  EXPECT_EQ(buildVolume(tiny).mesh.triangleCount(), 0u);
+}
+
+TEST(VolumeBuilder, BadDepthsThrowInputErrorNamingTheTexel) {
+  DepthMap m = makeDepthMap(directionalDown(), 8, 8, CaptureMode::Back);
+  m.depth[m.index(3, 4)] = std::numeric_limits<float>::quiet_NaN();
+  try {
+    buildVolume(m);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("(3, 4)"), std::string::npos) << e.what();
+    EXPECT_NE(e.value().find("nan"), std::string::npos) << e.what();
+  }
+  m.depth[m.index(3, 4)] = -1.5f;
+  try {
+    buildVolume(m);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("(3, 4)"), std::string::npos) << e.what();
+    EXPECT_EQ(e.value(), "-1.5");
+  }
+  m.depth[m.index(3, 4)] = 1.0f;
+  VolumeBuildOptions o;
+  o.bias = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(buildVolume(m, o), InputError);
+}
+
+TEST(VolumeBuilder, DefaultBiasDependsOnlyOnMetadata) {
+  DepthMap back = makeDepthMap(directionalDown(), 64, 64, CaptureMode::Back);
+  EXPECT_EQ(defaultBias(back), 0.0);
+  DepthMap front = makeDepthMap(directionalDown(), 64, 64, CaptureMode::Front);
+  const double expected = 8.0 / 64.0 + 4.0 * 12.0 * std::ldexp(1.0, -23);  // footprint + 4 float ulps
+  EXPECT_NEAR(defaultBias(front), expected, 1e-12);
+  DepthMap filled = front;
+  for (auto& d : filled.depth) d = 2.5f;
+  EXPECT_EQ(defaultBias(filled), defaultBias(front));
+  DepthMap fine = makeDepthMap(directionalDown(), 256, 256, CaptureMode::Front);
+  EXPECT_LT(defaultBias(fine), defaultBias(front));  // shrinks with the texel footprint
+  EXPECT_EQ(defaultBias(makeDepthMap(spot(), 64, 64, CaptureMode::Midpoint)), 0.0);
+  // The bias is applied to hit texels, away from the light, and reported.
+  for (auto& d : filled.depth) d = 2.5f;
+  const auto r = buildVolume(filled);
+  EXPECT_DOUBLE_EQ(r.stats.biasUsed, defaultBias(front));
+  std::size_t hits = 0;
+  for (const auto& p : r.mesh.positions)
+    if (std::abs(filled.viewDepthOf(p) - filled.farPlane) > 1e-9) {
+      EXPECT_NEAR(filled.viewDepthOf(p), 2.5 + r.stats.biasUsed, 1e-9);
+      ++hits;
+    }
+  EXPECT_EQ(hits, 62u * 62u);
+}
+
+// Analytic plate: a 2 x 1 plate at light depth 3.55 under a directional light straight down, over
+// an 8 x 8 window at 32 x 32 texels (0.25 per texel): its edges fall on texel boundaries.
+TEST(VolumeBuilder, AnalyticPlateVertices) {
+  DepthMap m = makeDepthMap(directionalDown(), 32, 32, CaptureMode::Back);
+  const double plateDepth = 3.55;
+  auto onPlate = [](double x, double z) { return std::abs(x) < 1.0 && std::abs(z) < 0.5; };
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) {
+      const glm::dvec3 c = m.worldPoint(i, j, 1.0);
+      if (onPlate(c.x, c.z)) m.depth[m.index(i, j)] = float(plateDepth);
+    }
+  ASSERT_EQ(m.hitCount(), 8u * 4u);
+  for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+    VolumeBuildOptions o;
+    o.triangulation = tri;
+    const auto r = buildVolume(m, o);
+    ASSERT_TRUE(closedOrientedManifold(r.mesh));
+    std::size_t plate = 0;
+    for (const auto& p : r.mesh.positions) {
+      const double d = m.viewDepthOf(p);
+      if (onPlate(p.x, p.z)) {
+        EXPECT_NEAR(d, plateDepth, 1e-6 * plateDepth);
+        EXPECT_NEAR(p.y, 5.0 - plateDepth, 1e-6 * plateDepth);
+        ++plate;
+      } else {
+        EXPECT_NEAR(d, m.farPlane, 1e-6 * m.farPlane);
+      }
+    }
+    EXPECT_EQ(plate, 32u);
+    // Around the plate, the 10 x 6 ring of far texels less the diagonal corners no kept triangle
+    // uses: two with the fixed diagonal, all four with the perfect one (it cuts every corner).
+    EXPECT_EQ(r.mesh.vertexCount(), tri == Triangulation::Fixed ? 58u : 56u);
+    EXPECT_LT(r.stats.capTrianglesAfter, r.stats.capTrianglesBefore);
+    EXPECT_EQ(r.stats.splitVertices, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace shadowvol
