@@ -22,10 +22,13 @@ uniform int shadowTaps;           // 0: no shadow test; 1: one tap; 3 or 5: PCF 
 uniform sampler2DShadow shadowMap;  // window depth, compare LEQUAL, nearest
 uniform vec2 shadowMapSize;       // texels
 uniform float biasConstant;       // world units
-uniform float biasSlope;          // x texel footprint x tan(angle)
+uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
 uniform float texelFootprint;     // world size of a texel: spot at unit depth, directional overall
 layout(location = 0) out vec4 fragColor;
 
+// Visibility in [0, 1] from the shadow map. The stored quantity is light-view depth (-z), so the
+// slope that matters is the receiver's tilt against the light's view axis (not against the ray):
+// tan(theta) with cos(theta) = |dot(N, lightDirection)|, clamped to 10.
 float shadowVisibility(vec4 lightClip, float cosTheta) {
   float d = -(worldToLightView * vec4(worldPos, 1.0)).z;
   float footprint = lightIsSpot != 0 ? texelFootprint * d : texelFootprint;
@@ -53,7 +56,7 @@ void main() {
   float ndl = dot(n, l);
   vec4 lc = worldToLightClip * vec4(worldPos, 1.0);
   float lit = (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
-  if (lit > 0.0 && ndl > 0.0 && shadowTaps > 0) lit *= shadowVisibility(lc, ndl);
+  if (lit > 0.0 && ndl > 0.0 && shadowTaps > 0) lit *= shadowVisibility(lc, abs(dot(n, lightDirection)));
   vec3 direct = color * diffuse * max(ndl, 0.0) * lit;
   fragColor = vec4(mode == 1 ? direct : color * ambient + direct, 1.0);
 }

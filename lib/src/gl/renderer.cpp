@@ -76,7 +76,7 @@ double viewDepthFromWindow(const glm::dmat4& p, double window) {
 }
 
 glm::vec3 albedoFor(const SceneObject& o, int& colourIndex) {
-  if (o.type == "plane") return {0.85f, 0.85f, 0.80f};
+  if (o.type == "plane" || o.name == "ground") return {0.85f, 0.85f, 0.80f};
   static const glm::vec3 palette[] = {{0.90f, 0.35f, 0.30f}, {0.30f, 0.55f, 0.90f}, {0.40f, 0.80f, 0.40f},
                                       {0.90f, 0.75f, 0.30f}, {0.70f, 0.45f, 0.85f}};
   return palette[std::size_t(colourIndex++) % 5];

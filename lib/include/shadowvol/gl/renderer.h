@@ -11,6 +11,7 @@
 //   volume    (hybrid) the shadow volume, two-sided stencil z-fail with depth clamp;
 //   lighting  (hybrid) diffuse light added where the stencil is 0;
 //   shade     (shadowmap, pcf3, pcf5, none) ambient + diffuse x visibility in one pass.
+// Albedo: light grey for planes and objects named "ground", else a fixed palette in object order.
 // Lighting: colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit), N the flat face
 // normal turned toward the camera, L toward the light; lit = 0 outside the light's frustum
 // (a spot light lights only inside its pyramid between its near and far planes; a directional
@@ -77,8 +78,8 @@ struct RenderOptions {
   double shadowBiasConstant = 0.0;             ///< shadow maps: world units subtracted from the
                                                ///< receiver's light-view depth before the compare
   double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
-                                               ///< units at the receiver) x tan(angle to light),
-                                               ///< tan clamped to 10
+                                               ///< units at the receiver) x tan(angle between the
+                                               ///< normal and the light axis), tan clamped to 10
   bool readStencil = true;                     ///< hybrid: read the stencil counts back
   bool readDepthMap = false;                   ///< read the light depth back into the result
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
