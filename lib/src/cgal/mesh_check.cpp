@@ -1,0 +1,211 @@
+#include "shadowvol/cgal/mesh_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#include <CGAL/Cartesian_converter.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/intersections.h>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using EK = CGAL::Exact_predicates_exact_constructions_kernel;  // exact intersections of reported pairs
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+Point toPoint(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+
+// Builds a Surface_mesh; returns false if CGAL refuses a face (non-manifold input).
+bool buildSurfaceMesh(const VolumeMesh& in, Mesh& out) {
+  std::vector<Mesh::Vertex_index> v;
+  v.reserve(in.positions.size());
+  for (const auto& p : in.positions) v.push_back(out.add_vertex(toPoint(p)));
+  for (const auto& t : in.triangles)
+    if (out.add_face(v[t[0]], v[t[1]], v[t[2]]) == Mesh::null_face()) return false;
+  return true;
+}
+
+}  // namespace
+
+bool MeshCheckReport::valid() const {
+  const bool noSelfIntersection = !selfIntersectingPairs || *selfIntersectingPairs == 0;
+  if (triangles == 0) return nonFiniteVertices == 0 && isolatedVertices == 0;
+  return closedManifold() && outward && volume > 0.0 && nonFiniteVertices == 0 && degenerateTriangles == 0 &&
+         isolatedVertices == 0 && noSelfIntersection;
+}
+
+std::string MeshCheckReport::summary() const {
+  std::ostringstream s;
+  s << vertices << " vertices, " << triangles << " triangles; non-finite " << nonFiniteVertices << ", bad index "
+    << badIndexTriangles << ", degenerate " << degenerateTriangles << ", boundary edges " << boundaryEdges
+    << ", overused edges " << overusedEdges << ", non-manifold vertices " << nonManifoldVertices << ", isolated "
+    << isolatedVertices << ", coincident " << coincidentVertices << "; outward " << (outward ? "yes" : "no")
+    << ", volume " << volume << "; self-intersecting pairs ";
+  if (selfIntersectingPairs) s << *selfIntersectingPairs << " (allowed touching " << allowedTouchingPairs << ")";
+  else s << "not checked";
+  return s.str();
+}
+
+MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options) {
+  MeshCheckReport r;
+  const std::size_t nv = mesh.positions.size();
+  r.vertices = nv;
+  r.triangles = mesh.triangles.size();
+  for (const auto& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ++r.nonFiniteVertices;
+
+  // Index sanity and degenerate faces.
+  std::vector<bool> used(nv, false);
+  std::vector<std::uint64_t> directed;
+  directed.reserve(mesh.triangles.size() * 3);
+  struct Corner {
+    std::uint32_t v, a, b;  // triangle (v, a, b): the link of v gets the edge a -> b
+  };
+  std::vector<Corner> corners;
+  corners.reserve(mesh.triangles.size() * 3);
+  for (const auto& t : mesh.triangles) {
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      ++r.badIndexTriangles;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      used[t[k]] = true;
+      directed.push_back((std::uint64_t(t[k]) << 32) | t[(k + 1) % 3]);
+      corners.push_back({t[k], t[(k + 1) % 3], t[(k + 2) % 3]});
+    }
+    if (r.nonFiniteVertices == 0 &&
+        CGAL::collinear(toPoint(mesh.positions[t[0]]), toPoint(mesh.positions[t[1]]), toPoint(mesh.positions[t[2]])))
+      ++r.degenerateTriangles;
+  }
+  r.isolatedVertices = std::size_t(std::count(used.begin(), used.end(), false));
+
+  // Directed edges: each once, its opposite present.
+  std::sort(directed.begin(), directed.end());
+  for (std::size_t k = 0; k < directed.size(); ++k) {
+    if (k > 0 && directed[k] == directed[k - 1]) {
+      ++r.overusedEdges;
+      continue;
+    }
+    const std::uint64_t opposite = (directed[k] << 32) | (directed[k] >> 32);
+    if (!std::binary_search(directed.begin(), directed.end(), opposite)) ++r.boundaryEdges;
+  }
+
+  // Vertex fans: the link edges a -> b of a vertex must form exactly one cycle.
+  std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
+    return x.v != y.v ? x.v < y.v : x.a < y.a;
+  });
+  for (std::size_t s = 0; s < corners.size();) {
+    std::size_t e = s;
+    while (e < corners.size() && corners[e].v == corners[s].v) ++e;
+    bool ok = true;
+    for (std::size_t k = s + 1; k < e; ++k) ok = ok && corners[k].a != corners[k - 1].a;  // one edge out of each a
+    if (ok) {
+      std::size_t steps = 0;
+      std::uint32_t at = corners[s].a;
+      do {
+        auto it = std::lower_bound(corners.begin() + std::ptrdiff_t(s), corners.begin() + std::ptrdiff_t(e), at,
+                                   [](const Corner& c, std::uint32_t a) { return c.a < a; });
+        if (it == corners.begin() + std::ptrdiff_t(e) || it->a != at) {
+          ok = false;
+          break;
+        }
+        at = it->b;
+        ++steps;
+      } while (at != corners[s].a && steps <= e - s);
+      ok = ok && at == corners[s].a && steps == e - s;
+    }
+    if (!ok) ++r.nonManifoldVertices;
+    s = e;
+  }
+
+  // Coincident positions.
+  std::vector<std::uint32_t> order(nv);
+  std::iota(order.begin(), order.end(), 0u);
+  auto less = [&](std::uint32_t x, std::uint32_t y) {
+    const auto &p = mesh.positions[x], &q = mesh.positions[y];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t k = 1; k < nv; ++k)
+    if (mesh.positions[order[k]] == mesh.positions[order[k - 1]]) ++r.coincidentVertices;
+
+  if (!r.closedManifold() || r.nonFiniteVertices > 0 || mesh.triangles.empty()) return r;
+  Mesh sm;
+  if (!buildSurfaceMesh(mesh, sm)) {
+    ++r.nonManifoldVertices;  // CGAL refused a face our checks accepted; report it as non-manifold
+    return r;
+  }
+  r.outward = PMP::is_outward_oriented(sm);
+  r.volume = CGAL::to_double(PMP::volume(sm));
+  if (options.selfIntersections && r.degenerateTriangles == 0) {
+    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+    PMP::self_intersections(sm, std::back_inserter(pairs));
+    std::size_t counted = 0;
+    auto triangleOf = [&](Mesh::Face_index f) {
+      auto h = sm.halfedge(f);
+      return K::Triangle_3(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
+    };
+    for (const auto& [f, g] : pairs) {
+      bool allowed = false;
+      if (options.allowedTouch) {
+        // The intersection is constructed exactly (touching triangles meet in exactly one point or
+        // segment, which inexact constructions may miss), then tested point by point.
+        const CGAL::Cartesian_converter<K, EK> toExact;
+        const auto x = CGAL::intersection(toExact(triangleOf(f)), toExact(triangleOf(g)));
+        if (x) {
+          std::vector<EK::Point_3> pts;
+          if (const auto* p = boost::get<EK::Point_3>(&*x)) pts = {*p};
+          else if (const auto* s = boost::get<EK::Segment_3>(&*x)) pts = {s->source(), s->target()};
+          else if (const auto* t = boost::get<EK::Triangle_3>(&*x)) pts = {t->vertex(0), t->vertex(1), t->vertex(2)};
+          else if (const auto* v = boost::get<std::vector<EK::Point_3>>(&*x)) pts = *v;
+          allowed = !pts.empty() && std::all_of(pts.begin(), pts.end(), [&](const EK::Point_3& p) {
+            return options.allowedTouch(
+                {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+          });
+        }
+      }
+      if (allowed) ++r.allowedTouchingPairs;
+      else ++counted;
+    }
+    r.selfIntersectingPairs = counted;
+  }
+  return r;
+}
+
+struct VolumeClassifier::Impl {
+  Mesh mesh;
+  std::unique_ptr<CGAL::Side_of_triangle_mesh<Mesh, K>> side;
+};
+
+VolumeClassifier::VolumeClassifier(const VolumeMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  const bool ok = buildSurfaceMesh(mesh, impl_->mesh);
+  SV_CHECK(ok);
+  impl_->side = std::make_unique<CGAL::Side_of_triangle_mesh<Mesh, K>>(impl_->mesh);
+}
+VolumeClassifier::~VolumeClassifier() = default;
+VolumeClassifier::VolumeClassifier(VolumeClassifier&&) noexcept = default;
+VolumeClassifier& VolumeClassifier::operator=(VolumeClassifier&&) noexcept = default;
+
+VolumeClassifier::Side VolumeClassifier::classify(const glm::dvec3& point) const {
+  switch ((*impl_->side)(toPoint(point))) {
+    case CGAL::ON_BOUNDED_SIDE: return Side::Inside;
+    case CGAL::ON_BOUNDARY: return Side::Boundary;
+    default: return Side::Outside;
+  }
+}
+
+}  // namespace shadowvol

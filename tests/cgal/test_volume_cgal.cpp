@@ -1,0 +1,317 @@
+// The shadow volume checked with CGAL (mesh_check.h): invariants on every scene in data/scenes,
+// self-intersections on small cases, point classification against the depth map, the analytic
+// plate's cross-section, perfect against fixed triangulation on the rotated plate.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "shadowvol/cgal/mesh_check.h"
+#include "shadowvol/depth_blur.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<fs::path> sceneFiles() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(test::sourceDir() / "data" / "scenes"))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+const Scene& cachedScene(const fs::path& path) {
+  static std::map<fs::path, Scene> cache;
+  auto it = cache.find(path);
+  if (it == cache.end()) it = cache.emplace(path, loadScene(path).scene).first;
+  return it->second;
+}
+
+// Far-plane test for MeshCheckOptions::allowedTouch: the exact volume has zero thickness where the
+// sheet reaches the far plane, so sheet and cap may touch there (docs/volume.md).
+std::function<bool(const glm::dvec3&)> onFarPlane(const DepthMap& map) {
+  return [&map](const glm::dvec3& p) { return std::abs(map.viewDepthOf(p) - map.farPlane) <= 1e-7 * map.farPlane; };
+}
+
+struct Combo {
+  Triangulation triangulation;
+  bool blur;
+  int cap;  // 0 exact flattened, 1 exact per texel, 2 quad
+  VolumeBuildOptions options() const {
+    VolumeBuildOptions o;
+    o.triangulation = triangulation;
+    o.blur = blur;
+    o.blurOffset = blur ? 0.01 : 0.0;
+    o.cap = cap == 2 ? FarCap::Quad : FarCap::Exact;
+    o.flattenCap = cap == 0;
+    return o;
+  }
+  std::string name() const {
+    return std::string(toString(triangulation)) + (blur ? " blur" : "") +
+           (cap == 0 ? " exact" : cap == 1 ? " exact-unflattened" : " quad");
+  }
+};
+
+std::vector<Combo> allCombos() {
+  std::vector<Combo> combos;
+  for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
+    for (bool blur : {false, true})
+      for (int cap = 0; cap < 3; ++cap) combos.push_back({t, blur, cap});
+  return combos;
+}
+
+TEST(VolumeCgal, InvariantsOnEveryScene) {
+  const auto files = sceneFiles();
+  ASSERT_GE(files.size(), 10u);
+  std::size_t builds = 0, nonEmpty = 0;
+  for (const auto& file : files) {
+    const Scene& scene = cachedScene(file);
+    for (int res : {32, 64})
+      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
+        const DepthMap map = captureDepthEmbree(scene, res, res, mode);
+        double exactVolume[2][2] = {{0, 0}, {0, 0}};
+        for (const Combo& c : allCombos()) {
+          const std::string what = file.filename().string() + " " + std::to_string(res) + " " + toString(mode) + " " +
+                                   c.name();
+          const auto r = buildVolume(map, c.options());
+          const MeshCheckReport rep = checkMesh(r.mesh);
+          ++builds;
+          ASSERT_TRUE(rep.closedManifold()) << what << ": " << rep.summary();
+          EXPECT_EQ(rep.nonFiniteVertices, 0u) << what;
+          EXPECT_EQ(rep.degenerateTriangles, 0u) << what << ": " << rep.summary();
+          EXPECT_EQ(rep.isolatedVertices, 0u) << what;
+          const int ti = c.triangulation == Triangulation::Perfect, bi = c.blur;
+          if (c.cap != 2) {
+            EXPECT_TRUE(rep.valid()) << what << ": " << rep.summary();
+            if (c.cap == 0) {
+              EXPECT_EQ(rep.coincidentVertices, r.stats.splitVertices) << what;  // only the documented splits
+              exactVolume[ti][bi] = rep.volume;
+              EXPECT_LE(r.stats.capTrianglesAfter, r.stats.capTrianglesBefore) << what;
+            } else {
+              EXPECT_NEAR(rep.volume, exactVolume[ti][bi], 1e-9 * (1 + exactVolume[ti][bi])) << what;
+            }
+            nonEmpty += rep.triangles > 0;
+          } else {
+            // The quad cap encloses the same region (its far-plane parts cancel): same volume.
+            EXPECT_NEAR(rep.volume, exactVolume[ti][bi], 1e-7 * (1 + exactVolume[ti][bi])) << what;
+          }
+        }
+      }
+  }
+  EXPECT_EQ(builds, files.size() * 2 * 3 * 12);
+  EXPECT_GT(nonEmpty, builds / 3);
+}
+
+TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
+  std::size_t checked = 0, touching = 0;
+  for (const char* name : {"default.json", "plate-rotated.json", "tree.json", "hemisphere-grazing.json", "bunny.json"}) {
+    const Scene& scene = cachedScene(test::sourceDir() / "data" / "scenes" / name);
+    for (int res : {16, 24})
+      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+        const DepthMap map = captureDepthEmbree(scene, res, res, mode);
+        for (const Combo& c : allCombos()) {
+          if (c.cap == 2) continue;  // the quad cap coincides with the far sheet by design
+          const auto r = buildVolume(map, c.options());
+          MeshCheckOptions o;
+          o.selfIntersections = true;
+          o.allowedTouch = onFarPlane(map);
+          const MeshCheckReport rep = checkMesh(r.mesh, o);
+          ASSERT_TRUE(rep.selfIntersectingPairs.has_value()) << rep.summary();
+          EXPECT_EQ(*rep.selfIntersectingPairs, 0u)
+              << name << " " << res << " " << toString(mode) << " " << c.name() << ": " << rep.summary();
+          touching += rep.allowedTouchingPairs;
+          ++checked;
+        }
+      }
+  }
+  EXPECT_EQ(checked, 5u * 2 * 2 * 8);
+  RecordProperty("far_plane_touching_pairs", int(touching));
+}
+
+// Light-view depth of the sheet vertex of texel (i, j) by the documented rule (no blur):
+// ring and invalid texels at the far plane, others depth + bias clamped to [near, far].
+double effectiveDepth(const DepthMap& map, int i, int j, double bias) {
+  const double d = map.at(i, j);
+  if (i == 0 || j == 0 || i == map.width - 1 || j == map.height - 1 || isFarDepth(d, map.farPlane)) return map.farPlane;
+  const double e = std::clamp(d + bias, map.nearPlane, map.farPlane);
+  return isFarDepth(e, map.farPlane) ? map.farPlane : e;
+}
+
+TEST(VolumeCgal, PointClassificationAgreesWithTheDepthMap) {
+  std::mt19937_64 rng(7);
+  for (const char* name : {"default.json", "tree.json", "plate.json", "bunny.json", "hemisphere-grazing.json"}) {
+    const Scene& scene = cachedScene(test::sourceDir() / "data" / "scenes" / name);
+    for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+      const DepthMap map = captureDepthEmbree(scene, 64, 64, mode);
+      for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+        VolumeBuildOptions o;
+        o.triangulation = tri;
+        const auto r = buildVolume(map, o);
+        const VolumeClassifier classifier(r.mesh);
+        // Half the points from the scene's bounding box, half from its intersection with the
+        // volume's bounding box (so that enough points fall in the shadow).
+        const Bounds3 box = scene.bounds();
+        Bounds3 shadowBox;
+        for (const auto& p : r.mesh.positions) shadowBox.extend(p);
+        shadowBox.min = glm::max(shadowBox.min, box.min);
+        shadowBox.max = glm::min(shadowBox.max, box.max);
+        ASSERT_FALSE(shadowBox.empty()) << name;
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        int inside = 0, outside = 0, skipped = 0, wrong = 0;
+        const double eps = 1e-6 * map.farPlane;
+        for (int n = 0; n < 4000; ++n) {
+          const Bounds3& b = n % 2 ? shadowBox : box;
+          const glm::dvec3 p = b.min + glm::dvec3(unit(rng), unit(rng), unit(rng)) * (b.max - b.min);
+          const glm::dvec2 uv = map.texelOf(p);
+          const double d = map.viewDepthOf(p);
+          int expected = 0;  // 1 inside, -1 outside, 0 undecided (on or near the sheet)
+          if (uv.x < 0 || uv.y < 0 || uv.x > map.width - 1 || uv.y > map.height - 1 || d > map.farPlane + eps ||
+              d < map.nearPlane - eps) {
+            expected = -1;
+          } else {
+            const int i0 = std::min(int(uv.x), map.width - 2), j0 = std::min(int(uv.y), map.height - 2);
+            double lo = map.farPlane, hi = 0.0;
+            for (int dj = 0; dj < 2; ++dj)
+              for (int di = 0; di < 2; ++di) {
+                const double e = effectiveDepth(map, i0 + di, j0 + dj, r.stats.biasUsed);
+                lo = std::min(lo, e);
+                hi = std::max(hi, e);
+              }
+            // The sheet over this quad lies between its corners' depths.
+            if (d > hi + eps && d < map.farPlane - eps) expected = 1;
+            else if (d < lo - eps) expected = -1;
+          }
+          if (expected == 0) {
+            ++skipped;
+            continue;
+          }
+          const bool in = classifier.classify(p) == VolumeClassifier::Side::Inside;
+          if (in != (expected == 1)) ++wrong;
+          (expected == 1 ? inside : outside)++;
+        }
+        const std::string what = std::string(name) + " " + toString(mode) + " " + toString(tri);
+        EXPECT_EQ(wrong, 0) << what << " (inside " << inside << ", outside " << outside << ")";
+        EXPECT_LT(skipped, 2000) << what;
+        EXPECT_GT(inside, 20) << what;
+        EXPECT_GT(outside, 100) << what;
+      }
+    }
+  }
+}
+
+Light directionalDown() {
+  Light light;
+  light.type = LightType::Directional;
+  light.position = {0, 5, 0};
+  light.direction = {0, -1, 0};
+  light.halfExtent = 4.0;
+  light.nearPlane = 0.5;
+  light.farPlane = 12.0;
+  return light;
+}
+
+// A plate of half sizes (hx, hz) rotated by `degrees` about the light axis, at light depth 3.55
+// (y = 1.45), written analytically into a back-capture depth map (texel centres inside -> hit).
+DepthMap plateMap(int res, double hx, double hz, double degrees) {
+  DepthMap m = makeDepthMap(directionalDown(), res, res, CaptureMode::Back);
+  const double a = -degrees * std::numbers::pi / 180.0, c = std::cos(a), s = std::sin(a);  // world -> plate
+  for (int j = 0; j < res; ++j)
+    for (int i = 0; i < res; ++i) {
+      const glm::dvec3 p = m.worldPoint(i, j, 1.0);
+      const double x = c * p.x + s * p.z, z = -s * p.x + c * p.z;
+      if (std::abs(x) < hx && std::abs(z) < hz) m.depth[m.index(i, j)] = 3.55f;
+    }
+  return m;
+}
+
+TEST(VolumeCgal, AnalyticPlateCrossSectionWithinOneTexel) {
+  // 2 x 1 plate, 32 texels over 8 units: 0.25 per texel, edges on texel boundaries.
+  const DepthMap m = plateMap(32, 1.0, 0.5, 0.0);
+  const double texel = 0.25;
+  for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+    VolumeBuildOptions o;
+    o.triangulation = tri;
+    const auto r = buildVolume(m, o);
+    ASSERT_TRUE(checkMesh(r.mesh).valid());
+    const VolumeClassifier classifier(r.mesh);
+    int in = 0, out = 0;
+    for (double x = -2.0; x <= 2.0; x += 0.02)
+      for (double z = -2.0; z <= 2.0; z += 0.02) {
+        const glm::dvec3 p(x + 1e-4, 0.0, z + 3e-4);  // the ground, off the sampling lattice
+        const bool inShrunk = std::abs(p.x) < 1.0 - texel && std::abs(p.z) < 0.5 - texel;
+        const bool outGrown = std::abs(p.x) > 1.0 + texel || std::abs(p.z) > 0.5 + texel;
+        if (inShrunk) {
+          EXPECT_TRUE(classifier.inside(p)) << p.x << "," << p.z;
+          ++in;
+        } else if (outGrown) {
+          EXPECT_FALSE(classifier.inside(p)) << p.x << "," << p.z;
+          ++out;
+        }
+      }
+    EXPECT_GT(in, 500);
+    EXPECT_GT(out, 10000);
+  }
+}
+
+// Area (world units^2) where the volume's cross-section at the ground (y = 0) and the exact
+// shadow (the plate outline) disagree, by sampling a fine grid.
+double footprintError(const VolumeMesh& mesh, double hx, double hz, double degrees) {
+  const VolumeClassifier classifier(mesh);
+  const double a = -degrees * std::numbers::pi / 180.0, c = std::cos(a), s = std::sin(a);  // world -> plate
+  const double step = 0.01;
+  int wrong = 0;
+  for (double x = -1.8; x <= 1.8; x += step)
+    for (double z = -1.8; z <= 1.8; z += step) {
+      const glm::dvec3 p(x + 1e-5, 0.0, z + 3e-5);
+      const double px = c * p.x + s * p.z, pz = -s * p.x + c * p.z;
+      const bool shadow = std::abs(px) < hx && std::abs(pz) < hz;
+      if (classifier.inside(p) != shadow) ++wrong;
+    }
+  return wrong * step * step;
+}
+
+TEST(VolumeCgal, PerfectBeatsFixedOnTheRotatedPlate) {
+  for (int res : {32, 64}) {
+    const DepthMap m = plateMap(res, 1.0, 1.0, 30.0);
+    VolumeBuildOptions fixed, perfect;
+    fixed.triangulation = Triangulation::Fixed;
+    perfect.triangulation = Triangulation::Perfect;
+    const auto rf = buildVolume(m, fixed), rp = buildVolume(m, perfect);
+    const double ef = footprintError(rf.mesh, 1.0, 1.0, 30.0), ep = footprintError(rp.mesh, 1.0, 1.0, 30.0);
+    EXPECT_LT(ep, ef) << res;
+    EXPECT_EQ(rf.stats.flippedQuads, 0u);
+    EXPECT_GT(rp.stats.flippedQuads, 0u);
+    RecordProperty("analytic_" + std::to_string(res) + "_error_fixed", std::to_string(ef));
+    RecordProperty("analytic_" + std::to_string(res) + "_error_perfect", std::to_string(ep));
+    RecordProperty("analytic_" + std::to_string(res) + "_flipped_fraction",
+                   std::to_string(double(rp.stats.flippedQuads) / double(rp.stats.quads)));
+  }
+  // The same with the Embree capture of data/scenes/plate-rotated.json (back faces: the plate's
+  // bottom; the ground is single-sided and not captured).
+  const Scene& scene = cachedScene(test::sourceDir() / "data" / "scenes" / "plate-rotated.json");
+  const DepthMap m = captureDepthEmbree(scene, 64, 64, CaptureMode::Back);
+  VolumeBuildOptions fixed, perfect;
+  fixed.triangulation = Triangulation::Fixed;
+  const auto rf = buildVolume(m, fixed), rp = buildVolume(m, perfect);
+  const double ef = footprintError(rf.mesh, 1.0, 1.0, 30.0), ep = footprintError(rp.mesh, 1.0, 1.0, 30.0);
+  EXPECT_LT(ep, ef);
+  RecordProperty("scene_64_error_fixed", std::to_string(ef));
+  RecordProperty("scene_64_error_perfect", std::to_string(ep));
+}
+
+}  // namespace
+}  // namespace shadowvol
