@@ -82,3 +82,8 @@ TEST(GlReferenceImages, ClutterShadowMapFrontSlopeBias) {
   o.shadowBiasSlope = 1.5;
   compareWithReference("clutter_shadowmap_front", gltest::clutterScene(), o);
 }
+TEST(GlReferenceImages, ClutterPcf3Midpoint) {
+  gl::RenderOptions o = small(gl::ShadowMethod::Pcf3);
+  o.capture = CaptureMode::Midpoint;
+  compareWithReference("clutter_pcf3_midpoint", gltest::clutterScene(), o);
+}

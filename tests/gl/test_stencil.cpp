@@ -4,7 +4,9 @@
 // that sees the ground, the expected count is 1 when the ground point lies behind the sheet (the
 // sheet's depth interpolated over the quad's triangles with the same diagonal rule) and 0 else.
 // Pixels within one pixel of a change of that answer (or of what the pixel sees) are skipped.
-// The same check runs with a camera inside the volume and with a near plane cutting the volume.
+// The same check runs with a camera inside the volume (fails with z-pass counting), a near plane
+// cutting the volume, and a far plane cutting it (fails without GL_DEPTH_CLAMP); both failures
+// were checked by mutating the renderer.
 #include <gtest/gtest.h>
 
 #include <optional>
@@ -189,4 +191,15 @@ TEST(GlStencil, NearPlaneCutsTheVolume) {
   s.camera.nearPlane = 5.6;  // between the plate (about 5.4 away) and the ground below it (about 6.4)
   s.camera.farPlane = 30.0;
   runPlate(s, 300, 1000);
+}
+
+// The volume reaches far beyond the camera's far plane (the light's far plane is pushed out):
+// without GL_DEPTH_CLAMP the far parts would be clipped and the z-fail counts broken.
+TEST(GlStencil, FarPlaneCutsTheVolume) {
+  Scene s = gltest::plateScene();
+  s.source = "plate, camera far plane through the volume";
+  s.light.farPlane = 60.0;
+  s.camera.nearPlane = 0.5;
+  s.camera.farPlane = 16.0;
+  runPlate(s, 300, 3000);
 }

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_support.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/volume_builder.h"
 
 using namespace shadowvol;
 
@@ -63,4 +65,22 @@ TEST(GlVolumeAgreement, PerfectQuadCapMidpoint) {
 }
 TEST(GlVolumeAgreement, DefaultScenePerfect) {
   expectAgreement(defaultScene(), {Triangulation::Perfect, false, CaptureMode::Back, FarCap::Exact}, 128);
+}
+
+// renderWithVolume draws a caller's mesh: the volume built from the Embree capture of the same
+// light must give the stencil of the GPU volume (the GL and Embree depth maps agree, see
+// test_light_pass.cpp).
+TEST(GlVolumeAgreement, CallerBuiltVolumeFromEmbreeCapture) {
+  const Scene scene = gltest::clutterScene();
+  gl::Renderer& r = gltest::sharedRenderer();
+  r.setScene(scene);
+  gl::RenderOptions o;
+  o.depthWidth = o.depthHeight = 96;
+  const gl::RenderResult gpu = r.render(o);
+  const VolumeBuildResult built = buildVolume(captureDepthEmbree(scene, 96, 96, CaptureMode::Back), o.volumeOptions);
+  const gl::RenderResult given = r.renderWithVolume(o, built.mesh);
+  EXPECT_EQ(given.volumeTriangles, built.mesh.triangleCount());
+  const double share = gltest::agreement(gpu.stencil, given.stencil);
+  std::printf("gpu volume vs buildVolume(Embree capture) drawn by renderWithVolume: %.5f %% agree\n", 100.0 * share);
+  EXPECT_GE(share, 0.9999);
 }

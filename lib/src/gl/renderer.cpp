@@ -700,7 +700,14 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 Renderer::~Renderer() {
-  if (impl_) impl_->context.makeCurrent();
+  // The GL objects are deleted with this context current; if that fails there is nothing to
+  // report from a destructor (the context's own destruction still releases everything).
+  if (impl_) {
+    try {
+      impl_->context.makeCurrent();
+    } catch (const GlError&) {
+    }
+  }
 }
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
