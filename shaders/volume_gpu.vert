@@ -9,8 +9,10 @@
 //   ABC, ACD) and the same two triangles on the far plane with reversed winding (the quad's share
 //   of the exact far cap). A quad with all four corners on the far plane is dropped (all its
 //   vertices collapse to one point: zero-area triangles draw nothing).
-// exactCap = 0 (the thesis): 6 vertices per quad (the full sheet) and, after them, 6 vertices of
-//   one far-plane rectangle over the texel centres (0,0)..(W-1,H-1), facing away from the light.
+// exactCap = 0 (the thesis): 6 vertices per quad (the full sheet), and in a draw of its own
+//   (drawRectangle = 1) the 6 vertices of one far-plane rectangle over the texel centres
+//   (0,0)..(W-1,H-1), facing away from the light.
+// Large maps are drawn in several calls: quad index = firstQuad + gl_VertexID / vertices per quad.
 uniform sampler2D lightDepth;   // R32F light-view depth (world units), >= farPlane = no hit
 uniform ivec2 size;             // W, H texels
 uniform float farPlane;         // light-view distance of the far plane
@@ -24,6 +26,8 @@ uniform mat4 lightViewToClip;   // P_camera * V_camera * inverse(V_light), compo
 uniform int perfect;            // 1: per-quad diagonal rule (flipDiagonal), 0: fixed B-D
 uniform int exactCap;           // see above
 uniform float planarTolerance;  // kPlanarTolerance of triangulation.h
+uniform int firstQuad;          // quad index of gl_VertexID 0 in this draw call
+uniform int drawRectangle;      // 1: this draw is the far rectangle of exactCap = 0
 
 bool onRing(ivec2 t) { return t.x == 0 || t.y == 0 || t.x == size.x - 1 || t.y == size.y - 1; }
 
@@ -65,18 +69,17 @@ const int kFlipped[12] = int[12](0, 1, 2, 0, 2, 3, 0, 2, 1, 0, 3, 2);
 
 void main() {
   int quadsX = size.x - 1;
-  int quads = quadsX * (size.y - 1);
-  int id = gl_VertexID;
-  if (exactCap == 0 && id >= quads * 6) {
+  if (drawRectangle != 0) {
     ivec2 corner[4] = ivec2[4](ivec2(0, 0), ivec2(size.x - 1, 0), ivec2(size.x - 1, size.y - 1),
                                ivec2(0, size.y - 1));
     const int rect[6] = int[6](0, 3, 2, 0, 2, 1);  // A D C, A C B: facing away from the light
-    gl_Position = lightViewToClip * vec4(lightViewPoint(corner[rect[id - quads * 6]], farPlane), 1.0);
+    gl_Position = lightViewToClip * vec4(lightViewPoint(corner[rect[gl_VertexID]], farPlane), 1.0);
     return;
   }
   int perQuad = exactCap != 0 ? 12 : 6;
-  int q = id / perQuad;
-  int v = id - q * perQuad;
+  int local = gl_VertexID / perQuad;
+  int v = gl_VertexID - local * perQuad;
+  int q = firstQuad + local;
   ivec2 t0 = ivec2(q - (q / quadsX) * quadsX, q / quadsX);
   ivec2 t[4] = ivec2[4](t0, t0 + ivec2(1, 0), t0 + ivec2(1, 1), t0 + ivec2(0, 1));
   float d[4];

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <limits>
 #include <cmath>
 
@@ -533,12 +534,25 @@ struct Renderer::Impl {
     volumeGpuProgram.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
     volumeGpuProgram.set("planarTolerance", float(kPlanarTolerance));
     bindTexture(0, depth, fetchSampler);
-    const GLsizei quads = GLsizei(lightW - 1) * GLsizei(lightH - 1);
-    const GLsizei count = vo.cap == FarCap::Exact ? quads * 12 : quads * 6 + 6;
+    // gl_VertexID and GLsizei are 32-bit: draw at most kChunkQuads quads per call.
+    constexpr std::int64_t kChunkQuads = 1 << 24;
+    const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
+    const std::int64_t perQuad = vo.cap == FarCap::Exact ? 12 : 6;
     SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, count));
+    volumeGpuProgram.set("drawRectangle", 0);
+    for (std::int64_t first = 0; first < quads; first += kChunkQuads) {
+      const std::int64_t n = std::min(kChunkQuads, quads - first);
+      volumeGpuProgram.set("firstQuad", int(first));
+      SV_GL(glDrawArrays(GL_TRIANGLES, 0, GLsizei(n * perQuad)));
+    }
+    std::int64_t vertices = quads * perQuad;
+    if (vo.cap == FarCap::Quad) {
+      volumeGpuProgram.set("drawRectangle", 1);
+      SV_GL(glDrawArrays(GL_TRIANGLES, 0, 6));
+      vertices += 6;
+    }
     SV_GL(glBindVertexArray(0));
-    result.volumeTriangles = std::size_t(count) / 3;
+    result.volumeTriangles = std::size_t(vertices / 3);
   }
 
   void uploadVolume(const VolumeMesh& volume) {
