@@ -1,6 +1,7 @@
 // The EGL context, shader loading and error reporting.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -96,4 +97,23 @@ TEST(GlImageIo, PngRoundTripKeepsRowsTopFirst) {
   std::filesystem::remove(path);
   EXPECT_THROW(gl::writePng("/nonexistent_dir/x.png", 2, 2, 4, px), InputError);
   EXPECT_THROW(gl::readPng("/nonexistent_dir/x.png"), InputError);
+}
+
+// No EGL driver at all (glvnd pointed at a vendor file that does not exist): the renderer throws
+// GlError listing every platform it tried instead of crashing. Runs in a fresh process (threadsafe
+// death-test style re-executes the test binary) so EGL is not yet initialised there.
+TEST(GlContextDeathTest, NoEglDriverIsAClearError) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        setenv("__EGL_VENDOR_LIBRARY_FILENAMES", "/nonexistent/shadowvol_no_egl_vendor.json", 1);
+        try {
+          gl::Renderer r;
+          std::exit(4);
+        } catch (const gl::GlError& e) {
+          std::fprintf(stderr, "%s\n", e.what());
+          std::exit(3);
+        }
+      },
+      ::testing::ExitedWithCode(3), "no headless OpenGL >= 3.3 core context through EGL");
 }

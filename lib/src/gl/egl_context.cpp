@@ -187,7 +187,8 @@ bool tryDisplay(const Candidate& c, EglContext::State*& out, std::vector<std::st
 
 std::string deviceDescription(EGLDeviceEXT device) {
   std::string d;
-  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_query")) {
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_query") ||
+      epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base")) {
     const std::string exts = str(eglQueryDeviceStringEXT(device, EGL_EXTENSIONS));
     if (exts.find("EGL_EXT_device_drm") != std::string::npos)
       d = str(eglQueryDeviceStringEXT(device, EGL_DRM_DEVICE_FILE_EXT));
@@ -205,12 +206,13 @@ EglContext EglContext::create(const ContextOptions& options) {
     throw InputError("command line", "--egl-platform", p, "expected auto, device, surfaceless or default");
   std::vector<std::string> attempts;
   State* state = nullptr;
-  const bool clientExts = epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base") ||
-                          epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_client_extensions");
+  // eglGetPlatformDisplayEXT exists only with EGL_EXT_platform_base (epoxy would abort otherwise).
+  const bool clientExts = epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base");
+  const bool enumeration = epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+                           epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base");
 
   if (p == "auto" || p == "device") {
-    if (clientExts && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device") &&
-        epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) {
+    if (clientExts && enumeration && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
       EGLint n = 0;
       eglQueryDevicesEXT(0, nullptr, &n);
       std::vector<EGLDeviceEXT> devices(std::size_t(std::max(n, 0)));
