@@ -76,6 +76,14 @@ TEST(GlShaders, OverrideDirectoryReplacesAFileAndCompileErrorsNameIt) {
 }
 
 TEST(GlRenderer, RejectsBadSizesAndMissingScene) {
+  {
+    gl::Renderer fresh;
+    EXPECT_THROW(fresh.render(gl::RenderOptions{}), InputError);
+    EXPECT_THROW(fresh.captureDepth(32, 32, CaptureMode::Back), InputError);
+    Scene unfitted = defaultScene();
+    unfitted.camera.nearPlane = unfitted.camera.farPlane = 0.0;
+    EXPECT_THROW(fresh.setScene(unfitted), InputError);
+  }
   gl::Renderer& r = gltest::sharedRenderer();
   r.setScene(defaultScene());
   EXPECT_THROW(r.captureDepth(1, 64, CaptureMode::Back), InputError);

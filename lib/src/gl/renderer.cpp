@@ -616,6 +616,7 @@ struct Renderer::Impl {
 
   RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
     context.makeCurrent();
+    requireScene();
     const CameraSetup cam = cameraSetup(o);
     validate(o, cam);
     RenderResult result;
