@@ -83,27 +83,33 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
     cornerFor(e.to, e.toTexel).prevTexel = e.fromTexel;
   }
 
-  // Texels with one or more vertex indices (slots); a CDT vertex stores its slot.
+  // Texels (slots) with one or more vertex indices; each CDT vertex stores its slot. Points are
+  // inserted as one range (spatially sorted by CGAL), then the constraints.
   std::vector<std::vector<std::size_t>> slots;
-  Cdt cdt;
-  std::unordered_map<std::uint32_t, Cdt::Vertex_handle> handleOf;
-  handleOf.reserve(corners.size());
-  Cdt::Face_handle hint;
+  std::vector<std::pair<K::Point_2, int>> points;
+  std::unordered_map<std::uint64_t, int> slotOfTexel;
+  slotOfTexel.reserve(corners.size());
+  std::vector<int> slotOfCorner(corners.size());
   for (std::size_t c = 0; c < corners.size(); ++c) {
-    const std::size_t before = cdt.number_of_vertices();
-    const Cdt::Vertex_handle vh = cdt.insert(K::Point_2(corners[c].texel.x, corners[c].texel.y), hint);
-    hint = vh->face();
-    if (cdt.number_of_vertices() != before) {  // a new texel (else: a second vertex at a pinch)
-      vh->info() = int(slots.size());
+    const glm::ivec2 t = corners[c].texel;
+    const std::uint64_t key = (std::uint64_t(std::uint32_t(t.x)) << 32) | std::uint32_t(t.y);
+    auto [it, inserted] = slotOfTexel.try_emplace(key, int(slots.size()));
+    if (inserted) {
       slots.emplace_back();
+      points.emplace_back(K::Point_2(t.x, t.y), it->second);
     }
-    slots[std::size_t(vh->info())].push_back(c);
-    handleOf[corners[c].vertex] = vh;
+    slots[std::size_t(it->second)].push_back(c);
+    slotOfCorner[c] = it->second;
   }
+  Cdt cdt;
+  cdt.insert(points.begin(), points.end());
+  std::vector<Cdt::Vertex_handle> handleOfSlot(slots.size());
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) handleOfSlot[std::size_t(v->info())] = v;
+  auto handleOf = [&](std::uint32_t vertex) { return handleOfSlot[std::size_t(slotOfCorner[cornerOf.at(vertex)])]; };
   std::vector<std::pair<Cdt::Vertex_handle, Cdt::Vertex_handle>> directed;
   directed.reserve(edges.size());
   for (const CapEdge& e : edges) {
-    directed.emplace_back(handleOf.at(e.from), handleOf.at(e.to));
+    directed.emplace_back(handleOf(e.from), handleOf(e.to));
     cdt.insert_constraint(directed.back().first, directed.back().second);
   }
   markInside(cdt, directed);

@@ -151,6 +151,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // --- Phase 1: final depths (blur, offsets, clamp, border ring), light-view distances. ---
   auto t0 = Clock::now();
   std::vector<double> depth(texels);
+  std::vector<std::uint8_t> farFlag(texels);  // 1 = the vertex lies on the far plane
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)
       for (int i = 0; i < w; ++i) {
@@ -164,6 +165,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
           if (isFarDepth(d, farPlane)) d = farPlane;
         }
         depth[std::size_t(j) * w + i] = d;
+        farFlag[std::size_t(j) * w + i] = d == farPlane;
       }
   });
   stats.msBlur = msSince(t0);
@@ -171,30 +173,30 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // --- Phase 2: light-view points, diagonals, kept triangles. ---
   t0 = Clock::now();
   const TexelUnprojector unproject(map);
-  std::vector<glm::dvec3> view(texels);
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < w; ++i) {
-        const std::size_t t = std::size_t(j) * w + i;
-        view[t] = unproject.lightViewPoint(i, j, depth[t]);
-      }
-  });
-  std::vector<double>().swap(depth);
-  // z = -depth exactly (TexelUnprojector), so far vertices are exactly those with z == -far.
-  auto isFar = [&](std::size_t t) { return view[t].z <= -farPlane; };
+  auto isFar = [&](std::size_t t) { return farFlag[t] != 0; };
 
   std::vector<std::uint8_t> code(quadCount);
   std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh + 1, 0);
+  const bool perfect = options.triangulation == Triangulation::Perfect;
   tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    // Light-view points of the two texel rows of a quad row (one buffer per task, not per quad).
+    std::vector<glm::dvec3> lower(perfect ? w : 0), upper(perfect ? w : 0);
+    auto fillRow = [&](std::vector<glm::dvec3>& row, int j) {
+      for (int i = 0; i < w; ++i) row[i] = unproject.lightViewPoint(i, j, depth[std::size_t(j) * w + i]);
+    };
+    if (perfect) fillRow(upper, rows.begin());
     for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      if (perfect) {
+        std::swap(lower, upper);
+        fillRow(upper, qj + 1);
+      }
       std::uint32_t flips = 0, dropped = 0, tris = 0;
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t a = std::size_t(qj) * w + qi, b = a + 1, c = a + w + 1, d = a + w;
         const bool far[4] = {isFar(a), isFar(b), isFar(c), isFar(d)};
         std::uint8_t q = 0;
         if (!(far[0] && far[1] && far[2] && far[3]) || !exact) {
-          if (options.triangulation == Triangulation::Perfect && flipDiagonal(view[a], view[b], view[c], view[d]))
-            q |= kFlip;
+          if (perfect && flipDiagonal(lower[qi], lower[qi + 1], upper[qi + 1], upper[qi])) q |= kFlip;
           const int f = q & kFlip;
           for (int t = 0; t < 2; ++t) {
             const int* cs = kTriCorners[f][t];
@@ -234,7 +236,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     for (int j = rows.begin(); j != rows.end(); ++j) {
       std::uint32_t n = 0;
       for (int i = 0; i < w; ++i) {
-        const bool used = usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
+        const bool used = !isFar(std::size_t(j) * w + i) || usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
                           usesCorner(i, j - 1, 3);
         vertexIndex[std::size_t(j) * w + i] = used ? n++ : kNone;
       }
@@ -249,8 +251,10 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
 
   VolumeMesh& mesh = result.mesh;
   mesh.positions.resize(rowVerts[h]);
+  // Room for the cap too (a flattened cap has about as many triangles as boundary edges), so that
+  // appending it rarely reallocates.
+  mesh.triangles.reserve(sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
   mesh.triangles.resize(sheetTriangles);
-  const glm::dmat4 invView = glm::inverse(map.lightView);
   std::vector<std::uint32_t> quadTri(quadCount);  // index of each quad's first kept triangle
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)
@@ -258,7 +262,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
         const std::size_t t = std::size_t(j) * w + i;
         if (vertexIndex[t] == kNone) continue;
         vertexIndex[t] += std::uint32_t(rowVerts[j]);
-        mesh.positions[vertexIndex[t]] = glm::dvec3(invView * glm::dvec4(view[t], 1.0));
+        mesh.positions[vertexIndex[t]] = unproject.worldPoint(i, j, depth[t]);
       }
   });
   tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
@@ -366,16 +370,26 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
         const std::uint8_t q = code[qIndex];
+        const std::size_t a = std::size_t(qj) * w + qi;
+        if (isFar(a) + isFar(a + 1) + isFar(a + w) + isFar(a + w + 1) < 2) continue;
         const int f = q & kFlip;
         for (int t = 0; t < 2; ++t) {
           if (!(q & keepBit(t))) continue;
+          const int* cs = kTriCorners[f][t];
+          std::size_t tex[3];
+          int farCorners = 0;
+          for (int k = 0; k < 3; ++k) {
+            tex[k] = std::size_t(qj + kCornerDj[cs[k]]) * w + qi + kCornerDi[cs[k]];
+            farCorners += isFar(tex[k]);
+          }
+          if (farCorners < 2) continue;  // a boundary edge joins two far vertices
           const Tri& tri = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
           for (int k = 0; k < 3; ++k) {
-            const int c0 = kTriCorners[f][t][k], c1 = kTriCorners[f][t][(k + 1) % 3];
-            const std::size_t t0 = std::size_t(qj + kCornerDj[c0]) * w + qi + kCornerDi[c0];
-            const std::size_t t1 = std::size_t(qj + kCornerDj[c1]) * w + qi + kCornerDi[c1];
-            const bool cut = boundary[t0] && boundary[t1] && isFar(t0) && isFar(t1);
-            if (grid.neighbourKept(qi, qj, t, k) && !cut) continue;
+            const std::size_t t0 = tex[k], t1 = tex[(k + 1) % 3];
+            if (!isFar(t0) || !isFar(t1)) continue;
+            const bool cut = boundary[t0] && boundary[t1];
+            if (!cut && grid.neighbourKept(qi, qj, t, k)) continue;
+            const int c0 = cs[k], c1 = cs[(k + 1) % 3];
             rowEdges[qj].push_back({tri[k], tri[(k + 1) % 3], {qi + kCornerDi[c0], qj + kCornerDj[c0]},
                                     {qi + kCornerDi[c1], qj + kCornerDj[c1]}});
           }
@@ -395,7 +409,6 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   stats.capTrianglesBefore = sheetTriangles;
   if (!exact || options.flattenCap) {
     const auto cap = triangulateCapLoops(edges);
-    mesh.triangles.reserve(mesh.triangles.size() + cap.size());
     for (const Tri& c : cap) mesh.triangles.push_back({c[0], c[2], c[1]});  // faces away from the light
     stats.capTrianglesAfter = cap.size();
   } else {
@@ -405,7 +418,6 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     std::vector<std::uint8_t> onBoundary(mesh.positions.size(), 0);
     for (const CapEdge& e : edges) onBoundary[e.from] = onBoundary[e.to] = 1;
     std::vector<std::uint32_t> capVertex(texels, kNone);
-    mesh.triangles.reserve(mesh.triangles.size() + sheetTriangles);
     for (int qj = 0; qj < qh; ++qj)
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
