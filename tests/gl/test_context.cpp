@@ -21,8 +21,8 @@ TEST(GlContext, ReportsPlatformAndDriver) {
   EXPECT_FALSE(info.glVersion.empty());
   EXPECT_GE(info.glMajor * 10 + info.glMinor, 33);
   EXPECT_FALSE(info.attempts.empty());
-  std::printf("EGL platform %s (%s), %s / %s / %s\n", info.platform.c_str(), info.device.c_str(),
-              info.glVendor.c_str(), info.glRenderer.c_str(), info.glVersion.c_str());
+  std::printf("EGL platform %s (%s), %s / %s / %s\n", info.platform.c_str(), info.device.c_str(), info.glVendor.c_str(),
+              info.glRenderer.c_str(), info.glVersion.c_str());
 }
 
 TEST(GlContext, UnknownPlatformIsAnInputError) {

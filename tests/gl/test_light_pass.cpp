@@ -39,8 +39,8 @@ void expectMatchesEmbree(const Scene& scene, int w, int h, CaptureMode mode) {
   EXPECT_EQ(gpu.lightProjection, cpu.lightProjection);
   EXPECT_EQ(gpu.lightView, cpu.lightView);
   const Agreement a = compare(gpu, cpu);
-  std::printf("%s %s %dx%d: %zu of %zu texels agree (%.4f %%), %zu hits\n", scene.source.c_str(), toString(mode), w,
-              h, a.agree, a.texels, 100.0 * a.share(), a.hits);
+  std::printf("%s %s %dx%d: %zu of %zu texels agree (%.4f %%), %zu hits\n", scene.source.c_str(), toString(mode), w, h,
+              a.agree, a.texels, 100.0 * a.share(), a.hits);
   ::testing::Test::RecordProperty(std::string("agreement_") + toString(mode), std::to_string(a.share()));
   EXPECT_GT(a.hits, a.texels / 100) << "the scene must be seen by the light";
   EXPECT_GE(a.share(), 0.999);
@@ -48,8 +48,18 @@ void expectMatchesEmbree(const Scene& scene, int w, int h, CaptureMode mode) {
 
 }  // namespace
 
-TEST(GlLightPass, BackCaptureMatchesEmbree) { expectMatchesEmbree(defaultScene(), 96, 96, CaptureMode::Back); }
-TEST(GlLightPass, FrontCaptureMatchesEmbree) { expectMatchesEmbree(defaultScene(), 96, 80, CaptureMode::Front); }
-TEST(GlLightPass, MidpointCaptureMatchesEmbree) { expectMatchesEmbree(gltest::clutterScene(), 96, 96, CaptureMode::Midpoint); }
-TEST(GlLightPass, DirectionalBackCaptureMatchesEmbree) { expectMatchesEmbree(gltest::plateScene(), 64, 64, CaptureMode::Back); }
-TEST(GlLightPass, ClutterFrontCaptureMatchesEmbree) { expectMatchesEmbree(gltest::clutterScene(), 128, 128, CaptureMode::Front); }
+TEST(GlLightPass, BackCaptureMatchesEmbree) {
+  expectMatchesEmbree(defaultScene(), 96, 96, CaptureMode::Back);
+}
+TEST(GlLightPass, FrontCaptureMatchesEmbree) {
+  expectMatchesEmbree(defaultScene(), 96, 80, CaptureMode::Front);
+}
+TEST(GlLightPass, MidpointCaptureMatchesEmbree) {
+  expectMatchesEmbree(gltest::clutterScene(), 96, 96, CaptureMode::Midpoint);
+}
+TEST(GlLightPass, DirectionalBackCaptureMatchesEmbree) {
+  expectMatchesEmbree(gltest::plateScene(), 64, 64, CaptureMode::Back);
+}
+TEST(GlLightPass, ClutterFrontCaptureMatchesEmbree) {
+  expectMatchesEmbree(gltest::clutterScene(), 128, 128, CaptureMode::Front);
+}

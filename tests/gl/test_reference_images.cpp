@@ -41,7 +41,8 @@ void compareWithReference(const std::string& name, const Scene& scene, const gl:
   const std::size_t pixels = std::size_t(img.width) * img.height;
   for (std::size_t p = 0; p < pixels; ++p) {
     int worst = 0;
-    for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(int(img.pixels[p * 4 + k]) - int(res.rgba[p * 4 + k])));
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::abs(int(img.pixels[p * 4 + k]) - int(res.rgba[p * 4 + k])));
     differ += worst > 8;
   }
   std::printf("%s: %zu of %zu pixels differ from the reference\n", name.c_str(), differ, pixels);
@@ -63,11 +64,21 @@ gl::RenderOptions small(gl::ShadowMethod m) {
 
 }  // namespace
 
-TEST(GlReferenceImages, DefaultHybrid) { compareWithReference("default_hybrid", defaultScene(), small(gl::ShadowMethod::Hybrid)); }
-TEST(GlReferenceImages, DefaultShadowMap) { compareWithReference("default_shadowmap", defaultScene(), small(gl::ShadowMethod::ShadowMap)); }
-TEST(GlReferenceImages, DefaultPcf3) { compareWithReference("default_pcf3", defaultScene(), small(gl::ShadowMethod::Pcf3)); }
-TEST(GlReferenceImages, DefaultPcf5) { compareWithReference("default_pcf5", defaultScene(), small(gl::ShadowMethod::Pcf5)); }
-TEST(GlReferenceImages, DefaultNone) { compareWithReference("default_none", defaultScene(), small(gl::ShadowMethod::None)); }
+TEST(GlReferenceImages, DefaultHybrid) {
+  compareWithReference("default_hybrid", defaultScene(), small(gl::ShadowMethod::Hybrid));
+}
+TEST(GlReferenceImages, DefaultShadowMap) {
+  compareWithReference("default_shadowmap", defaultScene(), small(gl::ShadowMethod::ShadowMap));
+}
+TEST(GlReferenceImages, DefaultPcf3) {
+  compareWithReference("default_pcf3", defaultScene(), small(gl::ShadowMethod::Pcf3));
+}
+TEST(GlReferenceImages, DefaultPcf5) {
+  compareWithReference("default_pcf5", defaultScene(), small(gl::ShadowMethod::Pcf5));
+}
+TEST(GlReferenceImages, DefaultNone) {
+  compareWithReference("default_none", defaultScene(), small(gl::ShadowMethod::None));
+}
 TEST(GlReferenceImages, ClutterHybridBlurFront) {
   gl::RenderOptions o = small(gl::ShadowMethod::Hybrid);
   o.capture = CaptureMode::Front;

@@ -47,9 +47,10 @@ class VolumeOracle {
     const int i = std::min(int(std::floor(u)), map_.width - 2), j = std::min(int(std::floor(v)), map_.height - 2);
     const double fu = u - i, fv = v - j;
     const double dA = d(i, j), dB = d(i + 1, j), dC = d(i + 1, j + 1), dD = d(i, j + 1);
-    const bool flip = tri_ == Triangulation::Perfect &&
-                      flipDiagonal(unproject_.lightViewPoint(i, j, dA), unproject_.lightViewPoint(i + 1, j, dB),
-                                   unproject_.lightViewPoint(i + 1, j + 1, dC), unproject_.lightViewPoint(i, j + 1, dD));
+    const bool flip =
+        tri_ == Triangulation::Perfect &&
+        flipDiagonal(unproject_.lightViewPoint(i, j, dA), unproject_.lightViewPoint(i + 1, j, dB),
+                     unproject_.lightViewPoint(i + 1, j + 1, dC), unproject_.lightViewPoint(i, j + 1, dD));
     if (!flip) {
       if (fu + fv <= 1.0) return dA + fu * (dB - dA) + fv * (dD - dA);
       return dC + (1.0 - fu) * (dD - dC) + (1.0 - fv) * (dB - dC);
@@ -145,9 +146,10 @@ void runPlate(Scene scene, std::size_t minInside, std::size_t minOutside) {
   gl::Renderer& r = gltest::sharedRenderer();
   r.setScene(scene);
   const DepthMap map = captureDepthEmbree(scene, 64, 64, CaptureMode::Back);
-  for (const Case& c : {Case{"gpu exact perfect", gl::VolumeSource::Gpu, FarCap::Exact, Triangulation::Perfect},
-                        Case{"gpu quad fixed", gl::VolumeSource::Gpu, FarCap::Quad, Triangulation::Fixed},
-                        Case{"explicit exact perfect", gl::VolumeSource::Explicit, FarCap::Exact, Triangulation::Perfect}}) {
+  for (const Case& c :
+       {Case{"gpu exact perfect", gl::VolumeSource::Gpu, FarCap::Exact, Triangulation::Perfect},
+        Case{"gpu quad fixed", gl::VolumeSource::Gpu, FarCap::Quad, Triangulation::Fixed},
+        Case{"explicit exact perfect", gl::VolumeSource::Explicit, FarCap::Exact, Triangulation::Perfect}}) {
     gl::RenderOptions o;
     o.method = gl::ShadowMethod::Hybrid;
     o.volume = c.source;
@@ -169,7 +171,9 @@ void runPlate(Scene scene, std::size_t minInside, std::size_t minOutside) {
 
 }  // namespace
 
-TEST(GlStencil, SquarePlateFootprintIsExactlyOne) { runPlate(gltest::plateScene(), 300, 3000); }
+TEST(GlStencil, SquarePlateFootprintIsExactlyOne) {
+  runPlate(gltest::plateScene(), 300, 3000);
+}
 
 TEST(GlStencil, CameraInsideTheVolume) {
   Scene s = gltest::plateScene();
@@ -179,7 +183,8 @@ TEST(GlStencil, CameraInsideTheVolume) {
   s.camera.fovYDegrees = 70.0;
   s.camera.nearPlane = 0.05;
   s.camera.farPlane = 30.0;
-  ASSERT_TRUE(VolumeOracle(captureDepthEmbree(s, 64, 64, CaptureMode::Back), 0.0, Triangulation::Perfect).inside(s.camera.eye));
+  ASSERT_TRUE(
+      VolumeOracle(captureDepthEmbree(s, 64, 64, CaptureMode::Back), 0.0, Triangulation::Perfect).inside(s.camera.eye));
   runPlate(s, 1000, 1000);
 }
 

@@ -37,11 +37,12 @@ void expectAgreement(const Scene& scene, const Variant& v, int mapSize) {
   std::size_t shadowed = 0;
   for (auto s : cpu.stencil) shadowed += s != 0;
   const double share = gltest::agreement(gpu.stencil, cpu.stencil);
-  std::printf("%s %s %s %s cap %s: stencil agreement %.5f %% (%zu of %zu differ), %zu shadowed pixels, volume %zu "
-              "(gpu) / %zu (explicit) triangles\n",
-              scene.source.c_str(), toString(v.tri), v.blur ? "blur" : "no blur", toString(v.capture),
-              toString(v.cap), 100.0 * share, std::size_t(std::llround((1.0 - share) * double(cpu.stencil.size()))),
-              cpu.stencil.size(), shadowed, gpu.volumeTriangles, cpu.volumeTriangles);
+  std::printf(
+      "%s %s %s %s cap %s: stencil agreement %.5f %% (%zu of %zu differ), %zu shadowed pixels, volume %zu "
+      "(gpu) / %zu (explicit) triangles\n",
+      scene.source.c_str(), toString(v.tri), v.blur ? "blur" : "no blur", toString(v.capture), toString(v.cap),
+      100.0 * share, std::size_t(std::llround((1.0 - share) * double(cpu.stencil.size()))), cpu.stencil.size(),
+      shadowed, gpu.volumeTriangles, cpu.volumeTriangles);
   EXPECT_GT(shadowed, cpu.stencil.size() / 50) << "the view must contain shadow";
   EXPECT_GE(share, 0.9999);
 }

@@ -36,17 +36,28 @@ void releaseDisplay(EGLDisplay display) {
 
 std::string eglErrorName(EGLint e) {
   switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+      return "EGL_BAD_SURFACE";
     default: {
       std::ostringstream s;
       s << "EGL error 0x" << std::hex << e;
@@ -55,7 +66,9 @@ std::string eglErrorName(EGLint e) {
   }
 }
 
-std::string str(const void* p) { return p ? std::string(static_cast<const char*>(p)) : std::string(); }
+std::string str(const void* p) {
+  return p ? std::string(static_cast<const char*>(p)) : std::string();
+}
 
 struct Candidate {
   std::string platform;
@@ -92,7 +105,9 @@ EglContext::EglContext(EglContext&&) noexcept = default;
 EglContext& EglContext::operator=(EglContext&&) noexcept = default;
 EglContext::~EglContext() = default;
 
-const ContextInfo& EglContext::info() const { return state_->info; }
+const ContextInfo& EglContext::info() const {
+  return state_->info;
+}
 
 void EglContext::makeCurrent() const {
   if (!eglMakeCurrent(state_->display, state_->surface, state_->surface, state_->context))
@@ -126,8 +141,7 @@ bool tryDisplay(const Candidate& c, EglContext::State*& out, std::vector<std::st
   const bool surfaceless = epoxy_has_egl_extension(c.display, "EGL_KHR_surfaceless_context");
   EGLConfig config = EGL_NO_CONFIG_KHR;
   if (!noConfig || !surfaceless) {
-    const EGLint want[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                           EGL_NONE};
+    const EGLint want[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
     EGLint n = 0;
     if (!eglChooseConfig(c.display, want, &config, 1, &n) || n < 1) {
       attempts.push_back(label + ": no OpenGL pbuffer config");
@@ -136,8 +150,9 @@ bool tryDisplay(const Candidate& c, EglContext::State*& out, std::vector<std::st
   }
   const int versions[][2] = {{4, 5}, {4, 3}, {3, 3}};
   for (const auto& v : versions) {
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, v[0], EGL_CONTEXT_MINOR_VERSION, v[1],
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint attribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           v[0],    EGL_CONTEXT_MINOR_VERSION, v[1], EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     state->context = eglCreateContext(c.display, config, EGL_NO_CONTEXT, attribs);
     if (state->context != EGL_NO_CONTEXT) break;
   }

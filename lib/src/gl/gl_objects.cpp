@@ -31,13 +31,27 @@ T make(Gen gen) {
 }
 }  // namespace
 
-Texture makeTexture() { return make<Texture>(glGenTextures); }
-Buffer makeBuffer() { return make<Buffer>(glGenBuffers); }
-Framebuffer makeFramebuffer() { return make<Framebuffer>(glGenFramebuffers); }
-Renderbuffer makeRenderbuffer() { return make<Renderbuffer>(glGenRenderbuffers); }
-VertexArray makeVertexArray() { return make<VertexArray>(glGenVertexArrays); }
-Sampler makeSampler() { return make<Sampler>(glGenSamplers); }
-Query makeQuery() { return make<Query>(glGenQueries); }
+Texture makeTexture() {
+  return make<Texture>(glGenTextures);
+}
+Buffer makeBuffer() {
+  return make<Buffer>(glGenBuffers);
+}
+Framebuffer makeFramebuffer() {
+  return make<Framebuffer>(glGenFramebuffers);
+}
+Renderbuffer makeRenderbuffer() {
+  return make<Renderbuffer>(glGenRenderbuffers);
+}
+VertexArray makeVertexArray() {
+  return make<VertexArray>(glGenVertexArrays);
+}
+Sampler makeSampler() {
+  return make<Sampler>(glGenSamplers);
+}
+Query makeQuery() {
+  return make<Query>(glGenQueries);
+}
 
 void checkFramebufferComplete(const char* what) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
@@ -24,35 +24,53 @@ namespace shadowvol::gl {
 
 const char* toString(ShadowMethod m) {
   switch (m) {
-    case ShadowMethod::Hybrid: return "hybrid";
-    case ShadowMethod::ShadowMap: return "shadowmap";
-    case ShadowMethod::Pcf3: return "pcf3";
-    case ShadowMethod::Pcf5: return "pcf5";
-    case ShadowMethod::None: return "none";
+    case ShadowMethod::Hybrid:
+      return "hybrid";
+    case ShadowMethod::ShadowMap:
+      return "shadowmap";
+    case ShadowMethod::Pcf3:
+      return "pcf3";
+    case ShadowMethod::Pcf5:
+      return "pcf5";
+    case ShadowMethod::None:
+      return "none";
   }
   return "?";
 }
 
 bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
-  if (text == "hybrid") m = ShadowMethod::Hybrid;
-  else if (text == "shadowmap") m = ShadowMethod::ShadowMap;
-  else if (text == "pcf3") m = ShadowMethod::Pcf3;
-  else if (text == "pcf5") m = ShadowMethod::Pcf5;
-  else if (text == "none") m = ShadowMethod::None;
-  else return false;
+  if (text == "hybrid")
+    m = ShadowMethod::Hybrid;
+  else if (text == "shadowmap")
+    m = ShadowMethod::ShadowMap;
+  else if (text == "pcf3")
+    m = ShadowMethod::Pcf3;
+  else if (text == "pcf5")
+    m = ShadowMethod::Pcf5;
+  else if (text == "none")
+    m = ShadowMethod::None;
+  else
+    return false;
   return true;
 }
 
-const char* toString(VolumeSource v) { return v == VolumeSource::Gpu ? "gpu" : "explicit"; }
+const char* toString(VolumeSource v) {
+  return v == VolumeSource::Gpu ? "gpu" : "explicit";
+}
 
 bool parseVolumeSource(const std::string& text, VolumeSource& v) {
-  if (text == "gpu") v = VolumeSource::Gpu;
-  else if (text == "explicit") v = VolumeSource::Explicit;
-  else return false;
+  if (text == "gpu")
+    v = VolumeSource::Gpu;
+  else if (text == "explicit")
+    v = VolumeSource::Explicit;
+  else
+    return false;
   return true;
 }
 
-const char* toString(TimingMethod t) { return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish"; }
+const char* toString(TimingMethod t) {
+  return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish";
+}
 
 namespace {
 
@@ -62,7 +80,9 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-glm::mat4 toFloat(const glm::dmat4& m) { return glm::mat4(m); }
+glm::mat4 toFloat(const glm::dmat4& m) {
+  return glm::mat4(m);
+}
 
 /// Light projection coefficients (column-major m[col][row]) as the shaders take them.
 glm::vec4 depthParams(const glm::dmat4& p) {
@@ -78,8 +98,11 @@ double viewDepthFromWindow(const glm::dmat4& p, double window) {
 
 glm::vec3 albedoFor(const SceneObject& o, int& colourIndex) {
   if (o.type == "plane" || o.name == "ground") return {0.85f, 0.85f, 0.80f};
-  static const glm::vec3 palette[] = {{0.90f, 0.35f, 0.30f}, {0.30f, 0.55f, 0.90f}, {0.40f, 0.80f, 0.40f},
-                                      {0.90f, 0.75f, 0.30f}, {0.70f, 0.45f, 0.85f}};
+  static const glm::vec3 palette[] = {{0.90f, 0.35f, 0.30f},
+                                      {0.30f, 0.55f, 0.90f},
+                                      {0.40f, 0.80f, 0.40f},
+                                      {0.90f, 0.75f, 0.30f},
+                                      {0.70f, 0.45f, 0.85f}};
   return palette[std::size_t(colourIndex++) % 5];
 }
 
@@ -199,8 +222,7 @@ struct Renderer::Impl {
   Renderbuffer colorRb, depthStencilRb;
   Framebuffer cameraFbo;
 
-  Impl(const RendererOptions& options)
-      : context(EglContext::create(options.context)), shaders(options.shaderDir) {
+  Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
     lightProgram = Program(shaders, "light.vert", "depth_only.frag");
     peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
     resolveProgram = Program(shaders, "fullscreen.vert", "resolve.frag");
@@ -210,12 +232,14 @@ struct Renderer::Impl {
     volumeGpuProgram = Program(shaders, "volume_gpu.vert", "depth_only.frag");
 
     fetchSampler = makeSampler();
-    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) SV_GL(glSamplerParameteri(fetchSampler.id(), p, GL_NEAREST));
+    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+      SV_GL(glSamplerParameteri(fetchSampler.id(), p, GL_NEAREST));
     for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
       SV_GL(glSamplerParameteri(fetchSampler.id(), p, GL_CLAMP_TO_EDGE));
     SV_GL(glSamplerParameteri(fetchSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_NONE));
     shadowSampler = makeSampler();
-    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_NEAREST));
+    for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+      SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_NEAREST));
     for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
       SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_CLAMP_TO_EDGE));
     SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE));
@@ -727,7 +751,9 @@ Renderer::~Renderer() {
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
-const ContextInfo& Renderer::info() const { return impl_->context.info(); }
+const ContextInfo& Renderer::info() const {
+  return impl_->context.info();
+}
 
 void Renderer::setScene(const Scene& scene) {
   Impl& s = *impl_;
@@ -759,9 +785,11 @@ void Renderer::setScene(const Scene& scene) {
   SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(),
                      GL_STATIC_DRAW));
   SV_GL(glEnableVertexAttribArray(0));
-  SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, position))));
+  SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                              reinterpret_cast<void*>(offsetof(Vertex, position))));
   SV_GL(glEnableVertexAttribArray(1));
-  SV_GL(glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex), reinterpret_cast<void*>(offsetof(Vertex, albedo))));
+  SV_GL(glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                              reinterpret_cast<void*>(offsetof(Vertex, albedo))));
   SV_GL(glBindVertexArray(0));
   SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
   s.sceneIndexCount = GLsizei(indices.size());
@@ -779,7 +807,9 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
   return s.readBack(mode);
 }
 
-RenderResult Renderer::render(const RenderOptions& options) { return impl_->render(options, nullptr); }
+RenderResult Renderer::render(const RenderOptions& options) {
+  return impl_->render(options, nullptr);
+}
 
 RenderResult Renderer::renderWithVolume(const RenderOptions& options, const VolumeMesh& volume) {
   return impl_->render(options, &volume);

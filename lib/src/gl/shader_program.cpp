@@ -76,7 +76,9 @@ Program::Program(const ShaderLibrary& library, const std::string& vertexFile, co
   }
 }
 
-void Program::use() const { SV_GL(glUseProgram(program_.id())); }
+void Program::use() const {
+  SV_GL(glUseProgram(program_.id()));
+}
 
 GLint Program::location(const char* name) const {
   auto it = locations_.find(name);
@@ -86,12 +88,24 @@ GLint Program::location(const char* name) const {
   return loc;
 }
 
-void Program::set(const char* name, int v) const { SV_GL(glUniform1i(location(name), v)); }
-void Program::set(const char* name, float v) const { SV_GL(glUniform1f(location(name), v)); }
-void Program::set(const char* name, const glm::vec2& v) const { SV_GL(glUniform2fv(location(name), 1, glm::value_ptr(v))); }
-void Program::set(const char* name, const glm::vec3& v) const { SV_GL(glUniform3fv(location(name), 1, glm::value_ptr(v))); }
-void Program::set(const char* name, const glm::vec4& v) const { SV_GL(glUniform4fv(location(name), 1, glm::value_ptr(v))); }
-void Program::set(const char* name, const glm::ivec2& v) const { SV_GL(glUniform2iv(location(name), 1, glm::value_ptr(v))); }
+void Program::set(const char* name, int v) const {
+  SV_GL(glUniform1i(location(name), v));
+}
+void Program::set(const char* name, float v) const {
+  SV_GL(glUniform1f(location(name), v));
+}
+void Program::set(const char* name, const glm::vec2& v) const {
+  SV_GL(glUniform2fv(location(name), 1, glm::value_ptr(v)));
+}
+void Program::set(const char* name, const glm::vec3& v) const {
+  SV_GL(glUniform3fv(location(name), 1, glm::value_ptr(v)));
+}
+void Program::set(const char* name, const glm::vec4& v) const {
+  SV_GL(glUniform4fv(location(name), 1, glm::value_ptr(v)));
+}
+void Program::set(const char* name, const glm::ivec2& v) const {
+  SV_GL(glUniform2iv(location(name), 1, glm::value_ptr(v)));
+}
 void Program::set(const char* name, const glm::mat4& v) const {
   SV_GL(glUniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(v)));
 }

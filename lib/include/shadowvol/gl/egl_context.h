@@ -20,19 +20,19 @@ struct ContextOptions {
 
 /// What was used, for the log and the CLI's --json.
 struct ContextInfo {
-  std::string platform;      ///< "device", "surfaceless" or "default"
-  std::string device;        ///< EGL device (DRM node or extension list) for "device"; else empty
-  std::string eglVendor;     ///< EGL_VENDOR
-  std::string eglVersion;    ///< EGL_VERSION
-  std::string glVendor;      ///< GL_VENDOR
-  std::string glRenderer;    ///< GL_RENDERER (for example "llvmpipe (LLVM 15.0.6, 256 bits)")
-  std::string glVersion;     ///< GL_VERSION
-  std::string glslVersion;   ///< GL_SHADING_LANGUAGE_VERSION
-  int glMajor = 0, glMinor = 0;   ///< the context's version
-  bool timerQueries = false;      ///< GL_TIME_ELAPSED queries have counter bits > 0
-  bool softwareRenderer = false;  ///< llvmpipe, softpipe or swrast: a deferred CPU rasteriser whose
-                                  ///< timer queries do not measure the passes (the renderer then
-                                  ///< times with glFinish + wall clock)
+  std::string platform;               ///< "device", "surfaceless" or "default"
+  std::string device;                 ///< EGL device (DRM node or extension list) for "device"; else empty
+  std::string eglVendor;              ///< EGL_VENDOR
+  std::string eglVersion;             ///< EGL_VERSION
+  std::string glVendor;               ///< GL_VENDOR
+  std::string glRenderer;             ///< GL_RENDERER (for example "llvmpipe (LLVM 15.0.6, 256 bits)")
+  std::string glVersion;              ///< GL_VERSION
+  std::string glslVersion;            ///< GL_SHADING_LANGUAGE_VERSION
+  int glMajor = 0, glMinor = 0;       ///< the context's version
+  bool timerQueries = false;          ///< GL_TIME_ELAPSED queries have counter bits > 0
+  bool softwareRenderer = false;      ///< llvmpipe, softpipe or swrast: a deferred CPU rasteriser whose
+                                      ///< timer queries do not measure the passes (the renderer then
+                                      ///< times with glFinish + wall clock)
   std::vector<std::string> attempts;  ///< one line per platform/display tried before success
 };
 

@@ -25,9 +25,9 @@ void checkGlError(const char* call, const char* file, int line);
 #ifdef NDEBUG
 #define SV_GL(call) call
 #else
-#define SV_GL(call)                                                          \
-  do {                                                                       \
-    call;                                                                    \
-    ::shadowvol::gl::detail::checkGlError(#call, __FILE__, __LINE__);        \
+#define SV_GL(call)                                                   \
+  do {                                                                \
+    call;                                                             \
+    ::shadowvol::gl::detail::checkGlError(#call, __FILE__, __LINE__); \
   } while (0)
 #endif

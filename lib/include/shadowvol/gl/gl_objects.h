@@ -38,15 +38,33 @@ class GlName {
   GLuint id_ = 0;
 };
 
-struct TextureDeleter { static void destroy(GLuint id) { glDeleteTextures(1, &id); } };
-struct BufferDeleter { static void destroy(GLuint id) { glDeleteBuffers(1, &id); } };
-struct FramebufferDeleter { static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); } };
-struct RenderbufferDeleter { static void destroy(GLuint id) { glDeleteRenderbuffers(1, &id); } };
-struct VertexArrayDeleter { static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); } };
-struct SamplerDeleter { static void destroy(GLuint id) { glDeleteSamplers(1, &id); } };
-struct QueryDeleter { static void destroy(GLuint id) { glDeleteQueries(1, &id); } };
-struct ShaderDeleter { static void destroy(GLuint id) { glDeleteShader(id); } };
-struct ProgramDeleter { static void destroy(GLuint id) { glDeleteProgram(id); } };
+struct TextureDeleter {
+  static void destroy(GLuint id) { glDeleteTextures(1, &id); }
+};
+struct BufferDeleter {
+  static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
+};
+struct FramebufferDeleter {
+  static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
+};
+struct RenderbufferDeleter {
+  static void destroy(GLuint id) { glDeleteRenderbuffers(1, &id); }
+};
+struct VertexArrayDeleter {
+  static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
+};
+struct SamplerDeleter {
+  static void destroy(GLuint id) { glDeleteSamplers(1, &id); }
+};
+struct QueryDeleter {
+  static void destroy(GLuint id) { glDeleteQueries(1, &id); }
+};
+struct ShaderDeleter {
+  static void destroy(GLuint id) { glDeleteShader(id); }
+};
+struct ProgramDeleter {
+  static void destroy(GLuint id) { glDeleteProgram(id); }
+};
 
 using Texture = GlName<TextureDeleter>;
 using Buffer = GlName<BufferDeleter>;

@@ -59,8 +59,8 @@ enum class TimingMethod {
 const char* toString(TimingMethod t);
 
 struct RendererOptions {
-  ContextOptions context;            ///< which EGL platform (auto = device, surfaceless, default)
-  std::filesystem::path shaderDir;   ///< empty = $SHADOWVOL_SHADER_DIR if set, else embedded shaders
+  ContextOptions context;           ///< which EGL platform (auto = device, surfaceless, default)
+  std::filesystem::path shaderDir;  ///< empty = $SHADOWVOL_SHADER_DIR if set, else embedded shaders
 };
 
 struct RenderOptions {
@@ -92,17 +92,17 @@ struct PassTime {
 };
 
 struct RenderResult {
-  int width = 0, height = 0;              ///< image pixels
-  std::vector<std::uint8_t> rgba;         ///< width * height * 4, RGBA8, rows top first
-  std::vector<std::uint8_t> stencil;      ///< width * height stencil counts (8-bit, wrapping),
-                                          ///< rows top first; empty unless hybrid and readStencil
-  std::optional<DepthMap> depthMap;       ///< light depth (read back) when readDepthMap or explicit
-  std::vector<PassTime> passes;           ///< in execution order
+  int width = 0, height = 0;          ///< image pixels
+  std::vector<std::uint8_t> rgba;     ///< width * height * 4, RGBA8, rows top first
+  std::vector<std::uint8_t> stencil;  ///< width * height stencil counts (8-bit, wrapping),
+                                      ///< rows top first; empty unless hybrid and readStencil
+  std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
+  std::vector<PassTime> passes;       ///< in execution order
   TimingMethod timing = TimingMethod::WallClock;
-  double totalMs = 0.0;                   ///< sum of passes
-  std::size_t volumeTriangles = 0;        ///< triangles drawn for the volume (gpu: including the
-                                          ///< degenerate ones of dropped quads)
-  double biasUsed = 0.0;                  ///< hybrid: the volume bias in world units
+  double totalMs = 0.0;             ///< sum of passes
+  std::size_t volumeTriangles = 0;  ///< triangles drawn for the volume (gpu: including the
+                                    ///< degenerate ones of dropped quads)
+  double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
 };
 
 /// Owns the context, programs, samplers and framebuffers; reuse it for many frames. Not thread
