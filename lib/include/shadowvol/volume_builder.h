@@ -1,5 +1,27 @@
 // DepthMap -> VolumeMesh: grid sheet, triangulation, depth blurring, bias and far cap.
-// The method is algorithm.md; options and their defaults are documented field by field.
+// The method is algorithm.md; the rules below are docs/volume.md in short. Spaces: depths are
+// light-view distances (world units, DepthMap), the diagonal rule runs in light view, the result
+// is in world space.
+//
+// Sheet vertex of texel (i, j), in this order (the GPU path mirrors it):
+//   1. the border ring (i or j on the outermost row/column) and invalid texels (kNoHit, or
+//      d >= far * (1 - kFarSnap), see depth_blur.h) -> exactly the far plane; else
+//   2. blur on: d = blurredDepth(map, i, j) + blurOffset (samples the stored map, see depth_blur.h)
+//   3. d = clamp(d + bias, near, far); if that is within kFarSnap of far -> exactly far;
+//   4. unprojected in double with TexelUnprojector at the texel centre.
+// Triangles: each quad A B C D (triangulation.h) gives two triangles by its diagonal. With the
+// exact cap a triangle whose three vertices are on the far plane is dropped (a quad whose four
+// corners are far loses both; a mixed quad may lose one): it would lie in the cap's plane.
+// Exact cap: the far-plane footprint of the kept triangles, reversed, flattened losslessly by a
+// constrained Delaunay triangulation of its boundary loops (far_cap.h). Where the region's
+// boundary pinches (two fans of kept triangles meet at one far vertex, or two far boundary
+// vertices are joined by an edge with kept triangles on both sides: a "cut") the vertex is split,
+// one copy per fan, so the mesh is a closed 2-manifold; copies coincide in space (stats.splitVertices).
+// Far vertices inside a region (the sheet touches the far plane there) stay sheet-only: the
+// volume has zero thickness at that point and the cap passes under it (touching, not crossing).
+// Quad cap: every triangle kept; the cap closes the border ring (same CDT); pinch rule as above
+// (at the grid corners). Its far-plane sheet and cap coincide: for comparison only.
+// Memory: about 30 bytes per texel of scratch besides the result; no allocation per quad.
 #pragma once
 
 #include <optional>
@@ -26,19 +48,25 @@ struct VolumeBuildOptions {
   std::optional<double> bias;   ///< world units pushing the sheet away from the light; unset =
                                 ///< defaultBias(map) (0 for back capture)
   FarCap cap = FarCap::Exact;   ///< exact cap by default; Quad for comparison with the thesis
-  bool flattenCap = true;       ///< Exact only: triangulate the far cap with few triangles (lossless)
+  bool flattenCap = true;       ///< Exact only: triangulate the far cap with few triangles (lossless);
+                                ///< false = one mirrored cap triangle per kept sheet triangle.
+                                ///< The quad cap is always the flattened border-ring cap.
 };
 
 /// Counts and times of one build (times in milliseconds, wall clock).
 struct VolumeBuildStats {
-  std::size_t quads = 0;              ///< (W - 1) * (H - 1)
-  std::size_t droppedQuads = 0;       ///< all-far quads removed by the exact cap
-  std::size_t flippedQuads = 0;       ///< quads that took the A-C diagonal
-  std::size_t capTrianglesBefore = 0; ///< cap triangles before flattening (two per kept quad)
-  std::size_t capTrianglesAfter = 0;  ///< cap triangles after flattening
-  std::size_t splitVertices = 0;      ///< vertices duplicated where regions touch at a point
+  std::size_t quads = 0;              ///< (W - 1) * (H - 1); 0 when W or H < 2
+  std::size_t droppedQuads = 0;       ///< quads that lost both triangles (all four corners far)
+  std::size_t flippedQuads = 0;       ///< quads that took the A-C diagonal (0 for fixed; all-far
+                                      ///< quads are not evaluated and count as not flipped)
+  std::size_t capTrianglesBefore = 0; ///< cap triangles without flattening (= kept sheet triangles)
+  std::size_t capTrianglesAfter = 0;  ///< cap triangles in the result
+  std::size_t splitVertices = 0;      ///< extra vertex copies at pinches and cuts (see above)
   double biasUsed = 0.0;              ///< world units
-  double msBlur = 0.0, msSheet = 0.0, msCap = 0.0, msTotal = 0.0;
+  double msBlur = 0.0;                ///< depth preparation: blur, offsets, clamp (ms)
+  double msSheet = 0.0;               ///< diagonals, vertices, sheet triangles, pinch splits (ms)
+  double msCap = 0.0;                 ///< boundary loops and cap triangulation (ms)
+  double msTotal = 0.0;               ///< whole call including input validation (ms)
 };
 
 struct VolumeBuildResult {
@@ -46,11 +74,21 @@ struct VolumeBuildResult {
   VolumeBuildStats stats;
 };
 
-/// The documented default bias for a depth map (0 for back capture; see README "Bias").
+/// The default bias (world units) of a depth map, from its metadata only (size, matrices,
+/// near/far, capture mode; never its depths, so the GPU can compute it without read-back):
+///   back, midpoint: 0 (the sheet lies behind the lit surfaces already);
+///   front: F + 4 * far * 2^-23, F the texel footprint at the far plane (the larger of the
+///   light-view distances between the far-plane points of neighbouring texel centres at the
+///   map's centre; for a directional light 2 * halfExtent / W), i.e. the depth change across
+///   one texel of a receiver tilted 45 degrees, plus 4 float ulps of the depth at the far plane.
 double defaultBias(const DepthMap& map);
 
-/// Builds the shadow volume of a depth map. Throws InputError if the map holds NaN or negative
-/// depths. The result is closed and consistently oriented (see README "Volume mesh").
+/// Builds the shadow volume of a depth map (see the header comment). Throws InputError naming
+/// the texel and value if the map holds a NaN or negative depth, or if bias / blurOffset is not
+/// finite. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,
+/// welded (coincident vertices only at documented splits), without zero-area triangles or
+/// non-finite coordinates; empty (no triangles) when no texel is hit. Multithreaded (TBB),
+/// deterministic (the same input gives the same mesh, whatever the thread count).
 VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& options = {});
 
 }  // namespace shadowvol

@@ -236,8 +236,10 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     for (int j = rows.begin(); j != rows.end(); ++j) {
       std::uint32_t n = 0;
       for (int i = 0; i < w; ++i) {
-        const bool used = !isFar(std::size_t(j) * w + i) || usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
-                          usesCorner(i, j - 1, 3);
+        const bool used = !isFar(std::size_t(j) * w + i) ||
+                          ((grid.at(i, j) | grid.at(i - 1, j) | grid.at(i - 1, j - 1) | grid.at(i, j - 1)) != 0 &&
+                           (usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
+                            usesCorner(i, j - 1, 3)));
         vertexIndex[std::size_t(j) * w + i] = used ? n++ : kNone;
       }
       rowVerts[j + 1] = n;
@@ -370,6 +372,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
         const std::uint8_t q = code[qIndex];
+        if (!(q & (kKeep0 | kKeep1))) continue;
         const std::size_t a = std::size_t(qj) * w + qi;
         if (isFar(a) + isFar(a + 1) + isFar(a + w) + isFar(a + w + 1) < 2) continue;
         const int f = q & kFlip;
