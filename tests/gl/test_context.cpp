@@ -45,10 +45,16 @@ TEST(GlContext, EveryPlatformEitherWorksOrThrowsGlError) {
 }
 
 TEST(GlShaders, EmbeddedSourcesArePresent) {
-  for (const char* name : {"light.vert", "volume_gpu.vert", "scene.frag", "blur.frag", "resolve.frag"}) {
+  for (const char* name : {"light.vert", "volume_common.glsl", "scene.frag", "blur.frag", "resolve.frag"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
-    EXPECT_NE(text->find("#version"), std::string::npos);
+    EXPECT_NE(text->find("#version"), std::string::npos) << name;
+  }
+  // Stage bodies that follow volume_common.glsl carry no #version of their own.
+  for (const char* name : {"volume_gpu.vert", "volume_quads.frag"}) {
+    auto text = gl::embeddedShader(name);
+    ASSERT_TRUE(text.has_value()) << name;
+    EXPECT_EQ(text->find("#version"), std::string::npos) << name;
   }
   EXPECT_FALSE(gl::embeddedShader("no_such.frag").has_value());
 }

@@ -193,7 +193,8 @@ struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
   ShaderLibrary shaders;
-  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
+  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeQuadsProgram,
+      volumeGpuProgram;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
@@ -214,8 +215,8 @@ struct Renderer::Impl {
 
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
-  Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
-  Framebuffer layer0Fbo, layer1Fbo, resolveFbo, blurFbo;
+  Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth, quadCodes;
+  Framebuffer layer0Fbo, layer1Fbo, resolveFbo, blurFbo, quadsFbo;
 
   // Camera targets
   int camW = 0, camH = 0;
@@ -229,7 +230,10 @@ struct Renderer::Impl {
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
     sceneProgram = Program(shaders, "scene.vert", "scene.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
-    volumeGpuProgram = Program(shaders, "volume_gpu.vert", "depth_only.frag");
+    volumeQuadsProgram = Program(shaders, std::vector<std::string>{"fullscreen.vert"},
+                                 std::vector<std::string>{"volume_common.glsl", "volume_quads.frag"});
+    volumeGpuProgram = Program(shaders, std::vector<std::string>{"volume_common.glsl", "volume_gpu.vert"},
+                               std::vector<std::string>{"depth_only.frag"});
 
     fetchSampler = makeSampler();
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
@@ -302,6 +306,12 @@ struct Renderer::Impl {
     SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, resolvedDepth.id(), 0));
     SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
     checkFramebufferComplete("light depth resolve");
+    quadCodes = makeTexture2D(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, w - 1, h - 1);
+    quadsFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, quadsFbo.id()));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quadCodes.id(), 0));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("volume quad codes");
     blurFbo = makeFramebuffer();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, blurFbo.id()));
     SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, blurredDepth.id(), 0));
@@ -539,24 +549,45 @@ struct Renderer::Impl {
     resetState();
   }
 
+  /// Uniforms of volume_common.glsl (both GPU-volume programs).
+  void setVolumeUniforms(const Program& p, const VolumeBuildOptions& vo, double bias) {
+    const glm::dmat4 lp = lightProjection(light, double(lightW) / double(lightH));
+    p.use();
+    p.set("lightDepth", 0);
+    p.set("size", glm::ivec2(lightW, lightH));
+    p.set("farPlane", float(light.farPlane));
+    p.set("nearPlane", float(light.nearPlane));
+    p.set("farSnap", float(light.farPlane * (1.0 - kFarSnap)));
+    p.set("bias", float(bias));
+    p.set("projXY", glm::vec4(float(lp[0][0]), float(lp[1][1]), float(lp[3][0]), float(lp[3][1])));
+    p.set("projShear", glm::vec2(float(lp[2][0]), float(lp[2][1])));
+    p.set("projZW", depthParams(lp));
+    p.set("perfect", vo.triangulation == Triangulation::Perfect ? 1 : 0);
+    p.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
+    p.set("planarTolerance", float(kPlanarTolerance));
+  }
+
+  /// Per-quad codes (dropped / fixed / flipped) of the GPU volume into quadCodes.
+  void quadsPass(const VolumeBuildOptions& vo, double bias, const Texture& depth) {
+    resetState();
+    SV_GL(glDisable(GL_DEPTH_TEST));
+    SV_GL(glViewport(0, 0, lightW - 1, lightH - 1));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, quadsFbo.id()));
+    setVolumeUniforms(volumeQuadsProgram, vo, bias);
+    bindTexture(0, depth, fetchSampler);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
                      RenderResult& result) {
-    const glm::dmat4 lp = lightProjection(light, double(lightW) / double(lightH));
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
-    volumeGpuProgram.use();
-    volumeGpuProgram.set("lightDepth", 0);
-    volumeGpuProgram.set("size", glm::ivec2(lightW, lightH));
-    volumeGpuProgram.set("farPlane", float(light.farPlane));
-    volumeGpuProgram.set("nearPlane", float(light.nearPlane));
-    volumeGpuProgram.set("farSnap", float(light.farPlane * (1.0 - kFarSnap)));
-    volumeGpuProgram.set("bias", float(bias));
-    volumeGpuProgram.set("projXY", glm::vec4(float(lp[0][0]), float(lp[1][1]), float(lp[3][0]), float(lp[3][1])));
-    volumeGpuProgram.set("projShear", glm::vec2(float(lp[2][0]), float(lp[2][1])));
-    volumeGpuProgram.set("projZW", depthParams(lp));
+    setVolumeUniforms(volumeGpuProgram, vo, bias);
     volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
-    volumeGpuProgram.set("perfect", vo.triangulation == Triangulation::Perfect ? 1 : 0);
-    volumeGpuProgram.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
-    volumeGpuProgram.set("planarTolerance", float(kPlanarTolerance));
+    volumeGpuProgram.set("quadCodes", 1);
+    bindTexture(1, quadCodes, fetchSampler);
     bindTexture(0, depth, fetchSampler);
     // gl_VertexID and GLsizei are 32-bit: draw at most kChunkQuads quads per call.
     constexpr std::int64_t kChunkQuads = 1 << 24;
@@ -688,6 +719,10 @@ struct Renderer::Impl {
         volumeDepth = &blurredDepth;
       }
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(makeDepthMap(light, lightW, lightH, o.capture));
+      {
+        TimedPass t(timer, "quads");
+        quadsPass(vo, result.biasUsed, *volumeDepth);
+      }
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);

@@ -35,11 +35,12 @@ std::pair<std::string, std::string> ShaderLibrary::load(const std::string& name)
 
 namespace {
 
-Shader compile(GLenum type, const std::string& text, const std::string& origin) {
+Shader compile(GLenum type, const std::vector<std::string>& texts, const std::string& origin) {
   Shader s(glCreateShader(type));
   if (!s) throw GlError(origin + ": glCreateShader failed");
-  const char* src = text.c_str();
-  glShaderSource(s.id(), 1, &src, nullptr);
+  std::vector<const char*> src;
+  for (const auto& t : texts) src.push_back(t.c_str());
+  glShaderSource(s.id(), GLsizei(src.size()), src.data(), nullptr);
   glCompileShader(s.id());
   GLint ok = 0, len = 0;
   glGetShaderiv(s.id(), GL_COMPILE_STATUS, &ok);
@@ -52,13 +53,31 @@ Shader compile(GLenum type, const std::string& text, const std::string& origin) 
   return s;
 }
 
+/// Loads the files of one stage; `origin` names them all ("a (embedded) + b (embedded)").
+std::vector<std::string> loadAll(const ShaderLibrary& library, const std::vector<std::string>& files,
+                                 std::string& origin) {
+  std::vector<std::string> texts;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    auto [text, from] = library.load(files[k]);
+    texts.push_back(std::move(text));
+    origin += (k ? " + " : "") + from;
+  }
+  if (files.size() > 1) origin += " (log lines are string:line, string = index in this list)";
+  return texts;
+}
+
 }  // namespace
 
-Program::Program(const ShaderLibrary& library, const std::string& vertexFile, const std::string& fragmentFile) {
-  const auto [vsText, vsOrigin] = library.load(vertexFile);
-  const auto [fsText, fsOrigin] = library.load(fragmentFile);
-  Shader vs = compile(GL_VERTEX_SHADER, vsText, vsOrigin);
-  Shader fs = compile(GL_FRAGMENT_SHADER, fsText, fsOrigin);
+Program::Program(const ShaderLibrary& library, const std::string& vertexFile, const std::string& fragmentFile)
+    : Program(library, std::vector<std::string>{vertexFile}, std::vector<std::string>{fragmentFile}) {}
+
+Program::Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
+                 const std::vector<std::string>& fragmentFiles) {
+  std::string vsOrigin, fsOrigin;
+  const auto vsTexts = loadAll(library, vertexFiles, vsOrigin);
+  const auto fsTexts = loadAll(library, fragmentFiles, fsOrigin);
+  Shader vs = compile(GL_VERTEX_SHADER, vsTexts, vsOrigin);
+  Shader fs = compile(GL_FRAGMENT_SHADER, fsTexts, fsOrigin);
   program_ = ProgramName(glCreateProgram());
   if (!program_) throw GlError(vsOrigin + " + " + fsOrigin + ": glCreateProgram failed");
   glAttachShader(program_.id(), vs.id());

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -38,6 +39,10 @@ class Program {
  public:
   Program() = default;
   Program(const ShaderLibrary& library, const std::string& vertexFile, const std::string& fragmentFile);
+  /// Each stage from several files concatenated in order (glShaderSource with one string per
+  /// file; the first holds #version). Driver logs number lines "string:line", string = file index.
+  Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
+          const std::vector<std::string>& fragmentFiles);
 
   GLuint id() const { return program_.id(); }
   void use() const;

@@ -1,0 +1,58 @@
+#version 330 core
+// Shared by volume_quads.frag and volume_gpu.vert (prepended to both as the first source
+// string): the sheet vertex of a texel and the diagonal rule, mirroring buildVolume.
+//
+// Quad q = (i, j), i in [0, W-2], j in [0, H-2], corners (triangulation.h):
+//   A = (i, j), B = (i+1, j), C = (i+1, j+1), D = (i, j+1).
+// Sheet vertex of texel t, as steps 1-4 of buildVolume (volume_builder.h): texels of the
+// outermost ring and texels without a hit (depth >= farSnap) sit exactly on the far plane; others
+// at clamp(depth + bias, near, far), snapped to the far plane when that is >= farSnap.
+uniform sampler2D lightDepth;   // R32F light-view depth (world units), >= farSnap = no hit
+uniform ivec2 size;             // W, H texels
+uniform float farPlane;         // light-view distance of the far plane
+uniform float nearPlane;        // light-view distance of the near plane
+uniform float farSnap;          // farPlane * (1 - kFarSnap) (depth_blur.h)
+uniform float bias;             // world units added to every hit depth (away from the light)
+uniform vec4 projXY;            // light projection P00, P11, P30, P31 (m[col][row])
+uniform vec2 projShear;         // light projection P20, P21
+uniform vec4 projZW;            // light projection P22, P32, P23, P33
+uniform int perfect;            // 1: per-quad diagonal rule (flipDiagonal), 0: fixed B-D
+uniform int exactCap;           // 1: exact cap (all-far quads dropped), 0: the thesis's rectangle
+uniform float planarTolerance;  // kPlanarTolerance of triangulation.h
+
+const ivec2 kCornerOffset[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
+
+bool onRing(ivec2 t) { return t.x == 0 || t.y == 0 || t.x == size.x - 1 || t.y == size.y - 1; }
+
+float sheetDepth(ivec2 t) {
+  if (onRing(t)) return farPlane;
+  float d = texelFetch(lightDepth, t, 0).r;
+  if (!(d < farSnap)) return farPlane;
+  d = clamp(d + bias, nearPlane, farPlane);
+  return d < farSnap ? d : farPlane;
+}
+
+// Light-view point of the centre of texel t at light-view depth d (the inverse of the projection
+// for x and y; z = -d exactly, as TexelUnprojector).
+vec3 lightViewPoint(ivec2 t, float d) {
+  vec2 ndc = (vec2(t) + 0.5) / vec2(size) * 2.0 - 1.0;
+  float z = -d;
+  float w = projZW.z * z + projZW.w;
+  float x = (ndc.x * w - projShear.x * z - projXY.z) / projXY.x;
+  float y = (ndc.y * w - projShear.y * z - projXY.w) / projXY.y;
+  return vec3(x, y, z);
+}
+
+// triangulation.h's flipDiagonal, line for line, in float.
+bool flipDiagonal(vec3 a, vec3 b, vec3 c, vec3 d) {
+  float aA = length(cross(c - b, d - b));
+  float aB = length(cross(c - a, d - a));
+  float aC = length(cross(b - a, d - a));
+  float aD = length(cross(b - a, c - a));
+  float sixV = abs(dot(b - a, cross(c - a, d - a)));
+  float l2 = max(max(max(dot(b - a, b - a), dot(c - a, c - a)), max(dot(d - a, d - a), dot(c - b, c - b))),
+                 max(dot(d - b, d - b), dot(d - c, d - c)));
+  float l = sqrt(l2);
+  if (!(sixV > planarTolerance * l2 * l)) return false;
+  return (aB < aC && aB < aA) || (aD < aC && aD < aA);
+}
