@@ -116,7 +116,7 @@ TEST(GlTiming, EveryPassIsTimedAndNamed) {
     EXPECT_GE(p.ms, 0.0) << p.name;
     sum += p.ms;
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"light", "resolve", "blur", "quads", "camera", "volume", "lighting"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"light", "resolve", "blur", "camera", "volume", "lighting"}));
   EXPECT_NEAR(res.totalMs, sum, 1e-9);
   if (!r.info().timerQueries || r.info().softwareRenderer) {
     EXPECT_EQ(res.timing, gl::TimingMethod::WallClock);

@@ -44,6 +44,14 @@ void expectAgreement(const Scene& scene, const Variant& v, int mapSize) {
       100.0 * share, std::size_t(std::llround((1.0 - share) * double(cpu.stencil.size()))), cpu.stencil.size(),
       shadowed, gpu.volumeTriangles, cpu.volumeTriangles);
   EXPECT_GT(shadowed, cpu.stencil.size() / 50) << "the view must contain shadow";
+  const std::size_t quads = std::size_t(mapSize - 1) * std::size_t(mapSize - 1);
+  if (v.cap == FarCap::Quad) {
+    EXPECT_EQ(gpu.volumeTriangles, 2 * quads + 2);  // the full sheet and the far rectangle
+  } else {
+    EXPECT_EQ(gpu.volumeTriangles % 4, 0u);  // 2 sheet + 2 cap triangles per kept quad
+    EXPECT_GT(gpu.volumeTriangles, 0u);
+    EXPECT_LT(gpu.volumeTriangles, 4 * quads);  // all-far quads are dropped
+  }
   EXPECT_GE(share, 0.9999);
 }
 

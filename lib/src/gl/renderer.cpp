@@ -193,11 +193,12 @@ struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
   ShaderLibrary shaders;
-  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeQuadsProgram,
-      volumeGpuProgram;
+  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
+  Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
+  bool volumeTrianglesPending = false;
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
@@ -215,8 +216,8 @@ struct Renderer::Impl {
 
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
-  Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth, quadCodes;
-  Framebuffer layer0Fbo, layer1Fbo, resolveFbo, blurFbo, quadsFbo;
+  Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
+  Framebuffer layer0Fbo, layer1Fbo, resolveFbo, blurFbo;
 
   // Camera targets
   int camW = 0, camH = 0;
@@ -230,10 +231,8 @@ struct Renderer::Impl {
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
     sceneProgram = Program(shaders, "scene.vert", "scene.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
-    volumeQuadsProgram = Program(shaders, std::vector<std::string>{"fullscreen.vert"},
-                                 std::vector<std::string>{"volume_common.glsl", "volume_quads.frag"});
-    volumeGpuProgram = Program(shaders, std::vector<std::string>{"volume_common.glsl", "volume_gpu.vert"},
-                               std::vector<std::string>{"depth_only.frag"});
+    volumeGpuProgram =
+        Program(shaders, {"volume_gpu_points.vert"}, {"volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
 
     fetchSampler = makeSampler();
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
@@ -250,6 +249,7 @@ struct Renderer::Impl {
     SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL));
 
     emptyVao = makeVertexArray();
+    primitivesQuery = makeQuery();
     sceneVao = makeVertexArray();
     sceneVbo = makeBuffer();
     sceneEbo = makeBuffer();
@@ -306,12 +306,6 @@ struct Renderer::Impl {
     SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, resolvedDepth.id(), 0));
     SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
     checkFramebufferComplete("light depth resolve");
-    quadCodes = makeTexture2D(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, w - 1, h - 1);
-    quadsFbo = makeFramebuffer();
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, quadsFbo.id()));
-    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, quadCodes.id(), 0));
-    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
-    checkFramebufferComplete("volume quad codes");
     blurFbo = makeFramebuffer();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, blurFbo.id()));
     SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, blurredDepth.id(), 0));
@@ -567,47 +561,29 @@ struct Renderer::Impl {
     p.set("planarTolerance", float(kPlanarTolerance));
   }
 
-  /// Per-quad codes (dropped / fixed / flipped) of the GPU volume into quadCodes.
-  void quadsPass(const VolumeBuildOptions& vo, double bias, const Texture& depth) {
-    resetState();
-    SV_GL(glDisable(GL_DEPTH_TEST));
-    SV_GL(glViewport(0, 0, lightW - 1, lightH - 1));
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, quadsFbo.id()));
-    setVolumeUniforms(volumeQuadsProgram, vo, bias);
-    bindTexture(0, depth, fetchSampler);
-    SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-    SV_GL(glBindVertexArray(0));
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
-  }
-
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
                      RenderResult& result) {
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
     setVolumeUniforms(volumeGpuProgram, vo, bias);
     volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
-    volumeGpuProgram.set("quadCodes", 1);
-    bindTexture(1, quadCodes, fetchSampler);
     bindTexture(0, depth, fetchSampler);
-    // gl_VertexID and GLsizei are 32-bit: draw at most kChunkQuads quads per call.
-    constexpr std::int64_t kChunkQuads = 1 << 24;
+    // gl_VertexID and GLsizei are 32-bit: draw at most kChunkQuads points (quads) per call.
+    constexpr std::int64_t kChunkQuads = std::int64_t(1) << 30;
     const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
-    const std::int64_t perQuad = vo.cap == FarCap::Exact ? 12 : 6;
     SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
     volumeGpuProgram.set("drawRectangle", 0);
     for (std::int64_t first = 0; first < quads; first += kChunkQuads) {
-      const std::int64_t n = std::min(kChunkQuads, quads - first);
       volumeGpuProgram.set("firstQuad", int(first));
-      SV_GL(glDrawArrays(GL_TRIANGLES, 0, GLsizei(n * perQuad)));
+      SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(std::min(kChunkQuads, quads - first))));
     }
-    std::int64_t vertices = quads * perQuad;
     if (vo.cap == FarCap::Quad) {
       volumeGpuProgram.set("drawRectangle", 1);
-      SV_GL(glDrawArrays(GL_TRIANGLES, 0, 6));
-      vertices += 6;
+      SV_GL(glDrawArrays(GL_POINTS, 0, 1));
     }
+    SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
     SV_GL(glBindVertexArray(0));
-    result.volumeTriangles = std::size_t(vertices / 3);
+    volumeTrianglesPending = true;
   }
 
   void uploadVolume(const VolumeMesh& volume) {
@@ -719,10 +695,7 @@ struct Renderer::Impl {
         volumeDepth = &blurredDepth;
       }
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(makeDepthMap(light, lightW, lightH, o.capture));
-      {
-        TimedPass t(timer, "quads");
-        quadsPass(vo, result.biasUsed, *volumeDepth);
-      }
+
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);
@@ -764,6 +737,12 @@ struct Renderer::Impl {
       bindTexture(2, Texture(), shadowSampler);
     }
     readImages(cam, hybrid && o.readStencil, result);
+    if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
+      GLuint64 n = 0;
+      SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
+      result.volumeTriangles = std::size_t(n);
+      volumeTrianglesPending = false;
+    }
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None)
       result.depthMap = readBack(o.capture);
     result.passes = timer.results();

@@ -72,26 +72,34 @@ Program::Program(const ShaderLibrary& library, const std::string& vertexFile, co
     : Program(library, std::vector<std::string>{vertexFile}, std::vector<std::string>{fragmentFile}) {}
 
 Program::Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
-                 const std::vector<std::string>& fragmentFiles) {
-  std::string vsOrigin, fsOrigin;
-  const auto vsTexts = loadAll(library, vertexFiles, vsOrigin);
-  const auto fsTexts = loadAll(library, fragmentFiles, fsOrigin);
-  Shader vs = compile(GL_VERTEX_SHADER, vsTexts, vsOrigin);
-  Shader fs = compile(GL_FRAGMENT_SHADER, fsTexts, fsOrigin);
+                 const std::vector<std::string>& fragmentFiles)
+    : Program(library, vertexFiles, {}, fragmentFiles) {}
+
+Program::Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
+                 const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles) {
+  std::vector<Shader> stages;
+  std::string all;
+  const std::pair<GLenum, const std::vector<std::string>*> list[] = {
+      {GL_VERTEX_SHADER, &vertexFiles}, {GL_GEOMETRY_SHADER, &geometryFiles}, {GL_FRAGMENT_SHADER, &fragmentFiles}};
+  for (const auto& [type, files] : list) {
+    if (files->empty()) continue;
+    std::string origin;
+    const auto texts = loadAll(library, *files, origin);
+    stages.push_back(compile(type, texts, origin));
+    all += (all.empty() ? "" : " + ") + origin;
+  }
   program_ = ProgramName(glCreateProgram());
-  if (!program_) throw GlError(vsOrigin + " + " + fsOrigin + ": glCreateProgram failed");
-  glAttachShader(program_.id(), vs.id());
-  glAttachShader(program_.id(), fs.id());
+  if (!program_) throw GlError(all + ": glCreateProgram failed");
+  for (const auto& st : stages) glAttachShader(program_.id(), st.id());
   glLinkProgram(program_.id());
   GLint ok = 0, len = 0;
   glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
   glGetProgramiv(program_.id(), GL_INFO_LOG_LENGTH, &len);
-  glDetachShader(program_.id(), vs.id());
-  glDetachShader(program_.id(), fs.id());
+  for (const auto& st : stages) glDetachShader(program_.id(), st.id());
   if (!ok) {
     std::string log(std::size_t(std::max(len, 1)), '\0');
     glGetProgramInfoLog(program_.id(), len, nullptr, log.data());
-    throw GlError(vsOrigin + " + " + fsOrigin + ": link failed:\n" + log);
+    throw GlError(all + ": link failed:\n" + log);
   }
 }
 

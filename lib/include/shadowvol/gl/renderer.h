@@ -8,7 +8,8 @@
 //             (R32F, world units) and, for midpoint, the mean's window depth for the shadow maps;
 //   blur      (gpu volume with blur) the 9-sample depth blur of volume_builder.h, R32F -> R32F;
 //   camera    depth + ambient of the scene from the camera;
-//   volume    (hybrid) the shadow volume, two-sided stencil z-fail with depth clamp;
+//   volume    (hybrid) the shadow volume (gpu: a geometry shader expands one point per quad of the
+//             depth texture), two-sided stencil z-fail with depth clamp;
 //   lighting  (hybrid) diffuse light added where the stencil is 0;
 //   shade     (shadowmap, pcf3, pcf5, none) ambient + diffuse x visibility in one pass.
 // Albedo: light grey for planes and objects named "ground", else a fixed palette in object order.
@@ -100,8 +101,8 @@ struct RenderResult {
   std::vector<PassTime> passes;       ///< in execution order
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes
-  std::size_t volumeTriangles = 0;  ///< triangles drawn for the volume (gpu: including the
-                                    ///< degenerate ones of dropped quads)
+  std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
+                                    ///< by the geometry shader (GL_PRIMITIVES_GENERATED)
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
 };
 

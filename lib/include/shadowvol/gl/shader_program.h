@@ -43,6 +43,9 @@ class Program {
   /// file; the first holds #version). Driver logs number lines "string:line", string = file index.
   Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
           const std::vector<std::string>& fragmentFiles);
+  /// With a geometry stage (empty geometryFiles = none).
+  Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
+          const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles);
 
   GLuint id() const { return program_.id(); }
   void use() const;

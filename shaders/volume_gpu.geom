@@ -1,0 +1,62 @@
+// (volume_common.glsl comes first.) The shadow volume drawn straight from the light-view depth
+// texture: one point per quad in, up to two triangle strips out. No vertex buffer, no read-back.
+// exactCap = 1: the quad's two sheet triangles (fixed B-D: ABD, BCD; flipped A-C: ABC, ACD) and
+//   the same two triangles on the far plane with reversed winding (the quad's share of the exact
+//   far cap); a quad with all four corners on the far plane emits nothing.
+// exactCap = 0 (the thesis): the two sheet triangles of every quad; drawRectangle = 1 (a draw of
+//   one point) emits the far-plane rectangle over the texel centres (0,0)..(W-1,H-1), facing away
+//   from the light.
+// Strips: triangle k of a strip is (v_k, v_k+1, v_k+2) with odd k reordered by GL, so
+//   fixed sheet  A B D C = ABD, BCD      flipped sheet  B C A D = ABC, ACD
+//   fixed cap    A D B C = ADB, BDC      flipped cap    B A C D = ACB, ADC (all as listed).
+layout(points) in;
+layout(triangle_strip, max_vertices = 8) out;
+flat in int vQuad[];
+uniform mat4 lightViewToClip;  // P_camera * V_camera * inverse(V_light), composed in double
+uniform int drawRectangle;     // 1: emit only the far rectangle of exactCap = 0
+
+void emit(vec3 lightViewPosition) {
+  gl_Position = lightViewToClip * vec4(lightViewPosition, 1.0);
+  EmitVertex();
+}
+
+void main() {
+  if (drawRectangle != 0) {
+    emit(lightViewPoint(ivec2(0, size.y - 1), farPlane));           // D
+    emit(lightViewPoint(ivec2(size.x - 1, size.y - 1), farPlane));  // C
+    emit(lightViewPoint(ivec2(0, 0), farPlane));                    // A
+    emit(lightViewPoint(ivec2(size.x - 1, 0), farPlane));           // B
+    EndPrimitive();
+    return;
+  }
+  int quadsX = size.x - 1;
+  int q = vQuad[0];
+  ivec2 t0 = ivec2(q - (q / quadsX) * quadsX, q / quadsX);
+  float d[4];
+  bool allFar = true;
+  for (int k = 0; k < 4; ++k) {
+    d[k] = sheetDepth(t0 + kCornerOffset[k]);
+    allFar = allFar && !(d[k] < farPlane);
+  }
+  if (exactCap != 0 && allFar) return;
+  vec3 p[4], f[4];
+  for (int k = 0; k < 4; ++k) {
+    p[k] = lightViewPoint(t0 + kCornerOffset[k], d[k]);
+    // A far sheet vertex and its cap copy must be bit-identical: reuse the sheet point.
+    f[k] = d[k] < farPlane ? lightViewPoint(t0 + kCornerOffset[k], farPlane) : p[k];
+  }
+  bool flip = perfect != 0 && flipDiagonal(p[0], p[1], p[2], p[3]);
+  if (!flip) {
+    emit(p[0]); emit(p[1]); emit(p[3]); emit(p[2]);
+  } else {
+    emit(p[1]); emit(p[2]); emit(p[0]); emit(p[3]);
+  }
+  EndPrimitive();
+  if (exactCap == 0) return;
+  if (!flip) {
+    emit(f[0]); emit(f[3]); emit(f[1]); emit(f[2]);
+  } else {
+    emit(f[1]); emit(f[0]); emit(f[2]); emit(f[3]);
+  }
+  EndPrimitive();
+}
