@@ -650,6 +650,7 @@ struct Renderer::Impl {
     requireScene();
     const CameraSetup cam = cameraSetup(o);
     validate(o, cam);
+    volumeTrianglesPending = false;  // a frame that threw may have left it set
     RenderResult result;
     const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
     result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
@@ -695,7 +696,6 @@ struct Renderer::Impl {
         volumeDepth = &blurredDepth;
       }
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(makeDepthMap(light, lightW, lightH, o.capture));
-
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);
