@@ -12,15 +12,15 @@
 namespace shadowvol {
 namespace {
 
-struct Run {
+struct CliResult {
   int code;
   std::string out;  // stdout and stderr together
 };
 
-Run run(const std::string& args) {
+CliResult runCli(const std::string& args) {
   const std::string cmd = std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
-  Run r{-1, ""};
+  CliResult r{-1, ""};
   if (!p) return r;
   std::array<char, 4096> buf;
   while (std::fgets(buf.data(), buf.size(), p)) r.out += buf.data();
@@ -34,13 +34,13 @@ std::string scene(const char* name) { return (test::sourceDir() / "data/scenes" 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 TEST(Cli, HelpAndUsage) {
-  const Run help = run("--help");
+  const CliResult help = runCli("--help");
   EXPECT_EQ(help.code, 0);
   for (const char* sub : {"scene", "depth", "build"}) EXPECT_TRUE(contains(help.out, sub)) << sub;
-  EXPECT_EQ(run("").code, 2);                 // a subcommand is required
-  EXPECT_EQ(run("frobnicate").code, 2);
-  EXPECT_EQ(run("depth --out x.pfm --no-such-option").code, 2);
-  const Run depthHelp = run("depth --help");
+  EXPECT_EQ(runCli("").code, 2);                 // a subcommand is required
+  EXPECT_EQ(runCli("frobnicate").code, 2);
+  EXPECT_EQ(runCli("depth --out x.pfm --no-such-option").code, 2);
+  const CliResult depthHelp = runCli("depth --help");
   EXPECT_EQ(depthHelp.code, 0);
   EXPECT_TRUE(contains(depthHelp.out, "--capture"));
   EXPECT_TRUE(contains(depthHelp.out, "midpoint"));
@@ -50,7 +50,7 @@ TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "d.pfm").string();
   for (const char* res : {"0", "-4", "100000"}) {
-    const Run r = run(std::string("depth --resolution ") + res + " --out " + out);
+    const CliResult r = runCli(std::string("depth --resolution ") + res + " --out " + out);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_TRUE(contains(r.out, "--resolution")) << r.out;
     EXPECT_TRUE(contains(r.out, res)) << r.out;
@@ -65,20 +65,20 @@ TEST(Cli, BadSceneNamesFileFieldAndValueAndWritesNothing) {
     "light":{"type":"spot","position":[0,5,0],"direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})");
   for (const char* sub : {"depth --resolution 16 --out ", "build --resolution 16 --out "}) {
     const std::string out = (dir / (std::string(sub).substr(0, 5) + ".out.ply")).string();
-    const Run r = run(std::string(sub) + out + " --scene " + bad.string());
+    const CliResult r = runCli(std::string(sub) + out + " --scene " + bad.string());
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_TRUE(contains(r.out, "bad.json")) << r.out;
     EXPECT_TRUE(contains(r.out, "/objects/0/radius")) << r.out;
     EXPECT_TRUE(contains(r.out, "-2")) << r.out;
     EXPECT_FALSE(std::filesystem::exists(out));
   }
-  const Run missing = run("scene --scene " + (dir / "none.json").string());
+  const CliResult missing = runCli("scene --scene " + (dir / "none.json").string());
   EXPECT_EQ(missing.code, 2);  // CLI11's ExistingFile check: a usage error naming the path
   EXPECT_TRUE(contains(missing.out, "none.json"));
 }
 
 TEST(Cli, MissingOutputFolderIsRefused) {
-  const Run r = run("depth --resolution 8 --out /nonexistent-folder/d.pfm");
+  const CliResult r = runCli("depth --resolution 8 --out /nonexistent-folder/d.pfm");
   EXPECT_EQ(r.code, 1);
   EXPECT_TRUE(contains(r.out, "/nonexistent-folder"));
 }
@@ -86,7 +86,7 @@ TEST(Cli, MissingOutputFolderIsRefused) {
 TEST(Cli, SceneDescribesAndExports) {
   const auto dir = test::tempDir();
   const std::string ply = (dir / "plate.ply").string();
-  const Run r = run("scene --json --scene " + scene("plate.json") + " --export " + ply);
+  const CliResult r = runCli("scene --json --scene " + scene("plate.json") + " --export " + ply);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["triangles"], 2 + 12);
@@ -97,7 +97,7 @@ TEST(Cli, SceneDescribesAndExports) {
 TEST(Cli, DepthWritesPfmAndSideFile) {
   const auto dir = test::tempDir();
   const std::string pfm = (dir / "d.pfm").string();
-  const Run r = run("depth --json --resolution 32 --capture front --out " + pfm);
+  const CliResult r = runCli("depth --json --resolution 32 --capture front --out " + pfm);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["texels"], 32 * 32);
@@ -110,10 +110,10 @@ TEST(Cli, DepthWritesPfmAndSideFile) {
 TEST(Cli, BuildFromSceneAndFromDepthFile) {
   const auto dir = test::tempDir();
   const std::string pfm = (dir / "d.pfm").string(), a = (dir / "a.ply").string(), b = (dir / "b.obj").string();
-  ASSERT_EQ(run("depth --resolution 48 --scene " + scene("plate.json") + " --out " + pfm).code, 0);
-  const Run fromScene = run("build --json --resolution 48 --scene " + scene("plate.json") + " --out " + a);
+  ASSERT_EQ(runCli("depth --resolution 48 --scene " + scene("plate.json") + " --out " + pfm).code, 0);
+  const CliResult fromScene = runCli("build --json --resolution 48 --scene " + scene("plate.json") + " --out " + a);
   ASSERT_EQ(fromScene.code, 0) << fromScene.out;
-  const Run fromDepth = run("build --json --depth " + pfm + " --out " + b);
+  const CliResult fromDepth = runCli("build --json --depth " + pfm + " --out " + b);
   ASSERT_EQ(fromDepth.code, 0) << fromDepth.out;
   const auto ja = nlohmann::json::parse(fromScene.out), jb = nlohmann::json::parse(fromDepth.out);
   EXPECT_EQ(ja["triangles"], jb["triangles"]);  // same depth map, same mesh
@@ -121,9 +121,9 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_TRUE(std::filesystem::exists(a));
   EXPECT_TRUE(std::filesystem::exists(b));
   // --depth with --scene is a usage error.
-  EXPECT_EQ(run("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
+  EXPECT_EQ(runCli("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
   // --blur-offset without --blur is bad input.
-  EXPECT_EQ(run("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
+  EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
