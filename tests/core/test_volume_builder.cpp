@@ -113,7 +113,9 @@ TEST(VolumeBuilder, RandomMapsGiveClosedOrientedManifolds) {
           splits += r.stats.splitVertices;
           dropped += r.stats.droppedQuads;
           flips += r.stats.flippedQuads;
-          if (cap == 0) EXPECT_LE(r.stats.capTrianglesAfter, r.stats.capTrianglesBefore);
+          if (cap == 0) {
+            EXPECT_LE(r.stats.capTrianglesAfter, r.stats.capTrianglesBefore);
+          }
           ++builds;
         }
   }
