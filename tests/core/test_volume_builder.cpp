@@ -244,6 +244,23 @@ TEST(VolumeBuilder, AnalyticPlateVertices) {
   }
 }
 
+// Depths pushed to or past the far plane by the bias snap to it: the volume vanishes; depths
+// below the near plane are clamped to it.
+TEST(VolumeBuilder, BiasClampsToNearAndFar) {
+  DepthMap m = makeDepthMap(directionalDown(), 16, 16, CaptureMode::Back);
+  for (auto& d : m.depth) d = 5.0f;
+  VolumeBuildOptions o;
+  o.bias = m.farPlane - 5.0 - 1e-7;  // within the far snap of the plane
+  EXPECT_EQ(buildVolume(m, o).mesh.triangleCount(), 0u);
+  o.bias = -100.0;
+  const auto r = buildVolume(m, o);
+  ASSERT_TRUE(closedOrientedManifold(r.mesh));
+  for (const auto& p : r.mesh.positions) {
+    const double d = m.viewDepthOf(p);
+    EXPECT_TRUE(std::abs(d - m.nearPlane) < 1e-9 || std::abs(d - m.farPlane) < 1e-9) << d;
+  }
+}
+
 // The same map gives the same mesh (positions bit for bit, triangles in the same order) with one
 // thread as with all of them.
 TEST(VolumeBuilder, DeterministicAcrossThreadCounts) {
