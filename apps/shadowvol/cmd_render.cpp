@@ -9,7 +9,7 @@
 
 #include "cli_common.h"
 #include "shadowvol/error.h"
-#include "shadowvol/gl/image_io.h"
+#include "shadowvol/image_io.h"
 #include "shadowvol/gl/renderer.h"
 
 namespace shadowvol::cli {
@@ -151,9 +151,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         std::sort(v.begin(), v.end());
         return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
       };
-      gl::writePng(o->out, result.width, result.height, 4, result.rgba);
+      writePng(o->out, result.width, result.height, 4, result.rgba);
       std::size_t shadowed = 0;
-      if (!o->stencil.empty()) gl::writePng(o->stencil, result.width, result.height, 1, result.stencil);
+      if (!o->stencil.empty()) writePng(o->stencil, result.width, result.height, 1, result.stencil);
       for (auto s : result.stencil) shadowed += s != 0;
 
       const gl::ContextInfo& info = renderer.info();

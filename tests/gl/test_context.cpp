@@ -8,7 +8,7 @@
 #include "gl_test_support.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
-#include "shadowvol/gl/image_io.h"
+#include "shadowvol/image_io.h"
 #include "shadowvol/gl/shader_program.h"
 
 using namespace shadowvol;
@@ -102,15 +102,15 @@ TEST(GlRenderer, RejectsBadSizesAndMissingScene) {
 TEST(GlImageIo, PngRoundTripKeepsRowsTopFirst) {
   const auto path = std::filesystem::temp_directory_path() / "shadowvol_png_roundtrip.png";
   std::vector<std::uint8_t> px = {10, 20, 30, 255, 40, 50, 60, 255, 70, 80, 90, 255, 1, 2, 3, 4};
-  gl::writePng(path, 2, 2, 4, px);
-  const gl::Image8 img = gl::readPng(path);
+  writePng(path, 2, 2, 4, px);
+  const Image8 img = readPng(path);
   EXPECT_EQ(img.width, 2);
   EXPECT_EQ(img.height, 2);
   EXPECT_EQ(img.channels, 4);
   EXPECT_EQ(img.pixels, px);
   std::filesystem::remove(path);
-  EXPECT_THROW(gl::writePng("/nonexistent_dir/x.png", 2, 2, 4, px), InputError);
-  EXPECT_THROW(gl::readPng("/nonexistent_dir/x.png"), InputError);
+  EXPECT_THROW(writePng("/nonexistent_dir/x.png", 2, 2, 4, px), InputError);
+  EXPECT_THROW(readPng("/nonexistent_dir/x.png"), InputError);
 }
 
 // No EGL driver at all (glvnd pointed at a vendor file that does not exist): the renderer throws

@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "gl_test_support.h"
-#include "shadowvol/gl/image_io.h"
+#include "shadowvol/image_io.h"
 
 using namespace shadowvol;
 
@@ -29,12 +29,12 @@ void compareWithReference(const std::string& name, const Scene& scene, const gl:
   const std::filesystem::path ref = std::filesystem::path(SV_TEST_DATA_DIR) / "gl" / (name + ".png");
   if (updating()) {
     std::filesystem::create_directories(ref.parent_path());
-    gl::writePng(ref, res.width, res.height, 4, res.rgba);
+    writePng(ref, res.width, res.height, 4, res.rgba);
     std::printf("updated %s\n", ref.string().c_str());
     return;
   }
   ASSERT_TRUE(std::filesystem::exists(ref)) << ref << " is missing; see the comment at the top of this file";
-  const gl::Image8 img = gl::readPng(ref, 4);
+  const Image8 img = readPng(ref, 4);
   ASSERT_EQ(img.width, res.width);
   ASSERT_EQ(img.height, res.height);
   std::size_t differ = 0;
@@ -48,7 +48,7 @@ void compareWithReference(const std::string& name, const Scene& scene, const gl:
   std::printf("%s: %zu of %zu pixels differ from the reference\n", name.c_str(), differ, pixels);
   if (differ > pixels * 3 / 1000) {
     const auto out = std::filesystem::temp_directory_path() / ("shadowvol_" + name + "_actual.png");
-    gl::writePng(out, res.width, res.height, 4, res.rgba);
+    writePng(out, res.width, res.height, 4, res.rgba);
     ADD_FAILURE() << name << ": " << differ << " of " << pixels << " pixels differ; actual image written to " << out;
   }
 }

@@ -1,0 +1,39 @@
+#include "shadowvol/image_io.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include "shadowvol/check.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+
+namespace shadowvol {
+
+void writePng(const std::filesystem::path& path, int width, int height, int channels,
+              const std::vector<std::uint8_t>& pixels) {
+  SV_CHECK(channels == 1 || channels == 3 || channels == 4);
+  SV_CHECK_EQ(pixels.size(), std::size_t(width) * std::size_t(height) * std::size_t(channels));
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    if (!stbi_write_png(tmp.string().c_str(), width, height, channels, pixels.data(), width * channels))
+      throw InputError(path.string(), "", "", "cannot write the PNG file");
+  });
+}
+
+Image8 readPng(const std::filesystem::path& path, int channels) {
+  SV_CHECK(channels >= 0 && channels <= 4);
+  int w = 0, h = 0, n = 0;
+  stbi_uc* data = stbi_load(path.string().c_str(), &w, &h, &n, channels);
+  if (!data) {
+    const char* why = stbi_failure_reason();
+    throw InputError(path.string(), "", "", std::string("cannot read the PNG file: ") + (why ? why : "unknown error"));
+  }
+  Image8 img;
+  img.width = w;
+  img.height = h;
+  img.channels = channels ? channels : n;
+  img.pixels.assign(data, data + std::size_t(w) * std::size_t(h) * std::size_t(img.channels));
+  stbi_image_free(data);
+  return img;
+}
+
+}  // namespace shadowvol
