@@ -5,7 +5,9 @@
 // light (spot: toward its apex; directional: against its direction). lit = 0 outside the light's
 // frustum (|x|, |y|, |z| <= w in light clip space), times the shadow-map visibility when
 // shadowTaps > 0. mode 0: ambient only; 1: the diffuse term only (hybrid: added where the stencil
-// is 0); 2: ambient + diffuse.
+// is 0); 2: ambient + diffuse. writeVisibility (mode 2 only): also write the shadow test alone
+// (1 = lit, PCF fraction; 1 outside the frustum; not multiplied by N.L) to location 1, which the
+// renderer binds to an R8 attachment only when RenderOptions::readVisibility is set.
 in vec3 worldPos;
 in vec3 color;
 uniform int mode;
@@ -24,7 +26,9 @@ uniform vec2 shadowMapSize;       // texels
 uniform float biasConstant;       // world units
 uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
 uniform float texelFootprint;     // world size of a texel: spot at unit depth, directional overall
+uniform int writeVisibility;      // 1: evaluate the shadow test everywhere in the frustum for visibilityOut
 layout(location = 0) out vec4 fragColor;
+layout(location = 1) out float visibilityOut;
 
 // Visibility in [0, 1] from the shadow map. The stored quantity is light-view depth (-z), so the
 // slope that matters is the receiver's tilt against the light's view axis (not against the ray):
@@ -56,7 +60,11 @@ void main() {
   float ndl = dot(n, l);
   vec4 lc = worldToLightClip * vec4(worldPos, 1.0);
   float lit = (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
-  if (lit > 0.0 && ndl > 0.0 && shadowTaps > 0) lit *= shadowVisibility(lc, abs(dot(n, lightDirection)));
+  float test = 1.0;
+  if (lit > 0.0 && (ndl > 0.0 || writeVisibility != 0) && shadowTaps > 0)
+    test = shadowVisibility(lc, abs(dot(n, lightDirection)));
+  visibilityOut = test;
+  if (ndl > 0.0) lit *= test;
   vec3 direct = color * diffuse * max(ndl, 0.0) * lit;
   fragColor = vec4(mode == 1 ? direct : color * ambient + direct, 1.0);
 }

@@ -221,7 +221,7 @@ struct Renderer::Impl {
 
   // Camera targets
   int camW = 0, camH = 0;
-  Renderbuffer colorRb, depthStencilRb;
+  Renderbuffer colorRb, depthStencilRb, visibilityRb;  // visibilityRb: R8, written only on request
   Framebuffer cameraFbo;
 
   Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
@@ -324,11 +324,15 @@ struct Renderer::Impl {
     depthStencilRb = makeRenderbuffer();
     SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, depthStencilRb.id()));
     SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h));
+    visibilityRb = makeRenderbuffer();
+    SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, visibilityRb.id()));
+    SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_R8, w, h));
     SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, 0));
     cameraFbo = makeFramebuffer();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorRb.id()));
     SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthStencilRb.id()));
+    SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, visibilityRb.id()));
     SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
     SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
     checkFramebufferComplete("camera");
@@ -490,6 +494,7 @@ struct Renderer::Impl {
     sceneProgram.set("ambient", float(o.ambient));
     sceneProgram.set("diffuse", float(o.diffuse));
     sceneProgram.set("shadowTaps", shadowTaps);
+    sceneProgram.set("writeVisibility", 0);
     sceneProgram.set("shadowMap", 2);
     sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
     sceneProgram.set("biasConstant", float(o.shadowBiasConstant));
@@ -497,7 +502,9 @@ struct Renderer::Impl {
     sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
   }
 
-  void beginCamera(const CameraSetup& cam) {
+  /// Binds and clears the camera targets. withVisibility: the shade pass also writes the shadow
+  /// test into COLOR_ATTACHMENT1 (cleared to 1 = lit); otherwise only attachment 0 is drawn.
+  void beginCamera(const CameraSetup& cam, bool withVisibility = false) {
     ensureCameraTargets(cam.w, cam.h);
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
@@ -505,7 +512,13 @@ struct Renderer::Impl {
     SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));
     SV_GL(glClearDepth(1.0));
     SV_GL(glClearStencil(0));
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    SV_GL(glDrawBuffers(withVisibility ? 2 : 1, both));
     SV_GL(glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT));
+    if (withVisibility) {
+      const GLfloat lit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+      SV_GL(glClearBufferfv(GL_COLOR, 1, lit));
+    }
   }
 
   /// Volume state: z-fail, two-sided, wrap; colour and depth writes off; depth clamp on.
@@ -607,7 +620,19 @@ struct Renderer::Impl {
     result.volumeTriangles = triangles;
   }
 
-  void readImages(const CameraSetup& cam, bool stencil, RenderResult& r) {
+  /// Colour (always), stencil counts (when `stencil`), and the visibility mask: from the stencil
+  /// (`visibility` == FromStencil), from COLOR_ATTACHMENT1 (FromAttachment), or all lit (AllLit).
+  enum class VisibilitySource { NotRead, FromStencil, FromAttachment, AllLit };
+
+  static void flipRowsInto(const std::vector<std::uint8_t>& glRows, int w, int h, std::vector<std::uint8_t>& out) {
+    out.resize(glRows.size());
+    const std::size_t row = glRows.size() / std::size_t(h);
+    (void)w;
+    for (int y = 0; y < h; ++y)  // GL row 0 is the bottom; images start at the top
+      std::copy_n(glRows.data() + std::size_t(h - 1 - y) * row, row, out.data() + std::size_t(y) * row);
+  }
+
+  void readImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
     const int w = cam.w, h = cam.h;
     r.width = w;
     r.height = h;
@@ -619,13 +644,25 @@ struct Renderer::Impl {
     const std::size_t row = std::size_t(w) * 4;
     for (int y = 0; y < h; ++y)  // GL row 0 is the bottom; images start at the top
       std::copy_n(buf.data() + std::size_t(h - 1 - y) * row, row, r.rgba.data() + std::size_t(y) * row);
-    if (stencil) {
-      std::vector<std::uint8_t> s(std::size_t(w) * std::size_t(h));
+    const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    if (stencil || visibility == VisibilitySource::FromStencil) {
+      std::vector<std::uint8_t> s(pixels), counts;
       SV_GL(glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, s.data()));
-      r.stencil.resize(s.size());
-      for (int y = 0; y < h; ++y)
-        std::copy_n(s.data() + std::size_t(h - 1 - y) * std::size_t(w), std::size_t(w),
-                    r.stencil.data() + std::size_t(y) * std::size_t(w));
+      flipRowsInto(s, w, h, counts);
+      if (visibility == VisibilitySource::FromStencil) {
+        r.visibility.resize(pixels);
+        for (std::size_t k = 0; k < pixels; ++k) r.visibility[k] = counts[k] == 0 ? 255 : 0;
+      }
+      if (stencil) r.stencil = std::move(counts);
+    }
+    if (visibility == VisibilitySource::FromAttachment) {
+      std::vector<std::uint8_t> v(pixels);
+      SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT1));
+      SV_GL(glReadPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, v.data()));
+      SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+      flipRowsInto(v, w, h, r.visibility);
+    } else if (visibility == VisibilitySource::AllLit) {
+      r.visibility.assign(pixels, 255);
     }
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
@@ -728,15 +765,20 @@ struct Renderer::Impl {
                        : o.method == ShadowMethod::Pcf3    ? 3
                        : o.method == ShadowMethod::Pcf5    ? 5
                                                            : 0;
-      beginCamera(cam);
+      beginCamera(cam, o.readVisibility && taps > 0);
       const int mw = taps ? lightW : o.depthWidth, mh = taps ? lightH : o.depthHeight;
       setSceneUniforms(cam, o, taps, mw, mh);
       sceneProgram.set("mode", 2);
+      sceneProgram.set("writeVisibility", o.readVisibility && taps > 0 ? 1 : 0);
       if (taps) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
       drawScene();
       bindTexture(2, Texture(), shadowSampler);
     }
-    readImages(cam, hybrid && o.readStencil, result);
+    const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
+                                        : hybrid                           ? VisibilitySource::FromStencil
+                                        : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
+                                                                           : VisibilitySource::FromAttachment;
+    readImages(cam, hybrid && o.readStencil, visibility, result);
     if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
       GLuint64 n = 0;
       SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));

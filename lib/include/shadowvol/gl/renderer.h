@@ -83,6 +83,8 @@ struct RenderOptions {
                                                ///< normal and the light axis), tan clamped to 10
   bool readStencil = true;                     ///< hybrid: read the stencil counts back
   bool readDepthMap = false;                   ///< read the light depth back into the result
+  bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
+                                               ///< shadow test per pixel); off = no extra cost
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
 };
 
@@ -97,6 +99,17 @@ struct RenderResult {
   std::vector<std::uint8_t> rgba;     ///< width * height * 4, RGBA8, rows top first
   std::vector<std::uint8_t> stencil;  ///< width * height stencil counts (8-bit, wrapping),
                                       ///< rows top first; empty unless hybrid and readStencil
+  /// The method's own shadow test per pixel when RenderOptions::readVisibility, else empty:
+  /// width * height bytes, rows top first, 255 = lit by the test, 0 = shadowed. Only the shadow
+  /// test: not multiplied by N.L nor by the light frustum.
+  ///   shadowmap, pcf3, pcf5: round(255 * fraction of the taps that pass), written by the shade
+  ///     pass into a second colour attachment (R8); 255 outside the light frustum (the test is
+  ///     not evaluated there) and on the background (cleared to 255). Faces turned away from the
+  ///     light get the test's answer like any other pixel.
+  ///   hybrid (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
+  ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful).
+  ///   none: 255 everywhere.
+  std::vector<std::uint8_t> visibility;
   std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
   std::vector<PassTime> passes;       ///< in execution order
   TimingMethod timing = TimingMethod::WallClock;
