@@ -19,6 +19,7 @@
 #include "shadowvol/gl/gl_objects.h"
 #include "shadowvol/gl/shader_program.h"
 #include "shadowvol/light.h"
+#include "shadowvol/silhouette_volume.h"
 
 namespace shadowvol::gl {
 
@@ -34,6 +35,8 @@ const char* toString(ShadowMethod m) {
       return "pcf5";
     case ShadowMethod::None:
       return "none";
+    case ShadowMethod::Silhouette:
+      return "silhouette";
   }
   return "?";
 }
@@ -49,6 +52,8 @@ bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
     m = ShadowMethod::Pcf5;
   else if (text == "none")
     m = ShadowMethod::None;
+  else if (text == "silhouette")
+    m = ShadowMethod::Silhouette;
   else
     return false;
   return true;
@@ -204,6 +209,8 @@ struct Renderer::Impl {
 
   // Scene
   bool hasScene = false;
+  Scene scene;                                  // kept for the silhouette method's connectivity
+  std::optional<SilhouetteOccluders> occluders;  // built on the first silhouette frame
   Light light;
   Camera camera;
   VertexArray sceneVao;
@@ -692,10 +699,12 @@ struct Renderer::Impl {
     const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
     result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
     PassTimer timer(queryPool, gpuTimer);
+    const bool silhouette = !givenVolume && o.method == ShadowMethod::Silhouette;
     const bool hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
+    const bool stencilShadows = hybrid || silhouette;
     const VolumeBuildOptions& vo = o.volumeOptions;
 
-    if (!givenVolume && o.method != ShadowMethod::None) {
+    if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
       lightPass(o.depthWidth, o.depthHeight, o.capture);
     }
@@ -715,6 +724,22 @@ struct Renderer::Impl {
       glFinish();
       timer.cpu("upload", msSince(t0));
       explicitTriangles = built.mesh.triangleCount();
+    } else if (silhouette) {
+      auto t0 = Clock::now();
+      if (!occluders) {
+        occluders.emplace(scene);  // throws InputError naming a non-manifold object
+        timer.cpu("connectivity", msSince(t0));
+        t0 = Clock::now();
+      }
+      SilhouetteVolume built = buildSilhouetteVolume(*occluders, light);
+      timer.cpu("build", msSince(t0));
+      t0 = Clock::now();
+      uploadVolume(built.mesh);
+      glFinish();
+      timer.cpu("upload", msSince(t0));
+      explicitTriangles = built.mesh.triangleCount();
+      result.receiversOnly = std::move(built.receiversOnly);
+      result.skippedCasters = std::move(built.skipped);
     } else if (givenVolume) {
       const auto t0 = Clock::now();
       uploadVolume(*givenVolume);
@@ -738,16 +763,20 @@ struct Renderer::Impl {
       resolvePass(o.capture);
     }
 
-    if (hybrid) {
+    if (stencilShadows) {
       {
         TimedPass t(timer, "camera");
         beginCamera(cam);
-        setSceneUniforms(cam, o, 0, std::max(lightW, 2), std::max(lightH, 2));
+        // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
+        if (silhouette)
+          setSceneUniforms(cam, o, 0, o.depthWidth, o.depthHeight);
+        else
+          setSceneUniforms(cam, o, 0, std::max(lightW, 2), std::max(lightH, 2));
         sceneProgram.set("mode", 0);
         drawScene();
       }
       {
-        TimedPass t(timer, "volume");
+        TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume();
         if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
@@ -775,17 +804,17 @@ struct Renderer::Impl {
       bindTexture(2, Texture(), shadowSampler);
     }
     const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
-                                        : hybrid                           ? VisibilitySource::FromStencil
+                                        : stencilShadows                   ? VisibilitySource::FromStencil
                                         : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
                                                                            : VisibilitySource::FromAttachment;
-    readImages(cam, hybrid && o.readStencil, visibility, result);
+    readImages(cam, stencilShadows && o.readStencil, visibility, result);
     if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
       GLuint64 n = 0;
       SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
       result.volumeTriangles = std::size_t(n);
       volumeTrianglesPending = false;
     }
-    if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None)
+    if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette)
       result.depthMap = readBack(o.capture);
     result.passes = timer.results();
     for (const auto& p : result.passes) result.totalMs += p.ms;
@@ -851,6 +880,8 @@ void Renderer::setScene(const Scene& scene) {
   s.sceneIndexCount = GLsizei(indices.size());
   s.light = scene.light;
   s.camera = scene.camera;
+  s.scene = scene;
+  s.occluders.reset();
   s.hasScene = true;
 }
 

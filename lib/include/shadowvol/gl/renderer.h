@@ -10,7 +10,10 @@
 //   camera    depth + ambient of the scene from the camera;
 //   volume    (hybrid) the shadow volume (gpu: a geometry shader expands one point per quad of the
 //             depth texture), two-sided stencil z-fail with depth clamp;
-//   lighting  (hybrid) diffuse light added where the stencil is 0;
+//   silhouette (silhouette) the classic object-space volume (silhouette_volume.h, built on the CPU
+//             each frame: passes connectivity (first frame after setScene only), build, upload),
+//             drawn with the same stencil state as `volume`; no light pass;
+//   lighting  (hybrid, silhouette) diffuse light added where the stencil is 0;
 //   shade     (shadowmap, pcf3, pcf5, none) ambient + diffuse x visibility in one pass.
 // Albedo: light grey for planes and objects named "ground", else a fixed palette in object order.
 // Lighting: colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit), N the flat face
@@ -41,6 +44,9 @@ enum class ShadowMethod {
   Pcf3,       ///< percentage-closer filtering over 3 x 3 texels
   Pcf5,       ///< percentage-closer filtering over 5 x 5 texels
   None,       ///< no shadows (the frustum still limits the light)
+  Silhouette, ///< classic silhouette shadow volumes (silhouette_volume.h): closed 2-manifold objects
+              ///< cast, open sheets only receive (RenderResult::receiversOnly), anything else is an
+              ///< InputError naming the object; exact for the casters; stencil z-fail like hybrid
 };
 const char* toString(ShadowMethod m);
 bool parseShadowMethod(const std::string& text, ShadowMethod& m);
@@ -81,7 +87,7 @@ struct RenderOptions {
   double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
                                                ///< units at the receiver) x tan(angle between the
                                                ///< normal and the light axis), tan clamped to 10
-  bool readStencil = true;                     ///< hybrid: read the stencil counts back
+  bool readStencil = true;                     ///< hybrid, silhouette: read the stencil counts back
   bool readDepthMap = false;                   ///< read the light depth back into the result
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
                                                ///< shadow test per pixel); off = no extra cost
@@ -89,7 +95,9 @@ struct RenderOptions {
 };
 
 struct PassTime {
-  std::string name;  ///< light, resolve, blur, readback, build, upload, camera, volume, lighting, shade
+  std::string name;  ///< light, resolve, blur, readback, build, upload, camera, volume, lighting, shade;
+                     ///< silhouette: connectivity (first frame only), build, upload, camera,
+                     ///< silhouette, lighting
   double ms = 0.0;   ///< GPU time (timer query) or wall clock, see RenderResult::timing; CPU
                      ///< passes (readback, build, upload) are always wall clock
 };
@@ -98,7 +106,8 @@ struct RenderResult {
   int width = 0, height = 0;          ///< image pixels
   std::vector<std::uint8_t> rgba;     ///< width * height * 4, RGBA8, rows top first
   std::vector<std::uint8_t> stencil;  ///< width * height stencil counts (8-bit, wrapping),
-                                      ///< rows top first; empty unless hybrid and readStencil
+                                      ///< rows top first; empty unless hybrid or silhouette,
+                                      ///< and readStencil
   /// The method's own shadow test per pixel when RenderOptions::readVisibility, else empty:
   /// width * height bytes, rows top first, 255 = lit by the test, 0 = shadowed. Only the shadow
   /// test: not multiplied by N.L nor by the light frustum.
@@ -106,7 +115,7 @@ struct RenderResult {
   ///     pass into a second colour attachment (R8); 255 outside the light frustum (the test is
   ///     not evaluated there) and on the background (cleared to 255). Faces turned away from the
   ///     light get the test's answer like any other pixel.
-  ///   hybrid (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
+  ///   hybrid, silhouette (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
   ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful).
   ///   none: 255 everywhere.
   std::vector<std::uint8_t> visibility;
@@ -115,8 +124,13 @@ struct RenderResult {
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes
   std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
-                                    ///< by the geometry shader (GL_PRIMITIVES_GENERATED)
+                                    ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
+                                    ///< silhouette = the silhouette volume's
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
+  std::vector<std::string> receiversOnly;  ///< silhouette: open objects (sheets such as a ground
+                                           ///< plane) that receive but cast no shadow, by name
+  std::vector<std::string> skippedCasters; ///< silhouette: closed objects entirely behind a spot
+                                           ///< light's apex plane (they cannot shadow its frustum)
 };
 
 /// Owns the context, programs, samplers and framebuffers; reuse it for many frames. Not thread
