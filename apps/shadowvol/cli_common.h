@@ -53,6 +53,7 @@ void registerDepthCommand(CLI::App& app, Runner& run);
 void registerBuildCommand(CLI::App& app, Runner& run);
 #ifdef SHADOWVOL_WITH_GL
 void registerRenderCommand(CLI::App& app, Runner& run);
+void registerValidateCommand(CLI::App& app, Runner& run);
 #endif
 
 }  // namespace shadowvol::cli

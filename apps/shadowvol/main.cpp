@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   cli::registerBuildCommand(app, run);
 #ifdef SHADOWVOL_WITH_GL
   cli::registerRenderCommand(app, run);
+  cli::registerValidateCommand(app, run);
 #endif
   try {
     app.parse(argc, argv);

@@ -140,16 +140,24 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
   return out;
 }
 
+double tieTolerance(const Camera& camera, double d) {
+  const double n = camera.nearPlane, f = camera.farPlane;
+  return std::max(1e-4, 16.0 * std::ldexp(1.0, -24) * d * (f - n) / (f * n));
+}
+
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits) {
   CrossingCounts out;
   out.width = hits.width;
   out.height = hits.height;
   out.zfail.assign(hits.depth.size(), 0);
   out.zpass.assign(hits.depth.size(), 0);
+  out.zfailMin.assign(hits.depth.size(), 0);
+  out.zfailMax.assign(hits.depth.size(), 0);
   const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
   tbb::enumerable_thread_specific<std::vector<Crossing>> buffers;
   tbb::parallel_for(tbb::blocked_range<int>(0, hits.height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Crossing>& buf = buffers.local();
+    std::vector<int> tieSigns;
     for (int r = rows.begin(); r != rows.end(); ++r)
       for (int x = 0; x < hits.width; ++x) {
         const std::size_t k = std::size_t(r) * std::size_t(hits.width) + std::size_t(x);
@@ -166,7 +174,10 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
           return a.t < b.t || (a.t == b.t && a.sign < b.sign);
         });
         const double tVisible = hits.depth[k];
+        const double band = tieTolerance(camera, tVisible) * tVisible;
         int zfail = 0, zpass = 0;
+        int tieSuffix = 0, tieMin = 0, tieMax = 0;  // suffix sums of the band's events, last to first
+        tieSigns.clear();
         for (std::size_t g = 0; g < buf.size();) {
           // One event: every hit within the tolerance of the group's first hit.
           const double t0 = buf[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
@@ -174,12 +185,27 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
           std::size_t e = g;
           while (e < buf.size() && buf[e].t - t0 <= tol) sum += buf[e++].sign;
           const int sign = (sum > 0) - (sum < 0);
-          if (t0 >= tVisible * (1.0 - kCrossingMergeTolerance)) zfail += sign;
-          else zpass -= sign;
+          if (std::abs(t0 - tVisible) <= band) {
+            zfail += sign;  // nominal: behind (GL_LESS fails on equal depths)
+            if (sign != 0) tieSigns.push_back(sign);
+          } else if (t0 > tVisible) {
+            zfail += sign;
+          } else {
+            zpass -= sign;
+          }
           g = e;
         }
+        // Splits of the band: the first m tie events in front of the point, the rest behind.
+        for (auto it = tieSigns.rbegin(); it != tieSigns.rend(); ++it) {
+          tieSuffix += *it;
+          tieMin = std::min(tieMin, tieSuffix);
+          tieMax = std::max(tieMax, tieSuffix);
+        }
+        const int base = zfail - tieSuffix;  // z-fail with every tie event in front
         out.zfail[k] = zfail;
         out.zpass[k] = zpass;
+        out.zfailMin[k] = base + tieMin;
+        out.zfailMax[k] = base + tieMax;
       }
   });
   return out;

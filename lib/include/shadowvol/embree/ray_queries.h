@@ -59,13 +59,23 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
 /// whose distances differ by at most kCrossingMergeTolerance (relative) form one event whose sign
 /// is the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
 /// grazes a fold without crossing). Edge-on hits (normal perpendicular to the ray) count 0.
-/// A crossing at the visible point's own distance (within the tolerance) counts as behind it,
-/// as the GPU's GL_LESS depth test fails it.
+/// Ties with the visible point: where the volume's surface lies on the visible surface (a back
+/// capture's sheet on an occluder's back face that the camera sees), the GPU's depth test and the
+/// ray parameter decide the order of coincident surfaces by round-off. Events within the tie band
+/// |t - t_visible| <= tieTolerance(t_visible) * t_visible count as behind the point in zfail
+/// (GL_LESS fails on equal depths), and zfailMin / zfailMax give the range of z-fail counts for
+/// every split of the band's events (each split is a consistent ordering; the values of successive
+/// splits differ by one, so every integer in the range is admissible).
 struct CrossingCounts {
   int width = 0, height = 0;
   std::vector<std::int32_t> zfail, zpass;
+  std::vector<std::int32_t> zfailMin, zfailMax;  ///< admissible z-fail range (== zfail without ties)
 };
 inline constexpr double kCrossingMergeTolerance = 1e-6;
+
+/// Relative half-width of the tie band at camera view depth d: 1e-4, or 16 steps of a 24-bit depth
+/// buffer at d (2^-24 d (far - near) / (far near) relative), whichever is larger.
+double tieTolerance(const Camera& camera, double d);
 
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits);
 

@@ -1,0 +1,182 @@
+// shadowvol validate: render a frame on the GPU, then check it by ray casting (Embree) and the
+// volume by CGAL; writes DIR/report.json and pictures. Exit 0 when the stencil and the crossing
+// counts agree on >= 99.99 % of visible pixels and the mesh checks pass, 3 otherwise.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "render_options.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/validate/frame_validation.h"
+
+namespace shadowvol::cli {
+namespace {
+
+nlohmann::json toJson(const ShadowError& e) {
+  return {{"pixels", e.pixels},
+          {"missedShadow", e.missed},
+          {"falseShadow", e.falseShadow},
+          {"missedFraction", e.missedFraction()},
+          {"falseFraction", e.falseFraction()},
+          {"errorFraction", e.errorFraction()}};
+}
+
+nlohmann::json toJson(const Agreement& a) {
+  return {{"pixels", a.pixels},
+          {"agree", a.agree},
+          {"ties", a.ties},
+          {"disagree", a.pixels - a.agree},
+          {"fraction", a.fraction()}};
+}
+
+}  // namespace
+
+void registerValidateCommand(CLI::App& app, Runner& run) {
+  struct Options {
+    RenderCliOptions render;
+    std::string reportDir;
+    bool selfIntersections = false;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "validate",
+      "Render a frame on the GPU and check it by ray casting: Embree's signed crossing counts of the explicit volume "
+      "against the GPU stencil, z-fail against z-pass, and every shadow test against exact shadow rays; CGAL checks "
+      "of the volume. Writes DIR/report.json and PNGs. Exit 0 when stencil and counts agree on >= 99.99% of visible "
+      "pixels and the mesh checks pass, 3 otherwise");
+  addRenderOptions(*cmd, o->render);
+  cmd->add_option("--report", o->reportDir, "Folder for report.json and the images (created if missing)")->required();
+  cmd->add_flag("--self-intersections", o->selfIntersections,
+                "Also run CGAL's self-intersection check of the volume (slow on large meshes)");
+  cmd->callback([&run, o] {
+    run = [o] {
+      const std::filesystem::path dir(o->reportDir);
+      {
+        std::error_code ec;
+        const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
+        if (!std::filesystem::is_directory(parent, ec))
+          throw InputError("command line", "--report", o->reportDir, "the folder " + parent.string() + " does not exist");
+        if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+          throw InputError("command line", "--report", o->reportDir, "exists and is not a folder");
+      }
+      Scene scene = loadSceneOrDefault(o->render.scene.scene);
+      gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      ro.readStencil = true;
+      ro.readDepthMap = true;
+      ro.readVisibility = true;
+      gl::Renderer renderer(toRendererOptions(o->render));
+      renderer.setScene(scene);
+      const gl::RenderResult result = renderer.render(ro);
+      if (!result.depthMap) throw std::runtime_error("the renderer returned no depth map");
+
+      RenderedFrame frame;
+      frame.width = result.width;
+      frame.height = result.height;
+      frame.rgba = result.rgba;
+      frame.hybrid = ro.method == gl::ShadowMethod::Hybrid;
+      if (frame.hybrid) frame.stencil = result.stencil;
+      frame.shadowed.resize(result.visibility.size());
+      for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
+      ValidationOptions vo;
+      vo.selfIntersections = o->selfIntersections;
+      VolumeBuildOptions volumeOptions = ro.volumeOptions;
+      const FrameValidation v = validateFrame(scene, *result.depthMap, volumeOptions, frame, vo);
+
+      nlohmann::json j;
+      j["scene"] = describeScene(scene);
+      j["gl"] = describeContext(renderer.info());
+      j["options"] = {{"method", o->render.method},
+                      {"volume", frame.hybrid ? nlohmann::json(o->render.volume) : nlohmann::json()},
+                      {"resolution", o->render.resolution},
+                      {"capture", o->render.capture},
+                      {"triangulation", o->render.triangulation},
+                      {"blur", o->render.blur},
+                      {"blurOffset", o->render.blurOffset},
+                      {"bias", result.biasUsed},
+                      {"cap", o->render.cap},
+                      {"shadowBias", o->render.shadowBias},
+                      {"shadowSlope", o->render.shadowSlope},
+                      {"selfIntersections", o->selfIntersections}};
+      j["pixels"] = {{"total", std::size_t(v.width) * std::size_t(v.height)},
+                     {"visible", v.visible},
+                     {"background", v.background},
+                     {"facingAway", v.facingAway},
+                     {"outsideLight", v.outsideLight},
+                     {"exactLit", v.exactLit},
+                     {"exactShadowed", v.exactShadowed}};
+      if (v.meshCheck) {
+        const MeshCheckReport& m = *v.meshCheck;
+        j["meshChecks"] = {{"valid", m.valid()},
+                           {"vertices", m.vertices},
+                           {"triangles", m.triangles},
+                           {"closedManifold", m.closedManifold()},
+                           {"outward", m.outward},
+                           {"volume", m.volume},
+                           {"boundaryEdges", m.boundaryEdges},
+                           {"overusedEdges", m.overusedEdges},
+                           {"nonManifoldVertices", m.nonManifoldVertices},
+                           {"degenerateTriangles", m.degenerateTriangles},
+                           {"nonFiniteVertices", m.nonFiniteVertices},
+                           {"coincidentVertices", m.coincidentVertices},
+                           {"selfIntersectingPairs", m.selfIntersectingPairs ? nlohmann::json(*m.selfIntersectingPairs)
+                                                                             : nlohmann::json("not checked")},
+                           {"allowedTouchingPairs", m.allowedTouchingPairs},
+                           {"summary", m.summary()}};
+        j["stencilVsCount"] = toJson(v.stencilVsCount);
+        j["eyeInsideVolume"] = v.eyeInsideVolume;
+        j["zfailVsZpass"] = v.zfailVsZpass ? toJson(*v.zfailVsZpass) : nlohmann::json("not applicable: eye inside");
+        j["againstExact"] = {{"stencil", toJson(*v.stencilError)},
+                             {"count", toJson(*v.countError)},
+                             {"method", toJson(v.methodError)}};
+      } else {
+        const char* na = "not applicable: no shadow volume";
+        j["meshChecks"] = na;
+        j["stencilVsCount"] = na;
+        j["zfailVsZpass"] = na;
+        j["againstExact"] = {{"stencil", na}, {"count", na}, {"method", toJson(v.methodError)}};
+      }
+      j["requiredAgreement"] = kRequiredAgreement;
+      j["passed"] = v.passed;
+      j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png"};
+      if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png"};
+
+      // Everything is computed; now write. Images first, the report last (its presence means done).
+      std::filesystem::create_directories(dir);
+      writeValidationImages(dir, v, frame);
+      writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
+        std::ofstream out(tmp);
+        out << j.dump(2) << '\n';
+        out.flush();
+        if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
+      });
+      if (o->render.scene.json) {
+        std::cout << j.dump(2) << '\n';
+      } else {
+        std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(),
+                    frame.hybrid ? ", " : "", frame.hybrid ? o->render.volume.c_str() : "",
+                    renderer.info().glRenderer.c_str());
+        std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
+                    v.facingAway, v.outsideLight, v.background);
+        if (v.meshCheck) {
+          std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
+          std::printf("  stencil vs count: %.4f%% agree (%zu of %zu, %zu of them ties on the visible surface)\n",
+                      100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree, v.stencilVsCount.pixels,
+                      v.stencilVsCount.ties);
+          if (v.zfailVsZpass)
+            std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());
+          else
+            std::printf("  z-fail vs z-pass: not applicable (the eye is inside the volume)\n");
+        }
+        std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
+                    v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
+                    100 * v.methodError.falseFraction(), v.methodError.pixels);
+        std::printf("%s: wrote %s\n", v.passed ? "PASSED" : "FAILED", (dir / "report.json").string().c_str());
+      }
+      return v.passed ? kOk : kValidationFailed;
+    };
+  });
+}
+
+}  // namespace shadowvol::cli

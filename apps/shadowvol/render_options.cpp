@@ -1,0 +1,109 @@
+#include "render_options.h"
+
+#include <cmath>
+#include <regex>
+
+#include "shadowvol/error.h"
+
+namespace shadowvol::cli {
+namespace {
+
+std::pair<int, int> parseSize(const std::string& text) {
+  static const std::regex re("^([0-9]{1,6})x([0-9]{1,6})$");
+  std::smatch m;
+  if (!std::regex_match(text, m, re))
+    throw InputError("command line", "--size", text, "expected WIDTHxHEIGHT, for example 640x480");
+  const int w = std::stoi(m[1]), h = std::stoi(m[2]);
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw InputError("command line", "--size", text, "width and height must be between 1 and 16384");
+  return {w, h};
+}
+
+}  // namespace
+
+void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
+  addSceneOptions(cmd, o.scene);
+  cmd.add_option("--method", o.method,
+                 "hybrid (the shadow volume, z-fail stencil), shadowmap (hardware depth compare), pcf3 / pcf5 "
+                 "(percentage-closer filtering over 3x3 / 5x5 texels), none (no shadows)")
+      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "none"}))
+      ->capture_default_str();
+  cmd.add_option("--volume", o.volume,
+                 "hybrid: gpu (drawn straight from the depth texture, no read-back: production) or explicit (depth "
+                 "read back, the CPU-built mesh uploaded)")
+      ->check(CLI::IsMember({"gpu", "explicit"}))
+      ->capture_default_str();
+  cmd.add_option("--resolution", o.resolution, "Light depth map size N (N x N texels)")->capture_default_str();
+  cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
+      ->check(CLI::IsMember({"back", "front", "midpoint"}))
+      ->capture_default_str();
+  cmd.add_option("--triangulation", o.triangulation, "hybrid: perfect or fixed quad diagonals")
+      ->check(CLI::IsMember({"fixed", "perfect"}))
+      ->capture_default_str();
+  cmd.add_flag("--blur", o.blur, "hybrid: depth blurring (9 bilinear samples 1.5 texels apart)");
+  cmd.add_option("--blur-offset", o.blurOffset, "hybrid: world units added to blurred depths")->capture_default_str();
+  cmd.add_option("--bias", o.bias, "hybrid: world units pushing the sheet away from the light (default: README 'Bias')");
+  cmd.add_option("--cap", o.cap,
+                 "hybrid: exact (far-plane parts dropped, exact cap) or quad (the thesis's far rectangle)")
+      ->check(CLI::IsMember({"exact", "quad"}))
+      ->capture_default_str();
+  cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene camera's)");
+  cmd.add_option("--shadow-bias", o.shadowBias, "Shadow maps: constant depth bias, world units")->capture_default_str();
+  cmd.add_option("--shadow-slope", o.shadowSlope,
+                 "Shadow maps: slope-scaled bias, in texel footprints x tan(angle to the light)")
+      ->capture_default_str();
+  cmd.add_option("--platform", o.platform,
+                 "EGL platform: auto (device, then Mesa surfaceless, then the default display), device, "
+                 "surfaceless, default")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
+      ->capture_default_str();
+  cmd.add_option("--shader-dir", o.shaderDir,
+                 "Load GLSL from this folder instead of the embedded copies (also: $SHADOWVOL_SHADER_DIR)")
+      ->check(CLI::ExistingDirectory);
+}
+
+gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
+  checkResolution("--resolution", o.resolution);
+  if (o.blurOffset != 0.0 && !o.blur)
+    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "needs --blur");
+  if (!std::isfinite(o.blurOffset))
+    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "must be finite");
+  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
+    throw InputError("command line", "--bias", std::to_string(*o.bias), "must be finite and >= 0");
+  if (!std::isfinite(o.shadowBias))
+    throw InputError("command line", "--shadow-bias", std::to_string(o.shadowBias), "must be finite");
+  if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)
+    throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
+  gl::RenderOptions ro;
+  gl::parseShadowMethod(o.method, ro.method);
+  gl::parseVolumeSource(o.volume, ro.volume);
+  ro.depthWidth = ro.depthHeight = o.resolution;
+  parseCaptureMode(o.capture, ro.capture);
+  parseTriangulation(o.triangulation, ro.volumeOptions.triangulation);
+  parseFarCap(o.cap, ro.volumeOptions.cap);
+  ro.volumeOptions.blur = o.blur;
+  ro.volumeOptions.blurOffset = o.blurOffset;
+  ro.volumeOptions.bias = o.bias;
+  ro.shadowBiasConstant = o.shadowBias;
+  ro.shadowBiasSlope = o.shadowSlope;
+  if (!o.size.empty()) {
+    const auto [w, h] = parseSize(o.size);
+    scene.camera.width = w;
+    scene.camera.height = h;
+  }
+  return ro;
+}
+
+gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
+  gl::RendererOptions r;
+  r.context.platform = o.platform;
+  r.shaderDir = o.shaderDir;
+  return r;
+}
+
+nlohmann::json describeContext(const gl::ContextInfo& info) {
+  return {{"platform", info.platform}, {"device", info.device},         {"eglVendor", info.eglVendor},
+          {"glVendor", info.glVendor}, {"glRenderer", info.glRenderer}, {"glVersion", info.glVersion}};
+}
+
+}  // namespace shadowvol::cli

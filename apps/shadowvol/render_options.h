@@ -1,0 +1,43 @@
+// Command-line options of the GPU subcommands (render, validate): one definition, one parser.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "cli_common.h"
+#include "shadowvol/gl/renderer.h"
+
+namespace shadowvol::cli {
+
+struct RenderCliOptions {
+  SceneOptions scene;
+  std::string method = "hybrid";
+  std::string volume = "gpu";
+  int resolution = 512;
+  std::string capture = "back";
+  std::string triangulation = "perfect";
+  bool blur = false;
+  double blurOffset = 0.0;
+  std::optional<double> bias;
+  std::string cap = "exact";
+  std::string size;
+  double shadowBias = 0.0;
+  double shadowSlope = 1.0;
+  std::string platform = "auto";
+  std::string shaderDir;
+};
+
+/// Adds --scene, --json, --method, --volume, --resolution, --capture, --triangulation, --blur,
+/// --blur-offset, --bias, --cap, --size, --shadow-bias, --shadow-slope, --platform, --shader-dir.
+void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
+
+/// Checks the values (InputError naming the option) and fills the renderer's options. --size, when
+/// given, replaces the scene camera's width and height.
+gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene);
+
+gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
+
+/// The GL context as JSON (platform, device, vendors, renderer, version).
+nlohmann::json describeContext(const gl::ContextInfo& info);
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,89 @@
+// Validation of one rendered frame (issue 5): the GPU's stencil against Embree's signed crossing
+// counts of the explicit volume, z-fail against z-pass, and every shadow test against the exact
+// (ray-traced) shadows. GL-free: the caller passes what the GPU produced.
+//
+// Per-pixel arrays are in image order (row 0 at the top), width x height of the scene's camera.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shadowvol/cgal/mesh_check.h"
+#include "shadowvol/depth_map.h"
+#include "shadowvol/embree/ray_queries.h"
+#include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol {
+
+/// What the GPU produced for one frame, and how.
+struct RenderedFrame {
+  int width = 0, height = 0;            ///< must equal the scene camera's size
+  std::vector<std::uint8_t> rgba;       ///< the shaded frame, RGBA8 (may be empty)
+  std::vector<std::uint8_t> stencil;    ///< hybrid: 8-bit wrapping stencil counts; empty otherwise
+  std::vector<std::uint8_t> shadowed;   ///< the method's own shadow test: 1 = in shadow (for PCF:
+                                        ///< visibility < 0.5); empty = derive from the stencil
+  bool hybrid = true;                   ///< a shadow-volume method (stencil and volume apply)
+};
+
+struct ValidationOptions {
+  bool selfIntersections = false;  ///< CGAL self-intersection check of the volume (slow)
+};
+
+/// Agreement of two per-pixel quantities over a set of pixels.
+struct Agreement {
+  std::size_t pixels = 0;  ///< pixels compared
+  std::size_t agree = 0;   ///< including ties
+  std::size_t ties = 0;    ///< agreeing only through the tie band (CrossingCounts::zfailMin/Max)
+  double fraction() const { return pixels ? double(agree) / double(pixels) : 1.0; }
+};
+
+/// A shadow test against the exact shadows, over visible pixels that face the light inside its
+/// frustum (PixelClass Lit or Shadowed).
+struct ShadowError {
+  std::size_t pixels = 0;       ///< pixels compared
+  std::size_t missed = 0;       ///< exact: shadowed, test: lit (light leak)
+  std::size_t falseShadow = 0;  ///< exact: lit, test: shadowed (acne, or a shadow too big)
+  double missedFraction() const { return pixels ? double(missed) / double(pixels) : 0.0; }
+  double falseFraction() const { return pixels ? double(falseShadow) / double(pixels) : 0.0; }
+  double errorFraction() const { return pixels ? double(missed + falseShadow) / double(pixels) : 0.0; }
+};
+
+struct FrameValidation {
+  int width = 0, height = 0;
+  // Pixel classes.
+  std::size_t visible = 0, background = 0, facingAway = 0, outsideLight = 0, exactLit = 0, exactShadowed = 0;
+  std::vector<PixelClass> exact;           ///< per pixel
+  // Volume (hybrid only).
+  std::optional<MeshCheckReport> meshCheck;
+  std::optional<CrossingCounts> counts;
+  bool eyeInsideVolume = false;
+  Agreement stencilVsCount;                ///< over visible pixels: stencil == a z-fail count of the
+                                           ///< admissible range (ray_queries.h, ties), mod 256
+  std::optional<Agreement> zfailVsZpass;   ///< over visible pixels, when the eye is outside the volume
+  std::optional<ShadowError> stencilError; ///< stencil != 0 as a shadow test
+  std::optional<ShadowError> countError;   ///< zfail != 0 as a shadow test
+  ShadowError methodError;                 ///< the method's own test (hybrid: the stencil)
+  /// Exit criterion of `shadowvol validate`: stencil vs count >= kRequiredAgreement and the mesh
+  /// checks pass (hybrid), always true for the shadow-map baselines.
+  bool passed = true;
+};
+
+/// Agreement required between stencil and count (issue 5): 99.99 % of visible pixels.
+inline constexpr double kRequiredAgreement = 0.9999;
+
+/// Runs every check. `depth` is the depth map the GPU used (read back), `volumeOptions` the options
+/// it drew the volume with; the explicit volume is rebuilt from them on the CPU.
+FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const VolumeBuildOptions& volumeOptions,
+                              const RenderedFrame& frame, const ValidationOptions& options = {});
+
+/// Writes DIR/exact.png, stencil.png, count.png, overlay.png (and frame.png when the frame has
+/// colour), rows top first. Overlay colours: red = light leak (exact shadow, method lit),
+/// yellow = false shadow, magenta = stencil != count, cyan = z-fail != z-pass; other pixels are
+/// the frame in grey.
+void writeValidationImages(const std::filesystem::path& dir, const FrameValidation& v, const RenderedFrame& frame);
+
+}  // namespace shadowvol

@@ -1,0 +1,161 @@
+#include "shadowvol/validate/frame_validation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shadowvol/check.h"
+#include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/error.h"
+#include "shadowvol/image_io.h"
+
+namespace shadowvol {
+namespace {
+
+bool facesLight(PixelClass c) { return c == PixelClass::Lit || c == PixelClass::Shadowed; }
+
+void score(ShadowError& e, PixelClass exact, bool testShadowed) {
+  if (!facesLight(exact)) return;
+  ++e.pixels;
+  const bool exactShadowed = exact == PixelClass::Shadowed;
+  if (exactShadowed && !testShadowed) ++e.missed;
+  if (!exactShadowed && testShadowed) ++e.falseShadow;
+}
+
+}  // namespace
+
+FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const VolumeBuildOptions& volumeOptions,
+                              const RenderedFrame& frame, const ValidationOptions& options) {
+  const std::size_t n = std::size_t(frame.width) * std::size_t(frame.height);
+  SV_CHECK_EQ(frame.width, scene.camera.width);
+  SV_CHECK_EQ(frame.height, scene.camera.height);
+  if (frame.hybrid) SV_CHECK_EQ(frame.stencil.size(), n);
+  if (!frame.shadowed.empty()) SV_CHECK_EQ(frame.shadowed.size(), n);
+
+  FrameValidation v;
+  v.width = frame.width;
+  v.height = frame.height;
+
+  // Exact shadows by ray casting the scene.
+  const EmbreeDevice device;
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  const EmbreeScene sceneRt(device, meshes);
+  const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
+  v.exact = exactShadows(sceneRt, scene, hits, shadowRayOffset(scene));
+  for (PixelClass c : v.exact) {
+    switch (c) {
+      case PixelClass::Background: ++v.background; break;
+      case PixelClass::FacingAway: ++v.facingAway; break;
+      case PixelClass::OutsideLight: ++v.outsideLight; break;
+      case PixelClass::Lit: ++v.exactLit; break;
+      case PixelClass::Shadowed: ++v.exactShadowed; break;
+    }
+  }
+  v.visible = n - v.background;
+
+  // The method's own test.
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool shadowed = !frame.shadowed.empty() ? frame.shadowed[k] != 0 : (frame.hybrid && frame.stencil[k] != 0);
+    score(v.methodError, v.exact[k], shadowed);
+  }
+
+  if (frame.hybrid) {
+    // The explicit volume of the same depth map and options, its checks and crossing counts.
+    const VolumeMesh volume = buildVolume(depth, volumeOptions).mesh;
+    MeshCheckOptions co;
+    co.selfIntersections = options.selfIntersections;
+    const double farTolerance = 1e-7 * depth.farPlane;
+    co.allowedTouch = [&depth, farTolerance](const glm::dvec3& p) {
+      return std::abs(depth.viewDepthOf(p) - depth.farPlane) <= farTolerance;
+    };
+    v.meshCheck = checkMesh(volume, co);
+    const TriangleMesh volumeF = volume.toTriangleMesh();
+    const EmbreeScene volumeRt(device, {&volumeF});
+    v.counts = countCrossings(volumeRt, scene.camera, hits);
+    if (v.meshCheck->closedManifold() && volume.triangleCount() > 0)
+      v.eyeInsideVolume = VolumeClassifier(volume).classify(scene.camera.eye) != VolumeClassifier::Side::Outside;
+    Agreement zz;
+    ShadowError stencilErr, countErr;
+    for (std::size_t k = 0; k < n; ++k) {
+      if (v.exact[k] == PixelClass::Background) continue;
+      const int zfail = v.counts->zfail[k];
+      ++v.stencilVsCount.pixels;
+      if (std::uint8_t(zfail) == frame.stencil[k]) {
+        ++v.stencilVsCount.agree;
+      } else {
+        for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
+          if (std::uint8_t(c) == frame.stencil[k]) {
+            ++v.stencilVsCount.agree;
+            ++v.stencilVsCount.ties;
+            break;
+          }
+      }
+      ++zz.pixels;
+      if (zfail == v.counts->zpass[k]) ++zz.agree;
+      score(stencilErr, v.exact[k], frame.stencil[k] != 0);
+      score(countErr, v.exact[k], zfail != 0);
+    }
+    if (!v.eyeInsideVolume) v.zfailVsZpass = zz;
+    v.stencilError = stencilErr;
+    v.countError = countErr;
+    v.passed = v.stencilVsCount.fraction() >= kRequiredAgreement && v.meshCheck->valid();
+  }
+  device.throwIfError();
+  return v;
+}
+
+void writeValidationImages(const std::filesystem::path& dir, const FrameValidation& v, const RenderedFrame& frame) {
+  const std::size_t n = std::size_t(v.width) * std::size_t(v.height);
+  std::vector<std::uint8_t> exact(n * 3), overlay(n * 3);
+  for (std::size_t k = 0; k < n; ++k) {
+    std::uint8_t rgb[3] = {0, 0, 0};
+    switch (v.exact[k]) {
+      case PixelClass::Background: break;
+      case PixelClass::FacingAway: rgb[0] = 40; rgb[1] = 60; rgb[2] = 120; break;    // dark blue
+      case PixelClass::OutsideLight: rgb[0] = rgb[1] = rgb[2] = 50; break;            // dark grey
+      case PixelClass::Lit: rgb[0] = rgb[1] = rgb[2] = 235; break;                    // white
+      case PixelClass::Shadowed: rgb[0] = rgb[1] = rgb[2] = 110; break;               // grey
+    }
+    std::copy(rgb, rgb + 3, &exact[3 * k]);
+    // Overlay: the frame in grey (or the exact classes), disagreements coloured by kind.
+    std::uint8_t g = rgb[0];
+    if (!frame.rgba.empty())
+      g = std::uint8_t((int(frame.rgba[4 * k]) * 3 + int(frame.rgba[4 * k + 1]) * 6 + int(frame.rgba[4 * k + 2])) / 10);
+    std::uint8_t o[3] = {g, g, g};
+    const bool facing = v.exact[k] == PixelClass::Lit || v.exact[k] == PixelClass::Shadowed;
+    const bool methodShadowed = !frame.shadowed.empty() ? frame.shadowed[k] != 0
+                                                        : (frame.hybrid && frame.stencil[k] != 0);
+    if (facing && v.exact[k] == PixelClass::Shadowed && !methodShadowed) { o[0] = 255; o[1] = 0; o[2] = 0; }
+    if (facing && v.exact[k] == PixelClass::Lit && methodShadowed) { o[0] = 255; o[1] = 220; o[2] = 0; }
+    if (v.counts && v.exact[k] != PixelClass::Background) {
+      if (v.zfailVsZpass && v.counts->zfail[k] != v.counts->zpass[k]) { o[0] = 0; o[1] = 220; o[2] = 255; }
+      bool admissible = false;
+      for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c) admissible |= std::uint8_t(c) == frame.stencil[k];
+      if (!admissible) { o[0] = 255; o[1] = 0; o[2] = 255; }
+    }
+    std::copy(o, o + 3, &overlay[3 * k]);
+  }
+  writePng(dir / "exact.png", v.width, v.height, 3, exact);
+  writePng(dir / "overlay.png", v.width, v.height, 3, overlay);
+  if (!frame.rgba.empty()) writePng(dir / "frame.png", v.width, v.height, 4, frame.rgba);
+  if (frame.hybrid) {
+    // Counts shown for a person: 0 black, 1 mid grey, 2+ brighter; negative counts (z-fail) red.
+    auto shade = [](int c, std::uint8_t* px) {
+      if (c == 0) { px[0] = px[1] = px[2] = 0; return; }
+      const int m = std::min(std::abs(c), 4);
+      const auto level = std::uint8_t(100 + 38 * m);
+      if (c > 0) { px[0] = px[1] = px[2] = level; }
+      else { px[0] = level; px[1] = px[2] = 0; }
+    };
+    std::vector<std::uint8_t> stencil(n * 3), count(n * 3);
+    for (std::size_t k = 0; k < n; ++k) {
+      const int s = frame.stencil[k];
+      shade(s > 127 ? s - 256 : s, &stencil[3 * k]);
+      shade(v.counts ? v.counts->zfail[k] : 0, &count[3 * k]);
+    }
+    writePng(dir / "stencil.png", v.width, v.height, 3, stencil);
+    writePng(dir / "count.png", v.width, v.height, 3, count);
+  }
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,141 @@
+// Issue 5: the GPU stencil against Embree's crossing counts of the explicit volume, on every
+// shipped scene and option combination, and the plate against the exact shadow.
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "shadowvol/error.h"
+#include "shadowvol/gl/renderer.h"
+#include "shadowvol/validate/frame_validation.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+gl::Renderer& renderer() {
+  static std::unique_ptr<gl::Renderer> r = std::make_unique<gl::Renderer>();
+  return *r;
+}
+
+struct Validated {
+  FrameValidation v;
+  RenderedFrame frame;
+};
+
+Validated renderAndValidate(Scene scene, gl::RenderOptions ro) {
+  ro.readStencil = ro.readDepthMap = ro.readVisibility = true;
+  renderer().setScene(scene);
+  const gl::RenderResult r = renderer().render(ro);
+  Validated out;
+  out.frame.width = r.width;
+  out.frame.height = r.height;
+  out.frame.stencil = r.stencil;
+  out.frame.hybrid = ro.method == gl::ShadowMethod::Hybrid;
+  for (auto vis : r.visibility) out.frame.shadowed.push_back(vis < 128);
+  out.v = validateFrame(scene, *r.depthMap, ro.volumeOptions, out.frame);
+  return out;
+}
+
+std::vector<std::filesystem::path> shippedScenes() {
+  std::vector<std::filesystem::path> out;
+  for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / "data/scenes"))
+    if (e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Validation, StencilMatchesCrossingCountsOnEveryScene) {
+  int frames = 0;
+  for (const auto& path : shippedScenes()) {
+    Scene scene;
+    try {
+      scene = loadScene(path).scene;
+    } catch (const InputError& e) {
+      // Only the real-mesh scenes may be missing their meshes (scripts/fetch_meshes.sh).
+      ASSERT_NE(std::string(e.what()).find("meshes"), std::string::npos) << e.what();
+      continue;
+    }
+    scene.camera.width = 128;
+    scene.camera.height = 96;
+    for (auto source : {gl::VolumeSource::Gpu, gl::VolumeSource::Explicit})
+      for (auto tri : {Triangulation::Fixed, Triangulation::Perfect})
+        for (bool blur : {false, true}) {
+          gl::RenderOptions ro;
+          ro.volume = source;
+          ro.depthWidth = ro.depthHeight = 64;
+          ro.volumeOptions.triangulation = tri;
+          ro.volumeOptions.blur = blur;
+          SCOPED_TRACE(path.filename().string() + " " + gl::toString(source) + " " + toString(tri) +
+                       (blur ? " blur" : ""));
+          const Validated r = renderAndValidate(scene, ro);
+          ++frames;
+          ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();
+          EXPECT_GE(r.v.stencilVsCount.fraction(), kRequiredAgreement)
+              << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels;
+          EXPECT_TRUE(r.v.passed);
+          if (!r.v.eyeInsideVolume) {
+            ASSERT_TRUE(r.v.zfailVsZpass.has_value());
+            EXPECT_EQ(r.v.zfailVsZpass->agree, r.v.zfailVsZpass->pixels);
+          }
+        }
+  }
+  EXPECT_GE(frames, 8 * 10);
+}
+
+TEST(Validation, PlateDiffersFromExactOnlyWithinOneTexelOfItsOutline) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 200;
+  scene.camera.height = 150;
+  const int n = 64;
+  const double texel = 2.0 * scene.light.halfExtent / n;  // 0.125 world units
+  for (auto tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+    gl::RenderOptions ro;
+    ro.depthWidth = ro.depthHeight = n;
+    ro.volumeOptions.triangulation = tri;
+    const Validated r = renderAndValidate(scene, ro);
+    ASSERT_TRUE(r.v.meshCheck->valid());
+    // Stencil and count agree everywhere (the plate's volume has no coincident surfaces in view).
+    EXPECT_EQ(r.v.stencilVsCount.agree, r.v.stencilVsCount.pixels);
+    // Exact vs count: any difference lies within one texel of the plate's outline (|x|, |z| = 1).
+    const EmbreeDevice device;
+    std::vector<const TriangleMesh*> meshes;
+    for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+    const CameraHits hits = castPrimaryRays(EmbreeScene(device, meshes), scene.camera);
+    std::size_t differing = 0, compared = 0;
+    for (std::size_t k = 0; k < r.v.exact.size(); ++k) {
+      const PixelClass c = r.v.exact[k];
+      if (c != PixelClass::Lit && c != PixelClass::Shadowed) continue;
+      ++compared;
+      const bool countShadow = r.v.counts->zfail[k] != 0;
+      if (countShadow == (c == PixelClass::Shadowed)) continue;
+      ++differing;
+      const glm::dvec3 p = hits.point[k];
+      const double outline = std::abs(std::max(std::abs(p.x), std::abs(p.z)) - 1.0);
+      EXPECT_LE(outline, texel) << "at " << p.x << ", " << p.y << ", " << p.z;
+    }
+    EXPECT_GT(compared, 10000u);
+    EXPECT_LT(differing, compared / 50);
+  }
+}
+
+TEST(Validation, ShadowMapBaselinesAreScoredWithoutAVolume) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 160;
+  scene.camera.height = 120;
+  for (auto m : {gl::ShadowMethod::ShadowMap, gl::ShadowMethod::Pcf3}) {
+    gl::RenderOptions ro;
+    ro.method = m;
+    ro.depthWidth = ro.depthHeight = 64;
+    const Validated r = renderAndValidate(scene, ro);
+    EXPECT_FALSE(r.v.meshCheck.has_value());
+    EXPECT_TRUE(r.v.passed);
+    EXPECT_GT(r.v.methodError.pixels, 5000u);
+    // The shadow map's own test finds the plate's shadow: few misclassified pixels.
+    EXPECT_LT(r.v.methodError.errorFraction(), 0.05) << gl::toString(m);
+    EXPECT_GT(r.v.exactShadowed, 200u);  // the plate's shadow is in view
+  }
+}
+
+}  // namespace
+}  // namespace shadowvol
