@@ -108,12 +108,13 @@ SilhouetteOccluders::SilhouetteOccluders(const Scene& scene) : impl_(std::make_u
         (a < b ? u.forward : u.backward) += 1;
       }
     for (const auto& [key, u] : edges) {
-      const glm::dvec3 &a = o.positions[key >> 32], &b = o.positions[key & 0xffffffffu];
-      const std::string edge = "the edge " + describe(a) + " - " + describe(b);
+      auto edge = [&, key = key] {
+        return "the edge " + describe(o.positions[key >> 32]) + " - " + describe(o.positions[key & 0xffffffffu]);
+      };
       if (u.forward + u.backward > 2)
-        refuse(edge + " has " + std::to_string(u.forward + u.backward) + " triangles (non-manifold edge)");
+        refuse(edge() + " has " + std::to_string(u.forward + u.backward) + " triangles (non-manifold edge)");
       if (u.forward > 1 || u.backward > 1)
-        refuse(edge + " is used twice in the same direction (inconsistently oriented triangles)");
+        refuse(edge() + " is used twice in the same direction (inconsistently oriented triangles)");
       if (u.forward + u.backward == 1) ++o.info.boundaryEdges;
     }
     // Half-edge connectivity; OpenMesh refuses a face at a non-manifold vertex (two fans touching).
