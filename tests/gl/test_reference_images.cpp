@@ -98,3 +98,11 @@ TEST(GlReferenceImages, ClutterPcf3Midpoint) {
   o.capture = CaptureMode::Midpoint;
   compareWithReference("clutter_pcf3_midpoint", gltest::clutterScene(), o);
 }
+TEST(GlReferenceImages, DefaultSilhouette) {
+  compareWithReference("default_silhouette", defaultScene(), small(gl::ShadowMethod::Silhouette));
+}
+// Every object of the clutter scene is closed (the ground is a slab): the light cap of the lit
+// ground and bodies coincides with the visible surfaces, so this pins the invariant depths.
+TEST(GlReferenceImages, ClutterSilhouette) {
+  compareWithReference("clutter_silhouette", gltest::clutterScene(), small(gl::ShadowMethod::Silhouette));
+}

@@ -153,8 +153,7 @@ TEST(GlSilhouette, PlateCameraInsideTheVolume) {
 // The figure: over the pixels that face the light inside its frustum (those that `none` lights
 // with ambient 0; the dark side of the sphere is excluded, where the methods legitimately differ
 // and N.L = 0 anyway), the share where both shadow masks agree, hybrid at 256^2 and 1024^2.
-TEST(GlSilhouette, AgreesWithHybridOnTheDefaultScene) {
-  const Scene scene = defaultScene();
+void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receivers, double minAgree) {
   gl::Renderer& r = gltest::sharedRenderer();
   r.setScene(scene);
   gl::RenderOptions o;
@@ -167,7 +166,7 @@ TEST(GlSilhouette, AgreesWithHybridOnTheDefaultScene) {
   o.method = gl::ShadowMethod::Silhouette;
   o.readVisibility = true;
   const gl::RenderResult sil = r.render(o);
-  EXPECT_EQ(sil.receiversOnly, std::vector<std::string>{"ground"});
+  EXPECT_EQ(sil.receiversOnly, receivers);
   std::size_t facing = 0, silShadow = 0;
   std::vector<char> mask(sil.visibility.size());
   for (std::size_t k = 0; k < mask.size(); ++k) {
@@ -185,12 +184,24 @@ TEST(GlSilhouette, AgreesWithHybridOnTheDefaultScene) {
     for (std::size_t k = 0; k < mask.size(); ++k)
       if (mask[k] && sil.visibility[k] != hyb.visibility[k]) (sil.visibility[k] == 0 ? leak : extra) += 1;
     const double agree = 1.0 - double(leak + extra) / double(facing);
-    std::printf("default scene 320x240: %zu light-facing pixels, %zu in the silhouette shadow; hybrid %d^2 perfect: "
+    std::printf("%s 320x240: %zu light-facing pixels, %zu in the silhouette shadow; hybrid %d^2 perfect: "
                 "%zu lit where silhouette shadows, %zu shadowed where silhouette lights (%.3f%% agree)\n",
-                facing, silShadow, res, leak, extra, 100.0 * agree);
+                scene.source.c_str(), facing, silShadow, res, leak, extra, 100.0 * agree);
     EXPECT_GT(silShadow, 1000u);
-    EXPECT_GE(agree, 0.999) << res;
+    EXPECT_GE(agree, minAgree) << res;
   }
+}
+
+TEST(GlSilhouette, AgreesWithHybridOnTheDefaultScene) {
+  agreeWithHybrid(defaultScene(), {"ground"}, 0.999);  // measured 99.961 % (256^2), 99.996 % (1024^2)
+}
+
+// Every object closed (the ground is a slab): the light caps cover most of the visible surfaces,
+// and none of them is shadowed by its own cap (silhouette never shadows where hybrid lights here);
+// the hybrid shadow is slightly larger (depth-map quantisation at the thin trunk and the bodies'
+// feet): measured 99.852 % (256^2) and 99.958 % (1024^2).
+TEST(GlSilhouette, AgreesWithHybridOnTheClutterScene) {
+  agreeWithHybrid(gltest::clutterScene(), {}, 0.998);
 }
 
 TEST(GlSilhouette, NonManifoldObjectIsRefusedByName) {
