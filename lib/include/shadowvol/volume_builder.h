@@ -21,7 +21,7 @@
 // volume has zero thickness at that point and the cap passes under it (touching, not crossing).
 // Quad cap: every triangle kept; the cap closes the border ring (same CDT); pinch rule as above
 // (at the grid corners). Its far-plane sheet and cap coincide: for comparison only.
-// Memory: about 30 bytes per texel of scratch besides the result; no allocation per quad.
+// Memory: about 20 bytes per texel of scratch besides the result; no allocation per quad.
 #pragma once
 
 #include <optional>
