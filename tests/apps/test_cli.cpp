@@ -1,5 +1,6 @@
 // The shadowvol command line, run as a user runs it: exit codes, messages, outputs, no partial files.
 #include <array>
+#include <fstream>
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
@@ -125,6 +126,64 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   // --blur-offset without --blur is bad input.
   EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
+}
+
+}  // namespace
+}  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+bool hasGl() { return contains(runCli("--help").out, "render"); }
+
+TEST(CliGl, RenderWritesImageStencilAndTimes) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string png = (dir / "f.png").string(), st = (dir / "s.png").string();
+  const CliResult r = runCli("render --json --resolution 64 --size 160x120 --out " + png + " --stencil " + st);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["size"][0], 160);
+  EXPECT_FALSE(j["gl"]["glRenderer"].get<std::string>().empty());
+  EXPECT_GT(j["stencilNonZeroPixels"].get<int>(), 0);  // the sphere's shadow
+  EXPECT_FALSE(j["passes"].empty());
+  EXPECT_TRUE(std::filesystem::exists(png));
+  EXPECT_TRUE(std::filesystem::exists(st));
+  // Bad values: named, nothing written.
+  const std::string bad = (dir / "bad.png").string();
+  for (const char* args : {"--size 0x5", "--size big", "--resolution 1", "--blur-offset 0.1"}) {
+    const CliResult b = runCli(std::string("render ") + args + " --out " + bad);
+    EXPECT_EQ(b.code, 1) << args << ": " << b.out;
+  }
+  EXPECT_EQ(runCli("render --method laser --out " + bad).code, 2);
+  EXPECT_EQ(runCli("render --method shadowmap --stencil " + st + "2 --out " + bad).code, 1);
+  EXPECT_FALSE(std::filesystem::exists(bad));
+}
+
+TEST(CliGl, ValidateWritesReportAndImages) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const CliResult r = runCli("validate --resolution 64 --size 160x120 --scene " + scene("plate.json") +
+                             " --report " + (dir / "rep").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "rep" / "report.json"));
+  EXPECT_TRUE(j["passed"].get<bool>());
+  EXPECT_TRUE(j["meshChecks"]["valid"].get<bool>());
+  EXPECT_GE(j["stencilVsCount"]["fraction"].get<double>(), 0.9999);
+  EXPECT_EQ(j["scene"]["camera"]["width"], 160);
+  EXPECT_EQ(j["scene"]["light"]["type"], "directional");
+  for (const char* f : {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "rep" / f)) << f;
+  // A shadow-map baseline: the same report, the volume fields not applicable.
+  const CliResult s = runCli("validate --json --method pcf3 --resolution 64 --size 160x120 --scene " +
+                             scene("plate.json") + " --report " + (dir / "pcf").string());
+  ASSERT_EQ(s.code, 0) << s.out;
+  const auto js = nlohmann::json::parse(s.out);
+  EXPECT_TRUE(js["meshChecks"].is_string());
+  EXPECT_GT(js["againstExact"]["method"]["pixels"].get<int>(), 1000);
+  // A report path that is a file is refused before rendering.
+  test::writeText(dir / "afile", "x");
+  EXPECT_EQ(runCli("validate --report " + (dir / "afile").string()).code, 1);
 }
 
 }  // namespace
