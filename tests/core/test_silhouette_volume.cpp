@@ -96,8 +96,10 @@ TEST(SilhouetteVolume, DarkCapLiesAtTheExtrusionDepth) {
   std::size_t atFar = 0;
   for (const auto& p : v.mesh.positions) {
     const double d = glm::dot(p - light.position, dir);
-    if (std::abs(d - light.farPlane) < 1e-9 * light.farPlane) ++atFar;
-    else EXPECT_LT(d, 7.5);  // the sphere's own vertices (depth 5 to 7)
+    if (std::abs(d - light.farPlane) < 1e-9 * light.farPlane)
+      ++atFar;
+    else
+      EXPECT_LT(d, 7.5);  // the sphere's own vertices (depth 5 to 7)
   }
   EXPECT_GT(atFar, 0u);
 }

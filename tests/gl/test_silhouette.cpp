@@ -105,8 +105,7 @@ void runPlate(const Scene& scene, std::size_t minShadowed, std::size_t minLit, s
   for (const auto& p : res.passes) names.push_back(p.name);
   EXPECT_NE(std::find(names.begin(), names.end(), "silhouette"), names.end());
   EXPECT_EQ(std::find(names.begin(), names.end(), "light"), names.end());  // no light pass
-  for (std::size_t k = 0; k < res.stencil.size(); ++k)
-    ASSERT_EQ(res.visibility[k], res.stencil[k] == 0 ? 255 : 0);
+  for (std::size_t k = 0; k < res.stencil.size(); ++k) ASSERT_EQ(res.visibility[k], res.stencil[k] == 0 ? 255 : 0);
 }
 
 }  // namespace
@@ -184,9 +183,10 @@ void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receive
     for (std::size_t k = 0; k < mask.size(); ++k)
       if (mask[k] && sil.visibility[k] != hyb.visibility[k]) (sil.visibility[k] == 0 ? leak : extra) += 1;
     const double agree = 1.0 - double(leak + extra) / double(facing);
-    std::printf("%s 320x240: %zu light-facing pixels, %zu in the silhouette shadow; hybrid %d^2 perfect: "
-                "%zu lit where silhouette shadows, %zu shadowed where silhouette lights (%.3f%% agree)\n",
-                scene.source.c_str(), facing, silShadow, res, leak, extra, 100.0 * agree);
+    std::printf(
+        "%s 320x240: %zu light-facing pixels, %zu in the silhouette shadow; hybrid %d^2 perfect: "
+        "%zu lit where silhouette shadows, %zu shadowed where silhouette lights (%.3f%% agree)\n",
+        scene.source.c_str(), facing, silShadow, res, leak, extra, 100.0 * agree);
     EXPECT_GT(silShadow, 1000u);
     EXPECT_GE(agree, minAgree) << res;
   }

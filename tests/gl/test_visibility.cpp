@@ -89,8 +89,10 @@ TEST(GlVisibility, ShadowMapsAndPcfOnThePlate) {
     EXPECT_GT(shadowed, 200u) << gl::toString(method);
     EXPECT_GT(lit, 3000u) << gl::toString(method);
     EXPECT_EQ(wrong, 0u) << gl::toString(method);
-    if (method == gl::ShadowMethod::ShadowMap) EXPECT_EQ(fractional, 0u);
-    else EXPECT_GT(fractional, 20u) << gl::toString(method);  // the PCF penumbra around the plate
+    if (method == gl::ShadowMethod::ShadowMap)
+      EXPECT_EQ(fractional, 0u);
+    else
+      EXPECT_GT(fractional, 20u) << gl::toString(method);  // the PCF penumbra around the plate
   }
 }
 

@@ -38,10 +38,10 @@ enum class SilhouetteRole {
 };
 
 struct SilhouetteObjectInfo {
-  std::string name;          ///< SceneObject::name
+  std::string name;  ///< SceneObject::name
   SilhouetteRole role = SilhouetteRole::Caster;
-  std::size_t vertices = 0;   ///< after welding equal positions
-  std::size_t triangles = 0;  ///< after dropping triangles with a repeated vertex
+  std::size_t vertices = 0;       ///< after welding equal positions
+  std::size_t triangles = 0;      ///< after dropping triangles with a repeated vertex
   std::size_t boundaryEdges = 0;  ///< 0 for a caster
 };
 
@@ -56,9 +56,9 @@ class SilhouetteOccluders {
   SilhouetteOccluders(SilhouetteOccluders&&) noexcept;
   SilhouetteOccluders& operator=(SilhouetteOccluders&&) noexcept;
 
-  const std::string& source() const;                  ///< the scene's source, for messages
+  const std::string& source() const;                         ///< the scene's source, for messages
   const std::vector<SilhouetteObjectInfo>& objects() const;  ///< in scene order
-  std::vector<std::string> receiversOnly() const;     ///< names of the ReceiverOnly objects
+  std::vector<std::string> receiversOnly() const;            ///< names of the ReceiverOnly objects
 
   /// Silhouette edges of object `object` (a Caster) for `light`: world-space end points (a, b),
   /// ordered as in the triangle that faces the light (counter-clockwise seen from outside).
@@ -79,12 +79,17 @@ struct SilhouetteVolume {
   /// triangles facing away, projected along the light rays to light-view depth extrusionDepth).
   /// Every directed edge appears once and its reverse once. Extruded to a finite depth, not to
   /// infinity: draw it with GL_DEPTH_CLAMP (the renderer does), as the hybrid volume.
+  /// Unlike the hybrid volume it is not a simple solid in general: for a non-convex caster the
+  /// walls and caps cross each other (winding numbers above 1 where surfaces overlap as seen from
+  /// the light), a vertex where the silhouette passes twice can be a pinch, and edge-on or
+  /// collinear-with-the-light triangles give zero-area faces. Closed and consistently oriented
+  /// always; use winding numbers (z-fail counts, signed crossings), not self-intersection checks.
   VolumeMesh mesh;
-  std::size_t silhouetteEdges = 0;     ///< all casters
-  std::size_t lightCapTriangles = 0;   ///< all casters
-  std::size_t darkCapTriangles = 0;    ///< all casters
-  double extrusionDepth = 0.0;  ///< light-view depth of the dark cap, world units: the light's far
-                                ///< plane, or 1.001 x the deepest caster vertex when that is farther
+  std::size_t silhouetteEdges = 0;         ///< all casters
+  std::size_t lightCapTriangles = 0;       ///< all casters
+  std::size_t darkCapTriangles = 0;        ///< all casters
+  double extrusionDepth = 0.0;             ///< light-view depth of the dark cap, world units: the light's far
+                                           ///< plane, or 1.001 x the deepest caster vertex when that is farther
   std::vector<std::string> receiversOnly;  ///< open objects that cast nothing, by name
   std::vector<std::string> skipped;        ///< spot: casters entirely behind the apex plane
 };

@@ -55,9 +55,9 @@ void weld(const TriangleMesh& in, std::vector<glm::dvec3>& positions, std::vecto
 
 struct Object {
   SilhouetteObjectInfo info;
-  OMesh mesh;                          // casters only: the welded mesh with half-edge connectivity
-  std::vector<glm::dvec3> positions;   // welded, double (= OpenMesh vertex idx)
-  std::vector<Tri> triangles;          // = OpenMesh face idx
+  OMesh mesh;                         // casters only: the welded mesh with half-edge connectivity
+  std::vector<glm::dvec3> positions;  // welded, double (= OpenMesh vertex idx)
+  std::vector<Tri> triangles;         // = OpenMesh face idx
 };
 
 /// Light-facing flags per triangle (see silhouetteEdges in the header).
@@ -127,14 +127,14 @@ SilhouetteOccluders::SilhouetteOccluders(const Scene& scene) : impl_(std::make_u
                                      OMesh::VertexHandle(int(t[2])));
       if (!f.is_valid()) {
         if (wasEnabled) err.enable();
-        refuse("a triangle at the vertex " + describe(o.positions[t[0]]) + ", " + describe(o.positions[t[1]]) +
-               " or " + describe(o.positions[t[2]]) + " makes it non-manifold (two fans touching at a vertex)");
+        refuse("a triangle at the vertex " + describe(o.positions[t[0]]) + ", " + describe(o.positions[t[1]]) + " or " +
+               describe(o.positions[t[2]]) + " makes it non-manifold (two fans touching at a vertex)");
       }
     }
     if (wasEnabled) err.enable();
     SV_CHECK_EQ(o.mesh.n_faces(), o.triangles.size());
-    o.info.role = o.info.boundaryEdges == 0 && !o.triangles.empty() ? SilhouetteRole::Caster
-                                                                     : SilhouetteRole::ReceiverOnly;
+    o.info.role =
+        o.info.boundaryEdges == 0 && !o.triangles.empty() ? SilhouetteRole::Caster : SilhouetteRole::ReceiverOnly;
     if (o.info.role == SilhouetteRole::ReceiverOnly) o.mesh = OMesh();  // connectivity not needed
     impl_->infos.push_back(o.info);
     impl_->objects.push_back(std::move(o));
@@ -262,7 +262,8 @@ SilhouetteVolume buildSilhouetteVolume(const SilhouetteOccluders& occluders, con
     }
     forEachSilhouetteEdge(o, front, [&](OMesh::HalfedgeHandle h) {
       // a -> b runs in the lit triangle; the wall uses b -> a near and a' -> b' far.
-      const auto a = std::uint32_t(o.mesh.from_vertex_handle(h).idx()), b = std::uint32_t(o.mesh.to_vertex_handle(h).idx());
+      const auto a = std::uint32_t(o.mesh.from_vertex_handle(h).idx()),
+                 b = std::uint32_t(o.mesh.to_vertex_handle(h).idx());
       const std::uint32_t na = nearVertex(a), nb = nearVertex(b), fa = farVertex(a), fb = farVertex(b);
       mesh.triangles.push_back({nb, na, fa});
       mesh.triangles.push_back({nb, fa, fb});
