@@ -1,0 +1,195 @@
+#include "shadowvol/bench/sweep_results.h"
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "shadowvol/error.h"
+
+namespace shadowvol {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : line) {
+    if (c == ',') {
+      out.push_back(cur);
+      cur.clear();
+    } else if (c != '\r') {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+std::vector<std::string> columns() {
+  std::vector<std::string> c = {"scene", "triangles", "method", "family", "capture", "resolution", "width", "height",
+                                "timing", "frames", "frame_ms", "frame_ms_min", "frame_ms_max"};
+  for (const auto& p : sweepPhases()) c.push_back(p + "_ms");
+  for (const char* s : {"volume_triangles", "pixels", "error", "leak", "acne", "band_pixels", "band_error",
+                        "band_leak", "band_acne", "dist_mean", "dist_p99", "dist_max"})
+    c.push_back(s);
+  return c;
+}
+
+}  // namespace
+
+const std::vector<std::string>& sweepPhases() {
+  static const std::vector<std::string> p = {"light",  "resolve", "blur",     "readback", "build",     "upload",
+                                             "camera", "volume",  "lighting", "shade",    "silhouette"};
+  return p;
+}
+
+std::string sweepCsvHeader() {
+  std::string h;
+  for (const auto& c : columns()) h += (h.empty() ? "" : ",") + c;
+  return h;
+}
+
+std::string toCsv(const SweepRow& r) {
+  std::vector<std::string> f = {r.scene,
+                                std::to_string(r.triangles),
+                                r.method,
+                                r.family,
+                                r.capture,
+                                std::to_string(r.resolution),
+                                std::to_string(r.width),
+                                std::to_string(r.height),
+                                r.timing,
+                                std::to_string(r.frames),
+                                num(r.frame.median),
+                                num(r.frame.min),
+                                num(r.frame.max)};
+  for (const auto& name : sweepPhases()) {
+    std::string v;
+    for (const auto& [n, t] : r.phases)
+      if (n == name) v = num(t.median);
+    f.push_back(v);
+  }
+  f.push_back(std::to_string(r.volumeTriangles));
+  f.push_back(std::to_string(r.pixels));
+  f.push_back(num(r.error));
+  f.push_back(num(r.leak));
+  f.push_back(num(r.acne));
+  f.push_back(std::to_string(r.bandPixels));
+  f.push_back(num(r.bandError));
+  f.push_back(num(r.bandLeak));
+  f.push_back(num(r.bandAcne));
+  f.push_back(r.distMean ? num(*r.distMean) : "");
+  f.push_back(r.distP99 ? num(*r.distP99) : "");
+  f.push_back(r.distMax ? num(*r.distMax) : "");
+  std::string line;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    for (char c : f[k])
+      if (c == ',' || c == '\n') throw InputError("results.csv", columns()[k], f[k], "a field may not hold ',' or a newline");
+    line += (k ? "," : "") + f[k];
+  }
+  return line;
+}
+
+SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber) {
+  const auto f = split(line);
+  const auto cols = columns();
+  const std::string where = source + " line " + std::to_string(lineNumber);
+  if (f.size() != cols.size())
+    throw InputError(where, "", std::to_string(f.size()) + " fields", "expected " + std::to_string(cols.size()));
+  std::size_t k = 0;
+  auto text = [&]() { return f[k++]; };
+  auto real = [&]() -> double {
+    const std::string& s = f[k];
+    double v = 0;
+    const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
+      throw InputError(where, cols[k], s, "expected a number");
+    ++k;
+    return v;
+  };
+  auto whole = [&]() -> long long {
+    const std::string& s = f[k];
+    long long v = 0;
+    const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
+      throw InputError(where, cols[k], s, "expected a whole number");
+    ++k;
+    return v;
+  };
+  auto maybe = [&]() -> std::optional<double> {
+    if (f[k].empty()) {
+      ++k;
+      return std::nullopt;
+    }
+    return real();
+  };
+  SweepRow r;
+  r.scene = text();
+  r.triangles = std::size_t(whole());
+  r.method = text();
+  r.family = text();
+  r.capture = text();
+  r.resolution = int(whole());
+  r.width = int(whole());
+  r.height = int(whole());
+  r.timing = text();
+  r.frames = int(whole());
+  r.frame.median = real();
+  r.frame.min = real();
+  r.frame.max = real();
+  for (const auto& name : sweepPhases()) {
+    const auto v = maybe();
+    if (v) r.phases.push_back({name, TimeStat{*v, *v, *v}});
+  }
+  r.volumeTriangles = std::size_t(whole());
+  r.pixels = std::size_t(whole());
+  r.error = real();
+  r.leak = real();
+  r.acne = real();
+  r.bandPixels = std::size_t(whole());
+  r.bandError = real();
+  r.bandLeak = real();
+  r.bandAcne = real();
+  r.distMean = maybe();
+  r.distP99 = maybe();
+  r.distMax = maybe();
+  return r;
+}
+
+std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "", "cannot open the results file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  std::vector<SweepRow> rows;
+  std::size_t pos = 0, lineNumber = 0;
+  while (pos < text.size()) {
+    const std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) break;  // an interrupted last line
+    const std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++lineNumber;
+    if (lineNumber == 1) {
+      if (line != sweepCsvHeader())
+        throw InputError(path.string(), "header", line.substr(0, 60), "not a shadowvol sweep file of this version");
+      continue;
+    }
+    if (line.empty()) continue;
+    rows.push_back(parseSweepRow(line, path.string(), lineNumber));
+  }
+  return rows;
+}
+
+std::string cellKey(const SweepRow& r) {
+  return r.scene + "|" + r.method + "|" + std::to_string(r.resolution) + "|" + std::to_string(r.width) + "x" +
+         std::to_string(r.height);
+}
+
+}  // namespace shadowvol
