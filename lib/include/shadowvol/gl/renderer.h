@@ -149,7 +149,9 @@ class Renderer {
   const ContextInfo& info() const;
 
   /// Uploads the scene's triangles (world space) and keeps its light and camera. The light and
-  /// camera must have their near/far planes set (loadScene and defaultScene fit them).
+  /// camera must have their near/far planes set (loadScene and defaultScene fit them). Keeps a
+  /// copy of the scene for the silhouette method, whose connectivity is built on its first frame
+  /// (so a non-manifold object is reported by render(), only for that method).
   void setScene(const Scene& scene);
 
   /// Light pass + read-back: the same quantity as captureDepthEmbree (depth_map.h: light-view
