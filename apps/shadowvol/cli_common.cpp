@@ -52,6 +52,17 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   if (std::filesystem::is_directory(p, ec)) throw InputError("command line", option, path, "is a folder, not a file");
 }
 
+namespace {
+std::string gCommandLine = "shadowvol";
+}
+
+const std::string& commandLine() { return gCommandLine; }
+
+void setCommandLine(int argc, char** argv) {
+  gCommandLine = "shadowvol";
+  for (int k = 1; k < argc; ++k) gCommandLine += std::string(" ") + argv[k];
+}
+
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

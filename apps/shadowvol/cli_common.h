@@ -15,7 +15,7 @@
 
 namespace shadowvol::cli {
 
-enum ExitCode { kOk = 0, kBadInput = 1, kUsage = 2, kValidationFailed = 3, kRuntimeFailure = 4 };
+enum ExitCode { kOk = 0, kBadInput = 1, kUsage = 2, kValidationFailed = 3, kRuntimeFailure = 4, kInterrupted = 130 };
 
 /// Options most subcommands share.
 struct SceneOptions {
@@ -39,6 +39,10 @@ void checkResolution(const std::string& option, int resolution);
 /// Refuses an output path whose folder does not exist (before any work is done).
 void checkOutputPath(const std::string& option, const std::string& path);
 
+/// The command line as typed (set by main), for reports that say how to reproduce them.
+const std::string& commandLine();
+void setCommandLine(int argc, char** argv);
+
 /// Milliseconds since `start`.
 double msSince(std::chrono::steady_clock::time_point start);
 
@@ -54,6 +58,7 @@ void registerBuildCommand(CLI::App& app, Runner& run);
 #ifdef SHADOWVOL_WITH_GL
 void registerRenderCommand(CLI::App& app, Runner& run);
 void registerValidateCommand(CLI::App& app, Runner& run);
+void registerBenchCommand(CLI::App& app, Runner& run);
 #endif
 
 }  // namespace shadowvol::cli

@@ -36,12 +36,12 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       checkOutputPath("--out", o->out);
       if (!o->stencil.empty()) {
         checkOutputPath("--stencil", o->stencil);
-        if (o->render.method != "hybrid")
-          throw InputError("command line", "--stencil", o->stencil, "only the hybrid method uses the stencil");
+        if (o->render.method != "hybrid" && o->render.method != "silhouette")
+          throw InputError("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
-      ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid";
+      ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
       renderer.setScene(scene);
 
@@ -92,7 +92,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"passes", passes},
           {"frameMs", median(totals)},
           {"volumeTriangles", result.volumeTriangles},
-          {"stencilNonZeroPixels", o->render.method == "hybrid" ? nlohmann::json(shadowed) : nlohmann::json()},
+          {"stencilNonZeroPixels", result.stencil.empty() ? nlohmann::json() : nlohmann::json(shadowed)},
+          {"receiversOnly", result.receiversOnly},
+          {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};
       if (o->render.scene.json) {
@@ -107,6 +109,14 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
                       o->render.volume.c_str(), o->render.triangulation.c_str(), o->render.blur ? ", blur" : "", o->render.cap.c_str(),
                       result.volumeTriangles, shadowed);
+        if (!result.receiversOnly.empty()) {
+          std::printf("\nreceivers only (open, cast no silhouette shadow):");
+          for (const auto& r : result.receiversOnly) std::printf(" %s", r.c_str());
+        }
+        if (!result.skippedCasters.empty()) {
+          std::printf("\nskipped casters (behind the spot light):");
+          for (const auto& r : result.skippedCasters) std::printf(" %s", r.c_str());
+        }
         std::printf("\npass times (%s, median of %d frame%s):", gl::toString(result.timing), o->frames,
                     o->frames > 1 ? "s" : "");
         for (const auto& p : passes) std::printf(" %s %.2f ms,", p["name"].get<std::string>().c_str(), p["ms"].get<double>());

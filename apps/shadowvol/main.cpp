@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
       "4 runtime failure (no EGL display, Embree error)."};
   app.set_version_flag("--version", "shadowvol 0.1.0");
   app.require_subcommand(1);
+  cli::setCommandLine(argc, argv);
   cli::Runner run;
   cli::registerSceneCommand(app, run);
   cli::registerDepthCommand(app, run);
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
 #ifdef SHADOWVOL_WITH_GL
   cli::registerRenderCommand(app, run);
   cli::registerValidateCommand(app, run);
+  cli::registerBenchCommand(app, run);
 #endif
   try {
     app.parse(argc, argv);

@@ -25,8 +25,9 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   addSceneOptions(cmd, o.scene);
   cmd.add_option("--method", o.method,
                  "hybrid (the shadow volume, z-fail stencil), shadowmap (hardware depth compare), pcf3 / pcf5 "
-                 "(percentage-closer filtering over 3x3 / 5x5 texels), none (no shadows)")
-      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "none"}))
+                 "(percentage-closer filtering over 3x3 / 5x5 texels), silhouette (classic object-space shadow "
+                 "volumes of the closed objects; open sheets only receive), none (no shadows)")
+      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "silhouette", "none"}))
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production) or explicit (depth "

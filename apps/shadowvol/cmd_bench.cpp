@@ -1,0 +1,160 @@
+// shadowvol bench: the time-against-error sweep over scenes x methods x depth-map resolutions.
+// Writes DIR/results.csv cell by cell (resumable) and DIR/report.md with SVG plots.
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <thread>
+#include <unistd.h>
+
+#include "render_options.h"
+#include "shadowvol/bench/sweep.h"
+#include "shadowvol/bench/sweep_report.h"
+#include "shadowvol/error.h"
+
+namespace shadowvol::cli {
+namespace {
+
+std::atomic<bool> gStop{false};
+void onSigint(int) { gStop = true; }
+
+std::string machineDescription() {
+  std::string model = "unknown CPU";
+  std::ifstream cpu("/proc/cpuinfo");
+  for (std::string line; std::getline(cpu, line);)
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  const double gib = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) / 1073741824.0 : 0.0;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%u cores, %s, %.0f GiB", std::thread::hardware_concurrency(), model.c_str(), gib);
+  return buf;
+}
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& app, Runner& run) {
+  struct Options {
+    std::vector<std::string> scenes;
+    std::vector<std::string> methods;
+    std::vector<int> resolutions = {64, 128, 256, 512, 1024, 2048, 4096};
+    std::string size = "640x480";
+    int repeat = 5;
+    int warmup = 1;
+    std::string out;
+    bool reportOnly = false;
+    bool listMethods = false;
+    std::string platform = "auto";
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "Time against error: every scene x method x depth-map resolution, timed on the GPU (median of --repeat frames "
+      "after --warmup) and scored against exact shadow rays. Writes DIR/results.csv cell by cell (run the same "
+      "command again to resume an interrupted sweep; Ctrl-C stops after the current cell) and DIR/report.md with "
+      "SVG plots");
+  cmd->add_option("--scenes", o->scenes, "Scene files (default: every data/scenes/*.json; 'default' = built-in scene)");
+  cmd->add_option("--methods", o->methods, "Method keys (default: all; see --list-methods)");
+  cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N)")->capture_default_str();
+  cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--repeat", o->repeat, "Measured frames per cell (median, min, max)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--warmup", o->warmup, "Frames rendered and discarded before measuring")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--platform", o->platform, "EGL platform: auto, device, surfaceless, default")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Output folder (results.csv, report.md, plots/)");
+  cmd->add_flag("--report-only", o->reportOnly, "Only rewrite report.md and the plots from DIR/results.csv");
+  cmd->add_flag("--list-methods", o->listMethods, "Print the method keys and exit");
+  cmd->callback([&run, o] {
+    run = [o] {
+      if (o->listMethods) {
+        for (const auto& m : sweepMethods()) std::printf("%-26s %s\n", m.key.c_str(), m.description.c_str());
+        return kOk;
+      }
+      if (o->out.empty()) throw InputError("command line", "--out", "", "an output folder is required");
+      const std::filesystem::path dir(o->out);
+      SweepReportInfo info;
+      info.machine = machineDescription();
+      info.command = commandLine();
+      if (o->reportOnly) {
+        const auto rows = readSweepCsv(dir / "results.csv");
+        info.timing = rows.empty() ? "" : rows.front().timing;
+        info.glRenderer = "see results";
+        for (const auto& p : writeSweepReport(rows, info, dir)) std::printf("wrote %s\n", p.string().c_str());
+        return kOk;
+      }
+      SweepOptions so;
+      if (o->scenes.empty()) {
+        std::filesystem::path sceneDir = std::filesystem::path(SHADOWVOL_SOURCE_DIR) / "data/scenes";
+        if (!std::filesystem::is_directory(sceneDir)) sceneDir = "data/scenes";
+        if (!std::filesystem::is_directory(sceneDir))
+          throw InputError("command line", "--scenes", "", "no data/scenes folder here: name the scene files");
+        for (const auto& e : std::filesystem::directory_iterator(sceneDir))
+          if (e.path().extension() == ".json") so.scenes.push_back(e.path());
+        std::sort(so.scenes.begin(), so.scenes.end());
+      } else {
+        for (const auto& s : o->scenes) {
+          if (s == "default") {
+            so.scenes.emplace_back();
+            continue;
+          }
+          if (!std::filesystem::is_regular_file(s))
+            throw InputError("command line", "--scenes", s, "no such scene file");
+          so.scenes.emplace_back(s);
+        }
+      }
+      so.methods = o->methods;
+      so.resolutions = o->resolutions;
+      Scene sizeScene;
+      RenderCliOptions sizeOnly;
+      sizeOnly.size = o->size;
+      toRenderOptions(sizeOnly, sizeScene);  // checks --size
+      so.width = sizeScene.camera.width;
+      so.height = sizeScene.camera.height;
+      so.repeat = o->repeat;
+      so.warmup = o->warmup;
+      so.out = dir;
+      std::error_code ec;
+      const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
+      if (!std::filesystem::is_directory(parent, ec))
+        throw InputError("command line", "--out", o->out, "the folder " + parent.string() + " does not exist");
+
+      gl::RendererOptions ropt;
+      ropt.context.platform = o->platform;
+      gl::Renderer renderer(ropt);
+      info.glRenderer = renderer.info().glRenderer;
+      const bool tty = isatty(fileno(stderr));
+      std::signal(SIGINT, onSigint);
+      std::vector<std::string> notes;
+      const auto rows = runSweep(renderer, so, gStop, [tty](const SweepProgress& p) {
+        const double eta = p.done > p.skipped ? p.elapsedSeconds / double(p.done - p.skipped) * double(p.total - p.done) : 0.0;
+        if (tty) {
+          const int width = 30, filled = p.total ? int(width * p.done / p.total) : width;
+          std::fprintf(stderr, "\r[%s%s] %zu/%zu  ETA %4.0f s  %-60.60s", std::string(filled, '#').c_str(),
+                       std::string(width - filled, '.').c_str(), p.done, p.total, eta, p.cell.c_str());
+          if (p.done == p.total) std::fputc('\n', stderr);
+        } else {
+          std::fprintf(stderr, "bench %zu/%zu %s\n", p.done, p.total, p.cell.c_str());
+        }
+      }, notes);
+      std::signal(SIGINT, SIG_DFL);
+      for (const auto& n : notes) std::fprintf(stderr, "shadowvol: note: %s\n", n.c_str());
+      info.timing = rows.empty() ? "" : rows.back().timing;
+      for (const auto& p : writeSweepReport(rows, info, dir)) std::printf("wrote %s\n", p.string().c_str());
+      if (gStop) {
+        std::fprintf(stderr, "interrupted: %zu cells in %s; run the same command to resume\n", rows.size(),
+                     (dir / "results.csv").string().c_str());
+        return kInterrupted;
+      }
+      return kOk;
+    };
+  });
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,55 @@
+// The time-against-error sweep (issue 6): every scene x method x depth-map resolution, timed on
+// the GPU renderer and scored against exact (ray-traced) shadows. Rows go to DIR/results.csv as
+// they are measured, so an interrupted sweep resumes where it stopped.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "shadowvol/bench/sweep_results.h"
+#include "shadowvol/gl/renderer.h"
+
+namespace shadowvol {
+
+/// A method of the sweep: its key (the CSV's `method`) and how to render it.
+struct SweepMethod {
+  std::string key;                  ///< e.g. "pcf3", "hybrid-perfect-blur/gpu", "silhouette"
+  std::string family;               ///< shadowmap | pcf3 | pcf5 | hybrid | silhouette
+  gl::RenderOptions options;        ///< method, volume source, capture, volume options
+  bool usesResolution = true;       ///< false for silhouette (no depth map): one cell per scene
+  std::string description;          ///< one line for --help and the report
+};
+
+/// Every method the sweep knows, in report order.
+const std::vector<SweepMethod>& sweepMethods();
+
+struct SweepOptions {
+  std::vector<std::filesystem::path> scenes;  ///< scene files; an empty path = the built-in default scene
+  std::vector<std::string> methods;           ///< keys of sweepMethods(); empty = all
+  std::vector<int> resolutions = {64, 128, 256, 512, 1024, 2048, 4096};
+  int width = 640, height = 480;              ///< image size (replaces each scene camera's)
+  int repeat = 5;                             ///< measured frames per cell (median, min, max)
+  int warmup = 1;                             ///< frames rendered and discarded first
+  std::filesystem::path out;                  ///< folder for results.csv (created)
+};
+
+/// Progress of the sweep, for a progress bar or plain lines.
+struct SweepProgress {
+  std::size_t done = 0, total = 0, skipped = 0;  ///< cells: measured or resumed so far, all, resumed
+  std::string cell;                              ///< scene | method | resolution of the current cell
+  double elapsedSeconds = 0.0;
+};
+
+/// Runs the sweep, appending each finished cell to out/results.csv (created with its header if
+/// missing; cells already in it are skipped). Stops after the current cell when `stop` becomes
+/// true. Throws InputError for unknown methods, a results file of another version, or scenes that
+/// fail to load; a resolution whose buffers would not fit in memory is skipped with a note.
+/// Returns all rows of results.csv afterwards.
+std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& options, const std::atomic<bool>& stop,
+                               const std::function<void(const SweepProgress&)>& onProgress,
+                               std::vector<std::string>& notes);
+
+}  // namespace shadowvol

@@ -1,0 +1,247 @@
+#include "shadowvol/bench/sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+#include "shadowvol/bench/shadow_error.h"
+#include "shadowvol/embree/ray_queries.h"
+#include "shadowvol/error.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol {
+namespace {
+
+SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source) {
+  SweepMethod m;
+  const std::string variant = std::string(t == Triangulation::Perfect ? "perfect" : "fixed") + (blur ? "-blur" : "");
+  m.key = "hybrid-" + variant + "/" + gl::toString(source);
+  m.family = "hybrid";
+  m.options.method = gl::ShadowMethod::Hybrid;
+  m.options.volume = source;
+  m.options.capture = CaptureMode::Back;
+  m.options.volumeOptions.triangulation = t;
+  m.options.volumeOptions.blur = blur;
+  m.options.volumeOptions.cap = FarCap::Exact;
+  m.description = "shadow volume from the depth map, " + variant + ", " + gl::toString(source) + " volume, back capture";
+  return m;
+}
+
+SweepMethod shadowMap(const std::string& key, gl::ShadowMethod method, CaptureMode capture, const std::string& what) {
+  SweepMethod m;
+  m.key = key;
+  m.family = gl::toString(method);
+  m.options.method = method;
+  m.options.capture = capture;
+  m.description = what;
+  return m;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  if (v.empty()) return 0.0;
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+TimeStat stat(const std::vector<double>& v) {
+  TimeStat s;
+  s.median = median(v);
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  return s;
+}
+
+}  // namespace
+
+const std::vector<SweepMethod>& sweepMethods() {
+  static const std::vector<SweepMethod> all = [] {
+    std::vector<SweepMethod> v;
+    v.push_back(shadowMap("shadowmap", gl::ShadowMethod::ShadowMap, CaptureMode::Back,
+                          "shadow map, one hardware depth compare, back-face depths (second-depth)"));
+    v.push_back(shadowMap("shadowmap-front", gl::ShadowMethod::ShadowMap, CaptureMode::Front,
+                          "shadow map of front faces, constant bias defaultBias() plus slope-scaled bias"));
+    v.push_back(shadowMap("shadowmap-midpoint", gl::ShadowMethod::ShadowMap, CaptureMode::Midpoint,
+                          "midpoint shadow map (mean of the first two layers)"));
+    v.push_back(shadowMap("pcf3", gl::ShadowMethod::Pcf3, CaptureMode::Back, "PCF over 3 x 3 texels, back faces"));
+    v.push_back(shadowMap("pcf5", gl::ShadowMethod::Pcf5, CaptureMode::Back, "PCF over 5 x 5 texels, back faces"));
+    for (auto source : {gl::VolumeSource::Gpu, gl::VolumeSource::Explicit})
+      for (auto t : {Triangulation::Fixed, Triangulation::Perfect})
+        for (bool blur : {false, true}) v.push_back(hybrid(t, blur, source));
+    SweepMethod s;
+    s.key = "silhouette";
+    s.family = "silhouette";
+    s.options.method = gl::ShadowMethod::Silhouette;
+    s.usesResolution = false;
+    s.description = "classic silhouette shadow volumes of the closed objects (exact for closed manifolds)";
+    v.push_back(s);
+    return v;
+  }();
+  return all;
+}
+
+std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, const std::atomic<bool>& stop,
+                               const std::function<void(const SweepProgress&)>& onProgress,
+                               std::vector<std::string>& notes) {
+  // Which methods.
+  std::vector<const SweepMethod*> methods;
+  for (const auto& m : sweepMethods())
+    if (o.methods.empty() || std::count(o.methods.begin(), o.methods.end(), m.key)) methods.push_back(&m);
+  for (const auto& key : o.methods)
+    if (std::none_of(methods.begin(), methods.end(), [&](const SweepMethod* m) { return m->key == key; }))
+      throw InputError("command line", "--methods", key, "unknown method (see 'shadowvol bench --list-methods')");
+  // Resolutions that fit: the depth map, the explicit volume and the GPU textures, well inside memory.
+  std::vector<int> resolutions;
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
+  for (int r : o.resolutions) {
+    if (r < 2 || r > 16384) throw InputError("command line", "--resolutions", std::to_string(r), "must be in 2..16384");
+    const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies
+    if (physical > 0 && need > physical / 2) {
+      notes.push_back("resolution " + std::to_string(r) + " skipped: needs about " +
+                      std::to_string(long(need / 1048576)) + " MiB");
+      continue;
+    }
+    resolutions.push_back(r);
+  }
+
+  // The results file: resume what is there.
+  std::filesystem::create_directories(o.out);
+  const auto csv = o.out / "results.csv";
+  std::vector<SweepRow> rows;
+  std::set<std::string> done;
+  if (std::filesystem::exists(csv)) {
+    rows = readSweepCsv(csv);
+    for (const auto& r : rows) done.insert(cellKey(r));
+    // Drop an interrupted last line so appends start on a fresh line.
+    std::ifstream in(csv, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!text.empty() && text.back() != '\n') {
+      std::filesystem::resize_file(csv, text.rfind('\n') + 1);
+      notes.push_back("dropped an incomplete last line of " + csv.string());
+    }
+  } else {
+    std::ofstream(csv) << sweepCsvHeader() << '\n';
+  }
+  std::ofstream append(csv, std::ios::app);
+
+  // The cells.
+  struct Cell {
+    std::size_t scene;
+    const SweepMethod* method;
+    int resolution;
+  };
+  std::vector<Cell> cells;
+  for (std::size_t s = 0; s < o.scenes.size(); ++s)
+    for (const SweepMethod* m : methods) {
+      if (!m->usesResolution) cells.push_back({s, m, 0});
+      else
+        for (int r : resolutions) cells.push_back({s, m, r});
+    }
+  SweepProgress progress;
+  progress.total = cells.size();
+  const auto start = std::chrono::steady_clock::now();
+  auto report = [&](const std::string& cell) {
+    progress.cell = cell;
+    progress.elapsedSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (onProgress) onProgress(progress);
+  };
+
+  std::size_t loadedScene = std::size_t(-1);
+  Scene scene;
+  std::string sceneName;
+  std::vector<PixelClass> exact;
+  for (const Cell& c : cells) {
+    if (stop) break;
+    // Names first (cheap), so resumed cells skip without loading anything.
+    const std::string name = o.scenes[c.scene].empty() ? "default" : o.scenes[c.scene].stem().string();
+    SweepRow row;
+    row.scene = name;
+    row.method = c.method->key;
+    row.resolution = c.resolution;
+    row.width = o.width;
+    row.height = o.height;
+    const std::string label = name + " | " + c.method->key + " | " + std::to_string(c.resolution);
+    if (done.count(cellKey(row))) {
+      ++progress.done;
+      ++progress.skipped;
+      report(label);
+      continue;
+    }
+    if (loadedScene != c.scene) {
+      scene = o.scenes[c.scene].empty() ? defaultScene() : loadScene(o.scenes[c.scene]).scene;
+      sceneName = name;
+      scene.camera.width = o.width;
+      scene.camera.height = o.height;
+      const EmbreeDevice device;
+      std::vector<const TriangleMesh*> meshes;
+      for (const auto& obj : scene.objects) meshes.push_back(&obj.mesh);
+      const EmbreeScene rt(device, meshes);
+      exact = exactShadows(rt, scene, castPrimaryRays(rt, scene.camera), shadowRayOffset(scene));
+      renderer.setScene(scene);
+      loadedScene = c.scene;
+    }
+    report(label);
+    gl::RenderOptions ro = c.method->options;
+    ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
+    if (c.method->key == "shadowmap-front") {
+      // Front depths need a constant bias too (the slope term vanishes where a receiver faces the
+      // light head-on): the documented default of front capture, from the texel footprint.
+      ro.shadowBiasConstant = defaultBias(makeDepthMap(scene.light, ro.depthWidth, ro.depthHeight, CaptureMode::Front));
+    }
+    ro.readStencil = false;
+    ro.readDepthMap = false;
+    ro.readVisibility = false;
+    for (int w = 0; w < o.warmup; ++w) renderer.render(ro);
+    std::map<std::string, std::vector<double>> phaseTimes;
+    std::vector<std::string> phaseOrder;
+    std::vector<double> frameTimes;
+    gl::RenderResult result;
+    for (int f = 0; f < o.repeat; ++f) {
+      result = renderer.render(ro);
+      frameTimes.push_back(result.totalMs);
+      for (const auto& p : result.passes) {
+        if (!phaseTimes.count(p.name)) phaseOrder.push_back(p.name);
+        phaseTimes[p.name].push_back(p.ms);
+      }
+    }
+    // One more frame, not timed, for the method's own shadow test.
+    gl::RenderOptions vis = ro;
+    vis.readVisibility = true;
+    const gl::RenderResult v = renderer.render(vis);
+    std::vector<std::uint8_t> shadowed(v.visibility.size());
+    for (std::size_t k = 0; k < shadowed.size(); ++k) shadowed[k] = v.visibility[k] < 128;
+    const ShadowErrorMetrics m = measureShadowError(v.width, v.height, exact, shadowed, kBoundaryBand);
+
+    row.triangles = scene.triangleCount();
+    row.family = c.method->family;
+    row.capture = c.method->usesResolution ? toString(ro.capture) : "";
+    row.timing = gl::toString(result.timing);
+    row.frames = o.repeat;
+    row.frame = stat(frameTimes);
+    for (const auto& name : phaseOrder) row.phases.push_back({name, stat(phaseTimes[name])});
+    row.volumeTriangles = result.volumeTriangles;
+    row.pixels = m.pixels;
+    row.error = m.pixels ? double(m.leak + m.acne) / double(m.pixels) : 0.0;
+    row.leak = m.pixels ? double(m.leak) / double(m.pixels) : 0.0;
+    row.acne = m.pixels ? double(m.acne) / double(m.pixels) : 0.0;
+    row.bandPixels = m.bandPixels;
+    row.bandError = m.bandPixels ? double(m.bandLeak + m.bandAcne) / double(m.bandPixels) : 0.0;
+    row.bandLeak = m.bandPixels ? double(m.bandLeak) / double(m.bandPixels) : 0.0;
+    row.bandAcne = m.bandPixels ? double(m.bandAcne) / double(m.bandPixels) : 0.0;
+    row.distMean = m.distMean;
+    row.distP99 = m.distP99;
+    row.distMax = m.distMax;
+    append << toCsv(row) << '\n';  // one line, flushed at once: an interruption loses at most this cell
+    append.flush();
+    if (!append) throw InputError(csv.string(), "", "", "appending to the results file failed (disk full?)");
+    rows.push_back(row);
+    ++progress.done;
+    report(label);
+  }
+  return rows;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,186 @@
+// The sweep's machinery (issue 6): CSV columns and round trip, resume after an interruption, and
+// the error metric on hand-made masks with known answers. No timing is asserted.
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "shadowvol/bench/shadow_error.h"
+#include "shadowvol/bench/sweep.h"
+#include "shadowvol/error.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+SweepRow sampleRow() {
+  SweepRow r;
+  r.scene = "sweep-000500";
+  r.triangles = 486;
+  r.method = "hybrid-perfect-blur/gpu";
+  r.family = "hybrid";
+  r.capture = "back";
+  r.resolution = 256;
+  r.width = 640;
+  r.height = 480;
+  r.timing = "wall-clock-glfinish";
+  r.frames = 5;
+  r.frame = {12.5, 11.25, 14.125};
+  r.phases = {{"light", {1.5, 1.5, 1.5}}, {"volume", {7.25, 7.25, 7.25}}};
+  r.volumeTriangles = 123456;
+  r.pixels = 1000;
+  r.error = 0.0123;
+  r.leak = 0.01;
+  r.acne = 0.0023;
+  r.bandPixels = 100;
+  r.bandError = 0.123;
+  r.bandLeak = 0.1;
+  r.bandAcne = 0.023;
+  r.distMean = 0.75;
+  r.distP99 = 2.5;
+  return r;
+}
+
+TEST(SweepCsv, HeaderAndRowHaveTheSameColumnsAndRoundTrip) {
+  const SweepRow r = sampleRow();
+  const std::string header = sweepCsvHeader(), line = toCsv(r);
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(line.begin(), line.end(), ','));
+  EXPECT_EQ(header.substr(0, 25), "scene,triangles,method,fa");
+  for (const char* col : {"frame_ms", "light_ms", "volume_ms", "error", "leak", "acne", "band_error", "dist_p99"})
+    EXPECT_NE(header.find(col), std::string::npos) << col;
+  const SweepRow b = parseSweepRow(line, "test", 2);
+  EXPECT_EQ(b.scene, r.scene);
+  EXPECT_EQ(b.method, r.method);
+  EXPECT_EQ(b.resolution, 256);
+  EXPECT_DOUBLE_EQ(b.frame.median, 12.5);
+  EXPECT_DOUBLE_EQ(b.frame.max, 14.125);
+  ASSERT_EQ(b.phases.size(), 2u);
+  EXPECT_EQ(b.phases[1].first, "volume");
+  EXPECT_DOUBLE_EQ(b.error, 0.0123);
+  EXPECT_DOUBLE_EQ(*b.distP99, 2.5);
+  EXPECT_FALSE(b.distMax.has_value());  // empty field = not applicable
+  EXPECT_EQ(cellKey(b), cellKey(r));
+}
+
+TEST(SweepCsv, InterruptedLastLineIsIgnoredAndBadFilesAreNamed) {
+  const auto dir = test::tempDir();
+  const auto csv = dir / "results.csv";
+  const std::string row = toCsv(sampleRow());
+  test::writeText(csv, sweepCsvHeader() + "\n" + row + "\n" + row.substr(0, row.size() / 2));
+  EXPECT_EQ(readSweepCsv(csv).size(), 1u);
+  test::writeText(csv, "a,b,c\n");
+  EXPECT_THROW(readSweepCsv(csv), InputError);
+  test::writeText(csv, sweepCsvHeader() + "\nx,notanumber" + row.substr(row.find(',', row.find(',') + 1)) + "\n");
+  try {
+    readSweepCsv(csv);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("triangles"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ShadowErrorMetric, HandMadeMasksWithKnownAnswers) {
+  // 20 x 10 pixels, all facing the light; exact shadow in columns 0..9, the test's in 0..11:
+  // 20 acne pixels in columns 10 and 11, at 0.5 and 1.5 pixels from the boundary.
+  const int w = 20, h = 10;
+  std::vector<PixelClass> exact(w * h);
+  std::vector<std::uint8_t> test(w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      exact[y * w + x] = x < 10 ? PixelClass::Shadowed : PixelClass::Lit;
+      test[y * w + x] = x < 12;
+    }
+  ShadowErrorMetrics m = measureShadowError(w, h, exact, test, 3.0);
+  EXPECT_EQ(m.pixels, 200u);
+  EXPECT_EQ(m.acne, 20u);
+  EXPECT_EQ(m.leak, 0u);
+  EXPECT_EQ(m.bandPixels, 60u);  // columns 7..12 lie within 3 pixels of the boundary
+  EXPECT_EQ(m.bandAcne, 20u);
+  EXPECT_DOUBLE_EQ(*m.distMean, 1.0);
+  EXPECT_DOUBLE_EQ(*m.distMax, 1.5);
+  EXPECT_DOUBLE_EQ(*m.distP99, 1.5);
+  // Pixels that do not face the light are not compared; a leak far from the boundary counts too.
+  exact[0] = PixelClass::FacingAway;
+  exact[1] = PixelClass::Background;
+  test = std::vector<std::uint8_t>(w * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < 10; ++x) test[y * w + x] = 1;
+  test[5 * w + 2] = 0;  // one leak; nearest lit pixel 8 columns away: 8 - 0.5 = 7.5 from the boundary
+  m = measureShadowError(w, h, exact, test, 3.0);
+  EXPECT_EQ(m.pixels, 198u);
+  EXPECT_EQ(m.leak, 1u);
+  EXPECT_EQ(m.acne, 0u);
+  EXPECT_DOUBLE_EQ(*m.distMax, 7.5);
+  // No shadow at all: no boundary, no distances.
+  std::fill(exact.begin(), exact.end(), PixelClass::Lit);
+  m = measureShadowError(w, h, exact, test, 3.0);
+  EXPECT_EQ(m.bandPixels, 0u);
+  EXPECT_FALSE(m.distMean.has_value());
+}
+
+TEST(ShadowErrorMetric, DistanceTransformMatchesBruteForce) {
+  std::mt19937 rng(7);
+  const int w = 23, h = 17;
+  std::vector<std::uint8_t> site(w * h);
+  for (auto& s : site) s = rng() % 11 == 0;
+  const auto d = squaredDistanceTransform(w, h, site);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double best = INFINITY;
+      for (int v = 0; v < h; ++v)
+        for (int u = 0; u < w; ++u)
+          if (site[v * w + u]) best = std::min(best, double((u - x) * (u - x) + (v - y) * (v - y)));
+      ASSERT_DOUBLE_EQ(d[y * w + x], best) << x << "," << y;
+    }
+}
+
+TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
+  const auto dir = test::tempDir();
+  gl::Renderer renderer;
+  SweepOptions o;
+  o.scenes = {std::filesystem::path()};  // the built-in default scene
+  o.methods = {"shadowmap", "hybrid-fixed/gpu", "silhouette"};
+  o.resolutions = {16, 32};
+  o.width = 64;
+  o.height = 48;
+  o.repeat = 1;
+  o.warmup = 0;
+  o.out = dir;
+  std::atomic<bool> stop{false};
+  std::vector<std::string> notes;
+  SweepProgress last;
+  auto rows = runSweep(renderer, o, stop, [&](const SweepProgress& p) { last = p; }, notes);
+  ASSERT_EQ(rows.size(), 5u);  // 2 resolutions x 2 methods + silhouette once
+  EXPECT_EQ(last.done, 5u);
+  EXPECT_EQ(last.skipped, 0u);
+  for (const auto& r : rows) {
+    EXPECT_EQ(r.frames, 1);
+    EXPECT_GT(r.pixels, 0u);
+    EXPECT_GE(r.error, 0.0);
+    EXPECT_LE(r.error, 1.0);
+  }
+  // Simulate an interruption in the middle of the last row, then run the same sweep again.
+  const auto csv = dir / "results.csv";
+  std::ifstream in(csv);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  text.resize(text.rfind('\n', text.size() - 2) + 1 + 10);  // keep 10 characters of the last row
+  test::writeText(csv, text);
+  rows = runSweep(renderer, o, stop, [&](const SweepProgress& p) { last = p; }, notes);
+  EXPECT_EQ(rows.size(), 5u);
+  EXPECT_EQ(last.skipped, 4u);  // only the interrupted cell was measured again
+  EXPECT_EQ(readSweepCsv(csv).size(), 5u);
+  // A stop request before the first cell measures nothing.
+  stop = true;
+  const auto dir2 = dir / "stopped";
+  o.out = dir2;
+  EXPECT_TRUE(runSweep(renderer, o, stop, nullptr, notes).empty());
+  // Unknown methods are named.
+  stop = false;
+  o.methods = {"laser"};
+  EXPECT_THROW(runSweep(renderer, o, stop, nullptr, notes), InputError);
+}
+
+}  // namespace
+}  // namespace shadowvol
