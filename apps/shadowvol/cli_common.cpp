@@ -1,5 +1,6 @@
 #include "cli_common.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <unistd.h>
@@ -18,6 +19,41 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
                  "(a sphere floating above a ground plane under a spot light)")
       ->check(CLI::ExistingFile);
   addJsonOption(cmd, o.json);
+}
+
+void addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
+  cmd.add_option("--triangulation", o.triangulation,
+                 "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "
+                 "fixed (one diagonal everywhere, the thesis's strips)")
+      ->check(CLI::IsMember({"fixed", "perfect"}))
+      ->capture_default_str();
+  cmd.add_flag("--blur", o.blur, "Depth blurring: each depth becomes the mean of 9 bilinear samples 1.5 texels apart");
+  cmd.add_option("--blur-offset", o.blurOffset, "World units added to blurred depths, away from the light (with --blur)")
+      ->capture_default_str();
+  cmd.add_option("--bias", o.bias,
+                 "World units pushing the sheet away from the light; default: 0 for back and midpoint capture, the "
+                 "texel footprint plus depth precision for front capture (README 'Volume mesh')");
+  cmd.add_option("--cap", o.cap,
+                 "Far cap: exact (drop far-plane parts, close each region with a flattened far cap) or quad (the "
+                 "thesis's far rectangle; closed but with coincident faces, for comparison)")
+      ->check(CLI::IsMember({"exact", "quad"}))
+      ->capture_default_str();
+}
+
+VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
+  if (o.blurOffset != 0.0 && !o.blur)
+    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "needs --blur");
+  if (!std::isfinite(o.blurOffset))
+    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "must be finite");
+  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
+    throw InputError("command line", "--bias", std::to_string(*o.bias), "must be finite and >= 0");
+  VolumeBuildOptions v;
+  parseTriangulation(o.triangulation, v.triangulation);
+  parseFarCap(o.cap, v.cap);
+  v.blur = o.blur;
+  v.blurOffset = o.blurOffset;
+  v.bias = o.bias;
+  return v;
 }
 
 Scene loadSceneOrDefault(const std::string& path) {

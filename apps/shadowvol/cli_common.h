@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 
 #include "shadowvol/depth_map.h"
 #include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
 
 namespace shadowvol::cli {
 
@@ -24,6 +26,18 @@ struct SceneOptions {
 };
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
+
+/// Options of the volume (build, render, validate): --triangulation, --blur, --blur-offset, --bias, --cap.
+struct VolumeCliOptions {
+  std::string triangulation = "perfect";
+  bool blur = false;
+  double blurOffset = 0.0;
+  std::optional<double> bias;
+  std::string cap = "exact";
+};
+void addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);
+/// Checks the values (InputError naming the option) and fills the builder's options.
+VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o);
 void addJsonOption(CLI::App& cmd, bool& json);
 
 /// Loads the scene (or the default one), printing its warnings to stderr.

@@ -19,11 +19,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
     std::string depth;
     int resolution = 512;
     std::string capture = "back";
-    std::string triangulation = "perfect";
-    bool blur = false;
-    double blurOffset = 0.0;
-    std::optional<double> bias;
-    std::string cap = "exact";
+    VolumeCliOptions volume;
     bool noFlatten = false;
     std::string out;
   };
@@ -46,22 +42,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                      ->capture_default_str();
   depthOpt->excludes(resOpt)->excludes(capOpt);
   cmd->get_option("--scene")->excludes(depthOpt);
-  cmd->add_option("--triangulation", o->triangulation,
-                  "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "
-                  "fixed (one diagonal everywhere, the thesis's strips)")
-      ->check(CLI::IsMember({"fixed", "perfect"}))
-      ->capture_default_str();
-  cmd->add_flag("--blur", o->blur, "Depth blurring: each depth becomes the mean of 9 bilinear samples 1.5 texels apart");
-  cmd->add_option("--blur-offset", o->blurOffset, "World units added to blurred depths, away from the light (with --blur)")
-      ->capture_default_str();
-  cmd->add_option("--bias", o->bias,
-                  "World units pushing the sheet away from the light; default: 0 for back capture, a value derived "
-                  "from the texel footprint and depth precision otherwise (README 'Bias')");
-  cmd->add_option("--cap", o->cap,
-                  "Far cap: exact (drop far-plane quads, close each region with a flattened far cap) or quad (the "
-                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
-      ->check(CLI::IsMember({"exact", "quad"}))
-      ->capture_default_str();
+  addVolumeOptions(*cmd, o->volume);
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
   cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off or .stl")->required();
   cmd->callback([&run, o] {
@@ -70,18 +51,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       const std::string ext = std::filesystem::path(o->out).extension().string();
       if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
         throw InputError("command line", "--out", o->out, "unsupported mesh format (use .ply, .obj, .off or .stl)");
-      if (o->blurOffset != 0.0 && !o->blur)
-        throw InputError("command line", "--blur-offset", std::to_string(o->blurOffset), "needs --blur");
-      if (!std::isfinite(o->blurOffset))
-        throw InputError("command line", "--blur-offset", std::to_string(o->blurOffset), "must be finite");
-      if (o->bias && (!std::isfinite(*o->bias) || *o->bias < 0.0))
-        throw InputError("command line", "--bias", std::to_string(*o->bias), "must be finite and >= 0");
-      VolumeBuildOptions options;
-      parseTriangulation(o->triangulation, options.triangulation);
-      parseFarCap(o->cap, options.cap);
-      options.blur = o->blur;
-      options.blurOffset = o->blurOffset;
-      options.bias = o->bias;
+      VolumeBuildOptions options = toVolumeBuildOptions(o->volume);
       options.flattenCap = !o->noFlatten;
 
       nlohmann::json j;
@@ -107,11 +77,11 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       const VolumeBuildStats& s = r.stats;
       j.update({{"resolution", {map.width, map.height}},
                 {"capture", toString(map.capture)},
-                {"triangulation", o->triangulation},
-                {"blur", o->blur},
-                {"blurOffset", o->blurOffset},
+                {"triangulation", o->volume.triangulation},
+                {"blur", o->volume.blur},
+                {"blurOffset", o->volume.blurOffset},
                 {"bias", s.biasUsed},
-                {"cap", o->cap},
+                {"cap", o->volume.cap},
                 {"flattenCap", options.flattenCap},
                 {"vertices", r.mesh.vertexCount()},
                 {"triangles", r.mesh.triangleCount()},
@@ -130,8 +100,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       } else {
         std::printf("volume of %s, %dx%d %s capture, %s triangulation%s, %s cap\n",
                     o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(), map.width,
-                    map.height, toString(map.capture), o->triangulation.c_str(), o->blur ? ", blur" : "",
-                    o->cap.c_str());
+                    map.height, toString(map.capture), o->volume.triangulation.c_str(), o->volume.blur ? ", blur" : "",
+                    o->volume.cap.c_str());
         std::printf("  %zu vertices, %zu triangles; %zu of %zu quads dropped (far plane), %zu flipped (%.1f%%)\n",
                     r.mesh.vertexCount(), r.mesh.triangleCount(), s.droppedQuads, s.quads, s.flippedQuads,
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);

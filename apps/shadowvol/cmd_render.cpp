@@ -82,9 +82,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"volume", o->render.method == "hybrid" ? nlohmann::json(o->render.volume) : nlohmann::json()},
           {"resolution", o->render.resolution},
           {"capture", o->render.capture},
-          {"triangulation", o->render.triangulation},
-          {"blur", o->render.blur},
-          {"cap", o->render.cap},
+          {"triangulation", o->render.shape.triangulation},
+          {"blur", o->render.shape.blur},
+          {"cap", o->render.shape.cap},
           {"bias", result.biasUsed},
           {"size", {result.width, result.height}},
           {"frames", o->frames},
@@ -107,7 +107,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                     result.width, result.height, o->render.resolution, o->render.resolution, o->render.capture.c_str());
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
-                      o->render.volume.c_str(), o->render.triangulation.c_str(), o->render.blur ? ", blur" : "", o->render.cap.c_str(),
+                      o->render.volume.c_str(), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
                       result.volumeTriangles, shadowed);
         if (!result.receiversOnly.empty()) {
           std::printf("\nreceivers only (open, cast no silhouette shadow):");

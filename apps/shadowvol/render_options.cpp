@@ -38,16 +38,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
       ->check(CLI::IsMember({"back", "front", "midpoint"}))
       ->capture_default_str();
-  cmd.add_option("--triangulation", o.triangulation, "hybrid: perfect or fixed quad diagonals")
-      ->check(CLI::IsMember({"fixed", "perfect"}))
-      ->capture_default_str();
-  cmd.add_flag("--blur", o.blur, "hybrid: depth blurring (9 bilinear samples 1.5 texels apart)");
-  cmd.add_option("--blur-offset", o.blurOffset, "hybrid: world units added to blurred depths")->capture_default_str();
-  cmd.add_option("--bias", o.bias, "hybrid: world units pushing the sheet away from the light (default: README 'Bias')");
-  cmd.add_option("--cap", o.cap,
-                 "hybrid: exact (far-plane parts dropped, exact cap) or quad (the thesis's far rectangle)")
-      ->check(CLI::IsMember({"exact", "quad"}))
-      ->capture_default_str();
+  addVolumeOptions(cmd, o.shape);
   cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene camera's)");
   cmd.add_option("--shadow-bias", o.shadowBias, "Shadow maps: constant depth bias, world units")->capture_default_str();
   cmd.add_option("--shadow-slope", o.shadowSlope,
@@ -65,12 +56,6 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   checkResolution("--resolution", o.resolution);
-  if (o.blurOffset != 0.0 && !o.blur)
-    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "needs --blur");
-  if (!std::isfinite(o.blurOffset))
-    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "must be finite");
-  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
-    throw InputError("command line", "--bias", std::to_string(*o.bias), "must be finite and >= 0");
   if (!std::isfinite(o.shadowBias))
     throw InputError("command line", "--shadow-bias", std::to_string(o.shadowBias), "must be finite");
   if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)
@@ -80,11 +65,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   gl::parseVolumeSource(o.volume, ro.volume);
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
-  parseTriangulation(o.triangulation, ro.volumeOptions.triangulation);
-  parseFarCap(o.cap, ro.volumeOptions.cap);
-  ro.volumeOptions.blur = o.blur;
-  ro.volumeOptions.blurOffset = o.blurOffset;
-  ro.volumeOptions.bias = o.bias;
+  ro.volumeOptions = toVolumeBuildOptions(o.shape);
   ro.shadowBiasConstant = o.shadowBias;
   ro.shadowBiasSlope = o.shadowSlope;
   if (!o.size.empty()) {

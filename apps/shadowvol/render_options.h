@@ -15,11 +15,7 @@ struct RenderCliOptions {
   std::string volume = "gpu";
   int resolution = 512;
   std::string capture = "back";
-  std::string triangulation = "perfect";
-  bool blur = false;
-  double blurOffset = 0.0;
-  std::optional<double> bias;
-  std::string cap = "exact";
+  VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
   std::string size;
   double shadowBias = 0.0;
   double shadowSlope = 1.0;

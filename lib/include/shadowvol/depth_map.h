@@ -79,6 +79,14 @@ class TexelUnprojector {
   /// Light-view point of texel (i, j) at light-view depth d > 0.
   glm::dvec3 lightViewPoint(double i, double j, double d) const;
 
+  /// The world-space ray through texel (i, j): origin at the view's origin (a perspective apex,
+  /// or the orthographic view plane), direction with a view-space z of exactly -1, so the ray
+  /// parameter t is the view depth.
+  struct Ray {
+    glm::dvec3 origin, direction;
+  };
+  Ray ray(double i, double j) const;
+
  private:
   glm::dmat4 invProjection_, invView_, projection_;
   double width_, height_;

@@ -62,6 +62,11 @@ glm::dvec3 TexelUnprojector::worldPoint(double i, double j, double d) const {
   return glm::dvec3(invView_ * glm::dvec4(lightViewPoint(i, j, d), 1.0));
 }
 
+TexelUnprojector::Ray TexelUnprojector::ray(double i, double j) const {
+  const glm::dvec3 p1 = worldPoint(i, j, 1.0), p2 = worldPoint(i, j, 2.0);
+  return {p1 - (p2 - p1), p2 - p1};
+}
+
 double DepthMap::viewDepthOf(const glm::dvec3& world) const {
   return -(lightView * glm::dvec4(world, 1.0)).z;
 }

@@ -71,21 +71,9 @@ DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMo
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       for (int i = 0; i < width; ++i) {
-        // Points of the texel's ray at view depths 1 and 2: the direction has a view-z component
-        // of exactly -1, so the ray parameter t equals the light-view depth.
-        const glm::dvec3 p1 = unproject.worldPoint(i, j, 1.0), p2 = unproject.worldPoint(i, j, 2.0);
-        const glm::dvec3 dir = p2 - p1, org = p1 - dir;
-        RTCRayHit rh{};
-        rh.ray.org_x = float(org.x);
-        rh.ray.org_y = float(org.y);
-        rh.ray.org_z = float(org.z);
-        rh.ray.dir_x = float(dir.x);
-        rh.ray.dir_y = float(dir.y);
-        rh.ray.dir_z = float(dir.z);
-        rh.ray.tnear = tNear;
-        rh.ray.tfar = tFar;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        // The ray parameter equals the light-view depth (TexelUnprojector::ray).
+        const TexelUnprojector::Ray ray = unproject.ray(i, j);
+        RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
         CaptureContext c;
         rtcInitIntersectContext(&c.ctx);
         if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;

@@ -18,6 +18,21 @@ void onEmbreeError(void* user, RTCError code, const char* message) {
 
 }  // namespace
 
+RTCRayHit makeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, float tnear, float tfar) {
+  RTCRayHit rh{};
+  rh.ray.org_x = float(origin.x);
+  rh.ray.org_y = float(origin.y);
+  rh.ray.org_z = float(origin.z);
+  rh.ray.dir_x = float(direction.x);
+  rh.ray.dir_y = float(direction.y);
+  rh.ray.dir_z = float(direction.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = tfar;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 EmbreeDevice::EmbreeDevice() : firstError_(std::make_shared<std::string>()) {
   device_.reset(rtcNewDevice(nullptr));
   if (!device_) throw std::runtime_error("cannot create an Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");

@@ -14,30 +14,9 @@
 namespace shadowvol {
 namespace {
 
-RTCRayHit makeRay(const glm::dvec3& org, const glm::dvec3& dir, float tnear, float tfar) {
-  RTCRayHit rh{};
-  rh.ray.org_x = float(org.x);
-  rh.ray.org_y = float(org.y);
-  rh.ray.org_z = float(org.z);
-  rh.ray.dir_x = float(dir.x);
-  rh.ray.dir_y = float(dir.y);
-  rh.ray.dir_z = float(dir.z);
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = tfar;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  return rh;
-}
-
-// The ray of pixel (x, image row r): origin at the eye, direction with camera view-z = -1, so the
-// ray parameter is the camera view depth.
-struct PixelRay {
-  glm::dvec3 org, dir;
-};
-PixelRay pixelRay(const TexelUnprojector& u, int x, int r, int height) {
-  const int yGl = height - 1 - r;
-  const glm::dvec3 p1 = u.worldPoint(x, yGl, 1.0), p2 = u.worldPoint(x, yGl, 2.0);
-  return {p1 - (p2 - p1), p2 - p1};
+// The ray of pixel (x, image row r): origin at the eye, the ray parameter is the camera view depth.
+TexelUnprojector::Ray pixelRay(const TexelUnprojector& u, int x, int r, int height) {
+  return u.ray(x, height - 1 - r);  // GL rows count from the bottom
 }
 
 struct Crossing {
@@ -76,19 +55,19 @@ CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
   tbb::parallel_for(tbb::blocked_range<int>(0, h.height), [&](const tbb::blocked_range<int>& rows) {
     for (int r = rows.begin(); r != rows.end(); ++r)
       for (int x = 0; x < h.width; ++x) {
-        const PixelRay pr = pixelRay(u, x, r, h.height);
-        RTCRayHit rh = makeRay(pr.org, pr.dir, float(camera.nearPlane), float(camera.farPlane));
+        const TexelUnprojector::Ray pr = pixelRay(u, x, r, h.height);
+        RTCRayHit rh = makeRayHit(pr.origin, pr.direction, float(camera.nearPlane), float(camera.farPlane));
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         rtcIntersect1(scene.get(), &ctx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
         const std::size_t k = std::size_t(r) * std::size_t(h.width) + std::size_t(x);
         h.depth[k] = rh.ray.tfar;
-        h.point[k] = pr.org + double(rh.ray.tfar) * pr.dir;
+        h.point[k] = pr.origin + double(rh.ray.tfar) * pr.direction;
         glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
         const float len = glm::length(ng);
         ng = len > 0.0f ? ng / len : glm::vec3(0.0f);
-        if (glm::dot(glm::dvec3(ng), pr.dir) > 0.0) ng = -ng;  // face the camera
+        if (glm::dot(glm::dvec3(ng), pr.direction) > 0.0) ng = -ng;  // face the camera
         h.normal[k] = ng;
       }
   });
@@ -130,7 +109,7 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
         continue;
       }
       const glm::dvec3 org = p + n * offset;
-      RTCRay ray = makeRay(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - offset : INFINITY)).ray;
+      RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - offset : INFINITY)).ray;
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       rtcOccluded1(scene.get(), &ctx, &ray);
@@ -162,9 +141,9 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
       for (int x = 0; x < hits.width; ++x) {
         const std::size_t k = std::size_t(r) * std::size_t(hits.width) + std::size_t(x);
         if (hits.isBackground(k)) continue;
-        const PixelRay pr = pixelRay(u, x, r, hits.height);
+        const TexelUnprojector::Ray pr = pixelRay(u, x, r, hits.height);
         buf.clear();
-        RTCRayHit rh = makeRay(pr.org, pr.dir, 0.0f, INFINITY);
+        RTCRayHit rh = makeRayHit(pr.origin, pr.direction, 0.0f, INFINITY);
         CollectContext c;
         rtcInitIntersectContext(&c.ctx);
         c.ctx.filter = collectAll;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
 
 #include "shadowvol/triangle_mesh.h"
 
@@ -25,6 +26,10 @@ class EmbreeDevice {
   std::unique_ptr<RTCDeviceTy, Deleter> device_;
   std::shared_ptr<std::string> firstError_;
 };
+
+/// A ray from `origin` along `direction` (not normalised) over [tnear, tfar], every mask bit set,
+/// with an empty hit (geomID invalid). Coordinates are rounded to float.
+RTCRayHit makeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, float tnear, float tfar);
 
 /// A committed, robust (watertight) Embree scene of one triangle geometry per mesh; geometry ID k
 /// is meshes[k]. Context filter functions are enabled, so a query can bring its own filter.
