@@ -16,8 +16,7 @@ void addJsonOption(CLI::App& cmd, bool& json) {
 void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
   cmd.add_option("--scene", o.scene,
                  "Scene file (JSON, see README 'Scene files'); without it, the built-in default scene "
-                 "(a sphere floating above a ground plane under a spot light)")
-      ->check(CLI::ExistingFile);
+                 "(a sphere floating above a ground plane under a spot light)");
   addJsonOption(cmd, o.json);
 }
 

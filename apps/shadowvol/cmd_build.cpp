@@ -30,8 +30,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   addSceneOptions(*cmd, o->scene);
   auto* depthOpt = cmd->add_option("--depth", o->depth,
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
-                                   "capturing one from the scene")
-                       ->check(CLI::ExistingFile);
+                                   "capturing one from the scene");
   auto* resOpt = cmd->add_option("--resolution", o->resolution,
                                  "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
                      ->capture_default_str();

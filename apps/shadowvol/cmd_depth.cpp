@@ -1,6 +1,7 @@
 // shadowvol depth: capture the light's depth map on the CPU with Embree and write it as PFM + JSON.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "cli_common.h"
@@ -34,6 +35,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     run = [o] {
       checkResolution("--resolution", o->resolution);
       checkOutputPath("--out", o->out);
+      if (std::filesystem::path(o->out).extension() != ".pfm")
+        throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
       CaptureMode mode{};
       parseCaptureMode(o->capture, mode);
       const Scene scene = loadSceneOrDefault(o->scene.scene);

@@ -65,7 +65,8 @@ TEST(Cli, BadSceneNamesFileFieldAndValueAndWritesNothing) {
   test::writeText(bad, R"({"objects":[{"type":"sphere","radius":-2}],
     "light":{"type":"spot","position":[0,5,0],"direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})");
   for (const char* sub : {"depth --resolution 16 --out ", "build --resolution 16 --out "}) {
-    const std::string out = (dir / (std::string(sub).substr(0, 5) + ".out.ply")).string();
+    const std::string ext = std::string(sub).rfind("depth", 0) == 0 ? ".pfm" : ".ply";
+    const std::string out = (dir / (std::string(sub).substr(0, 5) + ".out" + ext)).string();
     const CliResult r = runCli(std::string(sub) + out + " --scene " + bad.string());
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_TRUE(contains(r.out, "bad.json")) << r.out;
@@ -74,8 +75,12 @@ TEST(Cli, BadSceneNamesFileFieldAndValueAndWritesNothing) {
     EXPECT_FALSE(std::filesystem::exists(out));
   }
   const CliResult missing = runCli("scene --scene " + (dir / "none.json").string());
-  EXPECT_EQ(missing.code, 2);  // CLI11's ExistingFile check: a usage error naming the path
+  EXPECT_EQ(missing.code, 1);  // bad input, the file named
   EXPECT_TRUE(contains(missing.out, "none.json"));
+  EXPECT_TRUE(contains(missing.out, "cannot open"));
+  // A depth map must be a .pfm.
+  EXPECT_EQ(runCli("depth --resolution 8 --out " + (dir / "d.png").string()).code, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.png"));
 }
 
 TEST(Cli, MissingOutputFolderIsRefused) {
