@@ -108,7 +108,8 @@ class SweepReportTest : public ::testing::Test {
 
 TEST_F(SweepReportTest, WritesReportAndPlots) {
   std::vector<SweepRow> rows;
-  for (const auto& [scene, tris] : {std::pair<std::string, std::size_t>{"sweep-000500", 500}, {"sweep-032000", 32000}}) {
+  for (const auto& [scene, tris] :
+       {std::pair<std::string, std::size_t>{"sweep-000500", 500}, {"sweep-032000", 32000}}) {
     const double k = tris == 500 ? 1.0 : 3.0;
     rows.push_back(row(scene, tris, "shadowmap", "shadowmap", 64, 1.25 * k, 0.0625));
     rows.push_back(row(scene, tris, "shadowmap", "shadowmap", 256, 2.5 * k, 0.03125));
@@ -143,21 +144,21 @@ TEST_F(SweepReportTest, WritesReportAndPlots) {
   }
   const std::string scenePlot = readText(dir_ / "plots" / "sweep-000500.svg");
   EXPECT_EQ(count(scenePlot, "<polyline class=\"front\""), 1u);
-  EXPECT_NE(scenePlot.find("zero error"), std::string::npos);  // the hybrid's 0 at 256 is clamped and said so
+  EXPECT_NE(scenePlot.find("zero error"), std::string::npos);    // the hybrid's 0 at 256 is clamped and said so
   EXPECT_NE(scenePlot.find(">1024</text>"), std::string::npos);  // points labelled by resolution
 
   const std::string md = readText(dir_ / "report.md");
   for (const char* s : {"shadowvol bench --out results-test", "test machine, 2 cores", "llvmpipe (test)",
-                        "wall-clock-glfinish", "sweep-000500", "sweep-032000", "shadowmap", "pcf3",
-                        "hybrid-fixed/gpu", "![sweep-000500: error against frame time](plots/sweep-000500.svg)",
+                        "wall-clock-glfinish", "sweep-000500", "sweep-032000", "shadowmap", "pcf3", "hybrid-fixed/gpu",
+                        "![sweep-000500: error against frame time](plots/sweep-000500.svg)",
                         "(plots/polygon-sweep.svg)", "## Polygon sweep"})
     EXPECT_NE(md.find(s), std::string::npos) << s;
   // Cells: median ms / error %, and band % / p99 px.
-  EXPECT_NE(md.find("| 1.25 / 6.25 |"), std::string::npos);   // shadowmap 64 on sweep-000500
-  EXPECT_NE(md.find("| 3.75 / 6.25 |"), std::string::npos);   // shadowmap 64 on sweep-032000
-  EXPECT_NE(md.find("| 4 / 0 |"), std::string::npos);         // hybrid 256, zero error
-  EXPECT_NE(md.find("| 62.5 / 4.25 |"), std::string::npos);   // shadowmap 64: band 10x, p99 4.25
-  EXPECT_NE(md.find("| 0 / - |"), std::string::npos);         // no misclassified pixel: no distance
+  EXPECT_NE(md.find("| 1.25 / 6.25 |"), std::string::npos);  // shadowmap 64 on sweep-000500
+  EXPECT_NE(md.find("| 3.75 / 6.25 |"), std::string::npos);  // shadowmap 64 on sweep-032000
+  EXPECT_NE(md.find("| 4 / 0 |"), std::string::npos);        // hybrid 256, zero error
+  EXPECT_NE(md.find("| 62.5 / 4.25 |"), std::string::npos);  // shadowmap 64: band 10x, p99 4.25
+  EXPECT_NE(md.find("| 0 / - |"), std::string::npos);        // no misclassified pixel: no distance
   // Headline: target = shadow map's best (1.5625 % at 1024, 10 ms); the hybrid reaches it at 64 in 2 ms.
   EXPECT_NE(md.find("Target: 1.56 % total error"), std::string::npos);
   EXPECT_NE(md.find("| hybrid-fixed/gpu | 64 | 2 | 256 | 0 | 256 | 4 | 0 | 0 | - |"), std::string::npos) << md;
@@ -202,7 +203,7 @@ TEST_F(SweepReportTest, OnePointMethodsSeveralSizesAndNonFiniteRows) {
   EXPECT_NE(md.find("Command: `unknown`"), std::string::npos);
   EXPECT_NE(md.find("| n/a / 2 |"), std::string::npos);  // pcf5's NaN frame time
   EXPECT_NE(md.find("2.25 / 1"), std::string::npos);
-  EXPECT_EQ(md.find("2 / 1 |"), std::string::npos);     // the first copy of the repeated cell is gone
+  EXPECT_EQ(md.find("2 / 1 |"), std::string::npos);  // the first copy of the repeated cell is gone
   EXPECT_EQ(count(md, "nan"), 0u);
 }
 

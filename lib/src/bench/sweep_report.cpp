@@ -32,9 +32,15 @@ std::string sig(double v) {
   return fmt("%.3g", v);
 }
 
-std::string pct(double fraction) { return std::isfinite(fraction) ? sig(100.0 * fraction) : "n/a"; }
-std::string px(const std::optional<double>& v) { return v ? sig(*v) : "-"; }
-std::string resLabel(int r) { return r > 0 ? std::to_string(r) : "none"; }
+std::string pct(double fraction) {
+  return std::isfinite(fraction) ? sig(100.0 * fraction) : "n/a";
+}
+std::string px(const std::optional<double>& v) {
+  return v ? sig(*v) : "-";
+}
+std::string resLabel(int r) {
+  return r > 0 ? std::to_string(r) : "none";
+}
 
 std::string mdEscape(const std::string& s) {
   std::string o;
@@ -49,11 +55,20 @@ std::string xmlEscape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -63,14 +78,16 @@ std::string xmlEscape(const std::string& s) {
 std::string fileStem(const std::string& s) {
   std::string o;
   for (char c : s) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
-                    c == '_' || c == '.';
+    const bool ok =
+        (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
     o += ok ? c : '_';
   }
   return o.empty() || o[0] == '.' ? "_" + o : o;
 }
 
-std::string sizeLabel(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+std::string sizeLabel(int w, int h) {
+  return std::to_string(w) + "x" + std::to_string(h);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Rows grouped by scene and image size.
@@ -83,7 +100,9 @@ struct Group {
   std::string plotFile;  ///< file name under plots/
 };
 
-bool plottable(const SweepRow& r) { return std::isfinite(r.frame.median) && r.frame.median > 0 && std::isfinite(r.error); }
+bool plottable(const SweepRow& r) {
+  return std::isfinite(r.frame.median) && r.frame.median > 0 && std::isfinite(r.error);
+}
 
 const SweepRow* findRow(const Group& g, const std::string& method, int res) {
   for (const SweepRow* r : g.rows)
@@ -109,9 +128,7 @@ const SweepRow* lowestError(const std::vector<const SweepRow*>& rows) {
   const SweepRow* best = nullptr;
   for (const SweepRow* r : rows) {
     if (!std::isfinite(r->error)) continue;
-    if (!best || r->error < best->error ||
-        (r->error == best->error && r->frame.median < best->frame.median))
-      best = r;
+    if (!best || r->error < best->error || (r->error == best->error && r->frame.median < best->frame.median)) best = r;
   }
   return best;
 }
@@ -133,9 +150,9 @@ constexpr std::array<const char*, 3> kDashes = {"", "7,3", "2,2"};
 
 struct Series {
   std::string name;
-  int style = 0;                            ///< colour = style % 8, dash and marker = style / 8
-  std::vector<std::array<double, 2>> pts;   ///< data coordinates, all positive and finite
-  std::vector<std::string> labels;          ///< one per point, may be empty strings
+  int style = 0;                           ///< colour = style % 8, dash and marker = style / 8
+  std::vector<std::array<double, 2>> pts;  ///< data coordinates, all positive and finite
+  std::vector<std::string> labels;         ///< one per point, may be empty strings
 };
 
 struct PlotSpec {
@@ -198,7 +215,9 @@ std::vector<Tick> ticks(const LogAxis& ax) {
   return t;
 }
 
-std::string num1(double v) { return fmt("%.1f", v); }
+std::string num1(double v) {
+  return fmt("%.1f", v);
+}
 
 void marker(std::ostringstream& o, int shape, double x, double y, const char* colour, double size) {
   if (shape == 0) {
@@ -209,8 +228,8 @@ void marker(std::ostringstream& o, int shape, double x, double y, const char* co
       << "\" height=\"" << num1(2 * size) << "\" fill=\"" << colour << "\"/>\n";
   } else {
     const double s = size * 1.25;
-    o << "<polygon points=\"" << num1(x) << "," << num1(y - s) << " " << num1(x + s) << "," << num1(y + 0.8 * s)
-      << " " << num1(x - s) << "," << num1(y + 0.8 * s) << "\" fill=\"" << colour << "\"/>\n";
+    o << "<polygon points=\"" << num1(x) << "," << num1(y - s) << " " << num1(x + s) << "," << num1(y + 0.8 * s) << " "
+      << num1(x - s) << "," << num1(y + 0.8 * s) << "\" fill=\"" << colour << "\"/>\n";
   }
 }
 
@@ -228,8 +247,9 @@ std::string svgPlot(const PlotSpec& spec) {
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << W << "\" height=\"" << H
     << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
   o << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
-  o << "<text x=\"" << num1((X0 + X1) / 2) << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">"
-    << xmlEscape(spec.title) << "</text>\n";
+  o << "<text x=\"" << num1((X0 + X1) / 2)
+    << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" << xmlEscape(spec.title)
+    << "</text>\n";
 
   // Grid, ticks and tick labels.
   o << "<g stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
@@ -244,23 +264,23 @@ std::string svgPlot(const PlotSpec& spec) {
   o << "</g>\n<g stroke=\"black\" stroke-width=\"1\">\n";
   for (const Tick& t : ticks(ax)) {
     const double len = t.major || t.labelled ? 6 : 3;
-    o << "<line x1=\"" << num1(X(t.v)) << "\" y1=\"" << Y1 << "\" x2=\"" << num1(X(t.v)) << "\" y2=\""
-      << num1(Y1 + len) << "\"/>\n";
+    o << "<line x1=\"" << num1(X(t.v)) << "\" y1=\"" << Y1 << "\" x2=\"" << num1(X(t.v)) << "\" y2=\"" << num1(Y1 + len)
+      << "\"/>\n";
   }
   for (const Tick& t : ticks(ay)) {
     const double len = t.major || t.labelled ? 6 : 3;
-    o << "<line x1=\"" << num1(X0 - len) << "\" y1=\"" << num1(Y(t.v)) << "\" x2=\"" << X0 << "\" y2=\""
-      << num1(Y(t.v)) << "\"/>\n";
+    o << "<line x1=\"" << num1(X0 - len) << "\" y1=\"" << num1(Y(t.v)) << "\" x2=\"" << X0 << "\" y2=\"" << num1(Y(t.v))
+      << "\"/>\n";
   }
   o << "</g>\n";
   for (const Tick& t : ticks(ax))
     if (t.labelled)
-      o << "<text x=\"" << num1(X(t.v)) << "\" y=\"" << num1(Y1 + 20) << "\" text-anchor=\"middle\">"
-        << tickText(t.v) << "</text>\n";
+      o << "<text x=\"" << num1(X(t.v)) << "\" y=\"" << num1(Y1 + 20) << "\" text-anchor=\"middle\">" << tickText(t.v)
+        << "</text>\n";
   for (const Tick& t : ticks(ay))
     if (t.labelled)
-      o << "<text x=\"" << num1(X0 - 9) << "\" y=\"" << num1(Y(t.v) + 4) << "\" text-anchor=\"end\">"
-        << tickText(t.v) << "</text>\n";
+      o << "<text x=\"" << num1(X0 - 9) << "\" y=\"" << num1(Y(t.v) + 4) << "\" text-anchor=\"end\">" << tickText(t.v)
+        << "</text>\n";
   o << "<rect x=\"" << X0 << "\" y=\"" << Y0 << "\" width=\"" << X1 - X0 << "\" height=\"" << Y1 - Y0
     << "\" fill=\"none\" stroke=\"black\"/>\n";
   o << "<text x=\"" << num1((X0 + X1) / 2) << "\" y=\"" << num1(Y1 + 45) << "\" text-anchor=\"middle\">"
@@ -272,7 +292,7 @@ std::string svgPlot(const PlotSpec& spec) {
     const double y = Y(*spec.zeroLine);
     o << "<line x1=\"" << X0 << "\" y1=\"" << num1(y) << "\" x2=\"" << X1 << "\" y2=\"" << num1(y)
       << "\" stroke=\"#888888\" stroke-dasharray=\"1,3\"/>\n";
-    o << "<text x=\"" << num1(X1 - 4) << "\" y=\"" << num1(y - 4) << "\" text-anchor=\"end\" font-size=\"10\" "
+    o << "<text x=\"" << num1(X0 + 4) << "\" y=\"" << num1(y + 12) << "\" font-size=\"10\" "
       << "fill=\"#666666\">zero error drawn here</text>\n";
   }
 
@@ -354,9 +374,9 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
 // The report.
 
 struct Report {
-  std::vector<SweepRow> rows;         ///< deduplicated, in order of first appearance
-  std::vector<std::string> methods;   ///< in order of first appearance: the style index is the position
-  std::vector<Group> groups;          ///< scene x image size, in order of first appearance
+  std::vector<SweepRow> rows;        ///< deduplicated, in order of first appearance
+  std::vector<std::string> methods;  ///< in order of first appearance: the style index is the position
+  std::vector<Group> groups;         ///< scene x image size, in order of first appearance
 
   int style(const std::string& method) const {
     return int(std::find(methods.begin(), methods.end(), method) - methods.begin());
@@ -395,7 +415,9 @@ Report organise(const std::vector<SweepRow>& input) {
   return rep;
 }
 
-std::string groupTitle(const Group& g) { return g.scene + " (" + sizeLabel(g.width, g.height) + ")"; }
+std::string groupTitle(const Group& g) {
+  return g.scene + " (" + sizeLabel(g.width, g.height) + ")";
+}
 
 /// Indices (into g.rows) of the plottable rows and their Pareto front over (frame ms, error).
 std::vector<const SweepRow*> frontOf(const Group& g) {
@@ -478,10 +500,10 @@ void headline(std::ostringstream& md, const Report& rep, const Group& g) {
     return;
   }
   const double targetMs = target->frame.median;
-  md << "Target: " << pct(target->error) << " % total error, the best " << targetWhat << " (" << mdEscape(cellName(*target))
-     << ", " << sig(targetMs) << " ms).\n\n";
-  header(md, {"method", "reaches target at", "ms", "best within " + sig(targetMs) + " ms", "error %",
-              "lowest error at", "ms", "error %", "band error %", "p99 px"});
+  md << "Target: " << pct(target->error) << " % total error, the best " << targetWhat << " ("
+     << mdEscape(cellName(*target)) << ", " << sig(targetMs) << " ms).\n\n";
+  header(md, {"method", "reaches target at", "ms", "best within " + sig(targetMs) + " ms", "error %", "lowest error at",
+              "ms", "error %", "band error %", "p99 px"});
   for (const std::string& m : methodsOf(g.rows, rep.methods)) {
     std::vector<const SweepRow*> mine, reaching, inBudget;
     for (const SweepRow* r : g.rows) {
@@ -535,7 +557,8 @@ void sceneSection(std::ostringstream& md, const Report& rep, const Group& g) {
     }
     tableRow(md, cells);
   }
-  md << "\nBoundary-band error (%) / 99th percentile distance of misclassified pixels from the exact boundary (px):\n\n";
+  md << "\nBoundary-band error (%) / 99th percentile distance of misclassified pixels from the exact boundary "
+        "(px):\n\n";
   header(md, cols);
   for (const auto& m : methods) {
     std::vector<std::string> cells = {mdEscape(m)};
@@ -582,7 +605,9 @@ void sceneSection(std::ostringstream& md, const Report& rep, const Group& g) {
   md << "\n![" << mdEscape(g.scene) << ": error against frame time](plots/" << g.plotFile << ")\n\n";
 }
 
-bool isSweepScene(const std::string& s) { return s.rfind("sweep-", 0) == 0; }
+bool isSweepScene(const std::string& s) {
+  return s.rfind("sweep-", 0) == 0;
+}
 
 /// The polygon sweep at one image size: table into `md`, returns the SVG.
 std::string polygonSweep(std::ostringstream& md, const Report& rep, const std::vector<const Group*>& groups,
@@ -635,7 +660,8 @@ std::vector<std::size_t> paretoFront(const std::vector<std::pair<double, double>
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < timeError.size(); ++i)
     if (std::isfinite(timeError[i].first) && std::isfinite(timeError[i].second)) order.push_back(i);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return timeError[a] < timeError[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return timeError[a] < timeError[b]; });
   std::vector<std::size_t> front;
   double bestBefore = HUGE_VAL;  // lowest error among strictly faster points
   for (std::size_t i = 0; i < order.size();) {
@@ -674,8 +700,8 @@ std::vector<std::filesystem::path> writeSweepReport(const std::vector<SweepRow>&
       fmax = std::max(fmax, r.frames);
     }
     if (fmax > 0)
-      md << "; frame times are medians of " << (fmin == fmax ? std::to_string(fmax) : std::to_string(fmin) + " to " +
-                                                                                        std::to_string(fmax))
+      md << "; frame times are medians of "
+         << (fmin == fmax ? std::to_string(fmax) : std::to_string(fmin) + " to " + std::to_string(fmax))
          << " measured frames after a warm-up (min and max in results.csv)";
   }
   md << "\n";
