@@ -207,5 +207,13 @@ TEST_F(SweepReportTest, OnePointMethodsSeveralSizesAndNonFiniteRows) {
   EXPECT_EQ(count(md, "nan"), 0u);
 }
 
+TEST_F(SweepReportTest, NoRowsGiveAReportWithoutPlots) {
+  const auto written = writeSweepReport({}, {}, dir_);
+  EXPECT_EQ(written, (std::vector<fs::path>{dir_ / "report.md"}));
+  const std::string md = readText(dir_ / "report.md");
+  EXPECT_NE(md.find("Cells: 0"), std::string::npos);
+  EXPECT_EQ(md.find("## Polygon sweep"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace shadowvol
