@@ -39,7 +39,7 @@ std::string px(const std::optional<double>& v) {
   return v ? sig(*v) : "-";
 }
 std::string resLabel(int r) {
-  return r > 0 ? std::to_string(r) : "none";
+  return r > 0 ? std::to_string(r) : "no map";
 }
 
 std::string mdEscape(const std::string& s) {
@@ -187,7 +187,7 @@ struct Tick {
 
 std::string tickText(double v) {
   const int k = int(std::floor(std::log10(v) + 1e-9));
-  if (k < -4 || k > 5) return fmt("%g", std::round(v / std::pow(10.0, k) * 100) / 100) + "e" + std::to_string(k);
+  if (k < -3 || k > 5) return fmt("%g", std::round(v / std::pow(10.0, k) * 100) / 100) + "e" + std::to_string(k);
   return fmt("%g", v);
 }
 
@@ -419,7 +419,7 @@ std::string groupTitle(const Group& g) {
   return g.scene + " (" + sizeLabel(g.width, g.height) + ")";
 }
 
-/// Indices (into g.rows) of the plottable rows and their Pareto front over (frame ms, error).
+/// The plottable rows of `g` on the Pareto front of (frame ms, error), fastest first.
 std::vector<const SweepRow*> frontOf(const Group& g) {
   std::vector<const SweepRow*> pts;
   for (const SweepRow* r : g.rows)
@@ -711,7 +711,7 @@ std::vector<std::filesystem::path> writeSweepReport(const std::vector<SweepRow>&
         "differs from the exact one; band error is the same over the pixels within "
      << sig(kBoundaryBand)
      << " px of the exact shadow boundary; p99 px is the 99th percentile distance of misclassified pixels from "
-        "that boundary, in image pixels (\"-\" when no pixel is misclassified). Resolution \"none\" is a method "
+        "that boundary, in image pixels (\"-\" when no pixel is misclassified). Resolution \"no map\" is a method "
         "without a depth map.\n\n";
 
   md << "## Headline\n\n";
