@@ -15,18 +15,20 @@
 namespace shadowvol {
 namespace {
 
-SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source) {
+SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureMode capture = CaptureMode::Back) {
   SweepMethod m;
-  const std::string variant = std::string(t == Triangulation::Perfect ? "perfect" : "fixed") + (blur ? "-blur" : "");
+  const std::string variant = std::string(t == Triangulation::Perfect ? "perfect" : "fixed") + (blur ? "-blur" : "") +
+                              (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture));
   m.key = "hybrid-" + variant + "/" + gl::toString(source);
   m.family = "hybrid";
   m.options.method = gl::ShadowMethod::Hybrid;
   m.options.volume = source;
-  m.options.capture = CaptureMode::Back;
+  m.options.capture = capture;
   m.options.volumeOptions.triangulation = t;
   m.options.volumeOptions.blur = blur;
   m.options.volumeOptions.cap = FarCap::Exact;
-  m.description = "shadow volume from the depth map, " + variant + ", " + gl::toString(source) + " volume, back capture";
+  m.description = "shadow volume from the depth map, " + variant + ", " + gl::toString(source) + " volume, " +
+                  toString(capture) + " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
   return m;
 }
 
@@ -70,6 +72,10 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (auto source : {gl::VolumeSource::Gpu, gl::VolumeSource::Explicit})
       for (auto t : {Triangulation::Fixed, Triangulation::Perfect})
         for (bool blur : {false, true}) v.push_back(hybrid(t, blur, source));
+    // The capture modes, where they matter: the sheet on the first surface (front, with the
+    // default bias) and between the first two (midpoint).
+    v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Front));
+    v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Midpoint));
     SweepMethod s;
     s.key = "silhouette";
     s.family = "silhouette";
