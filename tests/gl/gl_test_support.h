@@ -2,6 +2,11 @@
 // compiling the shaders once), programmatic scenes, and small image helpers.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <utility>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -45,6 +50,28 @@ inline Scene plateScene() {
 
 /// Several closed bodies on a closed ground slab under a spot light: a sphere, a box, a tree (a
 /// thin trunk), so the volume has steep walls, thin occluders and flat regions.
+/// The plate of plateScene() as an axis-aligned box, world space.
+constexpr glm::dvec3 kPlateMin{-0.87, 1.95, -1.07}, kPlateMax{1.13, 2.05, 0.93};
+
+/// Slab test of the ray o + t dir against the plate box: the entry and exit parameters of the
+/// part of the ray inside the box (clipped to [tMin, tMax]), or nullopt when it misses.
+inline std::optional<std::pair<double, double>> rayThroughPlate(const glm::dvec3& o, const glm::dvec3& dir,
+                                                                double tMin = -1e300, double tMax = 1e300) {
+  double t0 = tMin, t1 = tMax;
+  for (int a = 0; a < 3; ++a) {
+    if (std::abs(dir[a]) < 1e-300) {
+      if (o[a] < kPlateMin[a] || o[a] > kPlateMax[a]) return std::nullopt;
+      continue;
+    }
+    double ta = (kPlateMin[a] - o[a]) / dir[a], tb = (kPlateMax[a] - o[a]) / dir[a];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (t0 > t1) return std::nullopt;
+  return std::make_pair(t0, t1);
+}
+
 inline Scene clutterScene() {
   Scene s;
   s.source = "clutter (test)";

@@ -19,23 +19,11 @@ using namespace shadowvol;
 
 namespace {
 
-constexpr glm::dvec3 kPlateMin{-0.87, 1.95, -1.07}, kPlateMax{1.13, 2.05, 0.93};  // plateScene()
-
-/// Smallest t >= tMin at which o + t dir enters or lies in the plate box, or nullopt.
+/// Smallest t in [tMin, tMax] at which o + t dir is in the plate box, or nullopt.
 std::optional<double> hitPlate(const glm::dvec3& o, const glm::dvec3& dir, double tMin, double tMax) {
-  double t0 = tMin, t1 = tMax;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(dir[a]) < 1e-300) {
-      if (o[a] < kPlateMin[a] || o[a] > kPlateMax[a]) return std::nullopt;
-      continue;
-    }
-    double ta = (kPlateMin[a] - o[a]) / dir[a], tb = (kPlateMax[a] - o[a]) / dir[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1) return std::nullopt;
-  return t0;
+  const auto span = gltest::rayThroughPlate(o, dir, tMin, tMax);
+  if (!span) return std::nullopt;
+  return span->first;
 }
 
 struct Tally {

@@ -74,23 +74,9 @@ class VolumeOracle {
   std::vector<double> depth_;
 };
 
-constexpr glm::dvec3 kPlateMin{-0.87, 1.95, -1.07}, kPlateMax{1.13, 2.05, 0.93};  // plateScene()
-
 /// Ray-box entry/exit parameters, or nullopt.
 std::optional<std::pair<double, double>> hitBox(const glm::dvec3& o, const glm::dvec3& dir) {
-  double t0 = -1e300, t1 = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(dir[a]) < 1e-300) {
-      if (o[a] < kPlateMin[a] || o[a] > kPlateMax[a]) return std::nullopt;
-      continue;
-    }
-    double ta = (kPlateMin[a] - o[a]) / dir[a], tb = (kPlateMax[a] - o[a]) / dir[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (t0 > t1) return std::nullopt;
-  return std::make_pair(t0, t1);
+  return gltest::rayThroughPlate(o, dir);
 }
 
 struct Expectation {

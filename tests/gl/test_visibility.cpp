@@ -14,22 +14,7 @@ using namespace shadowvol;
 
 namespace {
 
-constexpr glm::dvec3 kPlateMin{-0.87, 1.95, -1.07}, kPlateMax{1.13, 2.05, 0.93};  // plateScene()
-
-bool rayHitsPlate(const glm::dvec3& o, const glm::dvec3& dir) {
-  double t0 = 0.0, t1 = 1e300;
-  for (int a = 0; a < 3; ++a) {
-    if (std::abs(dir[a]) < 1e-300) {
-      if (o[a] < kPlateMin[a] || o[a] > kPlateMax[a]) return false;
-      continue;
-    }
-    double ta = (kPlateMin[a] - o[a]) / dir[a], tb = (kPlateMax[a] - o[a]) / dir[a];
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  return t0 <= t1;
-}
+bool rayHitsPlate(const glm::dvec3& o, const glm::dvec3& dir) { return gltest::rayThroughPlate(o, dir, 0.0).has_value(); }
 
 /// Per image pixel (rows top first): -1 = not a ground pixel with a clear answer, 0 = the ground
 /// point and every point within `margin` world units of it (x, z) are in the exact shadow of the
