@@ -34,7 +34,9 @@ void expectError(const std::string& text, const std::string& field, const std::s
   } catch (const InputError& e) {
     EXPECT_EQ(e.source(), "test.json");
     EXPECT_EQ(e.field(), field) << e.what();
-    if (!value.empty()) EXPECT_NE(std::string(e.what()).find(value), std::string::npos) << e.what();
+    if (!value.empty()) {
+      EXPECT_NE(std::string(e.what()).find(value), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -32,7 +32,12 @@ void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write) {
   // Keep the real extension last: OpenMesh picks the writer by it.
   std::filesystem::path tmp = path;
-  tmp.replace_filename("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + path.extension().string());
+  std::string name = ".";  // built with += (GCC 12 warns falsely on "." + std::string)
+  name += path.stem().string();
+  name += ".tmp";
+  name += std::to_string(::getpid());
+  name += path.extension().string();
+  tmp.replace_filename(name);
   try {
     write(tmp);
   } catch (...) {
