@@ -11,7 +11,7 @@ int main(int argc, char** argv) {
       "shadowvol: turn a light's depth map into a closed shadow-volume mesh, render it with OpenGL "
       "(z-fail stencil) and check it by ray casting.\n"
       "Exit codes: 0 ok, 1 bad input (file, field and value named on stderr), 2 usage, 3 validation failed, "
-      "4 runtime failure (no EGL display, Embree error)."};
+      "4 runtime failure (no EGL display, Embree error), 130 bench interrupted (resume with the same command)."};
   app.set_version_flag("--version", "shadowvol 0.1.0");
   app.require_subcommand(1);
   cli::setCommandLine(argc, argv);
