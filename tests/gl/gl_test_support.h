@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/primitives.h"
@@ -70,6 +71,28 @@ inline std::optional<std::pair<double, double>> rayThroughPlate(const glm::dvec3
   }
   if (t0 > t1) return std::nullopt;
   return std::make_pair(t0, t1);
+}
+
+/// Where the camera ray through window point (wx, wy) (pixels, y up) meets the plate scene's
+/// ground (y = 0, |x|, |z| <= 4.9): nullopt when it misses the ground, when the point lies
+/// outside the camera's [near, far] (with 0.1 % margin), or when the plate hides it.
+struct GroundHit {
+  glm::dvec3 eyeRayOrigin, eyeRayDirection, ground;
+};
+inline std::optional<GroundHit> visibleGround(const Camera& cam, double wx, double wy) {
+  const glm::dmat4 inv = glm::inverse(cameraProjection(cam) * cameraView(cam));
+  const glm::dvec3 fwd = glm::normalize(cam.target - cam.eye);
+  const double nx = wx / cam.width * 2.0 - 1.0, ny = wy / cam.height * 2.0 - 1.0;
+  const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
+  const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
+  if (!(dir.y < 0.0)) return std::nullopt;
+  const double tg = -o.y / dir.y;
+  const glm::dvec3 g = o + tg * dir;
+  if (std::abs(g.x) > 4.9 || std::abs(g.z) > 4.9) return std::nullopt;
+  const double depth = glm::dot(g - cam.eye, fwd);
+  if (depth < cam.nearPlane * 1.001 || depth > cam.farPlane * 0.999) return std::nullopt;
+  if (rayThroughPlate(o, dir, 0.0, tg)) return std::nullopt;  // the plate is in the way
+  return GroundHit{o, dir, g};
 }
 
 inline Scene clutterScene() {

@@ -34,20 +34,11 @@ struct Tally {
 Tally checkGround(const Scene& scene, const std::vector<std::uint8_t>& stencil) {
   const Camera& cam = scene.camera;
   const int w = cam.width, h = cam.height;
-  const glm::dmat4 inv = glm::inverse(cameraProjection(cam) * cameraView(cam));
-  const glm::dvec3 fwd = glm::normalize(cam.target - cam.eye);
   // -1: not the ground (or clipped), 0: lit ground, 1: ground in the plate's shadow.
   auto classify = [&](double wx, double wy) {
-    const double nx = wx / w * 2.0 - 1.0, ny = wy / h * 2.0 - 1.0;
-    const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-    const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-    if (!(dir.y < 0.0)) return -1;
-    const double tg = -o.y / dir.y;
-    const glm::dvec3 g = o + tg * dir;
-    if (std::abs(g.x) > 4.9 || std::abs(g.z) > 4.9) return -1;
-    const double depth = glm::dot(g - cam.eye, fwd);
-    if (depth < cam.nearPlane * 1.001 || depth > cam.farPlane * 0.999) return -1;
-    if (hitPlate(o, dir, 0.0, tg)) return -1;  // the plate is in the way
+    const auto hit = gltest::visibleGround(cam, wx, wy);
+    if (!hit) return -1;
+    const glm::dvec3 g = hit->ground;
     const Light& l = scene.light;
     if (l.type == LightType::Spot) return hitPlate(g, l.position - g, 0.0, 1.0) ? 1 : 0;
     return hitPlate(g, -l.direction, 0.0, 1e300) ? 1 : 0;

@@ -74,10 +74,6 @@ class VolumeOracle {
   std::vector<double> depth_;
 };
 
-/// Ray-box entry/exit parameters, or nullopt.
-std::optional<std::pair<double, double>> hitBox(const glm::dvec3& o, const glm::dvec3& dir) {
-  return gltest::rayThroughPlate(o, dir);
-}
 
 struct Expectation {
   std::size_t tested = 0, inside = 0, outside = 0, wrong = 0;
@@ -87,21 +83,10 @@ struct Expectation {
 Expectation checkStencil(const Scene& scene, const VolumeOracle& oracle, const std::vector<std::uint8_t>& stencil) {
   const Camera& cam = scene.camera;
   const int w = cam.width, h = cam.height;
-  const glm::dmat4 inv = glm::inverse(cameraProjection(cam) * cameraView(cam));
-  const glm::dvec3 fwd = glm::normalize(cam.target - cam.eye);
   // -1: not the ground (or clipped), 0: ground outside the volume, 1: ground inside.
   auto classify = [&](double wx, double wy) {  // window coordinates (pixels, y up)
-    const double nx = wx / w * 2.0 - 1.0, ny = wy / h * 2.0 - 1.0;
-    const glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-    const glm::dvec3 o = glm::dvec3(a) / a.w, dir = glm::dvec3(b) / b.w - o;
-    if (!(dir.y < 0.0)) return -1;
-    const double tg = -o.y / dir.y;
-    const glm::dvec3 g = o + tg * dir;
-    if (std::abs(g.x) > 4.9 || std::abs(g.z) > 4.9) return -1;
-    const double depth = glm::dot(g - cam.eye, fwd);
-    if (depth < cam.nearPlane * 1.001 || depth > cam.farPlane * 0.999) return -1;
-    if (auto box = hitBox(o, dir); box && box->second >= 0.0 && box->first <= tg) return -1;  // plate in the way
-    return oracle.inside(g) ? 1 : 0;
+    const auto hit = gltest::visibleGround(cam, wx, wy);
+    return hit ? (oracle.inside(hit->ground) ? 1 : 0) : -1;
   };
   Expectation e;
   for (int row = 0; row < h; ++row) {
