@@ -98,6 +98,17 @@ void setCommandLine(int argc, char** argv) {
   for (int k = 1; k < argc; ++k) gCommandLine += std::string(" ") + argv[k];
 }
 
+void checkOutputFolder(const std::string& option, const std::string& path) {
+  if (path.empty()) throw InputError("command line", option, "\"\"", "an output folder is required");
+  const std::filesystem::path dir(path);
+  const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  if (!std::filesystem::is_directory(parent, ec))
+    throw InputError("command line", option, path, "the folder " + parent.string() + " does not exist");
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw InputError("command line", option, path, "exists and is not a folder");
+}
+
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -57,6 +57,10 @@ void checkOutputPath(const std::string& option, const std::string& path);
 const std::string& commandLine();
 void setCommandLine(int argc, char** argv);
 
+/// Refuses an output folder (created later if missing) whose parent does not exist, or a path
+/// that exists and is not a folder. Throws InputError naming the option.
+void checkOutputFolder(const std::string& option, const std::string& path);
+
 /// Milliseconds since `start`.
 double msSince(std::chrono::steady_clock::time_point start);
 

@@ -53,14 +53,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
   cmd->callback([&run, o] {
     run = [o] {
       const std::filesystem::path dir(o->reportDir);
-      {
-        std::error_code ec;
-        const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
-        if (!std::filesystem::is_directory(parent, ec))
-          throw InputError("command line", "--report", o->reportDir, "the folder " + parent.string() + " does not exist");
-        if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
-          throw InputError("command line", "--report", o->reportDir, "exists and is not a folder");
-      }
+      checkOutputFolder("--report", o->reportDir);
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       ro.readStencil = true;
