@@ -90,7 +90,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"blurOffset", o->render.shape.blurOffset},
                       {"bias", result.biasUsed},
                       {"cap", o->render.shape.cap},
-                      {"shadowBias", o->render.shadowBias},
+                      {"shadowBias", ro.shadowBiasConstant.value_or(defaultBias(
+                                         scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
                       {"shadowSlope", o->render.shadowSlope},
                       {"selfIntersections", o->selfIntersections}};
       j["pixels"] = {{"total", std::size_t(v.width) * std::size_t(v.height)},

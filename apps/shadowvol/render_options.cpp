@@ -40,7 +40,9 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   addVolumeOptions(cmd, o.shape);
   cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene camera's)");
-  cmd.add_option("--shadow-bias", o.shadowBias, "Shadow maps: constant depth bias, world units")->capture_default_str();
+  cmd.add_option("--shadow-bias", o.shadowBias,
+                 "Shadow maps: constant depth bias, world units (default: 0 for back and midpoint capture, the texel "
+                 "footprint plus depth precision for front capture, as the volume's --bias)");
   cmd.add_option("--shadow-slope", o.shadowSlope,
                  "Shadow maps: slope-scaled bias, in texel footprints x tan(angle to the light)")
       ->capture_default_str();
@@ -56,8 +58,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   checkResolution("--resolution", o.resolution);
-  if (!std::isfinite(o.shadowBias))
-    throw InputError("command line", "--shadow-bias", std::to_string(o.shadowBias), "must be finite");
+  if (o.shadowBias && !std::isfinite(*o.shadowBias))
+    throw InputError("command line", "--shadow-bias", std::to_string(*o.shadowBias), "must be finite");
   if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;

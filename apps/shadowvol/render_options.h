@@ -17,7 +17,7 @@ struct RenderCliOptions {
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
   std::string size;
-  double shadowBias = 0.0;
+  std::optional<double> shadowBias;  ///< unset = the documented default
   double shadowSlope = 1.0;
   std::string platform = "auto";
   std::string shaderDir;

@@ -83,6 +83,10 @@ struct VolumeBuildResult {
 ///   one texel of a receiver tilted 45 degrees, plus 4 float ulps of the depth at the far plane.
 double defaultBias(const DepthMap& map);
 
+/// The same value from the light and the map size alone, without allocating a depth map:
+/// defaultBias(makeDepthMap(light, width, height, capture)).
+double defaultBias(const Light& light, int width, int height, CaptureMode capture);
+
 /// Builds the shadow volume of a depth map (see the header comment). Throws InputError naming
 /// the texel and value if the map holds a NaN or negative depth, or if bias / blurOffset is not
 /// finite. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,

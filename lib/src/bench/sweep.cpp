@@ -10,7 +10,6 @@
 #include "shadowvol/bench/shadow_error.h"
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
-#include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
 namespace {
@@ -64,7 +63,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(shadowMap("shadowmap", gl::ShadowMethod::ShadowMap, CaptureMode::Back,
                           "shadow map, one hardware depth compare, back-face depths (second-depth)"));
     v.push_back(shadowMap("shadowmap-front", gl::ShadowMethod::ShadowMap, CaptureMode::Front,
-                          "shadow map of front faces, constant bias defaultBias() plus slope-scaled bias"));
+                          "shadow map of front faces, default constant bias (defaultBias) plus slope-scaled bias"));
     v.push_back(shadowMap("shadowmap-midpoint", gl::ShadowMethod::ShadowMap, CaptureMode::Midpoint,
                           "midpoint shadow map (mean of the first two layers)"));
     v.push_back(shadowMap("pcf3", gl::ShadowMethod::Pcf3, CaptureMode::Back, "PCF over 3 x 3 texels, back faces"));
@@ -192,11 +191,6 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     report(label);
     gl::RenderOptions ro = c.method->options;
     ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
-    if (c.method->key == "shadowmap-front") {
-      // Front depths need a constant bias too (the slope term vanishes where a receiver faces the
-      // light head-on): the documented default of front capture, from the texel footprint.
-      ro.shadowBiasConstant = defaultBias(makeDepthMap(scene.light, ro.depthWidth, ro.depthHeight, CaptureMode::Front));
-    }
     ro.readStencil = false;
     ro.readDepthMap = false;
     ro.readVisibility = false;

@@ -31,18 +31,33 @@ bool parseFarCap(const std::string& text, FarCap& c) {
   return true;
 }
 
-double defaultBias(const DepthMap& map) {
-  if (map.capture != CaptureMode::Front) return 0.0;
+namespace {
+
+// defaultBias from the map's metadata: light view and projection, size, far plane, capture.
+double defaultBiasOf(const glm::dmat4& view, const glm::dmat4& projection, int width, int height, double farPlane,
+                     CaptureMode capture) {
+  if (capture != CaptureMode::Front) return 0.0;
   // Texel footprint at the far plane (the largest over the map for a spot light; constant for a
   // directional one): the depth change across one texel of a receiver tilted 45 degrees.
-  const TexelUnprojector unproject(map);
-  const double w2 = 0.5 * (map.width - 1), h2 = 0.5 * (map.height - 1);
-  const glm::dvec3 c = unproject.lightViewPoint(w2, h2, map.farPlane);
-  const double footprint = std::max(glm::length(unproject.lightViewPoint(w2 + 1.0, h2, map.farPlane) - c),
-                                    glm::length(unproject.lightViewPoint(w2, h2 + 1.0, map.farPlane) - c));
+  const TexelUnprojector unproject(view, projection, width, height);
+  const double w2 = 0.5 * (width - 1), h2 = 0.5 * (height - 1);
+  const glm::dvec3 c = unproject.lightViewPoint(w2, h2, farPlane);
+  const double footprint = std::max(glm::length(unproject.lightViewPoint(w2 + 1.0, h2, farPlane) - c),
+                                    glm::length(unproject.lightViewPoint(w2, h2 + 1.0, farPlane) - c));
   // Float depth precision: 4 ulps of a float at the far plane (2^-23 relative per ulp).
-  const double precision = 4.0 * map.farPlane * std::ldexp(1.0, -23);
+  const double precision = 4.0 * farPlane * std::ldexp(1.0, -23);
   return footprint + precision;
+}
+
+}  // namespace
+
+double defaultBias(const DepthMap& map) {
+  return defaultBiasOf(map.lightView, map.lightProjection, map.width, map.height, map.farPlane, map.capture);
+}
+
+double defaultBias(const Light& light, int width, int height, CaptureMode capture) {
+  return defaultBiasOf(lightView(light), lightProjection(light, double(width) / double(height)), width, height,
+                       light.farPlane, capture);
 }
 
 namespace {

@@ -504,7 +504,8 @@ struct Renderer::Impl {
     sceneProgram.set("writeVisibility", 0);
     sceneProgram.set("shadowMap", 2);
     sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
-    sceneProgram.set("biasConstant", float(o.shadowBiasConstant));
+    sceneProgram.set("biasConstant",
+                     float(o.shadowBiasConstant.value_or(defaultBias(light, mapW, mapH, o.capture))));
     sceneProgram.set("biasSlope", float(o.shadowBiasSlope));
     sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
   }
@@ -683,7 +684,7 @@ struct Renderer::Impl {
     if (!std::isfinite(o.ambient) || !std::isfinite(o.diffuse) || o.ambient < 0 || o.diffuse < 0)
       throw InputError("command line", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
                        "must be finite and >= 0");
-    if (!std::isfinite(o.shadowBiasConstant) || !std::isfinite(o.shadowBiasSlope))
+    if ((o.shadowBiasConstant && !std::isfinite(*o.shadowBiasConstant)) || !std::isfinite(o.shadowBiasSlope))
       throw InputError("command line", "shadow bias", "", "must be finite");
     if (!std::isfinite(o.volumeOptions.blurOffset) || (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias)))
       throw InputError("command line", "--bias/--blur-offset", "", "must be finite");
@@ -757,7 +758,7 @@ struct Renderer::Impl {
         blurPass(vo.blurOffset);
         volumeDepth = &blurredDepth;
       }
-      result.biasUsed = vo.bias ? *vo.bias : defaultBias(makeDepthMap(light, lightW, lightH, o.capture));
+      result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);

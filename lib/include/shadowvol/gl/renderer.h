@@ -82,8 +82,10 @@ struct RenderOptions {
   int imageHeight = 0;                         ///< camera image pixels; 0 = scene camera's height
   double ambient = 0.2;                        ///< ambient factor of the albedo
   double diffuse = 0.8;                        ///< diffuse factor of the albedo
-  double shadowBiasConstant = 0.0;             ///< shadow maps: world units subtracted from the
-                                               ///< receiver's light-view depth before the compare
+  std::optional<double> shadowBiasConstant;    ///< shadow maps: world units subtracted from the
+                                               ///< receiver's light-view depth before the compare;
+                                               ///< unset = defaultBias(light, W, H, capture), the
+                                               ///< volume's default (0 for back and midpoint)
   double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
                                                ///< units at the receiver) x tan(angle between the
                                                ///< normal and the light axis), tan clamped to 10
