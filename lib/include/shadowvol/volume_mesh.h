@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "shadowvol/default_init_allocator.h"
 #include "shadowvol/triangle_mesh.h"
 
 namespace shadowvol {
@@ -16,9 +17,11 @@ namespace shadowvol {
 /// Triangles are counter-clockwise seen from outside (outward normals), so the sheet faces the
 /// light and the far cap faces away from it. Vertices are not tied to texel centres: a vertex
 /// is just a point (later refinements may move sheet vertices off texel centres).
+/// The vectors use DefaultInitAllocator: resize(n) without a value leaves the new elements
+/// unwritten (the builder fills them in parallel); resize(n, value) and push_back are as usual.
 struct VolumeMesh {
-  std::vector<glm::dvec3> positions;
-  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<glm::dvec3, DefaultInitAllocator<glm::dvec3>> positions;
+  std::vector<std::array<std::uint32_t, 3>, DefaultInitAllocator<std::array<std::uint32_t, 3>>> triangles;
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }

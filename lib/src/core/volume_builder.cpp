@@ -1,6 +1,7 @@
 #include "shadowvol/volume_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -16,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/default_init_allocator.h"
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/far_cap.h"
@@ -79,6 +81,28 @@ constexpr int kCornerDi[4] = {0, 1, 1, 0};
 constexpr int kCornerDj[4] = {0, 0, 1, 1};
 // kTriCorners[flip][t]: fixed (B-D): ABD, BCD; flipped (A-C): ABC, ACD (triangulation.h).
 constexpr int kTriCorners[2][2][3] = {{{0, 1, 3}, {1, 2, 3}}, {{0, 1, 2}, {0, 2, 3}}};
+
+// Per quad code (its low 3 bits), as 4-bit masks over the corners: kCornerUsed = held by a kept
+// triangle; kCornerCovered = every triangle of the quad holding it is kept.
+struct CornerTables {
+  std::uint8_t used[256] = {}, covered[256] = {};
+  constexpr CornerTables() {
+    for (int q = 0; q < 256; ++q) {
+      const int f = q & kFlip;
+      int u = 0, uncovered = 0;
+      for (int t = 0; t < 2; ++t)
+        for (int c : kTriCorners[f][t]) {
+          if (q & keepBit(t)) u |= 1 << c;
+          else uncovered |= 1 << c;
+        }
+      used[q] = std::uint8_t(u);
+      covered[q] = std::uint8_t(15 & ~uncovered);
+    }
+  }
+};
+constexpr CornerTables kCornerTables;
+constexpr const std::uint8_t* kCornerUsed = kCornerTables.used;
+constexpr const std::uint8_t* kCornerCovered = kCornerTables.covered;
 
 struct QuadGrid {
   int qw = 0, qh = 0;
@@ -156,9 +180,12 @@ class GridUnprojector {
 
 // Sizes a large buffer, asking Linux for transparent huge pages before its first touch: at
 // 1024^2 the 4 KiB page faults of fresh buffers cost about as much as the build itself. Only a
-// hint (no effect where THP is off or on other systems); contents as resize(n, value).
-template <class T>
-void sizeBuffer(std::vector<T>& v, std::size_t n, const T& value = T()) {
+// hint (no effect where THP is off or on other systems). Contents as resize(n): left unwritten for
+// a DefaultInitAllocator vector (Scratch, VolumeMesh), so the first touch, and its page faults,
+// happen in the parallel pass that fills it.
+template <class V>
+void sizeBuffer(V& v, std::size_t n) {
+  using T = typename V::value_type;
   v.reserve(n);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
@@ -168,26 +195,20 @@ void sizeBuffer(std::vector<T>& v, std::size_t n, const T& value = T()) {
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
   }
 #endif
-  v.resize(n, value);
+  v.resize(n);
 }
 
-void validateInput(const DepthMap& map, const VolumeBuildOptions& options) {
+// Grid-sized scratch that every pass overwrites in full before reading: no zero-fill.
+template <class T>
+using Scratch = std::vector<T, DefaultInitAllocator<T>>;
+
+// Cheap checks of the map's metadata and of the options, before anything else.
+void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& options) {
   SV_CHECK_GT(map.width, 0);
   SV_CHECK_GT(map.height, 0);
   SV_CHECK_EQ(map.depth.size(), std::size_t(map.width) * std::size_t(map.height));
   SV_CHECK_GT(map.farPlane, map.nearPlane);
   SV_CHECK_GE(map.nearPlane, 0.0);
-  for (int j = 0; j < map.height; ++j)
-    for (int i = 0; i < map.width; ++i) {
-      const float d = map.at(i, j);
-      if (std::isnan(d) || d < 0.0f) {
-        std::ostringstream field, value;
-        field << "depth of texel (" << i << ", " << j << ")";
-        value << d;
-        throw InputError("depth map", field.str(), value.str(),
-                         "depths must be non-negative light-view distances (world units) or +inf for no hit");
-      }
-    }
   auto finite = [](const char* name, double v) {
     if (!std::isfinite(v)) {
       std::ostringstream value;
@@ -199,11 +220,27 @@ void validateInput(const DepthMap& map, const VolumeBuildOptions& options) {
   if (options.bias) finite("bias", *options.bias);
 }
 
+// Throws InputError naming the first texel (row-major from texel (0, 0)) holding NaN or a
+// negative depth. The builder's passes flag such texels as they read them and call this only then.
+void validateDepths(const DepthMap& map) {
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      const float d = map.at(i, j);
+      if (std::isnan(d) || d < 0.0f) {
+        std::ostringstream field, value;
+        field << "depth of texel (" << i << ", " << j << ")";
+        value << d;
+        throw InputError("depth map", field.str(), value.str(),
+                         "depths must be non-negative light-view distances (world units) or +inf for no hit");
+      }
+    }
+}
+
 }  // namespace
 
 VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& options) {
   const auto tStart = Clock::now();
-  validateInput(map, options);
+  validateMapAndOptions(map, options);
   VolumeBuildResult result;
   VolumeBuildStats& stats = result.stats;
   const double bias = options.bias.value_or(defaultBias(map));
@@ -211,64 +248,93 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
 
   const int w = map.width, h = map.height;
   if (w < 2 || h < 2) {
+    validateDepths(map);
     stats.msTotal = msSince(tStart);
     return result;  // no quad: an empty volume
   }
   const int qw = w - 1, qh = h - 1;
   const std::size_t texels = std::size_t(w) * h, quadCount = std::size_t(qw) * qh;
+  SV_CHECK_LT(3 * std::uint64_t(texels), std::uint64_t(kNone));  // sheet + pinch copies + cap vertices
   stats.quads = quadCount;
   const double farPlane = map.farPlane, nearPlane = map.nearPlane;
   const bool exact = options.cap == FarCap::Exact;
+  const bool perfect = options.triangulation == Triangulation::Perfect;
+  // Set when a texel holds NaN or a negative depth; validateInput then names the first one.
+  std::atomic<bool> badTexel{false};
 
-  // --- Phase 1: final depths (blur, offsets, clamp, border ring), light-view distances. ---
+  // Sheet depth of texel (i, j) without blur (steps 1 and 3 of volume_builder.h); `raw` is the
+  // stored depth, also checked for validity.
+  auto sheetDepth = [&](int i, int j, double raw) {
+    if (i == 0 || j == 0 || i == w - 1 || j == h - 1 || isFarDepth(raw, farPlane)) return farPlane;
+    const double d = std::clamp(raw + bias, nearPlane, farPlane);
+    return isFarDepth(d, farPlane) ? farPlane : d;
+  };
+
+  // --- Blur (only with options.blur): every texel's sheet depth, once, in double. Without blur
+  // the sheet depth is cheap and computed where it is needed (no grid-sized scratch). ---
   auto t0 = Clock::now();
-  std::vector<double> depth;
-  sizeBuffer(depth, texels);
-  std::vector<std::uint8_t> farFlag;  // 1 = the vertex lies on the far plane
-  sizeBuffer(farFlag, texels);
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < w; ++i) {
-        double d = map.at(i, j);
-        const bool ring = i == 0 || j == 0 || i == w - 1 || j == h - 1;
-        if (ring || isFarDepth(d, farPlane)) {
-          d = farPlane;
-        } else {
-          if (options.blur) d = blurredDepth(map, i, j) + options.blurOffset;
-          d = std::clamp(d + bias, nearPlane, farPlane);
-          if (isFarDepth(d, farPlane)) d = farPlane;
+  Scratch<double> blurred;
+  if (options.blur) {
+    sizeBuffer(blurred, texels);
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+      bool bad = false;
+      for (int j = rows.begin(); j != rows.end(); ++j)
+        for (int i = 0; i < w; ++i) {
+          const double raw = map.at(i, j);
+          bad |= !(raw >= 0.0);
+          double d = farPlane;
+          if (!(i == 0 || j == 0 || i == w - 1 || j == h - 1 || isFarDepth(raw, farPlane))) {
+            d = std::clamp(blurredDepth(map, i, j) + options.blurOffset + bias, nearPlane, farPlane);
+            if (isFarDepth(d, farPlane)) d = farPlane;
+          }
+          blurred[std::size_t(j) * w + i] = d;
         }
-        depth[std::size_t(j) * w + i] = d;
-        farFlag[std::size_t(j) * w + i] = d == farPlane;
-      }
-  });
+      if (bad) badTexel.store(true, std::memory_order_relaxed);
+    });
+    if (badTexel.load()) validateDepths(map);  // throws, naming the first bad texel
+  }
   stats.msBlur = msSince(t0);
+  auto depthAt = [&](int i, int j) {
+    const std::size_t t = std::size_t(j) * w + i;
+    return options.blur ? blurred[t] : sheetDepth(i, j, map.depth[t]);
+  };
+  auto isFar = [&](std::size_t t) { return depthAt(int(t % std::size_t(w)), int(t / std::size_t(w))) == farPlane; };
 
-  // --- Phase 2: light-view points, diagonals, kept triangles. ---
+  // --- Pass A: per quad, the diagonal and which triangles are kept (one code byte). Two rolling
+  // rows of depths (and of light-view points for the perfect rule) per task, not per quad. ---
   t0 = Clock::now();
   const GridUnprojector unproject(map);
-  auto isFar = [&](std::size_t t) { return farFlag[t] != 0; };
-
-  std::vector<std::uint8_t> code;
+  Scratch<std::uint8_t> code;
   sizeBuffer(code, quadCount);
   std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh + 1, 0);
-  const bool perfect = options.triangulation == Triangulation::Perfect;
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
-    // Light-view points of the two texel rows of a quad row (one buffer per task, not per quad).
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<double> depthLo(w), depthHi(w);
     std::vector<glm::dvec3> lower(perfect ? w : 0), upper(perfect ? w : 0);
-    auto fillRow = [&](std::vector<glm::dvec3>& row, int j) {
-      for (int i = 0; i < w; ++i) row[i] = unproject.lightViewPoint(i, j, depth[std::size_t(j) * w + i]);
-    };
-    if (perfect) fillRow(upper, rows.begin());
-    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
-      if (perfect) {
-        std::swap(lower, upper);
-        fillRow(upper, qj + 1);
+    bool bad = false;
+    auto fillRow = [&](int j, std::vector<double>& d, std::vector<glm::dvec3>& p) {
+      const std::size_t row = std::size_t(j) * w;
+      if (options.blur) {
+        std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d.begin());
+      } else {
+        for (int i = 0; i < w; ++i) {
+          const double raw = map.depth[row + i];
+          bad |= !(raw >= 0.0);
+          d[i] = sheetDepth(i, j, raw);
+        }
       }
+      if (perfect)
+        for (int i = 0; i < w; ++i) p[i] = unproject.lightViewPoint(i, j, d[i]);
+    };
+    fillRow(rows.begin(), depthHi, upper);
+    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::swap(depthLo, depthHi);
+      std::swap(lower, upper);
+      fillRow(qj + 1, depthHi, upper);
       std::uint32_t flips = 0, dropped = 0, tris = 0;
+      std::uint8_t* out = code.data() + std::size_t(qj) * qw;
       for (int qi = 0; qi < qw; ++qi) {
-        const std::size_t a = std::size_t(qj) * w + qi, b = a + 1, c = a + w + 1, d = a + w;
-        const bool far[4] = {isFar(a), isFar(b), isFar(c), isFar(d)};
+        const bool far[4] = {depthLo[qi] == farPlane, depthLo[qi + 1] == farPlane, depthHi[qi + 1] == farPlane,
+                             depthHi[qi] == farPlane};
         std::uint8_t q = 0;
         if (!(far[0] && far[1] && far[2] && far[3]) || !exact) {
           if (perfect && flipDiagonal(lower[qi], lower[qi + 1], upper[qi + 1], upper[qi])) q |= kFlip;
@@ -281,84 +347,91 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
         flips += q & kFlip;
         dropped += (q & (kKeep0 | kKeep1)) == 0;
         tris += ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
-        code[std::size_t(qj) * qw + qi] = q;
+        out[qi] = q;
       }
       rowFlips[qj] = flips;
       rowDropped[qj] = dropped;
       rowTris[qj + 1] = tris;
     }
+    if (bad) badTexel.store(true, std::memory_order_relaxed);
   });
+  if (badTexel.load()) validateDepths(map);  // throws, naming the first bad texel
   const QuadGrid grid{qw, qh, code.data()};
   for (int qj = 0; qj < qh; ++qj) {
     stats.flippedQuads += rowFlips[qj];
     stats.droppedQuads += rowDropped[qj];
   }
 
-  // Vertices: one per texel used by a kept triangle, in texel order.
-  auto usesCorner = [&](int qi, int qj, int corner) {
-    const std::uint8_t q = grid.at(qi, qj);
-    const int f = q & kFlip;
-    for (int t = 0; t < 2; ++t) {
-      if (!(q & keepBit(t))) continue;
-      const int* cs = kTriCorners[f][t];
-      if (cs[0] == corner || cs[1] == corner || cs[2] == corner) return true;
-    }
-    return false;
+  // Vertices: one per texel used by a kept triangle, numbered in texel order. A texel is used when
+  // one of its four quads keeps a triangle holding it; its fan is complete when all four quads
+  // exist and keep every triangle holding it (a far texel with an incomplete fan is a boundary
+  // vertex of the cap).
+  auto usedMask = [&](int i, int j) {
+    return (kCornerUsed[grid.at(i, j)] & 1) | (kCornerUsed[grid.at(i - 1, j)] & 2) |
+           (kCornerUsed[grid.at(i - 1, j - 1)] & 4) | (kCornerUsed[grid.at(i, j - 1)] & 8);
   };
-  std::vector<std::uint32_t> vertexIndex;
-  sizeBuffer(vertexIndex, texels, kNone);
+  auto completeFan = [&](int i, int j) {
+    return ((kCornerCovered[grid.at(i, j)] & 1) & (kCornerCovered[grid.at(i - 1, j)] >> 1) &
+            (kCornerCovered[grid.at(i - 1, j - 1)] >> 2) & (kCornerCovered[grid.at(i, j - 1)] >> 3)) != 0;
+  };
+  auto isBoundary = [&](int i, int j) {
+    return usedMask(i, j) != 0 && !completeFan(i, j) && depthAt(i, j) == farPlane;
+  };
   std::vector<std::uint64_t> rowVerts(h + 1, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       std::uint32_t n = 0;
-      for (int i = 0; i < w; ++i) {
-        const bool used = !isFar(std::size_t(j) * w + i) ||
-                          ((grid.at(i, j) | grid.at(i - 1, j) | grid.at(i - 1, j - 1) | grid.at(i, j - 1)) != 0 &&
-                           (usesCorner(i, j, 0) || usesCorner(i - 1, j, 1) || usesCorner(i - 1, j - 1, 2) ||
-                            usesCorner(i, j - 1, 3)));
-        vertexIndex[std::size_t(j) * w + i] = used ? n++ : kNone;
-      }
+      for (int i = 0; i < w; ++i) n += usedMask(i, j) != 0;
       rowVerts[j + 1] = n;
     }
   });
   for (int j = 0; j < h; ++j) rowVerts[j + 1] += rowVerts[j];
   std::vector<std::uint64_t> rowTriOffset(qh + 1, 0);
   for (int qj = 0; qj < qh; ++qj) rowTriOffset[qj + 1] = rowTriOffset[qj] + rowTris[qj + 1];
-  SV_CHECK_LT(3 * std::uint64_t(texels), std::uint64_t(kNone));  // sheet + pinch copies + cap vertices
   const std::uint64_t sheetTriangles = rowTriOffset[qh];
 
+  // --- Pass B: vertex indices (two rolling rows per task), positions, sheet triangles, the index
+  // of each quad's first triangle, and the far boundary vertices of each row. ---
   VolumeMesh& mesh = result.mesh;
   sizeBuffer(mesh.positions, rowVerts[h]);
   // Room for the cap too (a flattened cap has about as many triangles as boundary edges), so that
   // appending it rarely reallocates.
   mesh.triangles.reserve(sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(mesh.triangles, sheetTriangles);
-  std::vector<std::uint32_t> quadTri;  // index of each quad's first kept triangle
+  Scratch<std::uint32_t> quadTri;  // index of each quad's first kept triangle
   sizeBuffer(quadTri, quadCount);
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
+  std::vector<std::vector<std::uint32_t>> rowBoundary(h);  // boundary texels (i) of each row
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<std::uint32_t> idxLo(w), idxHi(w);
+    auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
+      std::uint32_t n = std::uint32_t(rowVerts[j]);
+      for (int i = 0; i < w; ++i) idx[i] = usedMask(i, j) ? n++ : kNone;
+    };
+    auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx) {  // positions and boundary
       for (int i = 0; i < w; ++i) {
-        const std::size_t t = std::size_t(j) * w + i;
-        if (vertexIndex[t] == kNone) continue;
-        vertexIndex[t] += std::uint32_t(rowVerts[j]);
-        mesh.positions[vertexIndex[t]] = unproject.worldPoint(i, j, depth[t]);
+        if (idx[i] == kNone) continue;
+        const double d = depthAt(i, j);
+        mesh.positions[idx[i]] = unproject.worldPoint(i, j, d);
+        if (d == farPlane && !completeFan(i, j)) rowBoundary[j].push_back(std::uint32_t(i));
       }
-  });
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    };
+    vertexRow(rows.begin(), idxHi);
     for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::swap(idxLo, idxHi);
+      vertexRow(qj + 1, idxHi);
+      emitRow(qj, idxLo);
+      if (qj + 1 == qh) emitRow(qj + 1, idxHi);
       std::size_t next = rowTriOffset[qj];
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
         const std::uint8_t q = code[qIndex];
         quadTri[qIndex] = std::uint32_t(next);
         const int f = q & kFlip;
+        const std::uint32_t corner[4] = {idxLo[qi], idxLo[qi + 1], idxHi[qi + 1], idxHi[qi]};
         for (int t = 0; t < 2; ++t) {
           if (!(q & keepBit(t))) continue;
-          Tri& tri = mesh.triangles[next++];
-          for (int k = 0; k < 3; ++k) {
-            const int corner = kTriCorners[f][t][k];
-            tri[k] = vertexIndex[std::size_t(qj + kCornerDj[corner]) * w + qi + kCornerDi[corner]];
-          }
+          const int* cs = kTriCorners[f][t];
+          mesh.triangles[next++] = {corner[cs[0]], corner[cs[1]], corner[cs[2]]};
         }
       }
     }
@@ -402,91 +475,67 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     }
     return n;
   };
-  std::vector<std::uint8_t> boundary;
-  sizeBuffer(boundary, texels);
-  {  // also for the quad cap, whose sheet has edges between border-ring vertices at the corners
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-      for (int j = rows.begin(); j != rows.end(); ++j)
-        for (int i = 0; i < w; ++i) {
-          const std::size_t t = std::size_t(j) * w + i;
-          if (vertexIndex[t] == kNone || !isFar(t)) continue;
-          Slot slots[8];
-          const int n = collectSlots(i, j, slots);
-          for (int s = 0; s < n; ++s)
-            if (!slots[s].kept) boundary[t] = 1;
+  auto texelBoundary = [&](std::size_t t) { return isBoundary(int(t % std::size_t(w)), int(t / std::size_t(w))); };
+  for (int j = 0; j < h; ++j)
+    for (const std::uint32_t i : rowBoundary[j]) {
+      Slot slots[8];
+      const int n = collectSlots(int(i), j, slots);
+      int gap = 0;
+      while (slots[gap].kept) ++gap;
+      int fans = 0;
+      std::uint32_t original = kNone;
+      for (int s = 0; s < n && original == kNone; ++s)
+        if (slots[s].kept) original = mesh.triangles[slots[s].tri][slots[s].k];
+      std::uint32_t copy = original;
+      for (int s = 1; s <= n; ++s) {
+        const Slot& slot = slots[(gap + s) % n];
+        const Slot& prev = slots[(gap + s - 1) % n];
+        if (!slot.kept) continue;
+        const bool cut = prev.kept && isFar(prev.ccwTexel) && texelBoundary(prev.ccwTexel);
+        if ((!prev.kept || cut) && fans++ > 0) {  // a second (third, ...) run starts here
+          copy = std::uint32_t(mesh.positions.size());
+          mesh.positions.push_back(mesh.positions[original]);
+          ++stats.splitVertices;
         }
-    });
-    for (int j = 0; j < h; ++j)
-      for (int i = 0; i < w; ++i) {
-        const std::size_t t = std::size_t(j) * w + i;
-        if (!boundary[t]) continue;
-        Slot slots[8];
-        const int n = collectSlots(i, j, slots);
-        int gap = 0;
-        while (slots[gap].kept) ++gap;
-        int fans = 0;
-        std::uint32_t copy = vertexIndex[t];
-        for (int s = 1; s <= n; ++s) {
-          const Slot& slot = slots[(gap + s) % n];
-          const Slot& prev = slots[(gap + s - 1) % n];
-          if (!slot.kept) continue;
-          const bool cut = prev.kept && isFar(prev.ccwTexel) && boundary[prev.ccwTexel];
-          if ((!prev.kept || cut) && fans++ > 0) {  // a second (third, ...) run starts here
-            copy = std::uint32_t(mesh.positions.size());
-            mesh.positions.push_back(mesh.positions[vertexIndex[t]]);
-            ++stats.splitVertices;
-          }
-          mesh.triangles[slot.tri][slot.k] = copy;
-        }
+        mesh.triangles[slot.tri][slot.k] = copy;
       }
-  }
+    }
   stats.msSheet = msSince(t0);
 
   // --- Phase 3: far cap. ---
   t0 = Clock::now();
-  std::vector<std::vector<CapEdge>> rowEdges(qh);
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
-    for (int qj = rows.begin(); qj != rows.end(); ++qj)
-      for (int qi = 0; qi < qw; ++qi) {
+  // Cap edges: the edges of kept triangles between two far vertices with no kept triangle across
+  // (or cut open). Both ends are boundary vertices, so the edges are found from the boundary lists,
+  // each once, from its first vertex; then put in (quad, triangle, edge) order.
+  std::vector<std::pair<std::uint64_t, CapEdge>> keyed;
+  for (int j0 = 0; j0 < h; ++j0)
+    for (const std::uint32_t i0 : rowBoundary[j0]) {
+      const int quads[4][3] = {{int(i0), j0, 0}, {int(i0) - 1, j0, 1}, {int(i0) - 1, j0 - 1, 2}, {int(i0), j0 - 1, 3}};
+      for (const auto& [qi, qj, corner] : quads) {
+        if (qi < 0 || qj < 0 || qi >= qw || qj >= qh) continue;
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
         const std::uint8_t q = code[qIndex];
-        if (!(q & (kKeep0 | kKeep1))) continue;
-        const std::size_t a = std::size_t(qj) * w + qi;
-        if (isFar(a) + isFar(a + 1) + isFar(a + w) + isFar(a + w + 1) < 2) continue;
         const int f = q & kFlip;
         for (int t = 0; t < 2; ++t) {
           if (!(q & keepBit(t))) continue;
           const int* cs = kTriCorners[f][t];
-          std::size_t tex[3];
-          int farCorners = 0;
-          for (int k = 0; k < 3; ++k) {
-            tex[k] = std::size_t(qj + kCornerDj[cs[k]]) * w + qi + kCornerDi[cs[k]];
-            farCorners += isFar(tex[k]);
-          }
-          if (farCorners < 2) continue;  // a boundary edge joins two far vertices
+          const int k = cs[0] == corner ? 0 : cs[1] == corner ? 1 : cs[2] == corner ? 2 : -1;
+          if (k < 0) continue;
+          const int c1 = cs[(k + 1) % 3];
+          const int i1 = qi + kCornerDi[c1], j1 = qj + kCornerDj[c1];
+          if (depthAt(i1, j1) != farPlane) continue;
+          const bool cut = isBoundary(i1, j1);
+          if (!cut && grid.neighbourKept(qi, qj, t, k)) continue;
           const Tri& tri = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
-          for (int k = 0; k < 3; ++k) {
-            const std::size_t t0 = tex[k], t1 = tex[(k + 1) % 3];
-            if (!isFar(t0) || !isFar(t1)) continue;
-            const bool cut = boundary[t0] && boundary[t1];
-            if (!cut && grid.neighbourKept(qi, qj, t, k)) continue;
-            const int c0 = cs[k], c1 = cs[(k + 1) % 3];
-            rowEdges[qj].push_back({tri[k], tri[(k + 1) % 3], {qi + kCornerDi[c0], qj + kCornerDj[c0]},
-                                    {qi + kCornerDi[c1], qj + kCornerDj[c1]}});
-          }
+          keyed.push_back({(std::uint64_t(qIndex) * 2 + t) * 3 + k,
+                           {tri[k], tri[(k + 1) % 3], {int(i0), j0}, {i1, j1}}});
         }
       }
-  });
-  std::vector<CapEdge> edges;
-  {
-    std::size_t n = 0;
-    for (const auto& r : rowEdges) n += r.size();
-    edges.reserve(n);
-    for (auto& r : rowEdges) {
-      edges.insert(edges.end(), r.begin(), r.end());
-      std::vector<CapEdge>().swap(r);
     }
-  }
+  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<CapEdge> edges;
+  edges.reserve(keyed.size());
+  for (const auto& [key, edge] : keyed) edges.push_back(edge);
   stats.capTrianglesBefore = sheetTriangles;
   if (!exact || options.flattenCap) {
     const auto cap = triangulateCapLoops(edges);
