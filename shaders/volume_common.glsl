@@ -43,12 +43,14 @@ vec3 lightViewPoint(ivec2 t, float d) {
   return vec3(x, y, z);
 }
 
-// triangulation.h's flipDiagonal, line for line, in float.
+// triangulation.h's flipDiagonal in float: squared areas as there; the planarity test keeps its
+// sqrt form here, since in float (L^2)^3 would overflow for coordinates beyond about 4e6.
+float sq(vec3 v) { return dot(v, v); }
 bool flipDiagonal(vec3 a, vec3 b, vec3 c, vec3 d) {
-  float aA = length(cross(c - b, d - b));
-  float aB = length(cross(c - a, d - a));
-  float aC = length(cross(b - a, d - a));
-  float aD = length(cross(b - a, c - a));
+  float aA = sq(cross(c - b, d - b));
+  float aB = sq(cross(c - a, d - a));
+  float aC = sq(cross(b - a, d - a));
+  float aD = sq(cross(b - a, c - a));
   float sixV = abs(dot(b - a, cross(c - a, d - a)));
   float l2 = max(max(max(dot(b - a, b - a), dot(c - a, c - a)), max(dot(d - a, d - a), dot(c - b, c - b))),
                  max(dot(d - b, d - b), dot(d - c, d - c)));

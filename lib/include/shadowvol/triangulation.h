@@ -15,10 +15,16 @@
 // Degenerate and near-planar quads do not flip: when 6 V <= kPlanarTolerance * L^3 (L the longest
 // of the quad's six pairwise distances), the quad counts as planar and keeps the fixed diagonal.
 // Ties (equal areas) do not flip: the comparisons are strict.
+// Evaluated without sqrt: areas compare as their squares (|n|^2 for the cross products n), and
+// the planarity test as (6 V)^2 <= kPlanarTolerance^2 * (L^2)^3; both are the same order as the
+// unsquared quantities and in double cannot overflow before coordinates reach 1e50.
 #pragma once
 
 #include <string>
 
+#include <algorithm>
+
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 namespace shadowvol {
@@ -36,6 +42,17 @@ bool parseTriangulation(const std::string& text, Triangulation& t);
 inline constexpr double kPlanarTolerance = 1e-9;
 
 /// True when the quad A B C D (light-view or world space, see above) takes the A-C diagonal.
-bool flipDiagonal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& d);
+/// False for non-finite input. Inline: the builder evaluates it once per quad.
+inline bool flipDiagonal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& d) {
+  const glm::dvec3 ab = b - a, ac = c - a, ad = d - a, bc = c - b, bd = d - b, cd = d - c;
+  // Normals of the triangles opposite each corner (twice their areas as length).
+  const glm::dvec3 nA = glm::cross(bc, bd), nB = glm::cross(ac, ad), nC = glm::cross(ab, ad), nD = glm::cross(ab, ac);
+  const double sA = glm::dot(nA, nA), sB = glm::dot(nB, nB), sC = glm::dot(nC, nC), sD = glm::dot(nD, nD);
+  const double sixV = glm::dot(ab, nB);
+  const double l2 = std::max({glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(ad, ad), glm::dot(bc, bc), glm::dot(bd, bd),
+                              glm::dot(cd, cd)});
+  if (!(sixV * sixV > (kPlanarTolerance * kPlanarTolerance) * (l2 * l2 * l2))) return false;  // planar, degenerate, non-finite
+  return (sB < sC && sB < sA) || (sD < sC && sD < sA);
+}
 
 }  // namespace shadowvol
