@@ -49,10 +49,12 @@ inline bool flipDiagonal(const glm::dvec3& a, const glm::dvec3& b, const glm::dv
   const glm::dvec3 nA = glm::cross(bc, bd), nB = glm::cross(ac, ad), nC = glm::cross(ab, ad), nD = glm::cross(ab, ac);
   const double sA = glm::dot(nA, nA), sB = glm::dot(nB, nB), sC = glm::dot(nC, nC), sD = glm::dot(nD, nD);
   const double sixV = glm::dot(ab, nB);
-  const double l2 = std::max({glm::dot(ab, ab), glm::dot(ac, ac), glm::dot(ad, ad), glm::dot(bc, bc), glm::dot(bd, bd),
-                              glm::dot(cd, cd)});
-  if (!(sixV * sixV > (kPlanarTolerance * kPlanarTolerance) * (l2 * l2 * l2))) return false;  // planar, degenerate, non-finite
-  return (sB < sC && sB < sA) || (sD < sC && sD < sA);
+  const double l2 = std::max(std::max(std::max(glm::dot(ab, ab), glm::dot(ac, ac)), std::max(glm::dot(ad, ad), glm::dot(bc, bc))),
+                             std::max(glm::dot(bd, bd), glm::dot(cd, cd)));
+  // Not planar, not degenerate, finite (NaN and infinity fail the comparison); branch-free so the
+  // builder's per-row loop vectorises.
+  const bool solid = sixV * sixV > (kPlanarTolerance * kPlanarTolerance) * (l2 * l2 * l2);
+  return solid & (((sB < sC) & (sB < sA)) | ((sD < sC) & (sD < sA)));
 }
 
 }  // namespace shadowvol

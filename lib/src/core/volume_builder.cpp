@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -101,6 +102,11 @@ struct CornerTables {
   }
 };
 constexpr CornerTables kCornerTables;
+// The code byte also holds kCornerUsed (of its low bits) in bits 3..6, so that a texel's use is
+// four masked loads: A of quad (i, j), B of (i - 1, j), C of (i - 1, j - 1), D of (i, j - 1).
+constexpr int kUsedShift = 3;
+constexpr std::uint8_t kUsedA = 1 << kUsedShift, kUsedB = 2 << kUsedShift, kUsedC = 4 << kUsedShift,
+                       kUsedD = 8 << kUsedShift;
 constexpr const std::uint8_t* kCornerUsed = kCornerTables.used;
 constexpr const std::uint8_t* kCornerCovered = kCornerTables.covered;
 
@@ -165,6 +171,24 @@ class GridUnprojector {
     return {(xn_[std::size_t(i)] * wc - p20_ * z - p30_) / p00_, (yn_[std::size_t(j)] * wc - p21_ * z - p31_) / p11_,
             z};
   }
+  // lightViewPoint(i, j, d[i]) for i in [begin, end), into x, y, z (a loop that vectorises).
+  void lightViewPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
+    if (!separable_) {
+      for (int i = begin; i < end; ++i) {
+        const glm::dvec3 p = reference_.lightViewPoint(i, j, d[i]);
+        x[i] = p.x, y[i] = p.y, z[i] = p.z;
+      }
+      return;
+    }
+    const double* xn = xn_.data();
+    const double yn = yn_[std::size_t(j)];
+    for (int i = begin; i < end; ++i) {
+      const double zi = -d[i], wc = p23_ * zi + p33_;
+      x[i] = (xn[i] * wc - p20_ * zi - p30_) / p00_;
+      y[i] = (yn * wc - p21_ * zi - p31_) / p11_;
+      z[i] = zi;
+    }
+  }
   glm::dvec3 worldPoint(int i, int j, double d) const {
     if (!separable_) return reference_.worldPoint(i, j, d);
     return glm::dvec3(invView_ * glm::dvec4(lightViewPoint(i, j, d), 1.0));
@@ -177,6 +201,22 @@ class GridUnprojector {
   std::vector<double> xn_, yn_;
   glm::dmat4 invView_;
 };
+
+// flip[qi] = flipDiagonal(A, B, C, D) of the quads qi in [qb, qe) between two rows of light-view
+// points (SoA: lower row xl, yl, zl; upper row xh, yh, zh). On x86-64 with GCC an AVX2 clone is
+// chosen at load time where the CPU has it: the loop vectorises 4-wide there (2-wide SSE2 does
+// not pay). The clone enables AVX2 only, not FMA, so it evaluates the same IEEE operations in the
+// same order as the scalar code: the same flips on every machine.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void flipRow(int qb, int qe, const double* __restrict xl, const double* __restrict yl, const double* __restrict zl,
+             const double* __restrict xh, const double* __restrict yh, const double* __restrict zh,
+             std::uint8_t* __restrict flip) {
+  for (int qi = qb; qi < qe; ++qi)
+    flip[qi] = flipDiagonal({xl[qi], yl[qi], zl[qi]}, {xl[qi + 1], yl[qi + 1], zl[qi + 1]},
+                            {xh[qi + 1], yh[qi + 1], zh[qi + 1]}, {xh[qi], yh[qi], zh[qi]});
+}
 
 // Sizes a large buffer, asking Linux for transparent huge pages before its first touch: at
 // 1024^2 the 4 KiB page faults of fresh buffers cost about as much as the build itself. Only a
@@ -307,43 +347,97 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   Scratch<std::uint8_t> code;
   sizeBuffer(code, quadCount);
   std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<double> depthLo(w), depthHi(w);
-    std::vector<glm::dvec3> lower(perfect ? w : 0), upper(perfect ? w : 0);
-    bool bad = false;
-    auto fillRow = [&](int j, std::vector<double>& d, std::vector<glm::dvec3>& p) {
-      const std::size_t row = std::size_t(j) * w;
-      if (options.blur) {
-        std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d.begin());
-      } else {
-        for (int i = 0; i < w; ++i) {
-          const double raw = map.depth[row + i];
-          bad |= !(raw >= 0.0);
-          d[i] = sheetDepth(i, j, raw);
-        }
+  // codeFor[flip][far mask of the corners A B C D as bits 0..3]: the whole code byte.
+  std::uint8_t codeFor[2][16];
+  for (int f = 0; f < 2; ++f)
+    for (int m = 0; m < 16; ++m) {
+      std::uint8_t q = std::uint8_t(f);
+      for (int t = 0; t < 2; ++t) {
+        const int* cs = kTriCorners[f][t];
+        const bool allFar = (m >> cs[0] & 1) && (m >> cs[1] & 1) && (m >> cs[2] & 1);
+        if (!exact || !allFar) q |= keepBit(t);
       }
-      if (perfect)
-        for (int i = 0; i < w; ++i) p[i] = unproject.lightViewPoint(i, j, d[i]);
+      codeFor[f][m] = std::uint8_t(q | kCornerUsed[q] << kUsedShift);
+    }
+  const double farSnap = farPlane * (1.0 - kFarSnap);  // isFarDepth(d) == !(d < farSnap)
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
+    // Per texel row: sheet depths, far flags, the span of non-far texels and (perfect only) the
+    // light-view points, unprojected only over the columns some non-all-far quad needs.
+    struct Row {
+      std::vector<double> depth, x, y, z;
+      std::vector<std::uint8_t> far;
+      int j = -1;
+      int first = 0, last = -1;     // non-far texels lie in [first, last]
+      int pBegin = 0, pEnd = 0;     // points computed on [pBegin, pEnd)
     };
-    fillRow(rows.begin(), depthHi, upper);
-    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
-      std::swap(depthLo, depthHi);
-      std::swap(lower, upper);
-      fillRow(qj + 1, depthHi, upper);
-      std::uint32_t flips = 0, dropped = 0, tris = 0;
-      std::uint8_t* out = code.data() + std::size_t(qj) * qw;
-      for (int qi = 0; qi < qw; ++qi) {
-        const bool far[4] = {depthLo[qi] == farPlane, depthLo[qi + 1] == farPlane, depthHi[qi + 1] == farPlane,
-                             depthHi[qi] == farPlane};
-        std::uint8_t q = 0;
-        if (!(far[0] && far[1] && far[2] && far[3]) || !exact) {
-          if (perfect && flipDiagonal(lower[qi], lower[qi + 1], upper[qi + 1], upper[qi])) q |= kFlip;
-          const int f = q & kFlip;
-          for (int t = 0; t < 2; ++t) {
-            const int* cs = kTriCorners[f][t];
-            if (!exact || !(far[cs[0]] && far[cs[1]] && far[cs[2]])) q |= keepBit(t);
-          }
+    Row lo, hi;
+    for (Row* r : {&lo, &hi}) {
+      r->depth.resize(w);
+      r->far.resize(w);
+      if (perfect) r->x.resize(w), r->y.resize(w), r->z.resize(w);
+    }
+    std::vector<std::uint8_t> flip(perfect ? qw : 0);
+    bool bad = false;
+    auto fillRow = [&](int j, Row& r) {
+      const std::size_t row = std::size_t(j) * w;
+      double* d = r.depth.data();
+      r.j = j;
+      r.pBegin = r.pEnd = 0;
+      if (j == 0 || j == h - 1) {
+        std::fill_n(d, w, farPlane);
+      } else if (options.blur) {
+        std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d);
+      } else {
+        const float* src = map.depth.data() + row;
+        bool rowBad = false;
+        for (int i = 0; i < w; ++i) {  // sheetDepth, branch-free
+          const double raw = src[i];
+          rowBad |= !(raw >= 0.0);
+          const double c = std::clamp(raw + bias, nearPlane, farPlane);
+          d[i] = (raw < farSnap && c < farSnap) ? c : farPlane;
         }
+        bad |= rowBad;
+        d[0] = d[w - 1] = farPlane;
+      }
+      r.first = w, r.last = -1;
+      for (int i = 0; i < w; ++i) {
+        const bool f = d[i] == farPlane;
+        r.far[i] = f;
+        if (!f) r.first = std::min(r.first, i), r.last = i;
+      }
+    };
+    auto points = [&](Row& r, int b, int e) {  // make the points of [b, e) available
+      if (r.pEnd <= r.pBegin) r.pBegin = r.pEnd = b;
+      if (b < r.pBegin) unproject.lightViewPoints(r.j, b, r.pBegin, r.depth.data(), r.x.data(), r.y.data(), r.z.data());
+      if (e > r.pEnd) unproject.lightViewPoints(r.j, r.pEnd, e, r.depth.data(), r.x.data(), r.y.data(), r.z.data());
+      r.pBegin = std::min(r.pBegin, b), r.pEnd = std::max(r.pEnd, e);
+    };
+    fillRow(rows.begin(), hi);
+    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::swap(lo, hi);
+      fillRow(qj + 1, hi);
+      std::uint8_t* out = code.data() + std::size_t(qj) * qw;
+      // Quads with a non-far corner: [qb, qe). With the quad cap every quad is kept.
+      int qb = 0, qe = qw;
+      if (exact) {
+        qb = std::max(0, std::min(lo.first, hi.first) - 1);
+        qe = std::min(qw, std::max(lo.last, hi.last) + 1);
+      }
+      if (perfect && qb < qe) {
+        points(lo, qb, qe + 1);
+        points(hi, qb, qe + 1);
+        flipRow(qb, qe, lo.x.data(), lo.y.data(), lo.z.data(), hi.x.data(), hi.y.data(), hi.z.data(), flip.data());
+      }
+      std::fill(out, out + std::max(qb, 0), std::uint8_t(0));
+      if (qe > qb) std::fill(out + qe, out + qw, std::uint8_t(0));
+      else std::fill(out, out + qw, std::uint8_t(0));
+      std::uint32_t flips = 0, dropped = qw - std::max(qe - qb, 0), tris = 0;
+      const std::uint8_t* farLo = lo.far.data();
+      const std::uint8_t* farHi = hi.far.data();
+      for (int qi = qb; qi < qe; ++qi) {
+        const int farMask = farLo[qi] | farLo[qi + 1] << 1 | farHi[qi + 1] << 2 | farHi[qi] << 3;
+        const int f = perfect ? flip[qi] : 0;
+        const std::uint8_t q = (exact && farMask == 15) ? std::uint8_t(0) : codeFor[f][farMask];
         flips += q & kFlip;
         dropped += (q & (kKeep0 | kKeep1)) == 0;
         tris += ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
@@ -367,8 +461,18 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // exist and keep every triangle holding it (a far texel with an incomplete fan is a boundary
   // vertex of the cap).
   auto usedMask = [&](int i, int j) {
-    return (kCornerUsed[grid.at(i, j)] & 1) | (kCornerUsed[grid.at(i - 1, j)] & 2) |
-           (kCornerUsed[grid.at(i - 1, j - 1)] & 4) | (kCornerUsed[grid.at(i, j - 1)] & 8);
+    return (grid.at(i, j) & kUsedA) | (grid.at(i - 1, j) & kUsedB) | (grid.at(i - 1, j - 1) & kUsedC) |
+           (grid.at(i, j - 1) & kUsedD);
+  };
+  // usedMask of every texel of row j, nonzero = used (branch-free in the interior).
+  const std::vector<std::uint8_t> zeroRow(std::size_t(qw), 0);
+  auto usedRow = [&](int j, std::uint8_t* used) {
+    const std::uint8_t* cur = j < qh ? code.data() + std::size_t(j) * qw : zeroRow.data();
+    const std::uint8_t* prev = j > 0 ? code.data() + std::size_t(j - 1) * qw : zeroRow.data();
+    used[0] = (cur[0] & kUsedA) | (prev[0] & kUsedD);
+    for (int i = 1; i < qw; ++i)
+      used[i] = (cur[i] & kUsedA) | (cur[i - 1] & kUsedB) | (prev[i - 1] & kUsedC) | (prev[i] & kUsedD);
+    used[qw] = (cur[qw - 1] & kUsedB) | (prev[qw - 1] & kUsedC);
   };
   auto completeFan = [&](int i, int j) {
     return ((kCornerCovered[grid.at(i, j)] & 1) & (kCornerCovered[grid.at(i - 1, j)] >> 1) &
@@ -378,10 +482,12 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     return usedMask(i, j) != 0 && !completeFan(i, j) && depthAt(i, j) == farPlane;
   };
   std::vector<std::uint64_t> rowVerts(h + 1, 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<std::uint8_t> used(w);
     for (int j = rows.begin(); j != rows.end(); ++j) {
+      usedRow(j, used.data());
       std::uint32_t n = 0;
-      for (int i = 0; i < w; ++i) n += usedMask(i, j) != 0;
+      for (int i = 0; i < w; ++i) n += used[i] != 0;
       rowVerts[j + 1] = n;
     }
   });
@@ -403,9 +509,11 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   std::vector<std::vector<std::uint32_t>> rowBoundary(h);  // boundary texels (i) of each row
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
     std::vector<std::uint32_t> idxLo(w), idxHi(w);
+    std::vector<std::uint8_t> used(w);
     auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
+      usedRow(j, used.data());
       std::uint32_t n = std::uint32_t(rowVerts[j]);
-      for (int i = 0; i < w; ++i) idx[i] = usedMask(i, j) ? n++ : kNone;
+      for (int i = 0; i < w; ++i) idx[i] = used[i] ? n++ : kNone;
     };
     auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx) {  // positions and boundary
       for (int i = 0; i < w; ++i) {
@@ -422,9 +530,19 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       emitRow(qj, idxLo);
       if (qj + 1 == qh) emitRow(qj + 1, idxHi);
       std::size_t next = rowTriOffset[qj];
+      const std::uint8_t* rowCode = code.data() + std::size_t(qj) * qw;
       for (int qi = 0; qi < qw; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
-        const std::uint8_t q = code[qIndex];
+        if (qi + 8 <= qw) {  // runs of dropped quads (code 0), 8 at a time
+          std::uint64_t eight;
+          std::memcpy(&eight, rowCode + qi, 8);
+          if (eight == 0) {
+            std::fill_n(quadTri.begin() + std::ptrdiff_t(qIndex), 8, std::uint32_t(next));
+            qi += 7;
+            continue;
+          }
+        }
+        const std::uint8_t q = rowCode[qi];
         quadTri[qIndex] = std::uint32_t(next);
         const int f = q & kFlip;
         const std::uint32_t corner[4] = {idxLo[qi], idxLo[qi + 1], idxHi[qi + 1], idxHi[qi]};
