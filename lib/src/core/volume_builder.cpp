@@ -147,61 +147,6 @@ struct QuadGrid {
   }
 };
 
-// Texel-centre unprojection for whole grids: TexelUnprojector's result, with the projection solved
-// per axis when the matrix allows it (glm's perspective and orthographic matrices: x and y do not
-// mix, clip w depends on view z only), else TexelUnprojector itself. Agrees with it to a few ulps.
-class GridUnprojector {
- public:
-  explicit GridUnprojector(const DepthMap& map) : reference_(map) {
-    const glm::dmat4& p = map.lightProjection;  // column-major: p[col][row]
-    separable_ = p[1][0] == 0.0 && p[0][1] == 0.0 && p[0][3] == 0.0 && p[1][3] == 0.0 && p[0][0] != 0.0 &&
-                 p[1][1] != 0.0;
-    p00_ = p[0][0], p11_ = p[1][1], p20_ = p[2][0], p21_ = p[2][1], p30_ = p[3][0], p31_ = p[3][1];
-    p23_ = p[2][3], p33_ = p[3][3];
-    xn_.resize(std::size_t(map.width));
-    yn_.resize(std::size_t(map.height));
-    for (int i = 0; i < map.width; ++i) xn_[std::size_t(i)] = (i + 0.5) / double(map.width) * 2.0 - 1.0;
-    for (int j = 0; j < map.height; ++j) yn_[std::size_t(j)] = (j + 0.5) / double(map.height) * 2.0 - 1.0;
-    const glm::dmat4 inv = glm::inverse(map.lightView);
-    invView_ = inv;
-  }
-  glm::dvec3 lightViewPoint(int i, int j, double d) const {
-    if (!separable_) return reference_.lightViewPoint(i, j, d);
-    const double z = -d, wc = p23_ * z + p33_;
-    return {(xn_[std::size_t(i)] * wc - p20_ * z - p30_) / p00_, (yn_[std::size_t(j)] * wc - p21_ * z - p31_) / p11_,
-            z};
-  }
-  // lightViewPoint(i, j, d[i]) for i in [begin, end), into x, y, z (a loop that vectorises).
-  void lightViewPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
-    if (!separable_) {
-      for (int i = begin; i < end; ++i) {
-        const glm::dvec3 p = reference_.lightViewPoint(i, j, d[i]);
-        x[i] = p.x, y[i] = p.y, z[i] = p.z;
-      }
-      return;
-    }
-    const double* xn = xn_.data();
-    const double yn = yn_[std::size_t(j)];
-    for (int i = begin; i < end; ++i) {
-      const double zi = -d[i], wc = p23_ * zi + p33_;
-      x[i] = (xn[i] * wc - p20_ * zi - p30_) / p00_;
-      y[i] = (yn * wc - p21_ * zi - p31_) / p11_;
-      z[i] = zi;
-    }
-  }
-  glm::dvec3 worldPoint(int i, int j, double d) const {
-    if (!separable_) return reference_.worldPoint(i, j, d);
-    return glm::dvec3(invView_ * glm::dvec4(lightViewPoint(i, j, d), 1.0));
-  }
-
- private:
-  TexelUnprojector reference_;
-  bool separable_ = false;
-  double p00_, p11_, p20_, p21_, p30_, p31_, p23_, p33_;
-  std::vector<double> xn_, yn_;
-  glm::dmat4 invView_;
-};
-
 // flip[qi] = flipDiagonal(A, B, C, D) of the quads qi in [qb, qe) between two rows of light-view
 // points (SoA: lower row xl, yl, zl; upper row xh, yh, zh). On x86-64 with GCC an AVX2 clone is
 // chosen at load time where the CPU has it: the loop vectorises 4-wide there (2-wide SSE2 does
@@ -217,6 +162,91 @@ void flipRow(int qb, int qe, const double* __restrict xl, const double* __restri
     flip[qi] = flipDiagonal({xl[qi], yl[qi], zl[qi]}, {xl[qi + 1], yl[qi + 1], zl[qi + 1]},
                             {xh[qi + 1], yh[qi + 1], zh[qi + 1]}, {xh[qi], yh[qi], zh[qi]});
 }
+
+// In place, for i in [b, e): (x, y, z)[i] = m * (x, y, z, 1)[i], with glm's operation order for
+// mat4 * vec4 ((m0 x + m1 y) + (m2 z + m3)), so the result equals glm's to the bit. Clones as flipRow.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void transformRow(const glm::dmat4& m, int b, int e, double* __restrict x, double* __restrict y, double* __restrict z) {
+  const double m00 = m[0][0], m01 = m[0][1], m02 = m[0][2], m10 = m[1][0], m11 = m[1][1], m12 = m[1][2];
+  const double m20 = m[2][0], m21 = m[2][1], m22 = m[2][2], m30 = m[3][0], m31 = m[3][1], m32 = m[3][2];
+  for (int i = b; i < e; ++i) {
+    const double lx = x[i], ly = y[i], lz = z[i];
+    x[i] = (m00 * lx + m10 * ly) + (m20 * lz + m30 * 1.0);
+    y[i] = (m01 * lx + m11 * ly) + (m21 * lz + m31 * 1.0);
+    z[i] = (m02 * lx + m12 * ly) + (m22 * lz + m32 * 1.0);
+  }
+}
+
+// Texel-centre unprojection for whole grids: TexelUnprojector's result, with the projection solved
+// per axis when the matrix allows it (glm's perspective and orthographic matrices: x and y do not
+// mix, clip w depends on view z only), else TexelUnprojector itself. Agrees with it to a few ulps
+// (it multiplies by 1 / P00 and 1 / P11 instead of dividing: divisions were a tenth of the build).
+class GridUnprojector {
+ public:
+  explicit GridUnprojector(const DepthMap& map) : reference_(map) {
+    const glm::dmat4& p = map.lightProjection;  // column-major: p[col][row]
+    separable_ = p[1][0] == 0.0 && p[0][1] == 0.0 && p[0][3] == 0.0 && p[1][3] == 0.0 && p[0][0] != 0.0 &&
+                 p[1][1] != 0.0;
+    p00_ = p[0][0], p11_ = p[1][1], p20_ = p[2][0], p21_ = p[2][1], p30_ = p[3][0], p31_ = p[3][1];
+    p23_ = p[2][3], p33_ = p[3][3];
+    inv00_ = 1.0 / p00_, inv11_ = 1.0 / p11_;
+    xn_.resize(std::size_t(map.width));
+    yn_.resize(std::size_t(map.height));
+    for (int i = 0; i < map.width; ++i) xn_[std::size_t(i)] = (i + 0.5) / double(map.width) * 2.0 - 1.0;
+    for (int j = 0; j < map.height; ++j) yn_[std::size_t(j)] = (j + 0.5) / double(map.height) * 2.0 - 1.0;
+    const glm::dmat4 inv = glm::inverse(map.lightView);
+    invView_ = inv;
+  }
+  glm::dvec3 lightViewPoint(int i, int j, double d) const {
+    if (!separable_) return reference_.lightViewPoint(i, j, d);
+    const double z = -d, wc = p23_ * z + p33_;
+    return {(xn_[std::size_t(i)] * wc - p20_ * z - p30_) * inv00_, (yn_[std::size_t(j)] * wc - p21_ * z - p31_) * inv11_,
+            z};
+  }
+  // lightViewPoint(i, j, d[i]) for i in [begin, end), into x, y, z (a loop that vectorises).
+  void lightViewPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
+    if (!separable_) {
+      for (int i = begin; i < end; ++i) {
+        const glm::dvec3 p = reference_.lightViewPoint(i, j, d[i]);
+        x[i] = p.x, y[i] = p.y, z[i] = p.z;
+      }
+      return;
+    }
+    const double* xn = xn_.data();
+    const double yn = yn_[std::size_t(j)];
+    for (int i = begin; i < end; ++i) {
+      const double zi = -d[i], wc = p23_ * zi + p33_;
+      x[i] = (xn[i] * wc - p20_ * zi - p30_) * inv00_;
+      y[i] = (yn * wc - p21_ * zi - p31_) * inv11_;
+      z[i] = zi;
+    }
+  }
+  // worldPoint(i, j, d[i]) for i in [begin, end), into x, y, z.
+  void worldPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
+    if (!separable_) {
+      for (int i = begin; i < end; ++i) {
+        const glm::dvec3 p = reference_.worldPoint(i, j, d[i]);
+        x[i] = p.x, y[i] = p.y, z[i] = p.z;
+      }
+      return;
+    }
+    lightViewPoints(j, begin, end, d, x, y, z);
+    transformRow(invView_, begin, end, x, y, z);
+  }
+  glm::dvec3 worldPoint(int i, int j, double d) const {
+    if (!separable_) return reference_.worldPoint(i, j, d);
+    return glm::dvec3(invView_ * glm::dvec4(lightViewPoint(i, j, d), 1.0));
+  }
+
+ private:
+  TexelUnprojector reference_;
+  bool separable_ = false;
+  double p00_, p11_, p20_, p21_, p30_, p31_, p23_, p33_, inv00_, inv11_;
+  std::vector<double> xn_, yn_;
+  glm::dmat4 invView_;
+};
 
 // Sizes a large buffer, asking Linux for transparent huge pages before its first touch: at
 // 1024^2 the 4 KiB page faults of fresh buffers cost about as much as the build itself. Only a
@@ -360,6 +390,27 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       codeFor[f][m] = std::uint8_t(q | kCornerUsed[q] << kUsedShift);
     }
   const double farSnap = farPlane * (1.0 - kFarSnap);  // isFarDepth(d) == !(d < farSnap)
+  // Sheet depths of texel row j (steps 1-3 of volume_builder.h) into d[0, w); `bad` is set when
+  // a stored depth is NaN or negative. Branch-free: the same values as sheetDepth.
+  auto sheetDepthRow = [&](int j, double* d, bool& bad) {
+    const std::size_t row = std::size_t(j) * w;
+    if (j == 0 || j == h - 1) {
+      std::fill_n(d, w, farPlane);
+    } else if (options.blur) {
+      std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d);
+    } else {
+      const float* src = map.depth.data() + row;
+      bool rowBad = false;
+      for (int i = 0; i < w; ++i) {
+        const double raw = src[i];
+        rowBad |= !(raw >= 0.0);
+        const double c = std::clamp(raw + bias, nearPlane, farPlane);
+        d[i] = (raw < farSnap && c < farSnap) ? c : farPlane;
+      }
+      bad |= rowBad;
+      d[0] = d[w - 1] = farPlane;
+    }
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
     // Per texel row: sheet depths, far flags, the span of non-far texels and (perfect only) the
     // light-view points, unprojected only over the columns some non-all-far quad needs.
@@ -379,26 +430,10 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     std::vector<std::uint8_t> flip(perfect ? qw : 0);
     bool bad = false;
     auto fillRow = [&](int j, Row& r) {
-      const std::size_t row = std::size_t(j) * w;
-      double* d = r.depth.data();
       r.j = j;
       r.pBegin = r.pEnd = 0;
-      if (j == 0 || j == h - 1) {
-        std::fill_n(d, w, farPlane);
-      } else if (options.blur) {
-        std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d);
-      } else {
-        const float* src = map.depth.data() + row;
-        bool rowBad = false;
-        for (int i = 0; i < w; ++i) {  // sheetDepth, branch-free
-          const double raw = src[i];
-          rowBad |= !(raw >= 0.0);
-          const double c = std::clamp(raw + bias, nearPlane, farPlane);
-          d[i] = (raw < farSnap && c < farSnap) ? c : farPlane;
-        }
-        bad |= rowBad;
-        d[0] = d[w - 1] = farPlane;
-      }
+      double* d = r.depth.data();
+      sheetDepthRow(j, d, bad);
       r.first = w, r.last = -1;
       for (int i = 0; i < w; ++i) {
         const bool f = d[i] == farPlane;
@@ -510,17 +545,24 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
     std::vector<std::uint32_t> idxLo(w), idxHi(w);
     std::vector<std::uint8_t> used(w);
+    std::vector<double> depth(w), x(w), y(w), z(w);
+    bool bad = false;  // already reported by pass A
     auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
       usedRow(j, used.data());
       std::uint32_t n = std::uint32_t(rowVerts[j]);
       for (int i = 0; i < w; ++i) idx[i] = used[i] ? n++ : kNone;
     };
     auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx) {  // positions and boundary
-      for (int i = 0; i < w; ++i) {
+      if (rowVerts[j + 1] == rowVerts[j]) return;
+      int b = 0, e = w;
+      while (idx[b] == kNone) ++b;
+      while (idx[e - 1] == kNone) --e;
+      sheetDepthRow(j, depth.data(), bad);
+      unproject.worldPoints(j, b, e, depth.data(), x.data(), y.data(), z.data());
+      for (int i = b; i < e; ++i) {
         if (idx[i] == kNone) continue;
-        const double d = depthAt(i, j);
-        mesh.positions[idx[i]] = unproject.worldPoint(i, j, d);
-        if (d == farPlane && !completeFan(i, j)) rowBoundary[j].push_back(std::uint32_t(i));
+        mesh.positions[idx[i]] = {x[i], y[i], z[i]};
+        if (depth[i] == farPlane && !completeFan(i, j)) rowBoundary[j].push_back(std::uint32_t(i));
       }
     };
     vertexRow(rows.begin(), idxHi);
