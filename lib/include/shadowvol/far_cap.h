@@ -1,5 +1,9 @@
 // Lossless flattening of the far cap: a constrained Delaunay triangulation (CGAL, exact predicates)
-// of the planar region bounded by closed loops of grid edges, in texel coordinates.
+// of the planar region bounded by closed loops of grid edges, in texel coordinates. Vertices in
+// the middle of straight runs (alone at their texel, same step in and out) are left out of the
+// CDT and put back by fanning each face over the runs on its sides (no Steiner points, no
+// zero-area triangles), since lattice points on lines are the CDT's most degenerate and
+// slowest input.
 #pragma once
 
 #include <array>

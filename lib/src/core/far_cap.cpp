@@ -1,6 +1,7 @@
 #include "shadowvol/far_cap.h"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <unordered_map>
 
@@ -67,26 +68,30 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
   struct Corner {
     std::uint32_t vertex;
     glm::ivec2 texel, prevTexel, nextTexel;
+    std::size_t next = 0;     // corner at the end of the outgoing edge
+    bool anchor = true;       // kept in the CDT (see below)
+    std::size_t anchorNext = 0;                   // anchors: the next anchor along the loop
+    std::size_t chainBegin = 0, chainEnd = 0;     // anchors: removed corners up to it, in `chain`
   };
   std::unordered_map<std::uint32_t, std::size_t> cornerOf;
   cornerOf.reserve(edges.size() * 2);
   std::vector<Corner> corners;
   corners.reserve(edges.size());
-  auto cornerFor = [&](std::uint32_t v, glm::ivec2 texel) -> Corner& {
+  auto cornerFor = [&](std::uint32_t v, glm::ivec2 texel) -> std::size_t {
     auto [it, inserted] = cornerOf.try_emplace(v, corners.size());
     if (inserted) corners.push_back({v, texel, texel, texel});
     SV_CHECK(corners[it->second].texel == texel);
-    return corners[it->second];
+    return it->second;
   };
   for (const CapEdge& e : edges) {
-    cornerFor(e.from, e.fromTexel).nextTexel = e.toTexel;
-    cornerFor(e.to, e.toTexel).prevTexel = e.fromTexel;
+    const std::size_t from = cornerFor(e.from, e.fromTexel), to = cornerFor(e.to, e.toTexel);
+    corners[from].nextTexel = e.toTexel;
+    corners[from].next = to;
+    corners[to].prevTexel = e.fromTexel;
   }
 
-  // Texels (slots) with one or more vertex indices; each CDT vertex stores its slot. Points are
-  // inserted as one range (spatially sorted by CGAL), then the constraints.
+  // Texels (slots) with one or more vertex indices.
   std::vector<std::vector<std::size_t>> slots;
-  std::vector<std::pair<K::Point_2, int>> points;
   std::unordered_map<std::uint64_t, int> slotOfTexel;
   slotOfTexel.reserve(corners.size());
   std::vector<int> slotOfCorner(corners.size());
@@ -94,33 +99,87 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
     const glm::ivec2 t = corners[c].texel;
     const std::uint64_t key = (std::uint64_t(std::uint32_t(t.x)) << 32) | std::uint32_t(t.y);
     auto [it, inserted] = slotOfTexel.try_emplace(key, int(slots.size()));
-    if (inserted) {
-      slots.emplace_back();
-      points.emplace_back(K::Point_2(t.x, t.y), it->second);
-    }
+    if (inserted) slots.emplace_back();
     slots[std::size_t(it->second)].push_back(c);
     slotOfCorner[c] = it->second;
   }
+
+  // Collinear runs. A corner alone at its texel whose incoming and outgoing edges have the same
+  // step (a straight run of grid edges, axis-parallel or diagonal) leaves the CDT: the loops are
+  // triangulated through their remaining corners (anchors) only, and each face is then split again
+  // through the removed corners on its edges (below). Grid-aligned runs are the most degenerate
+  // input a Delaunay triangulation can get (every four lattice points of a square are
+  // cocircular), so this keeps the cap's cost to its corners, and the result is the same kind of
+  // triangulation: every boundary vertex and edge kept, no Steiner point, no zero-area triangle.
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    const Corner& k = corners[c];
+    corners[c].anchor = slots[std::size_t(slotOfCorner[c])].size() > 1 || k.texel - k.prevTexel != k.nextTexel - k.texel;
+  }
+  std::vector<std::size_t> chain;  // removed corners, grouped per anchor
+  chain.reserve(corners.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    if (!corners[c].anchor) continue;
+    corners[c].chainBegin = chain.size();
+    std::size_t n = corners[c].next, steps = 0;
+    while (!corners[n].anchor) {
+      chain.push_back(n);
+      n = corners[n].next;
+      SV_CHECK_LE(++steps, corners.size());  // a loop always turns somewhere
+    }
+    corners[c].chainEnd = chain.size();
+    corners[c].anchorNext = n;
+  }
+
+  // CDT of the anchors' texels; each CDT vertex stores its slot. Points are inserted as one range
+  // (spatially sorted by CGAL), then the constraints.
+  std::vector<std::pair<K::Point_2, int>> points;
+  for (std::size_t s = 0; s < slots.size(); ++s)
+    if (corners[slots[s][0]].anchor) {
+      const glm::ivec2 t = corners[slots[s][0]].texel;
+      points.emplace_back(K::Point_2(t.x, t.y), int(s));
+    }
   Cdt cdt;
   cdt.insert(points.begin(), points.end());
   std::vector<Cdt::Vertex_handle> handleOfSlot(slots.size());
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) handleOfSlot[std::size_t(v->info())] = v;
-  auto handleOf = [&](std::uint32_t vertex) { return handleOfSlot[std::size_t(slotOfCorner[cornerOf.at(vertex)])]; };
+  auto handleOf = [&](std::size_t corner) { return handleOfSlot[std::size_t(slotOfCorner[corner])]; };
   std::vector<std::pair<Cdt::Vertex_handle, Cdt::Vertex_handle>> directed;
-  directed.reserve(edges.size());
-  for (const CapEdge& e : edges) {
-    directed.emplace_back(handleOf(e.from), handleOf(e.to));
+  directed.reserve(points.size());
+  for (std::size_t c = 0; c < corners.size(); ++c) {
+    if (!corners[c].anchor) continue;
+    directed.emplace_back(handleOf(c), handleOf(corners[c].anchorNext));
     cdt.insert_constraint(directed.back().first, directed.back().second);
   }
   markInside(cdt, directed);
 
+  // Triangulates the counter-clockwise face X Y Z whose sides carry removed corners (chains, in
+  // side order) without zero-area triangles: fan from the opposite corner over a side with a
+  // chain; the fan's first and last triangles keep the other two sides, handled the same way.
+  // Every triangle has two vertices on one side and the third off that side's line: positive area.
+  using Chain = std::pair<const std::size_t*, const std::size_t*>;  // [begin, end) in `chain`
+  auto emit = [&](std::size_t a, std::size_t b, std::size_t c) {
+    result.push_back({corners[a].vertex, corners[b].vertex, corners[c].vertex});
+  };
+  auto solve = [&](auto&& self, std::size_t x, std::size_t y, std::size_t z, Chain xy, Chain yz, Chain zx) -> void {
+    for (int turn = 0; turn < 3 && xy.first == xy.second; ++turn) {  // put a chain on side X Y
+      std::swap(x, y), std::swap(y, z);
+      std::swap(xy, yz), std::swap(yz, zx);
+    }
+    if (xy.first == xy.second) return emit(x, y, z);
+    const Chain none{nullptr, nullptr};
+    const std::size_t first = *xy.first, last = *(xy.second - 1);
+    self(self, x, first, z, none, none, zx);
+    for (const std::size_t* p = xy.first; p + 1 < xy.second; ++p) emit(p[0], p[1], z);
+    self(self, last, y, z, none, yz, none);
+  };
+
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
     if (f->info() != 1) continue;
-    std::array<std::uint32_t, 3> tri{};
+    std::size_t fc[3] = {0, 0, 0};  // the face's corners
     for (int k = 0; k < 3; ++k) {
       const auto& slot = slots[std::size_t(f->vertex(k)->info())];
       if (slot.size() == 1) {
-        tri[k] = corners[slot[0]].vertex;
+        fc[k] = slot[0];
         continue;
       }
       // Several vertices at this texel: pick the one whose wedge (from its outgoing edge
@@ -135,14 +194,31 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
         const glm::dvec2 out = glm::dvec2(corner.nextTexel - corner.texel);
         const glm::dvec2 in = glm::dvec2(corner.prevTexel - corner.texel);
         if (ccwAngle(out, m) < ccwAngle(out, in)) {
-          tri[k] = corner.vertex;
+          fc[k] = c;
           found = true;
           break;
         }
       }
       SV_CHECK(found);
     }
-    result.push_back(tri);
+    // Removed corners on the face's edges: an edge that is a shortened constraint (from an anchor
+    // to its next anchor, the face on its left) carries that anchor's chain.
+    bool chained = false;
+    for (int k = 0; k < 3; ++k) {
+      const Corner& c = corners[fc[k]];
+      chained = chained || (c.anchorNext == fc[(k + 1) % 3] && c.chainEnd > c.chainBegin);
+    }
+    if (!chained) {
+      result.push_back({corners[fc[0]].vertex, corners[fc[1]].vertex, corners[fc[2]].vertex});
+      continue;
+    }
+    Chain side[3];
+    for (int k = 0; k < 3; ++k) {
+      const Corner& c = corners[fc[k]];
+      side[k] = c.anchorNext == fc[(k + 1) % 3] ? Chain{chain.data() + c.chainBegin, chain.data() + c.chainEnd}
+                                                : Chain{nullptr, nullptr};
+    }
+    solve(solve, fc[0], fc[1], fc[2], side[0], side[1], side[2]);
   }
   return result;
 }
