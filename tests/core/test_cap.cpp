@@ -1,5 +1,6 @@
 // triangulateCapLoops (far_cap.h): lossless flattening of the far cap's boundary loops.
 #include <map>
+#include <set>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -22,6 +23,7 @@ struct CapCheck {
   double area = 0.0;       // sum of signed areas (texel units), counter-clockwise positive
   bool allPositive = true;
   bool boundaryOnce = true;
+  bool interiorPaired = true;  // every other edge used once in each direction
 };
 
 CapCheck check(const std::vector<CapEdge>& edges, const std::vector<std::array<std::uint32_t, 3>>& tris) {
@@ -40,6 +42,12 @@ CapCheck check(const std::vector<CapEdge>& edges, const std::vector<std::array<s
     for (int k = 0; k < 3; ++k) ++used[{t[k], t[(k + 1) % 3]}];
   }
   for (const auto& e : edges) c.boundaryOnce = c.boundaryOnce && used[{e.from, e.to}] == 1 && used[{e.to, e.from}] == 0;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> boundary;
+  for (const auto& e : edges) boundary.insert({e.from, e.to});
+  for (const auto& [edge, n] : used)
+    if (!boundary.count(edge) && n > 0)
+      c.interiorPaired = c.interiorPaired && n == 1 && used.count({edge.second, edge.first}) &&
+                         used.at({edge.second, edge.first}) == 1;
   return c;
 }
 
@@ -59,6 +67,46 @@ TEST(Cap, SquareWithCollinearBoundaryPointsKeepsThemAll) {
   EXPECT_TRUE(c.allPositive);
   EXPECT_TRUE(c.boundaryOnce);
   EXPECT_EQ(tris.size(), loop.size() - 2);  // a simple polygon: n - 2 triangles, no Steiner point
+}
+
+// Straight runs leave the CDT and come back by fans (far_cap.h): a triangle whose three sides,
+// one of them diagonal, are all traced through every lattice point, so the single CDT face has
+// runs on every side; and a frame (a square with a square hole) whose loops are all runs.
+TEST(Cap, RunsOnEverySideOfAFaceAndAroundAHole) {
+  std::vector<std::pair<std::uint32_t, glm::ivec2>> triangle;
+  std::uint32_t id = 0;
+  for (int x = 0; x < 6; ++x) triangle.push_back({id++, {x, 0}});
+  for (int k = 0; k < 6; ++k) triangle.push_back({id++, {6 - k, k}});
+  for (int y = 6; y > 0; --y) triangle.push_back({id++, {0, y}});
+  std::vector<CapEdge> edges;
+  addLoop(edges, triangle);
+  auto tris = triangulateCapLoops(edges);
+  CapCheck c = check(edges, tris);
+  EXPECT_DOUBLE_EQ(c.area, 18.0);
+  EXPECT_TRUE(c.allPositive);
+  EXPECT_TRUE(c.boundaryOnce);
+  EXPECT_TRUE(c.interiorPaired);
+  EXPECT_EQ(tris.size(), triangle.size() - 2);  // no Steiner point: n - 2 triangles
+
+  std::vector<std::pair<std::uint32_t, glm::ivec2>> outer, hole;
+  for (int x = 0; x < 8; ++x) outer.push_back({id++, {x, 0}});
+  for (int y = 0; y < 8; ++y) outer.push_back({id++, {8, y}});
+  for (int x = 8; x > 0; --x) outer.push_back({id++, {x, 8}});
+  for (int y = 8; y > 0; --y) outer.push_back({id++, {0, y}});
+  for (int y = 2; y < 6; ++y) hole.push_back({id++, {2, y}});  // clockwise: the hole
+  for (int x = 2; x < 6; ++x) hole.push_back({id++, {x, 6}});
+  for (int y = 6; y > 2; --y) hole.push_back({id++, {6, y}});
+  for (int x = 6; x > 2; --x) hole.push_back({id++, {x, 2}});
+  edges.clear();
+  addLoop(edges, outer);
+  addLoop(edges, hole);
+  tris = triangulateCapLoops(edges);
+  c = check(edges, tris);
+  EXPECT_DOUBLE_EQ(c.area, 64.0 - 16.0);
+  EXPECT_TRUE(c.allPositive);
+  EXPECT_TRUE(c.boundaryOnce);
+  EXPECT_TRUE(c.interiorPaired);
+  EXPECT_EQ(tris.size(), outer.size() + hole.size());  // n + 2 holes - 2
 }
 
 TEST(Cap, HoleAndIslandByOrientation) {
