@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -177,6 +179,56 @@ void transformRow(const glm::dmat4& m, int b, int e, double* __restrict x, doubl
     y[i] = (m01 * lx + m11 * ly) + (m21 * lz + m31 * 1.0);
     z[i] = (m02 * lx + m12 * ly) + (m22 * lz + m32 * 1.0);
   }
+}
+
+// Row kernels of the builder, as free functions with restrict pointers and loop bounds by value:
+// inside the builder's lambdas a byte store may alias the captured sizes, which stops the
+// compiler from vectorising.
+
+// Sheet depths (steps 1 and 3 of volume_builder.h, branch-free) of texels [b, e) of one interior
+// row from the stored depths src; returns true when a stored depth is NaN or negative.
+bool sheetDepthSpan(const float* __restrict src, double* __restrict d, int b, int e, double bias, double nearPlane,
+                    double farPlane, double farSnap) {
+  bool bad = false;
+  for (int i = b; i < e; ++i) {
+    const double raw = src[i];
+    bad |= !(raw >= 0.0);
+    const double c = std::clamp(raw + bias, nearPlane, farPlane);
+    d[i] = (raw < farSnap && c < farSnap) ? c : farPlane;
+  }
+  return bad;
+}
+
+// far[i] = (d[i] == farPlane) for i in [0, n); returns the first and last i with a non-far depth
+// (n and -1 when there is none).
+std::pair<int, int> farFlags(const double* __restrict d, std::uint8_t* __restrict far, int n, double farPlane) {
+  for (int i = 0; i < n; ++i) far[i] = d[i] == farPlane;
+  int first = 0, last = n - 1;
+  while (first < n && far[first]) ++first;
+  while (last >= 0 && far[last]) --last;
+  return {first, last};
+}
+
+// The corner-used bits (code bits 3..6) meeting at each texel of a row: used[i] for i in [0, qw]
+// from the codes of the quad rows above (cur) and below (prev) it.
+void usedBits(const std::uint8_t* __restrict cur, const std::uint8_t* __restrict prev, std::uint8_t* __restrict used,
+              int qw, std::uint8_t a, std::uint8_t b, std::uint8_t c, std::uint8_t d) {
+  used[0] = std::uint8_t((cur[0] & a) | (prev[0] & d));
+  for (int i = 1; i < qw; ++i) used[i] = std::uint8_t((cur[i] & a) | (cur[i - 1] & b) | (prev[i - 1] & c) | (prev[i] & d));
+  used[qw] = std::uint8_t((cur[qw - 1] & b) | (prev[qw - 1] & c));
+}
+
+// Vertex indices of a row: consecutive from `first` for used texels, kNoVertex for the others;
+// returns the next free index.
+std::uint32_t numberRow(const std::uint8_t* __restrict used, std::uint32_t* __restrict idx, int n, std::uint32_t first,
+                        std::uint32_t none) {
+  std::uint32_t k = first;
+  for (int i = 0; i < n; ++i) {
+    const std::uint32_t u = used[i] != 0;
+    idx[i] = u ? k : none;
+    k += u;
+  }
+  return k;
 }
 
 // Texel-centre unprojection for whole grids: TexelUnprojector's result, with the projection solved
@@ -392,23 +444,18 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   const double farSnap = farPlane * (1.0 - kFarSnap);  // isFarDepth(d) == !(d < farSnap)
   // Sheet depths of texel row j (steps 1-3 of volume_builder.h) into d[0, w); `bad` is set when
   // a stored depth is NaN or negative. Branch-free: the same values as sheetDepth.
-  auto sheetDepthRow = [&](int j, double* d, bool& bad) {
+  // Sheet depths of texels [b, e) of row j (steps 1-3 of volume_builder.h) into d; `bad` is set
+  // when a stored depth is NaN or negative. The same values as sheetDepth.
+  auto sheetDepthRow = [&](int j, double* d, bool& bad, int b = 0, int e = -1) {
+    if (e < 0) e = w;
     const std::size_t row = std::size_t(j) * w;
     if (j == 0 || j == h - 1) {
-      std::fill_n(d, w, farPlane);
+      std::fill(d + b, d + e, farPlane);
     } else if (options.blur) {
-      std::copy_n(blurred.begin() + std::ptrdiff_t(row), w, d);
+      std::copy(blurred.begin() + std::ptrdiff_t(row + b), blurred.begin() + std::ptrdiff_t(row + e), d + b);
     } else {
-      const float* src = map.depth.data() + row;
-      bool rowBad = false;
-      for (int i = 0; i < w; ++i) {
-        const double raw = src[i];
-        rowBad |= !(raw >= 0.0);
-        const double c = std::clamp(raw + bias, nearPlane, farPlane);
-        d[i] = (raw < farSnap && c < farSnap) ? c : farPlane;
-      }
-      bad |= rowBad;
-      d[0] = d[w - 1] = farPlane;
+      bad |= sheetDepthSpan(map.depth.data() + row, d, b, e, bias, nearPlane, farPlane, farSnap);
+      d[0] = d[w - 1] = farPlane;  // the ring (outside [b, e) is never read)
     }
   };
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -434,12 +481,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       r.pBegin = r.pEnd = 0;
       double* d = r.depth.data();
       sheetDepthRow(j, d, bad);
-      r.first = w, r.last = -1;
-      for (int i = 0; i < w; ++i) {
-        const bool f = d[i] == farPlane;
-        r.far[i] = f;
-        if (!f) r.first = std::min(r.first, i), r.last = i;
-      }
+      std::tie(r.first, r.last) = farFlags(d, r.far.data(), w, farPlane);
     };
     auto points = [&](Row& r, int b, int e) {  // make the points of [b, e) available
       if (r.pEnd <= r.pBegin) r.pBegin = r.pEnd = b;
@@ -504,10 +546,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   auto usedRow = [&](int j, std::uint8_t* used) {
     const std::uint8_t* cur = j < qh ? code.data() + std::size_t(j) * qw : zeroRow.data();
     const std::uint8_t* prev = j > 0 ? code.data() + std::size_t(j - 1) * qw : zeroRow.data();
-    used[0] = (cur[0] & kUsedA) | (prev[0] & kUsedD);
-    for (int i = 1; i < qw; ++i)
-      used[i] = (cur[i] & kUsedA) | (cur[i - 1] & kUsedB) | (prev[i - 1] & kUsedC) | (prev[i] & kUsedD);
-    used[qw] = (cur[qw - 1] & kUsedB) | (prev[qw - 1] & kUsedC);
+    usedBits(cur, prev, used, qw, kUsedA, kUsedB, kUsedC, kUsedD);
   };
   auto completeFan = [&](int i, int j) {
     return ((kCornerCovered[grid.at(i, j)] & 1) & (kCornerCovered[grid.at(i - 1, j)] >> 1) &
@@ -539,7 +578,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // appending it rarely reallocates.
   mesh.triangles.reserve(sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(mesh.triangles, sheetTriangles);
-  Scratch<std::uint32_t> quadTri;  // index of each quad's first kept triangle
+  Scratch<std::uint32_t> quadTri;  // index of each quad's first kept triangle (kept quads only)
   sizeBuffer(quadTri, quadCount);
   std::vector<std::vector<std::uint32_t>> rowBoundary(h);  // boundary texels (i) of each row
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -549,15 +588,14 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     bool bad = false;  // already reported by pass A
     auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
       usedRow(j, used.data());
-      std::uint32_t n = std::uint32_t(rowVerts[j]);
-      for (int i = 0; i < w; ++i) idx[i] = used[i] ? n++ : kNone;
+      numberRow(used.data(), idx.data(), w, std::uint32_t(rowVerts[j]), kNone);
     };
     auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx) {  // positions and boundary
       if (rowVerts[j + 1] == rowVerts[j]) return;
       int b = 0, e = w;
       while (idx[b] == kNone) ++b;
       while (idx[e - 1] == kNone) --e;
-      sheetDepthRow(j, depth.data(), bad);
+      sheetDepthRow(j, depth.data(), bad, b, e);
       unproject.worldPoints(j, b, e, depth.data(), x.data(), y.data(), z.data());
       for (int i = b; i < e; ++i) {
         if (idx[i] == kNone) continue;
@@ -578,8 +616,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
         if (qi + 8 <= qw) {  // runs of dropped quads (code 0), 8 at a time
           std::uint64_t eight;
           std::memcpy(&eight, rowCode + qi, 8);
-          if (eight == 0) {
-            std::fill_n(quadTri.begin() + std::ptrdiff_t(qIndex), 8, std::uint32_t(next));
+          if (eight == 0) {  // quadTri of a dropped quad is never read
             qi += 7;
             continue;
           }
@@ -629,7 +666,8 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
         const int k = cs[0] == corner ? 0 : cs[1] == corner ? 1 : cs[2] == corner ? 2 : -1;
         if (k < 0) continue;
         const int ccw = cs[(k + 2) % 3];
-        slots[n++] = {(q & keepBit(t)) != 0, quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u), k,
+        const bool kept = (q & keepBit(t)) != 0;
+        slots[n++] = {kept, kept ? quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u) : 0u, k,
                       std::size_t(qj + kCornerDj[ccw]) * w + qi + kCornerDi[ccw]};
       }
     }
