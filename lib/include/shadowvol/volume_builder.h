@@ -24,6 +24,7 @@
 // Memory: about 20 bytes per texel of scratch besides the result; no allocation per quad.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -86,6 +87,26 @@ double defaultBias(const DepthMap& map);
 /// The same value from the light and the map size alone, without allocating a depth map:
 /// defaultBias(makeDepthMap(light, width, height, capture)).
 double defaultBias(const Light& light, int width, int height, CaptureMode capture);
+
+/// Builds shadow volumes again and again (one per frame, say) without allocating: the builder
+/// keeps its scratch buffers (about 5 bytes per texel) and build() reuses the storage already in
+/// `result`. After the first build at a given size nothing is allocated, so no page of fresh
+/// memory is faulted in (a fifth of a fresh 1024^2 build). Same result as buildVolume; one build
+/// at a time per builder (it is movable, not copyable). On an exception `result` is left empty.
+class VolumeBuilder {
+ public:
+  VolumeBuilder();
+  ~VolumeBuilder();
+  VolumeBuilder(VolumeBuilder&&) noexcept;
+  VolumeBuilder& operator=(VolumeBuilder&&) noexcept;
+
+  void build(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result);
+
+ private:
+  struct Scratch;
+  void buildInto(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result);
+  std::unique_ptr<Scratch> scratch_;
+};
 
 /// Builds the shadow volume of a depth map (see the header comment). Throws InputError naming
 /// the texel and value if the map holds a NaN or negative depth, or if bias / blurOffset is not

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <string.h>  // memrchr
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -199,26 +201,36 @@ bool sheetDepthSpan(const float* __restrict src, double* __restrict d, int b, in
   return bad;
 }
 
-// far[i] = (d[i] == farPlane) for i in [0, n); returns the first and last i with a non-far depth
-// (n and -1 when there is none).
-std::pair<int, int> farFlags(const double* __restrict d, std::uint8_t* __restrict far, int n, double farPlane) {
+// far[i] = (d[i] == farPlane) for i in [0, n).
+void farFlags(const double* __restrict d, std::uint8_t* __restrict far, int n, double farPlane) {
   for (int i = 0; i < n; ++i) far[i] = d[i] == farPlane;
-  int first = 0, last = n - 1;
-  while (first < n && far[first]) ++first;
-  while (last >= 0 && far[last]) --last;
-  return {first, last};
 }
 
-// The corner-used bits (code bits 3..6) meeting at each texel of a row: used[i] for i in [0, qw]
+// The first and last i in [0, n) with far[i] == 0 (n and -1 when there is none).
+std::pair<int, int> nearSpan(const std::uint8_t* far, int n) {
+  const void* first = std::memchr(far, 0, std::size_t(n));
+  if (!first) return {n, -1};
+#if defined(__GLIBC__)
+  const void* last = memrchr(far, 0, std::size_t(n));
+#else
+  const std::uint8_t* last = far + n - 1;
+  while (*last) --last;
+#endif
+  return {int(static_cast<const std::uint8_t*>(first) - far), int(static_cast<const std::uint8_t*>(last) - far)};
+}
+
+// The corner-used bits (code bits 3..6) meeting at texels [b, e) of a row (0 <= b < e <= qw + 1),
 // from the codes of the quad rows above (cur) and below (prev) it.
 void usedBits(const std::uint8_t* __restrict cur, const std::uint8_t* __restrict prev, std::uint8_t* __restrict used,
-              int qw, std::uint8_t a, std::uint8_t b, std::uint8_t c, std::uint8_t d) {
-  used[0] = std::uint8_t((cur[0] & a) | (prev[0] & d));
-  for (int i = 1; i < qw; ++i) used[i] = std::uint8_t((cur[i] & a) | (cur[i - 1] & b) | (prev[i - 1] & c) | (prev[i] & d));
-  used[qw] = std::uint8_t((cur[qw - 1] & b) | (prev[qw - 1] & c));
+              int qw, int b, int e, std::uint8_t ma, std::uint8_t mb, std::uint8_t mc, std::uint8_t md) {
+  if (b == 0) used[b++] = std::uint8_t((cur[0] & ma) | (prev[0] & md));
+  const int interiorEnd = std::min(e, qw);
+  for (int i = b; i < interiorEnd; ++i)
+    used[i] = std::uint8_t((cur[i] & ma) | (cur[i - 1] & mb) | (prev[i - 1] & mc) | (prev[i] & md));
+  if (e == qw + 1 && b <= qw) used[qw] = std::uint8_t((cur[qw - 1] & mb) | (prev[qw - 1] & mc));
 }
 
-// Vertex indices of a row: consecutive from `first` for used texels, kNoVertex for the others;
+// Vertex indices of n texels: consecutive from `first` for used ones, `none` for the others;
 // returns the next free index.
 std::uint32_t numberRow(const std::uint8_t* __restrict used, std::uint32_t* __restrict idx, int n, std::uint32_t first,
                         std::uint32_t none) {
@@ -300,23 +312,29 @@ class GridUnprojector {
   glm::dmat4 invView_;
 };
 
-// Sizes a large buffer, asking Linux for transparent huge pages before its first touch: at
-// 1024^2 the 4 KiB page faults of fresh buffers cost about as much as the build itself. Only a
+// Sizes a buffer to n elements with room for `capacity`. When it must grow, the old contents are
+// dropped (never copied) and Linux is asked for transparent huge pages before the first touch:
+// at 1024^2 the 4 KiB page faults of fresh buffers cost about as much as the build itself. Only a
 // hint (no effect where THP is off or on other systems). Contents as resize(n): left unwritten for
 // a DefaultInitAllocator vector (Scratch, VolumeMesh), so the first touch, and its page faults,
-// happen in the parallel pass that fills it.
+// happen in the parallel pass that fills it; a buffer reused by VolumeBuilder has no faults.
 template <class V>
-void sizeBuffer(V& v, std::size_t n) {
+void sizeBuffer(V& v, std::size_t n, std::size_t capacity = 0) {
   using T = typename V::value_type;
-  v.reserve(n);
+  capacity = std::max(capacity, n);
+  if (v.capacity() < capacity) {
+    V fresh;
+    fresh.reserve(capacity);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
-  if (n * sizeof(T) >= 2 * kHuge) {
-    const auto begin = (reinterpret_cast<std::uintptr_t>(v.data()) + kHuge - 1) & ~(kHuge - 1);
-    const auto end = (reinterpret_cast<std::uintptr_t>(v.data()) + v.capacity() * sizeof(T)) & ~(kHuge - 1);
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  }
+    constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
+    if (capacity * sizeof(T) >= 2 * kHuge) {
+      const auto begin = (reinterpret_cast<std::uintptr_t>(fresh.data()) + kHuge - 1) & ~(kHuge - 1);
+      const auto end = (reinterpret_cast<std::uintptr_t>(fresh.data()) + fresh.capacity() * sizeof(T)) & ~(kHuge - 1);
+      if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+    }
 #endif
+    v.swap(fresh);
+  }
   v.resize(n);
 }
 
@@ -360,10 +378,42 @@ void validateDepths(const DepthMap& map) {
 
 }  // namespace
 
+// Grid-sized scratch kept by a VolumeBuilder between builds.
+struct VolumeBuilder::Scratch {
+  shadowvol::Scratch<double> blurred;
+  shadowvol::Scratch<std::uint8_t> code;
+  shadowvol::Scratch<std::uint32_t> quadTri;
+};
+
+VolumeBuilder::VolumeBuilder() : scratch_(std::make_unique<Scratch>()) {}
+VolumeBuilder::~VolumeBuilder() = default;
+VolumeBuilder::VolumeBuilder(VolumeBuilder&&) noexcept = default;
+VolumeBuilder& VolumeBuilder::operator=(VolumeBuilder&&) noexcept = default;
+
 VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& options) {
+  VolumeBuilder builder;
+  VolumeBuildResult result;
+  builder.build(map, options, result);
+  return result;
+}
+
+void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
+  result.mesh.positions.clear();
+  result.mesh.triangles.clear();
+  result.stats = {};
+  try {
+    buildInto(map, options, result);
+  } catch (...) {
+    result.mesh.positions.clear();
+    result.mesh.triangles.clear();
+    result.stats = {};
+    throw;
+  }
+}
+
+void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
   const auto tStart = Clock::now();
   validateMapAndOptions(map, options);
-  VolumeBuildResult result;
   VolumeBuildStats& stats = result.stats;
   const double bias = options.bias.value_or(defaultBias(map));
   stats.biasUsed = bias;
@@ -372,7 +422,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   if (w < 2 || h < 2) {
     validateDepths(map);
     stats.msTotal = msSince(tStart);
-    return result;  // no quad: an empty volume
+    return;  // no quad: an empty volume
   }
   const int qw = w - 1, qh = h - 1;
   const std::size_t texels = std::size_t(w) * h, quadCount = std::size_t(qw) * qh;
@@ -395,7 +445,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // --- Blur (only with options.blur): every texel's sheet depth, once, in double. Without blur
   // the sheet depth is cheap and computed where it is needed (no grid-sized scratch). ---
   auto t0 = Clock::now();
-  Scratch<double> blurred;
+  auto& blurred = scratch_->blurred;
   if (options.blur) {
     sizeBuffer(blurred, texels);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -426,9 +476,10 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // rows of depths (and of light-view points for the perfect rule) per task, not per quad. ---
   t0 = Clock::now();
   const GridUnprojector unproject(map);
-  Scratch<std::uint8_t> code;
+  auto& code = scratch_->code;
   sizeBuffer(code, quadCount);
   std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh + 1, 0);
+  std::vector<std::pair<int, int>> rowSpan(qh);  // per quad row: no nonzero code outside [first, second)
   // codeFor[flip][far mask of the corners A B C D as bits 0..3]: the whole code byte.
   std::uint8_t codeFor[2][16];
   for (int f = 0; f < 2; ++f)
@@ -481,7 +532,8 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       r.pBegin = r.pEnd = 0;
       double* d = r.depth.data();
       sheetDepthRow(j, d, bad);
-      std::tie(r.first, r.last) = farFlags(d, r.far.data(), w, farPlane);
+      farFlags(d, r.far.data(), w, farPlane);
+      std::tie(r.first, r.last) = nearSpan(r.far.data(), w);
     };
     auto points = [&](Row& r, int b, int e) {  // make the points of [b, e) available
       if (r.pEnd <= r.pBegin) r.pBegin = r.pEnd = b;
@@ -523,6 +575,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
       rowFlips[qj] = flips;
       rowDropped[qj] = dropped;
       rowTris[qj + 1] = tris;
+      rowSpan[qj] = qb < qe ? std::pair<int, int>{qb, qe} : std::pair<int, int>{0, 0};
     }
     if (bad) badTexel.store(true, std::memory_order_relaxed);
   });
@@ -543,10 +596,25 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   };
   // usedMask of every texel of row j, nonzero = used (branch-free in the interior).
   const std::vector<std::uint8_t> zeroRow(std::size_t(qw), 0);
+  // Texels of row j that can be used: those of the quads spans of the quad rows above and below.
+  auto usedSpan = [&](int j) {
+    std::pair<int, int> span{w, 0};
+    for (int qj : {j - 1, j}) {
+      if (qj < 0 || qj >= qh || rowSpan[qj].first >= rowSpan[qj].second) continue;
+      span.first = std::min(span.first, rowSpan[qj].first);
+      span.second = std::max(span.second, rowSpan[qj].second + 1);
+    }
+    return span.first < span.second ? span : std::pair<int, int>{0, 0};
+  };
+  // used[i] for i in the returned span [b, e) (other entries are not written).
   auto usedRow = [&](int j, std::uint8_t* used) {
-    const std::uint8_t* cur = j < qh ? code.data() + std::size_t(j) * qw : zeroRow.data();
-    const std::uint8_t* prev = j > 0 ? code.data() + std::size_t(j - 1) * qw : zeroRow.data();
-    usedBits(cur, prev, used, qw, kUsedA, kUsedB, kUsedC, kUsedD);
+    const auto span = usedSpan(j);
+    if (span.first < span.second) {
+      const std::uint8_t* cur = j < qh ? code.data() + std::size_t(j) * qw : zeroRow.data();
+      const std::uint8_t* prev = j > 0 ? code.data() + std::size_t(j - 1) * qw : zeroRow.data();
+      usedBits(cur, prev, used, qw, span.first, span.second, kUsedA, kUsedB, kUsedC, kUsedD);
+    }
+    return span;
   };
   auto completeFan = [&](int i, int j) {
     return ((kCornerCovered[grid.at(i, j)] & 1) & (kCornerCovered[grid.at(i - 1, j)] >> 1) &
@@ -559,9 +627,9 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
     std::vector<std::uint8_t> used(w);
     for (int j = rows.begin(); j != rows.end(); ++j) {
-      usedRow(j, used.data());
+      const auto [b, e] = usedRow(j, used.data());
       std::uint32_t n = 0;
-      for (int i = 0; i < w; ++i) n += used[i] != 0;
+      for (int i = b; i < e; ++i) n += used[i] != 0;
       rowVerts[j + 1] = n;
     }
   });
@@ -573,12 +641,11 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   // --- Pass B: vertex indices (two rolling rows per task), positions, sheet triangles, the index
   // of each quad's first triangle, and the far boundary vertices of each row. ---
   VolumeMesh& mesh = result.mesh;
-  sizeBuffer(mesh.positions, rowVerts[h]);
-  // Room for the cap too (a flattened cap has about as many triangles as boundary edges), so that
-  // appending it rarely reallocates.
-  mesh.triangles.reserve(sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
-  sizeBuffer(mesh.triangles, sheetTriangles);
-  Scratch<std::uint32_t> quadTri;  // index of each quad's first kept triangle (kept quads only)
+  // Room for pinch copies and the cap too (a flattened cap has about as many triangles as
+  // boundary edges), so that appending them rarely reallocates.
+  sizeBuffer(mesh.positions, rowVerts[h], rowVerts[h] + rowVerts[h] / 32 + 64);
+  sizeBuffer(mesh.triangles, sheetTriangles, sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
+  auto& quadTri = scratch_->quadTri;  // index of each quad's first kept triangle (kept quads only)
   sizeBuffer(quadTri, quadCount);
   std::vector<std::vector<std::uint32_t>> rowBoundary(h);  // boundary texels (i) of each row
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
@@ -586,13 +653,16 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
     std::vector<std::uint8_t> used(w);
     std::vector<double> depth(w), x(w), y(w), z(w);
     bool bad = false;  // already reported by pass A
+    // Vertex indices of row j over its used span (entries outside it are stale and never read:
+    // the triangles of a quad row lie within its span).
     auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
-      usedRow(j, used.data());
-      numberRow(used.data(), idx.data(), w, std::uint32_t(rowVerts[j]), kNone);
+      const auto [b, e] = usedRow(j, used.data());
+      numberRow(used.data() + b, idx.data() + b, e - b, std::uint32_t(rowVerts[j]), kNone);
+      return std::pair<int, int>{b, e};
     };
-    auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx) {  // positions and boundary
+    auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx, std::pair<int, int> span) {
       if (rowVerts[j + 1] == rowVerts[j]) return;
-      int b = 0, e = w;
+      auto [b, e] = span;
       while (idx[b] == kNone) ++b;
       while (idx[e - 1] == kNone) --e;
       sheetDepthRow(j, depth.data(), bad, b, e);
@@ -603,17 +673,19 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
         if (depth[i] == farPlane && !completeFan(i, j)) rowBoundary[j].push_back(std::uint32_t(i));
       }
     };
-    vertexRow(rows.begin(), idxHi);
+    std::pair<int, int> spanLo, spanHi = vertexRow(rows.begin(), idxHi);
     for (int qj = rows.begin(); qj != rows.end(); ++qj) {
       std::swap(idxLo, idxHi);
-      vertexRow(qj + 1, idxHi);
-      emitRow(qj, idxLo);
-      if (qj + 1 == qh) emitRow(qj + 1, idxHi);
+      spanLo = spanHi;
+      spanHi = vertexRow(qj + 1, idxHi);
+      emitRow(qj, idxLo, spanLo);
+      if (qj + 1 == qh) emitRow(qj + 1, idxHi, spanHi);
       std::size_t next = rowTriOffset[qj];
       const std::uint8_t* rowCode = code.data() + std::size_t(qj) * qw;
-      for (int qi = 0; qi < qw; ++qi) {
+      const auto [qb, qe] = rowSpan[qj];
+      for (int qi = qb; qi < qe; ++qi) {
         const std::size_t qIndex = std::size_t(qj) * qw + qi;
-        if (qi + 8 <= qw) {  // runs of dropped quads (code 0), 8 at a time
+        if (qi + 8 <= qe) {  // runs of dropped quads (code 0), 8 at a time
           std::uint64_t eight;
           std::memcpy(&eight, rowCode + qi, 8);
           if (eight == 0) {  // quadTri of a dropped quad is never read
@@ -776,7 +848,6 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
   }
   stats.msCap = msSince(t0);
   stats.msTotal = msSince(tStart);
-  return result;
 }
 
 }  // namespace shadowvol
