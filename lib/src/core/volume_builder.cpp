@@ -201,6 +201,13 @@ bool sheetDepthSpan(const float* __restrict src, double* __restrict d, int b, in
   return bad;
 }
 
+// True when one of n stored depths is NaN or negative (rejected by buildVolume).
+bool anyInvalidDepth(const float* __restrict src, int n) {
+  bool bad = false;
+  for (int i = 0; i < n; ++i) bad |= !(src[i] >= 0.0f);
+  return bad;
+}
+
 // far[i] = (d[i] == farPlane) for i in [0, n).
 void farFlags(const double* __restrict d, std::uint8_t* __restrict far, int n, double farPlane) {
   for (int i = 0; i < n; ++i) far[i] = d[i] == farPlane;
@@ -470,7 +477,6 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     const std::size_t t = std::size_t(j) * w + i;
     return options.blur ? blurred[t] : sheetDepth(i, j, map.depth[t]);
   };
-  auto isFar = [&](std::size_t t) { return depthAt(int(t % std::size_t(w)), int(t / std::size_t(w))) == farPlane; };
 
   // --- Pass A: per quad, the diagonal and which triangles are kept (one code byte). Two rolling
   // rows of depths (and of light-view points for the perfect rule) per task, not per quad. ---
@@ -518,6 +524,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       int j = -1;
       int first = 0, last = -1;     // non-far texels lie in [first, last]
       int pBegin = 0, pEnd = 0;     // points computed on [pBegin, pEnd)
+      int dBegin = 0, dEnd = 0;     // depths written on [dBegin, dEnd) (far elsewhere)
     };
     Row lo, hi;
     for (Row* r : {&lo, &hi}) {
@@ -531,11 +538,31 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       r.j = j;
       r.pBegin = r.pEnd = 0;
       double* d = r.depth.data();
-      sheetDepthRow(j, d, bad);
-      farFlags(d, r.far.data(), w, farPlane);
-      std::tie(r.first, r.last) = nearSpan(r.far.data(), w);
+      std::uint8_t* far = r.far.data();
+      if (options.blur || j == 0 || j == h - 1) {
+        sheetDepthRow(j, d, bad);
+        farFlags(d, far, w, farPlane);
+        r.dBegin = 0, r.dEnd = w;
+      } else {
+        // Depths only where a stored depth is short of the far plane (between the first and last
+        // such interior texel); every other texel is far. Validity is checked on the whole row.
+        const float* src = map.depth.data() + std::size_t(j) * w;
+        bad |= anyInvalidDepth(src, w);
+        int b = 1, e = w - 1;
+        while (b < e && !(double(src[b]) < farSnap)) ++b;
+        while (e > b && !(double(src[e - 1]) < farSnap)) --e;
+        std::memset(far, 1, std::size_t(w));
+        if (b < e) {
+          sheetDepthSpan(src, d, b, e, bias, nearPlane, farPlane, farSnap);
+          farFlags(d + b, far + b, e - b, farPlane);
+        }
+        r.dBegin = b, r.dEnd = e;
+      }
+      std::tie(r.first, r.last) = nearSpan(far, w);
     };
     auto points = [&](Row& r, int b, int e) {  // make the points of [b, e) available
+      if (b < r.dBegin) std::fill(r.depth.begin() + b, r.depth.begin() + r.dBegin, farPlane), r.dBegin = b;
+      if (e > r.dEnd) std::fill(r.depth.begin() + r.dEnd, r.depth.begin() + e, farPlane), r.dEnd = e;
       if (r.pEnd <= r.pBegin) r.pBegin = r.pEnd = b;
       if (b < r.pBegin) unproject.lightViewPoints(r.j, b, r.pBegin, r.depth.data(), r.x.data(), r.y.data(), r.z.data());
       if (e > r.pEnd) unproject.lightViewPoints(r.j, r.pEnd, e, r.depth.data(), r.x.data(), r.y.data(), r.z.data());
@@ -620,9 +647,9 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     return ((kCornerCovered[grid.at(i, j)] & 1) & (kCornerCovered[grid.at(i - 1, j)] >> 1) &
             (kCornerCovered[grid.at(i - 1, j - 1)] >> 2) & (kCornerCovered[grid.at(i, j - 1)] >> 3)) != 0;
   };
-  auto isBoundary = [&](int i, int j) {
-    return usedMask(i, j) != 0 && !completeFan(i, j) && depthAt(i, j) == farPlane;
-  };
+  // A used texel with an incomplete fan is far: a triangle with a non-far corner is always kept,
+  // and texels off the border ring have all four quads.
+  auto isBoundary = [&](int i, int j) { return usedMask(i, j) != 0 && !completeFan(i, j); };
   std::vector<std::uint64_t> rowVerts(h + 1, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
     std::vector<std::uint8_t> used(w);
@@ -761,7 +788,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
         const Slot& slot = slots[(gap + s) % n];
         const Slot& prev = slots[(gap + s - 1) % n];
         if (!slot.kept) continue;
-        const bool cut = prev.kept && isFar(prev.ccwTexel) && texelBoundary(prev.ccwTexel);
+        const bool cut = prev.kept && texelBoundary(prev.ccwTexel);
         if ((!prev.kept || cut) && fans++ > 0) {  // a second (third, ...) run starts here
           copy = std::uint32_t(mesh.positions.size());
           mesh.positions.push_back(mesh.positions[original]);
