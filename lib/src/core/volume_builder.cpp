@@ -20,6 +20,7 @@
 #endif
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include "shadowvol/check.h"
 #include "shadowvol/default_init_allocator.h"
@@ -235,6 +236,26 @@ void usedBits(const std::uint8_t* __restrict cur, const std::uint8_t* __restrict
   for (int i = b; i < interiorEnd; ++i)
     used[i] = std::uint8_t((cur[i] & ma) | (cur[i - 1] & mb) | (prev[i - 1] & mc) | (prev[i] & md));
   if (e == qw + 1 && b <= qw) used[qw] = std::uint8_t((cur[qw - 1] & mb) | (prev[qw - 1] & mc));
+}
+
+// Number of nonzero bytes among n.
+std::uint32_t countNonzero(const std::uint8_t* __restrict p, int n) {
+  std::uint32_t k = 0;
+  for (int i = 0; i < n; ++i) k += p[i] != 0;
+  return k;
+}
+
+// candidate[i] = 1 for the used texels i in [b, e) (0 <= b < e <= qw + 1) of a row whose four
+// quads do not all keep both triangles (mask = the two keep bits), else 0: the only texels whose
+// fan can be incomplete. Missing quads at the ends (i = 0, i = qw) count as not kept.
+void notAllKept(const std::uint8_t* __restrict cur, const std::uint8_t* __restrict prev,
+                const std::uint8_t* __restrict used, std::uint8_t* __restrict candidate, int qw, int b, int e,
+                std::uint8_t mask) {
+  if (b == 0) candidate[b] = used[b] != 0, ++b;
+  const int interiorEnd = std::min(e, qw);
+  for (int i = b; i < interiorEnd; ++i)
+    candidate[i] = std::uint8_t((used[i] != 0) & ((cur[i] & cur[i - 1] & prev[i - 1] & prev[i] & mask) != mask));
+  if (e == qw + 1 && b <= qw) candidate[qw] = used[qw] != 0;
 }
 
 // Vertex indices of n texels: consecutive from `first` for used ones, `none` for the others;
@@ -650,14 +671,35 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // A used texel with an incomplete fan is far: a triangle with a non-far corner is always kept,
   // and texels off the border ring have all four quads.
   auto isBoundary = [&](int i, int j) { return usedMask(i, j) != 0 && !completeFan(i, j); };
+  // --- Vertex counts per row and the boundary texels (used, with an incomplete fan; all far). ---
+  struct Boundary {
+    int i = 0;
+    std::uint32_t local = 0;  // index among the used texels of its row
+  };
+  std::vector<std::vector<Boundary>> rowBoundary(h);
   std::vector<std::uint64_t> rowVerts(h + 1, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<std::uint8_t> used(w);
+    std::vector<std::uint8_t> used(w), candidate(w);
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const auto [b, e] = usedRow(j, used.data());
-      std::uint32_t n = 0;
-      for (int i = b; i < e; ++i) n += used[i] != 0;
-      rowVerts[j + 1] = n;
+      rowVerts[j + 1] = countNonzero(used.data() + b, e - b);
+      if (b == e) continue;
+      const std::uint8_t* cur = j < qh ? code.data() + std::size_t(j) * qw : zeroRow.data();
+      const std::uint8_t* prev = j > 0 ? code.data() + std::size_t(j - 1) * qw : zeroRow.data();
+      notAllKept(cur, prev, used.data(), candidate.data(), qw, b, e, kKeep0 | kKeep1);
+      std::uint32_t local = 0;
+      int counted = b;
+      for (int i = b; i < e;) {
+        const void* hit = std::memchr(candidate.data() + i, 1, std::size_t(e - i));
+        if (!hit) break;
+        i = int(static_cast<const std::uint8_t*>(hit) - candidate.data());
+        if (!completeFan(i, j)) {
+          local += countNonzero(used.data() + counted, i - counted);
+          counted = i;
+          rowBoundary[j].push_back({i, local});
+        }
+        ++i;
+      }
     }
   });
   for (int j = 0; j < h; ++j) rowVerts[j + 1] += rowVerts[j];
@@ -665,94 +707,34 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   for (int qj = 0; qj < qh; ++qj) rowTriOffset[qj + 1] = rowTriOffset[qj] + rowTris[qj + 1];
   const std::uint64_t sheetTriangles = rowTriOffset[qh];
 
-  // --- Pass B: vertex indices (two rolling rows per task), positions, sheet triangles, the index
-  // of each quad's first triangle, and the far boundary vertices of each row. ---
-  VolumeMesh& mesh = result.mesh;
-  // Room for pinch copies and the cap too (a flattened cap has about as many triangles as
-  // boundary edges), so that appending them rarely reallocates.
-  sizeBuffer(mesh.positions, rowVerts[h], rowVerts[h] + rowVerts[h] / 32 + 64);
-  sizeBuffer(mesh.triangles, sheetTriangles, sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
-  auto& quadTri = scratch_->quadTri;  // index of each quad's first kept triangle (kept quads only)
-  sizeBuffer(quadTri, quadCount);
-  std::vector<std::vector<std::uint32_t>> rowBoundary(h);  // boundary texels (i) of each row
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<std::uint32_t> idxLo(w), idxHi(w);
-    std::vector<std::uint8_t> used(w);
-    std::vector<double> depth(w), x(w), y(w), z(w);
-    bool bad = false;  // already reported by pass A
-    // Vertex indices of row j over its used span (entries outside it are stale and never read:
-    // the triangles of a quad row lie within its span).
-    auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
-      const auto [b, e] = usedRow(j, used.data());
-      numberRow(used.data() + b, idx.data() + b, e - b, std::uint32_t(rowVerts[j]), kNone);
-      return std::pair<int, int>{b, e};
-    };
-    auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx, std::pair<int, int> span) {
-      if (rowVerts[j + 1] == rowVerts[j]) return;
-      auto [b, e] = span;
-      while (idx[b] == kNone) ++b;
-      while (idx[e - 1] == kNone) --e;
-      sheetDepthRow(j, depth.data(), bad, b, e);
-      unproject.worldPoints(j, b, e, depth.data(), x.data(), y.data(), z.data());
-      for (int i = b; i < e; ++i) {
-        if (idx[i] == kNone) continue;
-        mesh.positions[idx[i]] = {x[i], y[i], z[i]};
-        if (depth[i] == farPlane && !completeFan(i, j)) rowBoundary[j].push_back(std::uint32_t(i));
-      }
-    };
-    std::pair<int, int> spanLo, spanHi = vertexRow(rows.begin(), idxHi);
-    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
-      std::swap(idxLo, idxHi);
-      spanLo = spanHi;
-      spanHi = vertexRow(qj + 1, idxHi);
-      emitRow(qj, idxLo, spanLo);
-      if (qj + 1 == qh) emitRow(qj + 1, idxHi, spanHi);
-      std::size_t next = rowTriOffset[qj];
-      const std::uint8_t* rowCode = code.data() + std::size_t(qj) * qw;
-      const auto [qb, qe] = rowSpan[qj];
-      for (int qi = qb; qi < qe; ++qi) {
-        const std::size_t qIndex = std::size_t(qj) * qw + qi;
-        if (qi + 8 <= qe) {  // runs of dropped quads (code 0), 8 at a time
-          std::uint64_t eight;
-          std::memcpy(&eight, rowCode + qi, 8);
-          if (eight == 0) {  // quadTri of a dropped quad is never read
-            qi += 7;
-            continue;
-          }
-        }
-        const std::uint8_t q = rowCode[qi];
-        quadTri[qIndex] = std::uint32_t(next);
-        const int f = q & kFlip;
-        const std::uint32_t corner[4] = {idxLo[qi], idxLo[qi + 1], idxHi[qi + 1], idxHi[qi]};
-        for (int t = 0; t < 2; ++t) {
-          if (!(q & keepBit(t))) continue;
-          const int* cs = kTriCorners[f][t];
-          mesh.triangles[next++] = {corner[cs[0]], corner[cs[1]], corner[cs[2]]};
-        }
-      }
-    }
-  });
-
-  // --- Pinches and cuts. A far vertex is a boundary vertex when its fan of
+  const auto tRuns = Clock::now();
+  // --- Pinches and cuts, from the codes alone. A far vertex is a boundary vertex when its fan of
   // triangles has a gap (a dropped triangle or the grid border). An edge between two far boundary
   // vertices with kept triangles on both sides (a "slit": the sheet touches the far plane along it)
   // is cut open, so the cap cannot reuse it. Each boundary vertex then gets one vertex per run of
   // its fan between gaps and cuts: regions touching at a point or along a cut are split apart and
-  // the closed mesh stays a 2-manifold. Far vertices without a gap stay single (sheet only). ---
+  // the closed mesh stays a 2-manifold. Far vertices without a gap stay single (sheet only).
+  // Copies are numbered after the sheet's vertices, in texel order, then run order. ---
   struct Slot {
     bool kept;
-    std::uint32_t tri;       // mesh triangle holding this corner (when kept)
-    int k;                   // position of the vertex in that triangle
+    std::uint32_t quad;      // quad index
+    std::uint8_t t, k;       // triangle of the quad, position of the vertex in it
+    std::uint8_t run;        // kept slots: 0 = the original vertex, r = copy r - 1
     std::size_t ccwTexel;    // texel at the far end of the slot's counter-clockwise edge
   };
+  struct Fan {
+    std::uint32_t id = 0, firstCopy = 0;
+    int n = 0;
+    Slot slots[8];
+  };
   // The up to 6 triangle slots around texel (i, j), counter-clockwise from +i; a missing quad is
-  // one gap slot. Returns the slot count.
-  auto collectSlots = [&](int i, int j, Slot* slots) {
+  // one gap slot.
+  auto collectSlots = [&](int i, int j, Fan& fan) {
     int n = 0;
     const int quads[4][3] = {{i, j, 0}, {i - 1, j, 1}, {i - 1, j - 1, 2}, {i, j - 1, 3}};  // NE, NW, SW, SE
     for (const auto& [qi, qj, corner] : quads) {
       if (qi < 0 || qj < 0 || qi >= qw || qj >= qh) {
-        slots[n++] = {false, 0, 0, 0};
+        fan.slots[n++] = {false, 0, 0, 0, 0, 0};
         continue;
       }
       const std::size_t qIndex = std::size_t(qj) * qw + qi;
@@ -765,77 +747,177 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
         const int k = cs[0] == corner ? 0 : cs[1] == corner ? 1 : cs[2] == corner ? 2 : -1;
         if (k < 0) continue;
         const int ccw = cs[(k + 2) % 3];
-        const bool kept = (q & keepBit(t)) != 0;
-        slots[n++] = {kept, kept ? quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u) : 0u, k,
-                      std::size_t(qj + kCornerDj[ccw]) * w + qi + kCornerDi[ccw]};
+        fan.slots[n++] = {(q & keepBit(t)) != 0, std::uint32_t(qIndex), std::uint8_t(t), std::uint8_t(k), 0,
+                          std::size_t(qj + kCornerDj[ccw]) * w + qi + kCornerDi[ccw]};
       }
     }
-    return n;
+    fan.n = n;
   };
   auto texelBoundary = [&](std::size_t t) { return isBoundary(int(t % std::size_t(w)), int(t / std::size_t(w))); };
-  for (int j = 0; j < h; ++j)
-    for (const std::uint32_t i : rowBoundary[j]) {
-      Slot slots[8];
-      const int n = collectSlots(int(i), j, slots);
+  std::vector<std::vector<Fan>> rowFans(h);
+  std::uint32_t copies = 0;
+  for (int j = 0; j < h; ++j) {
+    rowFans[j].resize(rowBoundary[j].size());
+    for (std::size_t b = 0; b < rowBoundary[j].size(); ++b) {
+      Fan& fan = rowFans[j][b];
+      collectSlots(rowBoundary[j][b].i, j, fan);
+      fan.id = std::uint32_t(rowVerts[j] + rowBoundary[j][b].local);
+      fan.firstCopy = std::uint32_t(rowVerts[h]) + copies;
       int gap = 0;
-      while (slots[gap].kept) ++gap;
+      while (fan.slots[gap].kept) ++gap;
       int fans = 0;
-      std::uint32_t original = kNone;
-      for (int s = 0; s < n && original == kNone; ++s)
-        if (slots[s].kept) original = mesh.triangles[slots[s].tri][slots[s].k];
-      std::uint32_t copy = original;
-      for (int s = 1; s <= n; ++s) {
-        const Slot& slot = slots[(gap + s) % n];
-        const Slot& prev = slots[(gap + s - 1) % n];
+      for (int s = 1; s <= fan.n; ++s) {
+        Slot& slot = fan.slots[(gap + s) % fan.n];
+        const Slot& prev = fan.slots[(gap + s - 1) % fan.n];
         if (!slot.kept) continue;
         const bool cut = prev.kept && texelBoundary(prev.ccwTexel);
-        if ((!prev.kept || cut) && fans++ > 0) {  // a second (third, ...) run starts here
-          copy = std::uint32_t(mesh.positions.size());
-          mesh.positions.push_back(mesh.positions[original]);
-          ++stats.splitVertices;
-        }
-        mesh.triangles[slot.tri][slot.k] = copy;
+        if (!prev.kept || cut) ++fans;  // a run starts here
+        slot.run = std::uint8_t(fans - 1);
       }
+      copies += std::uint32_t(fans - 1);
     }
-  stats.msSheet = msSince(t0);
+  }
+  stats.splitVertices = copies;
+  auto fanAt = [&](int i, int j) -> const Fan& {
+    const auto& list = rowBoundary[j];
+    const auto it = std::lower_bound(list.begin(), list.end(), i, [](const Boundary& b, int x) { return b.i < x; });
+    SV_CHECK(it != list.end() && it->i == i);
+    return rowFans[j][std::size_t(it - list.begin())];
+  };
+  auto slotId = [](const Fan& fan, const Slot& slot) { return slot.run == 0 ? fan.id : fan.firstCopy + slot.run - 1u; };
 
-  // --- Phase 3: far cap. ---
-  t0 = Clock::now();
   // Cap edges: the edges of kept triangles between two far vertices with no kept triangle across
-  // (or cut open). Both ends are boundary vertices, so the edges are found from the boundary lists,
-  // each once, from its first vertex; then put in (quad, triangle, edge) order.
+  // (or cut open). Both ends are boundary vertices, so the edges are found from the boundary
+  // fans, each once, from its first vertex; then put in (quad, triangle, edge) order.
   std::vector<std::pair<std::uint64_t, CapEdge>> keyed;
   for (int j0 = 0; j0 < h; ++j0)
-    for (const std::uint32_t i0 : rowBoundary[j0]) {
-      const int quads[4][3] = {{int(i0), j0, 0}, {int(i0) - 1, j0, 1}, {int(i0) - 1, j0 - 1, 2}, {int(i0), j0 - 1, 3}};
-      for (const auto& [qi, qj, corner] : quads) {
-        if (qi < 0 || qj < 0 || qi >= qw || qj >= qh) continue;
-        const std::size_t qIndex = std::size_t(qj) * qw + qi;
-        const std::uint8_t q = code[qIndex];
-        const int f = q & kFlip;
-        for (int t = 0; t < 2; ++t) {
-          if (!(q & keepBit(t))) continue;
-          const int* cs = kTriCorners[f][t];
-          const int k = cs[0] == corner ? 0 : cs[1] == corner ? 1 : cs[2] == corner ? 2 : -1;
-          if (k < 0) continue;
-          const int c1 = cs[(k + 1) % 3];
-          const int i1 = qi + kCornerDi[c1], j1 = qj + kCornerDj[c1];
-          if (depthAt(i1, j1) != farPlane) continue;
-          const bool cut = isBoundary(i1, j1);
-          if (!cut && grid.neighbourKept(qi, qj, t, k)) continue;
-          const Tri& tri = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
-          keyed.push_back({(std::uint64_t(qIndex) * 2 + t) * 3 + k,
-                           {tri[k], tri[(k + 1) % 3], {int(i0), j0}, {i1, j1}}});
-        }
+    for (std::size_t b = 0; b < rowBoundary[j0].size(); ++b) {
+      const int i0 = rowBoundary[j0][b].i;
+      const Fan& fan = rowFans[j0][b];
+      for (int s = 0; s < fan.n; ++s) {
+        const Slot& slot = fan.slots[s];
+        if (!slot.kept) continue;
+        const int qi = int(slot.quad % std::uint32_t(qw)), qj = int(slot.quad / std::uint32_t(qw));
+        const int* cs = kTriCorners[code[slot.quad] & kFlip][slot.t];
+        const int c1 = cs[(slot.k + 1) % 3];
+        const int i1 = qi + kCornerDi[c1], j1 = qj + kCornerDj[c1];
+        if (depthAt(i1, j1) != farPlane) continue;
+        const bool cut = isBoundary(i1, j1);
+        if (!cut && grid.neighbourKept(qi, qj, slot.t, slot.k)) continue;
+        const Fan& other = fanAt(i1, j1);  // the same triangle, at its next corner
+        const Slot* end = nullptr;
+        for (int o = 0; o < other.n && !end; ++o)
+          if (other.slots[o].kept && other.slots[o].quad == slot.quad && other.slots[o].t == slot.t) end = &other.slots[o];
+        SV_CHECK(end != nullptr);
+        keyed.push_back({(std::uint64_t(slot.quad) * 2 + slot.t) * 3 + slot.k,
+                         {slotId(fan, slot), slotId(other, *end), {i0, j0}, {i1, j1}}});
       }
     }
   std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<CapEdge> edges;
   edges.reserve(keyed.size());
   for (const auto& [key, edge] : keyed) edges.push_back(edge);
+  const double msEdges = msSince(tRuns);
+
+  // The flattened cap needs only the edges: triangulated while pass B runs.
+  const bool flatCap = !exact || options.flattenCap;
+  std::vector<std::array<std::uint32_t, 3>> cap;
+  double msCapTask = 0.0;
+  tbb::task_group capTask;
+  if (flatCap)
+    capTask.run([&] {
+      const auto tc = Clock::now();
+      cap = triangulateCapLoops(edges);
+      msCapTask = msSince(tc);
+    });
+
+  // --- Pass B: vertex indices (two rolling rows per task), positions, sheet triangles and the
+  // index of each quad's first triangle. ---
+  VolumeMesh& mesh = result.mesh;
+  // Room for the cap too (a flattened cap has about as many triangles as boundary edges), so that
+  // appending it rarely reallocates.
+  sizeBuffer(mesh.positions, rowVerts[h] + copies);
+  sizeBuffer(mesh.triangles, sheetTriangles, sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
+  auto& quadTri = scratch_->quadTri;  // index of each quad's first kept triangle (kept quads only)
+  sizeBuffer(quadTri, quadCount);
+  try {
+    tbb::parallel_for(tbb::blocked_range<int>(0, qh, 8), [&](const tbb::blocked_range<int>& rows) {
+      std::vector<std::uint32_t> idxLo(w), idxHi(w);
+      std::vector<std::uint8_t> used(w);
+      std::vector<double> depth(w), x(w), y(w), z(w);
+      bool bad = false;  // already reported by pass A
+      // Vertex indices of row j over its used span (entries outside it are stale and never read:
+      // the triangles of a quad row lie within its span).
+      auto vertexRow = [&](int j, std::vector<std::uint32_t>& idx) {
+        const auto [b, e] = usedRow(j, used.data());
+        numberRow(used.data() + b, idx.data() + b, e - b, std::uint32_t(rowVerts[j]), kNone);
+        return std::pair<int, int>{b, e};
+      };
+      auto emitRow = [&](int j, const std::vector<std::uint32_t>& idx, std::pair<int, int> span) {
+        if (rowVerts[j + 1] == rowVerts[j]) return;
+        auto [b, e] = span;
+        while (idx[b] == kNone) ++b;
+        while (idx[e - 1] == kNone) --e;
+        sheetDepthRow(j, depth.data(), bad, b, e);
+        unproject.worldPoints(j, b, e, depth.data(), x.data(), y.data(), z.data());
+        for (int i = b; i < e; ++i)
+          if (idx[i] != kNone) mesh.positions[idx[i]] = {x[i], y[i], z[i]};
+      };
+      std::pair<int, int> spanLo, spanHi = vertexRow(rows.begin(), idxHi);
+      for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+        std::swap(idxLo, idxHi);
+        spanLo = spanHi;
+        spanHi = vertexRow(qj + 1, idxHi);
+        emitRow(qj, idxLo, spanLo);
+        if (qj + 1 == qh) emitRow(qj + 1, idxHi, spanHi);
+        std::size_t next = rowTriOffset[qj];
+        const std::uint8_t* rowCode = code.data() + std::size_t(qj) * qw;
+        const auto [qb, qe] = rowSpan[qj];
+        for (int qi = qb; qi < qe; ++qi) {
+          const std::size_t qIndex = std::size_t(qj) * qw + qi;
+          if (qi + 8 <= qe) {  // runs of dropped quads (code 0), 8 at a time
+            std::uint64_t eight;
+            std::memcpy(&eight, rowCode + qi, 8);
+            if (eight == 0) {  // quadTri of a dropped quad is never read
+              qi += 7;
+              continue;
+            }
+          }
+          const std::uint8_t q = rowCode[qi];
+          quadTri[qIndex] = std::uint32_t(next);
+          const int f = q & kFlip;
+          const std::uint32_t corner[4] = {idxLo[qi], idxLo[qi + 1], idxHi[qi + 1], idxHi[qi]};
+          for (int t = 0; t < 2; ++t) {
+            if (!(q & keepBit(t))) continue;
+            const int* cs = kTriCorners[f][t];
+            mesh.triangles[next++] = {corner[cs[0]], corner[cs[1]], corner[cs[2]]};
+          }
+        }
+      }
+    });
+  } catch (...) {
+    capTask.wait();
+    throw;
+  }
+  // Pinch copies: their positions, and the triangles of their runs.
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 32), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (const Fan& fan : rowFans[j])
+        for (int s = 0; s < fan.n; ++s) {
+          const Slot& slot = fan.slots[s];
+          if (!slot.kept || slot.run == 0) continue;
+          mesh.positions[fan.firstCopy + slot.run - 1u] = mesh.positions[fan.id];
+          const std::uint8_t q = code[slot.quad];
+          mesh.triangles[quadTri[slot.quad] + ((slot.t == 1 && (q & kKeep0)) ? 1u : 0u)][slot.k] = slotId(fan, slot);
+        }
+  });
+  stats.msSheet = msSince(t0) - msEdges;
+
+  // --- Phase 3: far cap. ---
+  t0 = Clock::now();
   stats.capTrianglesBefore = sheetTriangles;
-  if (!exact || options.flattenCap) {
-    const auto cap = triangulateCapLoops(edges);
+  if (flatCap) {
+    capTask.wait();
     for (const Tri& c : cap) mesh.triangles.push_back({c[0], c[2], c[1]});  // faces away from the light
     stats.capTrianglesAfter = cap.size();
   } else {
@@ -873,7 +955,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       }
     stats.capTrianglesAfter = sheetTriangles;
   }
-  stats.msCap = msSince(t0);
+  stats.msCap = msSince(t0) + msEdges + msCapTask;  // the cap's own work, partly run during pass B
   stats.msTotal = msSince(tStart);
 }
 
