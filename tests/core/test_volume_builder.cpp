@@ -6,6 +6,8 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -180,6 +182,65 @@ TEST(VolumeBuilder, BadDepthsThrowInputErrorNamingTheTexel) {
   VolumeBuildOptions o;
   o.bias = std::numeric_limits<double>::infinity();
   EXPECT_THROW(buildVolume(m, o), InputError);
+  // Texels of the border ring become far-plane vertices whatever they hold, but are checked too,
+  // with and without blur; the first bad texel in row order is named.
+  for (const bool blur : {false, true})
+    for (const auto& [i, j] : {std::pair{5, 0}, std::pair{0, 3}, std::pair{7, 6}, std::pair{2, 7}}) {
+      DepthMap bad = makeDepthMap(directionalDown(), 8, 8, CaptureMode::Back);
+      bad.depth[bad.index(i, j)] = std::numeric_limits<float>::quiet_NaN();
+      bad.depth[bad.index(6, 7)] = -2.0f;
+      VolumeBuildOptions ob;
+      ob.blur = blur;
+      try {
+        buildVolume(bad, ob);
+        ADD_FAILURE() << "no InputError for texel " << i << ", " << j << " blur " << blur;
+      } catch (const InputError& e) {
+        const std::string where = "(" + std::to_string(i) + ", " + std::to_string(j) + ")";
+        EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+      }
+    }
+}
+
+// One VolumeBuilder and one result reused across sizes, maps and options give exactly what
+// buildVolume gives; after an input error the result is empty and the builder still works.
+TEST(VolumeBuilder, ReusedBuilderMatchesBuildVolume) {
+  std::uint64_t seed = 5;
+  VolumeBuilder builder;
+  VolumeBuildResult reused;
+  const int sizes[][2] = {{96, 80}, {40, 50}, {130, 110}, {17, 9}, {96, 80}};
+  int n = 0;
+  for (const auto& [w, h] : sizes) {
+    DepthMap m = makeDepthMap(n % 2 ? spot() : directionalDown(), w, h, n % 3 ? CaptureMode::Back : CaptureMode::Front);
+    for (auto& d : m.depth)
+      if (lcg(seed) % 100 < 45) d = float(m.nearPlane + 0.5 + (lcg(seed) % 1000) * 0.009);
+    for (int variant = 0; variant < 4; ++variant) {
+      VolumeBuildOptions o;
+      o.triangulation = variant % 2 ? Triangulation::Fixed : Triangulation::Perfect;
+      o.blur = variant == 2;
+      o.cap = variant == 3 ? FarCap::Quad : FarCap::Exact;
+      o.flattenCap = variant != 1;
+      const VolumeBuildResult fresh = buildVolume(m, o);
+      builder.build(m, o, reused);
+      EXPECT_EQ(reused.mesh.positions, fresh.mesh.positions) << w << "x" << h << " variant " << variant;
+      EXPECT_EQ(reused.mesh.triangles, fresh.mesh.triangles) << w << "x" << h << " variant " << variant;
+      EXPECT_EQ(reused.stats.splitVertices, fresh.stats.splitVertices);
+      EXPECT_EQ(reused.stats.flippedQuads, fresh.stats.flippedQuads);
+      EXPECT_EQ(reused.stats.capTrianglesAfter, fresh.stats.capTrianglesAfter);
+    }
+    ++n;
+  }
+  DepthMap bad = makeDepthMap(spot(), 30, 30, CaptureMode::Back);
+  bad.depth[bad.index(10, 12)] = -1.0f;
+  EXPECT_THROW(builder.build(bad, {}, reused), InputError);
+  EXPECT_TRUE(reused.mesh.positions.empty());
+  EXPECT_TRUE(reused.mesh.triangles.empty());
+  EXPECT_EQ(reused.stats.quads, 0u);
+  bad.depth[bad.index(10, 12)] = 5.0f;
+  builder.build(bad, {}, reused);
+  const VolumeBuildResult fresh = buildVolume(bad);
+  EXPECT_EQ(reused.mesh.positions, fresh.mesh.positions);
+  EXPECT_EQ(reused.mesh.triangles, fresh.mesh.triangles);
+  EXPECT_FALSE(fresh.mesh.triangles.empty());
 }
 
 TEST(VolumeBuilder, DefaultBiasDependsOnlyOnMetadata) {

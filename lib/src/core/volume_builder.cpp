@@ -560,15 +560,15 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       r.pBegin = r.pEnd = 0;
       double* d = r.depth.data();
       std::uint8_t* far = r.far.data();
+      const float* src = map.depth.data() + std::size_t(j) * w;
+      if (!options.blur) bad |= anyInvalidDepth(src, w);  // every stored depth (the blur pass checks its own)
       if (options.blur || j == 0 || j == h - 1) {
         sheetDepthRow(j, d, bad);
         farFlags(d, far, w, farPlane);
         r.dBegin = 0, r.dEnd = w;
       } else {
         // Depths only where a stored depth is short of the far plane (between the first and last
-        // such interior texel); every other texel is far. Validity is checked on the whole row.
-        const float* src = map.depth.data() + std::size_t(j) * w;
-        bad |= anyInvalidDepth(src, w);
+        // such interior texel); every other texel is far.
         int b = 1, e = w - 1;
         while (b < e && !(double(src[b]) < farSnap)) ++b;
         while (e > b && !(double(src[e - 1]) < farSnap)) --e;
