@@ -21,7 +21,12 @@
 // volume has zero thickness at that point and the cap passes under it (touching, not crossing).
 // Quad cap: every triangle kept; the cap closes the border ring (same CDT); pinch rule as above
 // (at the grid corners). Its far-plane sheet and cap coincide: for comparison only.
-// Memory: about 20 bytes per texel of scratch besides the result; no allocation per quad.
+// Work: two row-parallel passes over the grid (TBB): A decides each quad's diagonal and kept
+// triangles (one code byte), B writes vertex positions and sheet triangles; boundary vertices, their
+// pinch copies and the cap's edges come from the codes alone in between, so the cap is
+// triangulated concurrently with pass B. Scratch: 5 bytes per quad (the code and the index of its
+// first triangle), 8 bytes per texel more with blur, a few rows per task; no allocation per quad.
+// VolumeBuilder keeps the scratch and the result's storage from one build to the next.
 #pragma once
 
 #include <memory>
@@ -64,9 +69,12 @@ struct VolumeBuildStats {
   std::size_t capTrianglesAfter = 0;  ///< cap triangles in the result
   std::size_t splitVertices = 0;      ///< extra vertex copies at pinches and cuts (see above)
   double biasUsed = 0.0;              ///< world units
-  double msBlur = 0.0;                ///< depth preparation: blur, offsets, clamp (ms)
+  double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
+                                      ///< then part of the sheet passes)
   double msSheet = 0.0;               ///< diagonals, vertices, sheet triangles, pinch splits (ms)
-  double msCap = 0.0;                 ///< boundary loops and cap triangulation (ms)
+  double msCap = 0.0;                 ///< boundary runs, cap edges and cap triangulation (ms); the
+                                      ///< triangulation runs during the sheet's last pass, so
+                                      ///< msBlur + msSheet + msCap can exceed msTotal
   double msTotal = 0.0;               ///< whole call including input validation (ms)
 };
 

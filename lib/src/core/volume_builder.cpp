@@ -202,11 +202,30 @@ bool sheetDepthSpan(const float* __restrict src, double* __restrict d, int b, in
   return bad;
 }
 
-// True when one of n stored depths is NaN or negative (rejected by buildVolume).
-bool anyInvalidDepth(const float* __restrict src, int n) {
-  bool bad = false;
-  for (int i = 0; i < n; ++i) bad |= !(src[i] >= 0.0f);
-  return bad;
+// One pass over n stored depths, on their bits (integer compares vectorise; float compares do not
+// under GCC's default trapping-math): below[i] = 1 where the depth is less than the float whose
+// bits are `limit` (for valid depths, which are >= 0 or +inf, the order of the magnitude bits is
+// the order of the values; -0 counts as 0); returns true when a depth is NaN or negative
+// (rejected by buildVolume).
+bool scanDepthRow(const float* __restrict src, std::uint8_t* __restrict below, int n, std::uint32_t limit) {
+  std::uint32_t bad = 0;
+  for (int i = 0; i < n; ++i) {
+    std::uint32_t u;
+    std::memcpy(&u, src + i, sizeof u);
+    bad |= std::uint32_t(u > 0x7F800000u) & std::uint32_t(u != 0x80000000u);  // NaN or < -0
+    below[i] = (u & 0x7FFFFFFFu) < limit;
+  }
+  return bad != 0;
+}
+
+// Bits of the smallest float f with double(f) >= x (x > 0): for every float d, double(d) < x
+// exactly when d < f.
+std::uint32_t floatBitsAtOrAbove(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
 }
 
 // far[i] = (d[i] == farPlane) for i in [0, n).
@@ -459,11 +478,11 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const double farPlane = map.farPlane, nearPlane = map.nearPlane;
   const bool exact = options.cap == FarCap::Exact;
   const bool perfect = options.triangulation == Triangulation::Perfect;
-  // Set when a texel holds NaN or a negative depth; validateInput then names the first one.
+  // Set when a texel holds NaN or a negative depth; validateDepths then names the first one.
   std::atomic<bool> badTexel{false};
 
-  // Sheet depth of texel (i, j) without blur (steps 1 and 3 of volume_builder.h); `raw` is the
-  // stored depth, also checked for validity.
+  // Sheet depth of texel (i, j) without blur (steps 1 and 3 of volume_builder.h) from its stored
+  // depth `raw`, one texel at a time (the row loops use sheetDepthSpan, which gives the same values).
   auto sheetDepth = [&](int i, int j, double raw) {
     if (i == 0 || j == 0 || i == w - 1 || j == h - 1 || isFarDepth(raw, farPlane)) return farPlane;
     const double d = std::clamp(raw + bias, nearPlane, farPlane);
@@ -493,7 +512,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     });
     if (badTexel.load()) validateDepths(map);  // throws, naming the first bad texel
   }
-  stats.msBlur = msSince(t0);
+  if (options.blur) stats.msBlur = msSince(t0);
   auto depthAt = [&](int i, int j) {
     const std::size_t t = std::size_t(j) * w + i;
     return options.blur ? blurred[t] : sheetDepth(i, j, map.depth[t]);
@@ -520,6 +539,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       codeFor[f][m] = std::uint8_t(q | kCornerUsed[q] << kUsedShift);
     }
   const double farSnap = farPlane * (1.0 - kFarSnap);  // isFarDepth(d) == !(d < farSnap)
+  const std::uint32_t farSnapBits = floatBitsAtOrAbove(farSnap);  // stored d < farSnap: bits < these
   // Sheet depths of texel row j (steps 1-3 of volume_builder.h) into d[0, w); `bad` is set when
   // a stored depth is NaN or negative. Branch-free: the same values as sheetDepth.
   // Sheet depths of texels [b, e) of row j (steps 1-3 of volume_builder.h) into d; `bad` is set
@@ -554,6 +574,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       if (perfect) r->x.resize(w), r->y.resize(w), r->z.resize(w);
     }
     std::vector<std::uint8_t> flip(perfect ? qw : 0);
+    std::vector<std::uint8_t> short_(w);  // stored depth short of the far plane (scanDepthRow)
     bool bad = false;
     auto fillRow = [&](int j, Row& r) {
       r.j = j;
@@ -561,7 +582,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       double* d = r.depth.data();
       std::uint8_t* far = r.far.data();
       const float* src = map.depth.data() + std::size_t(j) * w;
-      if (!options.blur) bad |= anyInvalidDepth(src, w);  // every stored depth (the blur pass checks its own)
+      // Every stored depth is checked (the blur pass checks its own).
+      if (!options.blur) bad |= scanDepthRow(src, short_.data(), w, farSnapBits);
       if (options.blur || j == 0 || j == h - 1) {
         sheetDepthRow(j, d, bad);
         farFlags(d, far, w, farPlane);
@@ -569,9 +591,16 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       } else {
         // Depths only where a stored depth is short of the far plane (between the first and last
         // such interior texel); every other texel is far.
-        int b = 1, e = w - 1;
-        while (b < e && !(double(src[b]) < farSnap)) ++b;
-        while (e > b && !(double(src[e - 1]) < farSnap)) --e;
+        int b = w - 1, e = 1;  // interior texels short of the far plane lie in [b, e)
+        if (const void* p = std::memchr(short_.data() + 1, 1, std::size_t(w - 2))) {
+          b = int(static_cast<const std::uint8_t*>(p) - short_.data());
+#if defined(__GLIBC__)
+          e = 1 + int(static_cast<const std::uint8_t*>(memrchr(short_.data() + 1, 1, std::size_t(w - 2))) - short_.data());
+#else
+          e = w - 1;
+          while (!short_[e - 1]) --e;
+#endif
+        }
         std::memset(far, 1, std::size_t(w));
         if (b < e) {
           sheetDepthSpan(src, d, b, e, bias, nearPlane, farPlane, farSnap);
