@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <tbb/global_control.h>
 
+#include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/volume_builder.h"
 
@@ -199,6 +200,31 @@ TEST(VolumeBuilder, BadDepthsThrowInputErrorNamingTheTexel) {
         EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
       }
     }
+}
+
+// The far snap (depth_blur.h) decided on the stored float: the largest float below
+// far * (1 - kFarSnap) is a hit, the next float is not; -0 is a valid depth (clamped to near).
+TEST(VolumeBuilder, FarSnapBoundaryAndNegativeZero) {
+  const DepthMap base = makeDepthMap(directionalDown(), 8, 8, CaptureMode::Back);
+  const double farSnap = base.farPlane * (1.0 - kFarSnap);
+  float below = float(farSnap);
+  while (double(below) >= farSnap) below = std::nextafter(below, 0.0f);
+  const float above = std::nextafter(below, std::numeric_limits<float>::infinity());
+  ASSERT_GE(double(above), farSnap);
+  auto build = [&](float depth) {
+    DepthMap m = base;
+    m.depth[m.index(3, 3)] = depth;
+    return buildVolume(m);
+  };
+  EXPECT_EQ(build(below).stats.droppedQuads, std::size_t(7 * 7) - 4);  // the texel's four quads kept
+  EXPECT_EQ(build(above).stats.droppedQuads, std::size_t(7 * 7));
+  EXPECT_TRUE(build(above).mesh.triangles.empty());
+  const VolumeBuildResult zero = build(-0.0f);
+  EXPECT_EQ(zero.stats.droppedQuads, std::size_t(7 * 7) - 4);
+  const TexelUnprojector unproject(base);
+  const glm::dvec3 nearPoint = unproject.worldPoint(3, 3, base.nearPlane);
+  EXPECT_TRUE(std::any_of(zero.mesh.positions.begin(), zero.mesh.positions.end(),
+                          [&](const glm::dvec3& p) { return glm::length(p - nearPoint) < 1e-9; }));
 }
 
 // One VolumeBuilder and one result reused across sizes, maps and options give exactly what
