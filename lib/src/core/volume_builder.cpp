@@ -228,9 +228,20 @@ std::uint32_t floatBitsAtOrAbove(double x) {
   return u;
 }
 
-// far[i] = (d[i] == farPlane) for i in [0, n).
+// far[i] = (d[i] == farPlane) for i in [0, n), compared as bits (the same for these values: d is
+// never NaN and farPlane > 0; integer compares vectorise, double ones do not under trapping math;
+// 64-bit integer compares need more than SSE2, hence the AVX2 clone as for flipRow).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+__attribute__((target_clones("avx2", "default")))
+#endif
 void farFlags(const double* __restrict d, std::uint8_t* __restrict far, int n, double farPlane) {
-  for (int i = 0; i < n; ++i) far[i] = d[i] == farPlane;
+  std::uint64_t farBits;
+  std::memcpy(&farBits, &farPlane, sizeof farBits);
+  for (int i = 0; i < n; ++i) {
+    std::uint64_t u;
+    std::memcpy(&u, d + i, sizeof u);
+    far[i] = u == farBits;
+  }
 }
 
 // The first and last i in [0, n) with far[i] == 0 (n and -1 when there is none).
@@ -290,6 +301,28 @@ std::uint32_t numberRow(const std::uint8_t* __restrict used, std::uint32_t* __re
   return k;
 }
 
+// GridUnprojector's separable projection terms, by value for the row loop below.
+struct SeparableProjection {
+  double p20, p21, p30, p31, p23, p33, inv00, inv11;
+};
+
+// Light-view points of texels [b, e) of one row (normalised x per column, y of the row) at
+// light-view depths d, into x, y, z. A free function with restrict pointers and the terms by
+// value: as a member loop every store might alias the members, and nothing vectorised. Clones as
+// flipRow.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void lightViewRow(const double* __restrict xn, double yn, int b, int e, const double* __restrict d, double* __restrict x,
+                  double* __restrict y, double* __restrict z, SeparableProjection p) {
+  for (int i = b; i < e; ++i) {
+    const double zi = -d[i], wc = p.p23 * zi + p.p33;
+    x[i] = (xn[i] * wc - p.p20 * zi - p.p30) * p.inv00;
+    y[i] = (yn * wc - p.p21 * zi - p.p31) * p.inv11;
+    z[i] = zi;
+  }
+}
+
 // Texel-centre unprojection for whole grids: TexelUnprojector's result, with the projection solved
 // per axis when the matrix allows it (glm's perspective and orthographic matrices: x and y do not
 // mix, clip w depends on view z only), else TexelUnprojector itself. Agrees with it to a few ulps
@@ -325,14 +358,7 @@ class GridUnprojector {
       }
       return;
     }
-    const double* xn = xn_.data();
-    const double yn = yn_[std::size_t(j)];
-    for (int i = begin; i < end; ++i) {
-      const double zi = -d[i], wc = p23_ * zi + p33_;
-      x[i] = (xn[i] * wc - p20_ * zi - p30_) * inv00_;
-      y[i] = (yn * wc - p21_ * zi - p31_) * inv11_;
-      z[i] = zi;
-    }
+    lightViewRow(xn_.data(), yn_[std::size_t(j)], begin, end, d, x, y, z, {p20_, p21_, p30_, p31_, p23_, p33_, inv00_, inv11_});
   }
   // worldPoint(i, j, d[i]) for i in [begin, end), into x, y, z.
   void worldPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
@@ -784,28 +810,35 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   };
   auto texelBoundary = [&](std::size_t t) { return isBoundary(int(t % std::size_t(w)), int(t / std::size_t(w))); };
   std::vector<std::vector<Fan>> rowFans(h);
-  std::uint32_t copies = 0;
-  for (int j = 0; j < h; ++j) {
-    rowFans[j].resize(rowBoundary[j].size());
-    for (std::size_t b = 0; b < rowBoundary[j].size(); ++b) {
-      Fan& fan = rowFans[j][b];
-      collectSlots(rowBoundary[j][b].i, j, fan);
-      fan.id = std::uint32_t(rowVerts[j] + rowBoundary[j][b].local);
-      fan.firstCopy = std::uint32_t(rowVerts[h]) + copies;
-      int gap = 0;
-      while (fan.slots[gap].kept) ++gap;
-      int fans = 0;
-      for (int s = 1; s <= fan.n; ++s) {
-        Slot& slot = fan.slots[(gap + s) % fan.n];
-        const Slot& prev = fan.slots[(gap + s - 1) % fan.n];
-        if (!slot.kept) continue;
-        const bool cut = prev.kept && texelBoundary(prev.ccwTexel);
-        if (!prev.kept || cut) ++fans;  // a run starts here
-        slot.run = std::uint8_t(fans - 1);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 32), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      rowFans[j].resize(rowBoundary[j].size());
+      for (std::size_t b = 0; b < rowBoundary[j].size(); ++b) {
+        Fan& fan = rowFans[j][b];
+        collectSlots(rowBoundary[j][b].i, j, fan);
+        fan.id = std::uint32_t(rowVerts[j] + rowBoundary[j][b].local);
+        int gap = 0;
+        while (fan.slots[gap].kept) ++gap;
+        int fans = 0;
+        for (int s = 1; s <= fan.n; ++s) {
+          Slot& slot = fan.slots[(gap + s) % fan.n];
+          const Slot& prev = fan.slots[(gap + s - 1) % fan.n];
+          if (!slot.kept) continue;
+          const bool cut = prev.kept && texelBoundary(prev.ccwTexel);
+          if (!prev.kept || cut) ++fans;  // a run starts here
+          slot.run = std::uint8_t(fans - 1);
+        }
+        fan.firstCopy = std::uint32_t(fans - 1);  // the number of copies, until numbered below
       }
-      copies += std::uint32_t(fans - 1);
     }
-  }
+  });
+  std::uint32_t copies = 0;
+  for (auto& fans : rowFans)
+    for (Fan& fan : fans) {
+      const std::uint32_t n = fan.firstCopy;
+      fan.firstCopy = std::uint32_t(rowVerts[h]) + copies;
+      copies += n;
+    }
   stats.splitVertices = copies;
   auto fanAt = [&](int i, int j) -> const Fan& {
     const auto& list = rowBoundary[j];
@@ -818,30 +851,34 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // Cap edges: the edges of kept triangles between two far vertices with no kept triangle across
   // (or cut open). Both ends are boundary vertices, so the edges are found from the boundary
   // fans, each once, from its first vertex; then put in (quad, triangle, edge) order.
-  std::vector<std::pair<std::uint64_t, CapEdge>> keyed;
-  for (int j0 = 0; j0 < h; ++j0)
-    for (std::size_t b = 0; b < rowBoundary[j0].size(); ++b) {
-      const int i0 = rowBoundary[j0][b].i;
-      const Fan& fan = rowFans[j0][b];
-      for (int s = 0; s < fan.n; ++s) {
-        const Slot& slot = fan.slots[s];
-        if (!slot.kept) continue;
-        const int qi = int(slot.quad % std::uint32_t(qw)), qj = int(slot.quad / std::uint32_t(qw));
-        const int* cs = kTriCorners[code[slot.quad] & kFlip][slot.t];
-        const int c1 = cs[(slot.k + 1) % 3];
-        const int i1 = qi + kCornerDi[c1], j1 = qj + kCornerDj[c1];
-        if (depthAt(i1, j1) != farPlane) continue;
-        const bool cut = isBoundary(i1, j1);
-        if (!cut && grid.neighbourKept(qi, qj, slot.t, slot.k)) continue;
-        const Fan& other = fanAt(i1, j1);  // the same triangle, at its next corner
-        const Slot* end = nullptr;
-        for (int o = 0; o < other.n && !end; ++o)
-          if (other.slots[o].kept && other.slots[o].quad == slot.quad && other.slots[o].t == slot.t) end = &other.slots[o];
-        SV_CHECK(end != nullptr);
-        keyed.push_back({(std::uint64_t(slot.quad) * 2 + slot.t) * 3 + slot.k,
-                         {slotId(fan, slot), slotId(other, *end), {i0, j0}, {i1, j1}}});
+  std::vector<std::vector<std::pair<std::uint64_t, CapEdge>>> rowKeyed(h);
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 32), [&](const tbb::blocked_range<int>& rows) {
+    for (int j0 = rows.begin(); j0 != rows.end(); ++j0)
+      for (std::size_t b = 0; b < rowBoundary[j0].size(); ++b) {
+        const int i0 = rowBoundary[j0][b].i;
+        const Fan& fan = rowFans[j0][b];
+        for (int s = 0; s < fan.n; ++s) {
+          const Slot& slot = fan.slots[s];
+          if (!slot.kept) continue;
+          const int qi = int(slot.quad % std::uint32_t(qw)), qj = int(slot.quad / std::uint32_t(qw));
+          const int* cs = kTriCorners[code[slot.quad] & kFlip][slot.t];
+          const int c1 = cs[(slot.k + 1) % 3];
+          const int i1 = qi + kCornerDi[c1], j1 = qj + kCornerDj[c1];
+          if (depthAt(i1, j1) != farPlane) continue;
+          const bool cut = isBoundary(i1, j1);
+          if (!cut && grid.neighbourKept(qi, qj, slot.t, slot.k)) continue;
+          const Fan& other = fanAt(i1, j1);  // the same triangle, at its next corner
+          const Slot* end = nullptr;
+          for (int o = 0; o < other.n && !end; ++o)
+            if (other.slots[o].kept && other.slots[o].quad == slot.quad && other.slots[o].t == slot.t) end = &other.slots[o];
+          SV_CHECK(end != nullptr);
+          rowKeyed[j0].push_back({(std::uint64_t(slot.quad) * 2 + slot.t) * 3 + slot.k,
+                                  {slotId(fan, slot), slotId(other, *end), {i0, j0}, {i1, j1}}});
+        }
       }
-    }
+  });
+  std::vector<std::pair<std::uint64_t, CapEdge>> keyed;
+  for (auto& row : rowKeyed) keyed.insert(keyed.end(), row.begin(), row.end());
   std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<CapEdge> edges;
   edges.reserve(keyed.size());
