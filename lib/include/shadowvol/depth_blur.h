@@ -27,6 +27,16 @@ inline bool isFarDepth(double d, double farPlane) { return !(d < farPlane * (1.0
 /// Far-plane and no-hit texels therefore never drag an occluder towards the far plane.
 double blurredDepth(const DepthMap& map, int i, int j);
 
+/// Per-row scratch of blurRow (two buffers of 5 rows), reused across calls.
+struct BlurRowScratch {
+  std::vector<double> values, valid;
+};
+
+/// Row j of blurDepths into out[b, e) (e = -1: the width): blurredDepth of every valid texel, bit
+/// for bit (the interior as one vectorised loop, the two outermost texels and rows through
+/// blurredDepth); invalid texels copied unchanged. Other entries of out are not written.
+void blurRow(const DepthMap& map, int j, double* out, BlurRowScratch& scratch, int b = 0, int e = -1);
+
 /// blurredDepth for every valid texel; invalid texels are copied unchanged (the blur never creates
 /// or removes hits). Row-parallel (TBB), deterministic. Same layout as DepthMap::depth.
 std::vector<double> blurDepths(const DepthMap& map);

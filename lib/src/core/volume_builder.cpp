@@ -521,19 +521,36 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   auto& blurred = scratch_->blurred;
   if (options.blur) {
     sizeBuffer(blurred, texels);
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 8), [&](const tbb::blocked_range<int>& rows) {
       bool bad = false;
-      for (int j = rows.begin(); j != rows.end(); ++j)
+      BlurRowScratch scratch;
+      std::vector<double> row(w);
+      std::vector<std::uint8_t> below(w);
+      for (int j = rows.begin(); j != rows.end(); ++j) {
+        const float* src = map.depth.data() + std::size_t(j) * w;
+        bad |= scanDepthRow(src, below.data(), w, floatBitsAtOrAbove(farPlane * (1.0 - kFarSnap)));
+        double* out = blurred.data() + std::size_t(j) * w;
+        if (j == 0 || j == h - 1) {
+          std::fill_n(out, w, farPlane);
+          continue;
+        }
+        // blurredDepth of the valid texels, between the first and last (the others are far).
+        int b = w, e = 0;
+        if (const void* p = std::memchr(below.data(), 1, std::size_t(w))) {
+          b = int(static_cast<const std::uint8_t*>(p) - below.data());
+          e = w;
+          while (!below[e - 1]) --e;
+          blurRow(map, j, row.data(), scratch, b, e);
+        }
         for (int i = 0; i < w; ++i) {
-          const double raw = map.at(i, j);
-          bad |= !(raw >= 0.0);
           double d = farPlane;
-          if (!(i == 0 || j == 0 || i == w - 1 || j == h - 1 || isFarDepth(raw, farPlane))) {
-            d = std::clamp(blurredDepth(map, i, j) + options.blurOffset + bias, nearPlane, farPlane);
+          if (!(i == 0 || i == w - 1 || i < b || i >= e || isFarDepth(src[i], farPlane))) {
+            d = std::clamp(row[i] + options.blurOffset + bias, nearPlane, farPlane);
             if (isFarDepth(d, farPlane)) d = farPlane;
           }
-          blurred[std::size_t(j) * w + i] = d;
+          out[i] = d;
         }
+      }
       if (bad) badTexel.store(true, std::memory_order_relaxed);
     });
     if (badTexel.load()) validateDepths(map);  // throws, naming the first bad texel
