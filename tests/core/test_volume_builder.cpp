@@ -227,6 +227,33 @@ TEST(VolumeBuilder, FarSnapBoundaryAndNegativeZero) {
                           [&](const glm::dvec3& p) { return glm::length(p - nearPoint) < 1e-9; }));
 }
 
+// A projection that mixes x and y (a depth map from a file may carry one) takes the builder's
+// general unprojection path: the same closed manifold, every vertex exactly TexelUnprojector's
+// point for its texel and depth.
+TEST(VolumeBuilder, NonSeparableProjection) {
+  std::uint64_t seed = 3;
+  DepthMap m = makeDepthMap(spot(), 40, 36, CaptureMode::Back);
+  glm::dmat4 mix(1.0);  // rotate clip-space x and y by 0.3 rad
+  mix[0][0] = std::cos(0.3), mix[0][1] = std::sin(0.3), mix[1][0] = -std::sin(0.3), mix[1][1] = std::cos(0.3);
+  m.lightProjection = mix * m.lightProjection;
+  for (auto& d : m.depth)
+    if (lcg(seed) % 100 < 50) d = float(m.nearPlane + 0.5 + (lcg(seed) % 1000) * 0.009);
+  const VolumeBuildResult r = buildVolume(m);
+  ASSERT_TRUE(closedOrientedManifold(r.mesh));
+  const TexelUnprojector unproject(m);
+  std::set<std::pair<double, double>> expected;  // (x, z) of every hit texel's sheet vertex
+  for (int j = 1; j < m.height - 1; ++j)
+    for (int i = 1; i < m.width - 1; ++i)
+      if (!isFarDepth(m.at(i, j), m.farPlane)) {
+        const glm::dvec3 p = unproject.worldPoint(i, j, double(m.at(i, j)));
+        expected.insert({p.x, p.z});
+      }
+  std::size_t found = 0;
+  for (const auto& p : r.mesh.positions) found += expected.count({p.x, p.z});
+  EXPECT_EQ(found, expected.size());
+  EXPECT_GT(expected.size(), 100u);
+}
+
 // One VolumeBuilder and one result reused across sizes, maps and options give exactly what
 // buildVolume gives; after an input error the result is empty and the builder still works.
 TEST(VolumeBuilder, ReusedBuilderMatchesBuildVolume) {

@@ -351,24 +351,14 @@ class GridUnprojector {
   }
   // lightViewPoint(i, j, d[i]) for i in [begin, end), into x, y, z (a loop that vectorises).
   void lightViewPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
-    if (!separable_) {
-      for (int i = begin; i < end; ++i) {
-        const glm::dvec3 p = reference_.lightViewPoint(i, j, d[i]);
-        x[i] = p.x, y[i] = p.y, z[i] = p.z;
-      }
-      return;
-    }
+    if (!separable_)
+      return perTexel(j, begin, end, d, x, y, z, [&](int i, double di) { return reference_.lightViewPoint(i, j, di); });
     lightViewRow(xn_.data(), yn_[std::size_t(j)], begin, end, d, x, y, z, {p20_, p21_, p30_, p31_, p23_, p33_, inv00_, inv11_});
   }
   // worldPoint(i, j, d[i]) for i in [begin, end), into x, y, z.
   void worldPoints(int j, int begin, int end, const double* d, double* x, double* y, double* z) const {
-    if (!separable_) {
-      for (int i = begin; i < end; ++i) {
-        const glm::dvec3 p = reference_.worldPoint(i, j, d[i]);
-        x[i] = p.x, y[i] = p.y, z[i] = p.z;
-      }
-      return;
-    }
+    if (!separable_)
+      return perTexel(j, begin, end, d, x, y, z, [&](int i, double di) { return reference_.worldPoint(i, j, di); });
     lightViewPoints(j, begin, end, d, x, y, z);
     transformRow(invView_, begin, end, x, y, z);
   }
@@ -378,6 +368,15 @@ class GridUnprojector {
   }
 
  private:
+  // The non-separable fallback: point(i, d[i]) one texel at a time, into x, y, z.
+  template <class Point>
+  static void perTexel(int, int begin, int end, const double* d, double* x, double* y, double* z, Point point) {
+    for (int i = begin; i < end; ++i) {
+      const glm::dvec3 p = point(i, d[i]);
+      x[i] = p.x, y[i] = p.y, z[i] = p.z;
+    }
+  }
+
   TexelUnprojector reference_;
   bool separable_ = false;
   double p00_, p11_, p20_, p21_, p30_, p31_, p23_, p33_, inv00_, inv11_;
