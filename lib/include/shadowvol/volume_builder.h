@@ -8,7 +8,8 @@
 //      d >= far * (1 - kFarSnap), see depth_blur.h) -> exactly the far plane; else
 //   2. blur on: d = blurredDepth(map, i, j) + blurOffset (samples the stored map, see depth_blur.h)
 //   3. d = clamp(d + bias, near, far); if that is within kFarSnap of far -> exactly far;
-//   4. unprojected in double with TexelUnprojector at the texel centre.
+//   4. unprojected in double at the texel centre: TexelUnprojector's formula, evaluated per row
+//      (multiplying by 1 / P00 and 1 / P11 where the projection allows it: a few ulps from it).
 // Triangles: each quad A B C D (triangulation.h) gives two triangles by its diagonal. With the
 // exact cap a triangle whose three vertices are on the far plane is dropped (a quad whose four
 // corners are far loses both; a mixed quad may lose one): it would lie in the cap's plane.
