@@ -9,7 +9,7 @@
 // on pre-faulted buffers, and ratio = build time / floor.
 // reuse:0 times buildVolume (fresh buffers every call, so the kernel faults in and zeroes new
 // pages); reuse:1 times VolumeBuilder::build into the same result every iteration (after a first,
-// untimed build: no allocation, like the floor's pre-faulted buffers).
+// untimed build: no grid-sized allocation, like the floor's pre-faulted buffers).
 //
 // Run: build-dir/bench/bench_volume_builder --benchmark_counters_tabular=true
 #include <algorithm>
