@@ -213,16 +213,7 @@ TEST(VolumeCgal, PointClassificationAgreesWithTheDepthMap) {
   }
 }
 
-Light directionalDown() {
-  Light light;
-  light.type = LightType::Directional;
-  light.position = {0, 5, 0};
-  light.direction = {0, -1, 0};
-  light.halfExtent = 4.0;
-  light.nearPlane = 0.5;
-  light.farPlane = 12.0;
-  return light;
-}
+using test::directionalDown;
 
 // A plate of half sizes (hx, hz) rotated by `degrees` about the light axis, at light depth 3.55
 // (y = 1.45), written analytically into a back-capture depth map (texel centres inside -> hit).

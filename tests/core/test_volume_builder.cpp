@@ -17,20 +17,12 @@
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/volume_builder.h"
+#include "test_util.h"
 
 namespace shadowvol {
 namespace {
 
-Light directionalDown(double farPlane = 12.0) {
-  Light light;
-  light.type = LightType::Directional;
-  light.position = {0, 5, 0};
-  light.direction = {0, -1, 0};
-  light.halfExtent = 4.0;
-  light.nearPlane = 0.5;
-  light.farPlane = farPlane;
-  return light;
-}
+using test::directionalDown;
 
 Light spot() {
   Light light;

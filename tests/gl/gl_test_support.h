@@ -122,4 +122,22 @@ inline double agreement(const std::vector<std::uint8_t>& a, const std::vector<st
   return double(same) / double(a.size());
 }
 
+/// Calls visit(row, c) for every pixel of a w x h image (rows top first) whose class
+/// c = classify(wx, wy) (window coordinates of the pixel centre, y up; c < 0: not tested) is
+/// also the class of its 8 neighbours: pixels at a class border are skipped.
+template <class Classify, class Visit>
+void forEachPixelAwayFromBorders(int w, int h, Classify classify, Visit visit) {
+  for (int row = 0; row < h; ++row) {
+    const int y = h - 1 - row;  // GL window row of image row `row`
+    for (int x = 0; x < w; ++x) {
+      const int c = classify(x + 0.5, y + 0.5);
+      if (c < 0) continue;
+      bool border = false;
+      for (int dy = -1; dy <= 1 && !border; ++dy)
+        for (int dx = -1; dx <= 1 && !border; ++dx) border = classify(x + 0.5 + dx, y + 0.5 + dy) != c;
+      if (!border) visit(std::size_t(row) * w + x, c);
+    }
+  }
+}
+
 }  // namespace shadowvol::gltest

@@ -44,20 +44,11 @@ Tally checkGround(const Scene& scene, const std::vector<std::uint8_t>& stencil) 
     return hitPlate(g, -l.direction, 0.0, 1e300) ? 1 : 0;
   };
   Tally t;
-  for (int row = 0; row < h; ++row) {
-    const int y = h - 1 - row;
-    for (int x = 0; x < w; ++x) {
-      const int c = classify(x + 0.5, y + 0.5);
-      if (c < 0) continue;
-      bool border = false;
-      for (int dy = -1; dy <= 1 && !border; ++dy)
-        for (int dx = -1; dx <= 1 && !border; ++dx) border = classify(x + 0.5 + dx, y + 0.5 + dy) != c;
-      if (border) continue;
-      ++t.tested;
-      (c ? t.shadowed : t.lit) += 1;
-      t.wrong += (stencil[std::size_t(row) * w + x] != 0) != (c == 1);
-    }
-  }
+  gltest::forEachPixelAwayFromBorders(w, h, classify, [&](std::size_t pixel, int c) {
+    ++t.tested;
+    (c ? t.shadowed : t.lit) += 1;
+    t.wrong += (stencil[pixel] != 0) != (c == 1);
+  });
   return t;
 }
 

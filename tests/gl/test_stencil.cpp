@@ -89,20 +89,11 @@ Expectation checkStencil(const Scene& scene, const VolumeOracle& oracle, const s
     return hit ? (oracle.inside(hit->ground) ? 1 : 0) : -1;
   };
   Expectation e;
-  for (int row = 0; row < h; ++row) {
-    const int y = h - 1 - row;  // GL window row of image row `row`
-    for (int x = 0; x < w; ++x) {
-      const int c = classify(x + 0.5, y + 0.5);
-      if (c < 0) continue;
-      bool border = false;
-      for (int dy = -1; dy <= 1 && !border; ++dy)
-        for (int dx = -1; dx <= 1 && !border; ++dx) border = classify(x + 0.5 + dx, y + 0.5 + dy) != c;
-      if (border) continue;
-      ++e.tested;
-      (c ? e.inside : e.outside) += 1;
-      if (stencil[std::size_t(row) * w + x] != std::uint8_t(c)) ++e.wrong;
-    }
-  }
+  gltest::forEachPixelAwayFromBorders(w, h, classify, [&](std::size_t pixel, int c) {
+    ++e.tested;
+    (c ? e.inside : e.outside) += 1;
+    if (stencil[pixel] != std::uint8_t(c)) ++e.wrong;
+  });
   return e;
 }
 
