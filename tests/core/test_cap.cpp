@@ -15,7 +15,7 @@ void addLoop(std::vector<CapEdge>& edges, const std::vector<std::pair<std::uint3
   for (std::size_t k = 0; k < loop.size(); ++k) {
     const auto& a = loop[k];
     const auto& b = loop[(k + 1) % loop.size()];
-    edges.push_back({a.first, b.first, a.second, b.second});
+    edges.push_back({a.first, b.first, glm::dvec2(a.second), glm::dvec2(b.second)});
   }
 }
 
@@ -27,7 +27,7 @@ struct CapCheck {
 };
 
 CapCheck check(const std::vector<CapEdge>& edges, const std::vector<std::array<std::uint32_t, 3>>& tris) {
-  std::map<std::uint32_t, glm::ivec2> texel;
+  std::map<std::uint32_t, glm::dvec2> texel;
   for (const auto& e : edges) {
     texel[e.from] = e.fromTexel;
     texel[e.to] = e.toTexel;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <unordered_map>
 
@@ -51,6 +52,28 @@ void markInside(Cdt& cdt, const std::vector<std::pair<Cdt::Vertex_handle, Cdt::V
   }
 }
 
+// A point of the plane as a hash key (its coordinates' bits; -0 and +0 are one point).
+struct PointKey {
+  std::uint64_t x, y;
+  explicit PointKey(const glm::dvec2& p) : x(bits(p.x)), y(bits(p.y)) {}
+  static std::uint64_t bits(double v) {
+    v += 0.0;  // -0 -> +0
+    std::uint64_t u;
+    std::memcpy(&u, &v, sizeof u);
+    return u;
+  }
+  bool operator==(const PointKey& o) const { return x == o.x && y == o.y; }
+};
+struct PointKeyHash {
+  std::size_t operator()(const PointKey& k) const { return std::size_t(k.x * 0x9E3779B97F4A7C15ull ^ k.y); }
+};
+
+// b lies on the segment from a to c, strictly between them (exact predicates).
+bool strictlyBetween(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
+  const K::Point_2 pa(a.x, a.y), pb(b.x, b.y), pc(c.x, c.y);
+  return CGAL::collinear(pa, pb, pc) && CGAL::collinear_are_strictly_ordered_along_line(pa, pb, pc);
+}
+
 // Counter-clockwise angle from direction a to direction b, in [0, 2 pi).
 double ccwAngle(const glm::dvec2& a, const glm::dvec2& b) {
   double t = std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
@@ -67,7 +90,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
   // Per vertex index: its texel and its loop neighbours (for the wedge test at shared texels).
   struct Corner {
     std::uint32_t vertex;
-    glm::ivec2 texel, prevTexel, nextTexel;
+    glm::dvec2 texel, prevTexel, nextTexel;
     std::size_t next = 0;     // corner at the end of the outgoing edge
     bool anchor = true;       // kept in the CDT (see below)
     std::size_t anchorNext = 0;                   // anchors: the next anchor along the loop
@@ -77,7 +100,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
   cornerOf.reserve(edges.size() * 2);
   std::vector<Corner> corners;
   corners.reserve(edges.size());
-  auto cornerFor = [&](std::uint32_t v, glm::ivec2 texel) -> std::size_t {
+  auto cornerFor = [&](std::uint32_t v, glm::dvec2 texel) -> std::size_t {
     auto [it, inserted] = cornerOf.try_emplace(v, corners.size());
     if (inserted) corners.push_back({v, texel, texel, texel});
     SV_CHECK(corners[it->second].texel == texel);
@@ -90,22 +113,21 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
     corners[to].prevTexel = e.fromTexel;
   }
 
-  // Texels (slots) with one or more vertex indices.
+  // Points (slots) with one or more vertex indices.
   std::vector<std::vector<std::size_t>> slots;
-  std::unordered_map<std::uint64_t, int> slotOfTexel;
+  std::unordered_map<PointKey, int, PointKeyHash> slotOfTexel;
   slotOfTexel.reserve(corners.size());
   std::vector<int> slotOfCorner(corners.size());
   for (std::size_t c = 0; c < corners.size(); ++c) {
-    const glm::ivec2 t = corners[c].texel;
-    const std::uint64_t key = (std::uint64_t(std::uint32_t(t.x)) << 32) | std::uint32_t(t.y);
-    auto [it, inserted] = slotOfTexel.try_emplace(key, int(slots.size()));
+    auto [it, inserted] = slotOfTexel.try_emplace(PointKey(corners[c].texel), int(slots.size()));
     if (inserted) slots.emplace_back();
     slots[std::size_t(it->second)].push_back(c);
     slotOfCorner[c] = it->second;
   }
 
-  // Collinear runs. A corner alone at its texel whose incoming and outgoing edges have the same
-  // step (a straight run of grid edges, axis-parallel or diagonal) leaves the CDT: the loops are
+  // Collinear runs. A corner alone at its point that lies strictly between its loop neighbours on
+  // their segment (exact predicates; for grid edges: the same step in and out, a straight run
+  // axis-parallel or diagonal) leaves the CDT: the loops are
   // triangulated through their remaining corners (anchors) only, and each face is then split again
   // through the removed corners on its edges (below). Grid-aligned runs are the most degenerate
   // input a Delaunay triangulation can get (every four lattice points of a square are
@@ -113,7 +135,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
   // triangulation: every boundary vertex and edge kept, no Steiner point, no zero-area triangle.
   for (std::size_t c = 0; c < corners.size(); ++c) {
     const Corner& k = corners[c];
-    corners[c].anchor = slots[std::size_t(slotOfCorner[c])].size() > 1 || k.texel - k.prevTexel != k.nextTexel - k.texel;
+    corners[c].anchor = slots[std::size_t(slotOfCorner[c])].size() > 1 || !strictlyBetween(k.prevTexel, k.texel, k.nextTexel);
   }
   std::vector<std::size_t> chain;  // removed corners, grouped per anchor
   chain.reserve(corners.size());
@@ -135,7 +157,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
   std::vector<std::pair<K::Point_2, int>> points;
   for (std::size_t s = 0; s < slots.size(); ++s)
     if (corners[slots[s][0]].anchor) {
-      const glm::ivec2 t = corners[slots[s][0]].texel;
+      const glm::dvec2 t = corners[slots[s][0]].texel;
       points.emplace_back(K::Point_2(t.x, t.y), int(s));
     }
   Cdt cdt;
@@ -191,8 +213,8 @@ std::vector<std::array<std::uint32_t, 3>> triangulateCapLoops(const std::vector<
       bool found = false;
       for (std::size_t c : slot) {
         const Corner& corner = corners[c];
-        const glm::dvec2 out = glm::dvec2(corner.nextTexel - corner.texel);
-        const glm::dvec2 in = glm::dvec2(corner.prevTexel - corner.texel);
+        const glm::dvec2 out = corner.nextTexel - corner.texel;
+        const glm::dvec2 in = corner.prevTexel - corner.texel;
         if (ccwAngle(out, m) < ccwAngle(out, in)) {
           fc[k] = c;
           found = true;

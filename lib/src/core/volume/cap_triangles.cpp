@@ -1,0 +1,47 @@
+#include "volume/cap_triangles.h"
+
+namespace shadowvol::volume {
+
+void appendFlatCap(const std::vector<std::array<std::uint32_t, 3>>& cap, VolumeMesh& mesh) {
+  for (const Tri& c : cap) mesh.triangles.push_back({c[0], c[2], c[1]});
+}
+
+std::size_t appendMirroredCap(const QuadGrid& grid, const Scratch<std::uint32_t>& quadTri,
+                              const std::vector<CapEdge>& edges, const GridUnprojector& unproject, double farPlane,
+                              VolumeMesh& mesh) {
+  const int qw = grid.qw, qh = grid.qh, w = qw + 1;
+  std::vector<std::uint8_t> onBoundary(mesh.positions.size(), 0);
+  for (const CapEdge& e : edges) onBoundary[e.from] = onBoundary[e.to] = 1;
+  std::vector<std::uint32_t> capVertex(std::size_t(w) * (qh + 1), kNone);
+  std::size_t added = 0;
+  for (int qj = 0; qj < qh; ++qj)
+    for (int qi = 0; qi < qw; ++qi) {
+      const std::size_t qIndex = std::size_t(qj) * qw + qi;
+      const std::uint8_t q = grid.code[qIndex];
+      const int f = q & kFlip;
+      for (int t = 0; t < 2; ++t) {
+        if (!(q & keepBit(t))) continue;
+        const Tri sheet = mesh.triangles[quadTri[qIndex] + ((t == 1 && (q & kKeep0)) ? 1u : 0u)];
+        Tri cap{};
+        for (int k = 0; k < 3; ++k) {
+          if (onBoundary[sheet[k]]) {
+            cap[k] = sheet[k];
+            continue;
+          }
+          const int corner = kTriCorners[f][t][k];
+          const int i = qi + kCornerDi[corner], j = qj + kCornerDj[corner];
+          std::uint32_t& v = capVertex[std::size_t(j) * w + i];
+          if (v == kNone) {
+            v = std::uint32_t(mesh.positions.size());
+            mesh.positions.push_back(unproject.worldPoint(i, j, farPlane));
+          }
+          cap[k] = v;
+        }
+        mesh.triangles.push_back({cap[0], cap[2], cap[1]});
+        ++added;
+      }
+    }
+  return added;
+}
+
+}  // namespace shadowvol::volume

@@ -1,0 +1,29 @@
+// Stage 6 of the volume builder: the far cap's triangles, appended to the mesh facing away from
+// the light. Flattened: the CDT of the boundary loops (far_cap.h). Unflattened: the mirror image
+// of every kept sheet triangle on the far plane.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "shadowvol/far_cap.h"
+#include "shadowvol/volume_mesh.h"
+#include "volume/grid_unprojector.h"
+#include "volume/quad_codes.h"
+
+namespace shadowvol::volume {
+
+/// Appends the cap's triangles (counter-clockwise in texel space, as triangulateCapLoops gives
+/// them) reversed, so that they face away from the light.
+void appendFlatCap(const std::vector<std::array<std::uint32_t, 3>>& cap, VolumeMesh& mesh);
+
+/// Appends one far-plane triangle per kept sheet triangle (the grid sheet's, found through the
+/// codes and quadTri), reversed. Vertices on the cap's boundary (the ends of `edges`) are shared
+/// with the sheet (the sheet triangle already names the right pinch copy); every other texel gets
+/// one far-plane vertex, appended in order of first use. Returns the number of cap triangles.
+std::size_t appendMirroredCap(const QuadGrid& grid, const Scratch<std::uint32_t>& quadTri,
+                              const std::vector<CapEdge>& edges, const GridUnprojector& unproject, double farPlane,
+                              VolumeMesh& mesh);
+
+}  // namespace shadowvol::volume
