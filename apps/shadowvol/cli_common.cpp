@@ -20,7 +20,7 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
   addJsonOption(cmd, o.json);
 }
 
-void addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
+CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_option("--triangulation", o.triangulation,
                  "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "
                  "fixed (one diagonal everywhere, the thesis's strips)")
@@ -37,6 +37,13 @@ void addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
       ->check(CLI::IsMember({"exact", "quad"}))
       ->capture_default_str();
+  return cmd
+      .add_option("--refine", o.refine,
+                  "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
+                  "put each wall on the light ray within 2^-(K+1) texel of where the surface ends; 0 = off. Needs "
+                  "--cap exact (docs/volume.md 'Refinement')")
+      ->check(CLI::Range(0, kMaxRefineSteps))
+      ->capture_default_str();
 }
 
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
@@ -46,7 +53,11 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
     throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "must be finite");
   if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
     throw InputError("command line", "--bias", std::to_string(*o.bias), "must be finite and >= 0");
+  if (o.refine > 0 && o.cap != "exact")
+    throw InputError("command line", "--refine", std::to_string(o.refine),
+                     "needs --cap exact (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
   VolumeBuildOptions v;
+  v.refineSteps = o.refine;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;
@@ -138,6 +149,24 @@ nlohmann::json describeScene(const Scene& s) {
             {"height", s.camera.height},
             {"near", s.camera.nearPlane},
             {"far", s.camera.farPlane}}}};
+}
+
+nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
+  return {{"quads", s.quads},
+          {"droppedQuads", s.droppedQuads},
+          {"flippedQuads", s.flippedQuads},
+          {"flippedFraction", s.quads ? double(s.flippedQuads) / double(s.quads) : 0.0},
+          {"capTrianglesBefore", s.capTrianglesBefore},
+          {"capTrianglesAfter", s.capTrianglesAfter},
+          {"splitVertices", s.splitVertices},
+          {"boundaryEdges", s.boundaryEdges},
+          {"farBoundaryEdges", s.farBoundaryEdges},
+          {"refinedCells", s.refinedCells},
+          {"ambiguousCells", s.ambiguousCells},
+          {"raysCast", s.raysCast},
+          {"bias", s.biasUsed},
+          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
+                  {"cap", s.msCap}, {"total", s.msTotal}}}};
 }
 
 }  // namespace shadowvol::cli

@@ -27,16 +27,20 @@ struct SceneOptions {
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
 
-/// Options of the volume (build, render, validate): --triangulation, --blur, --blur-offset, --bias, --cap.
+/// Options of the volume (build, render, validate): --triangulation, --blur, --blur-offset, --bias,
+/// --cap, --refine.
 struct VolumeCliOptions {
   std::string triangulation = "perfect";
   bool blur = false;
   double blurOffset = 0.0;
   std::optional<double> bias;
   std::string cap = "exact";
+  int refine = 0;  ///< --refine K: silhouette refinement steps (0 = off)
 };
-void addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);
-/// Checks the values (InputError naming the option) and fills the builder's options.
+/// Adds the options; returns --refine's option (for excludes).
+CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);
+/// Checks the values (InputError naming the option) and fills the builder's options. With
+/// --refine the caller sets the depth oracle (the scene's Embree rays).
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o);
 void addJsonOption(CLI::App& cmd, bool& json);
 
@@ -66,6 +70,9 @@ double msSince(std::chrono::steady_clock::time_point start);
 
 /// JSON description of the scene as used: source, triangle count, light and camera.
 nlohmann::json describeScene(const Scene& scene);
+
+/// JSON of a volume build's counts and times (VolumeBuildStats; times under "ms").
+nlohmann::json describeVolumeStats(const VolumeBuildStats& s);
 
 /// Registers the subcommand `name` whose body runs `run` and returns an exit code.
 using Runner = std::function<int()>;

@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "cli_common.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/volume_builder.h"
@@ -41,7 +43,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                      ->capture_default_str();
   depthOpt->excludes(resOpt)->excludes(capOpt);
   cmd->get_option("--scene")->excludes(depthOpt);
-  addVolumeOptions(*cmd, o->volume);
+  addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
   cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off or .stl")->required();
   cmd->callback([&run, o] {
@@ -55,6 +57,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
 
       nlohmann::json j;
       DepthMap map;
+      Scene scene;
       double msCapture = 0.0;
       if (!o->depth.empty()) {
         map = readDepthMap(o->depth);
@@ -63,11 +66,17 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         checkResolution("--resolution", o->resolution);
         CaptureMode mode{};
         parseCaptureMode(o->capture, mode);
-        const Scene scene = loadSceneOrDefault(o->scene.scene);
+        scene = loadSceneOrDefault(o->scene.scene);
         const auto t0 = std::chrono::steady_clock::now();
         map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
         msCapture = msSince(t0);
         j["scene"] = describeScene(scene);
+      }
+      // With --refine, the rays go to the same scene (built once, before the timed build).
+      std::unique_ptr<EmbreeDepthOracle> oracle;
+      if (options.refineSteps > 0) {
+        oracle = std::make_unique<EmbreeDepthOracle>(scene);
+        options.depthOracle = oracle->oracle();
       }
       const VolumeBuildResult r = buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
@@ -82,18 +91,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"bias", s.biasUsed},
                 {"cap", o->volume.cap},
                 {"flattenCap", options.flattenCap},
+                {"refine", options.refineSteps},
                 {"vertices", r.mesh.vertexCount()},
                 {"triangles", r.mesh.triangleCount()},
-                {"quads", s.quads},
-                {"droppedQuads", s.droppedQuads},
-                {"flippedQuads", s.flippedQuads},
-                {"flippedFraction", s.quads ? double(s.flippedQuads) / double(s.quads) : 0.0},
-                {"capTrianglesBefore", s.capTrianglesBefore},
-                {"capTrianglesAfter", s.capTrianglesAfter},
-                {"splitVertices", s.splitVertices},
-                {"ms", {{"capture", msCapture}, {"blur", s.msBlur}, {"sheet", s.msSheet}, {"cap", s.msCap},
-                        {"build", s.msTotal}, {"write", msWrite}}},
                 {"out", o->out}});
+      j.update(describeVolumeStats(s));
+      j["ms"].update({{"capture", msCapture}, {"build", s.msTotal}, {"write", msWrite}});
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
@@ -106,8 +109,14 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
-        std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, cap %.1f ms, build %.1f ms, write %.1f ms\n",
-                    msCapture, s.msBlur, s.msSheet, s.msCap, s.msTotal, msWrite);
+        if (options.refineSteps > 0)
+          std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far plane), %zu refined quads (%zu "
+                      "decided by a centre ray), %zu rays\n",
+                      options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.ambiguousCells,
+                      s.raysCast);
+        std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
+                    "build %.1f ms, write %.1f ms\n",
+                    msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);
         std::printf("wrote %s\n", o->out.c_str());
       }
       return kOk;

@@ -32,6 +32,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--stencil", o->stencil,
                   "hybrid: also write the stencil counts as an 8-bit grey PNG (value = count, wrapping; 0 = lit)");
   cmd->callback([&run, o] {
+    checkRenderOptionConflicts(o->render);
     run = [o] {
       checkOutputPath("--out", o->out);
       if (!o->stencil.empty()) {
@@ -41,6 +42,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      const auto oracle = attachDepthOracle(scene, ro);
       ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
       renderer.setScene(scene);
@@ -85,6 +87,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"triangulation", o->render.shape.triangulation},
           {"blur", o->render.shape.blur},
           {"cap", o->render.shape.cap},
+          {"refine", o->render.shape.refine},
           {"bias", result.biasUsed},
           {"size", {result.width, result.height}},
           {"frames", o->frames},
@@ -97,6 +100,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};
+      if (result.volumeStats) j["volumeBuild"] = describeVolumeStats(*result.volumeStats);
       if (o->render.scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
@@ -109,6 +113,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
                       o->render.volume.c_str(), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
                       result.volumeTriangles, shadowed);
+        if (result.volumeStats && result.volumeStats->refinedCells > 0)
+          std::printf(", refined: %zu boundary edges, %zu rays", result.volumeStats->boundaryEdges,
+                      result.volumeStats->raysCast);
         if (!result.receiversOnly.empty()) {
           std::printf("\nreceivers only (open, cast no silhouette shadow):");
           for (const auto& r : result.receiversOnly) std::printf(" %s", r.c_str());

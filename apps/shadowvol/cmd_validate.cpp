@@ -51,11 +51,13 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
   cmd->add_flag("--self-intersections", o->selfIntersections,
                 "Also run CGAL's self-intersection check of the volume (slow on large meshes)");
   cmd->callback([&run, o] {
+    checkRenderOptionConflicts(o->render);
     run = [o] {
       const std::filesystem::path dir(o->reportDir);
       checkOutputFolder("--report", o->reportDir);
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      const auto oracle = attachDepthOracle(scene, ro);
       ro.readStencil = true;
       ro.readDepthMap = true;
       ro.readVisibility = true;
@@ -90,10 +92,12 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"blurOffset", o->render.shape.blurOffset},
                       {"bias", result.biasUsed},
                       {"cap", o->render.shape.cap},
+                      {"refine", o->render.shape.refine},
                       {"shadowBias", ro.shadowBiasConstant.value_or(defaultBias(
                                          scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
                       {"shadowSlope", o->render.shadowSlope},
                       {"selfIntersections", o->selfIntersections}};
+      if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
       j["pixels"] = {{"total", std::size_t(v.width) * std::size_t(v.height)},
                      {"visible", v.visible},
                      {"background", v.background},
@@ -157,6 +161,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                     renderer.info().glRenderer.c_str());
         std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
                     v.facingAway, v.outsideLight, v.background);
+        if (result.volumeStats && result.volumeStats->refinedCells > 0)
+          std::printf("  refinement: %zu boundary edges, %zu rays, %.2f ms\n", result.volumeStats->boundaryEdges,
+                      result.volumeStats->raysCast, result.volumeStats->msRefine);
         if (v.meshCheck) {
           std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
           std::printf("  stencil vs count: %.4f%% agree (%zu of %zu, %zu of them ties on the visible surface)\n",

@@ -85,6 +85,19 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
   return r;
 }
 
+void checkRenderOptionConflicts(const RenderCliOptions& o) {
+  if (o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit")
+    throw CLI::ValidationError("--refine", "refines the explicit volume only: add --volume explicit (refinement on "
+                                           "the GPU volume is not implemented yet)");
+}
+
+std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro) {
+  if (ro.volumeOptions.refineSteps <= 0) return nullptr;
+  auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
+  ro.volumeOptions.depthOracle = oracle->oracle();
+  return oracle;
+}
+
 nlohmann::json describeContext(const gl::ContextInfo& info) {
   return {{"platform", info.platform}, {"device", info.device},         {"eglVendor", info.eglVendor},
           {"glVendor", info.glVendor}, {"glRenderer", info.glRenderer}, {"glVersion", info.glVersion}};

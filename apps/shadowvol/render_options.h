@@ -1,10 +1,12 @@
 // Command-line options of the GPU subcommands (render, validate): one definition, one parser.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "cli_common.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/gl/renderer.h"
 
 namespace shadowvol::cli {
@@ -24,7 +26,8 @@ struct RenderCliOptions {
 };
 
 /// Adds --scene, --json, --method, --volume, --resolution, --capture, --triangulation, --blur,
-/// --blur-offset, --bias, --cap, --size, --shadow-bias, --shadow-slope, --platform, --shader-dir.
+/// --blur-offset, --bias, --cap, --refine, --size, --shadow-bias, --shadow-slope, --platform,
+/// --shader-dir.
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 
 /// Checks the values (InputError naming the option) and fills the renderer's options. --size, when
@@ -32,6 +35,14 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene);
 
 gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
+
+/// Usage errors among the render options that CLI11 cannot see (exit 2): --refine with the GPU
+/// volume. Throws CLI::ValidationError; call it from the subcommand's callback.
+void checkRenderOptionConflicts(const RenderCliOptions& o);
+
+/// With --refine, the scene's Embree depth oracle, set as ro.volumeOptions.depthOracle; keep the
+/// returned object alive while rendering. Null without --refine.
+std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro);
 
 /// The GL context as JSON (platform, device, vendors, renderer, version).
 nlohmann::json describeContext(const gl::ContextInfo& info);

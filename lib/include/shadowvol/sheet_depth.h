@@ -45,6 +45,14 @@ struct SheetDepthRule {
     return d < farSnap ? d : farPlane;
   }
 
+  /// The rule without the blur's neighbourhood, for one sample of the surface (a texel's stored
+  /// depth, or a refinement ray's): the far plane when invalid, else step 3 after adding the blur
+  /// offset when `blur`. Equals fromStored without blur.
+  double ofSample(double stored, bool blur) const {
+    if (!blur) return fromStored(stored);
+    return stored < farSnap ? fromBlurred(stored) : farPlane;
+  }
+
   bool isFar(double sheetDepth) const { return sheetDepth == farPlane; }
 };
 

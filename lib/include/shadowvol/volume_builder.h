@@ -35,6 +35,7 @@
 #include <string>
 
 #include "shadowvol/depth_map.h"
+#include "shadowvol/depth_oracle.h"
 #include "shadowvol/triangulation.h"
 #include "shadowvol/volume_mesh.h"
 
@@ -58,7 +59,17 @@ struct VolumeBuildOptions {
   bool flattenCap = true;       ///< Exact only: triangulate the far cap with few triangles (lossless);
                                 ///< false = one mirrored cap triangle per kept sheet triangle.
                                 ///< The quad cap is always the flattened border-ring cap.
+  int refineSteps = 0;          ///< sub-texel silhouette refinement: bisection rays per boundary edge
+                                ///< (0 = off, today's grid volume; 1..kMaxRefineSteps); places each
+                                ///< wall within 2^-(K+1) texel of where the near surface ends.
+                                ///< Needs depthOracle and the exact cap (docs/volume.md, "Refinement")
+  DepthOracle depthOracle;      ///< refinement only: the captured depth anywhere in the light's image
+                                ///< (depth_oracle.h); unset = no refinement possible
 };
+
+/// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
+/// or a camera pixel resolves, and keeps every crossing's texel coordinate exact in double.
+inline constexpr int kMaxRefineSteps = 16;
 
 /// Counts and times of one build (times in milliseconds, wall clock).
 struct VolumeBuildStats {
@@ -69,10 +80,19 @@ struct VolumeBuildStats {
   std::size_t capTrianglesBefore = 0; ///< cap triangles without flattening (= kept sheet triangles)
   std::size_t capTrianglesAfter = 0;  ///< cap triangles in the result
   std::size_t splitVertices = 0;      ///< extra vertex copies at pinches and cuts (see above)
+  std::size_t boundaryEdges = 0;      ///< refinement: grid edges across a discontinuity (split by a wall)
+  std::size_t farBoundaryEdges = 0;   ///< of which one end is on the far plane (the other end hit)
+  std::size_t refinedCells = 0;       ///< refinement: quads with a boundary edge (triangulated with walls)
+  std::size_t ambiguousCells = 0;     ///< refinement: refined quads with 3 or 4 boundary edges, decided
+                                      ///< by one more ray at the quad's centre
+  std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
+                                      ///< edge, plus one per ambiguous cell)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)
   double msSheet = 0.0;               ///< diagonals, vertices, sheet triangles, pinch splits (ms)
+  double msRefine = 0.0;              ///< refinement: boundary edges, oracle rays and walls (ms)
+  double msRays = 0.0;                ///< refinement: the oracle calls alone (ms; part of msRefine)
   double msCap = 0.0;                 ///< boundary runs, cap edges and cap triangulation (ms); the
                                       ///< triangulation runs during the sheet's last pass, so
                                       ///< msBlur + msSheet + msCap can exceed msTotal

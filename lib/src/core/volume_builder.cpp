@@ -10,11 +10,14 @@
 
 #include "shadowvol/check.h"
 #include "shadowvol/error.h"
+#include "shadowvol/boundary_edges.h"
 #include "shadowvol/far_cap.h"
+#include "shadowvol/silhouette_refinement.h"
 #include "volume/build_buffers.h"
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/grid_unprojector.h"
+#include "volume/refined_cells.h"
 #include "volume/quad_codes.h"
 #include "volume/sheet_depths.h"
 #include "volume/sheet_emit.h"
@@ -78,6 +81,17 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   };
   finite("blur offset", options.blurOffset);
   if (options.bias) finite("bias", *options.bias);
+  if (options.refineSteps < 0 || options.refineSteps > kMaxRefineSteps)
+    throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
+                     "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+  if (options.refineSteps > 0 && !options.depthOracle)
+    throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
+                     "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
+                     "command line)");
+  if (options.refineSteps > 0 && options.cap != FarCap::Exact)
+    throw InputError("volume options", "cap", toString(options.cap),
+                     "refinement needs the exact cap: the quad cap keeps the far-plane sheet whose quads "
+                     "refinement replaces by walls");
 }
 
 }  // namespace
@@ -87,6 +101,7 @@ struct VolumeBuilder::Scratch {
   volume::Scratch<double> blurred;        // sheet depths when materialised
   volume::Scratch<std::uint8_t> code;     // one code byte per quad
   volume::Scratch<std::uint32_t> quadTri; // index of each kept quad's first triangle
+  volume::Scratch<std::uint8_t> splitBits; // refinement: boundary edges per texel
 };
 
 VolumeBuilder::VolumeBuilder() : scratch_(std::make_unique<Scratch>()) {}
@@ -129,34 +144,72 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     return;  // no quad: an empty volume
   }
   const std::size_t texels = std::size_t(w) * h;
-  SV_CHECK_LT(3 * std::uint64_t(texels), std::uint64_t(kNone));  // sheet + pinch copies + cap vertices
+  // Sheet + pinch copies + cap vertices, or sheet + two per boundary edge (at most two per texel)
+  // + cap vertices.
+  SV_CHECK_LT(4 * std::uint64_t(texels), std::uint64_t(kNone));
   stats.quads = std::size_t(w - 1) * (h - 1);
   const bool exact = options.cap == FarCap::Exact;
+  const bool refine = options.refineSteps > 0;
+  const bool perfect = options.triangulation == Triangulation::Perfect;
 
-  // 1. Sheet depths: materialised only for the blur (computed per row where needed otherwise).
+  // 1. Sheet depths: materialised for the blur and for refinement (computed per row where needed
+  // otherwise).
   auto t0 = Clock::now();
   SheetDepths sheet(map, SheetDepthRule(map, bias, options.blurOffset));
-  if (options.blur) {
-    sheet.materialise(true, scratch_->blurred);
-    stats.msBlur = msSince(t0);
-  }
+  if (options.blur || refine) sheet.materialise(options.blur, scratch_->blurred);
+  if (options.blur) stats.msBlur = msSince(t0);
 
-  // 2. Quad codes: diagonals and kept triangles.
+  // 1r. Refinement: boundary edges, the quads they touch, and the crossings (oracle rays).
+  t0 = Clock::now();
+  BoundaryEdges edges;
+  RefinedQuads refinedQuads;
+  Refinement refinement;
+  if (refine) {
+    const std::span<const double> depths(scratch_->blurred.data(), texels);
+    sizeBuffer(scratch_->splitBits, texels);
+    edges = findBoundaryEdges(map, sheet.rule(), options.blur, depths, scratch_->splitBits.data());
+    refinedQuads = findRefinedQuads(edges, w, h);
+    refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, depths, options.depthOracle,
+                                     options.refineSteps, refinedQuads.centres);
+    stats.boundaryEdges = edges.edges.size();
+    stats.farBoundaryEdges = std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(),
+                                                       [](const BoundaryEdge& e) { return !e.surface; }));
+    stats.ambiguousCells = refinedQuads.centres.size();
+    stats.raysCast = refinement.raysCast;
+    stats.msRays = refinement.msRays;
+  }
+  const double msRefineEdges = msSince(t0);
+  double msRefineCells = 0.0;  // the refined quads' part of stages 4 and 5
+
+  // 2. Quad codes: diagonals and kept triangles (refined quads marked).
   t0 = Clock::now();
   const GridUnprojector unproject(map);
-  const QuadCodes codes = computeQuadCodes(sheet, unproject, {exact, options.triangulation == Triangulation::Perfect},
-                                           scratch_->code);
+  const QuadCodes codes =
+      computeQuadCodes(sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr}, scratch_->code);
   const QuadGrid grid{w - 1, h - 1, scratch_->code.data()};
   stats.flippedQuads = codes.flipped;
   stats.droppedQuads = codes.dropped;
+  stats.refinedCells = codes.refined;
 
-  // 3. Vertices, and 4. the cap's boundary: pinch and cut copies, cap edges.
+  // 3. Vertices, and 4. the cap's boundary: pinch and cut copies and cap edges of the grid sheet,
+  // or the refined quads' triangles and walls, whose far edges bound the cap.
   const TexelUse use(grid, codes);
-  const SheetVertices vertices = countSheetVertices(use);
+  const SheetVertices vertices = countSheetVertices(use, !refine);
   const auto tRuns = Clock::now();
-  const CapBoundary boundary = findCapBoundary(use, vertices, sheet);
+  CapBoundary boundary;
+  RefinedCells cells;
+  const auto crossingBase = std::uint32_t(vertices.count());
+  double msEdges = 0.0;
+  if (refine) {
+    const auto tc = Clock::now();
+    cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, perfect, exact, crossingBase);
+    boundary.edges = cells.capEdges;
+    msRefineCells += msSince(tc);
+  } else {
+    boundary = findCapBoundary(use, vertices, sheet);
+    msEdges = msSince(tRuns);
+  }
   stats.splitVertices = boundary.copies;
-  const double msEdges = msSince(tRuns);
 
   // The flattened cap needs only the edges: triangulated while the sheet is emitted.
   const bool flatCap = !exact || options.flattenCap;
@@ -170,13 +223,14 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       msCapTask = msSince(tc);
     });
 
-  // 5. The sheet: positions and triangles, then the pinch copies. Room for the cap too (a
-  // flattened cap has about as many triangles as boundary edges), so that appending it rarely
-  // reallocates.
+  // 5. The sheet: positions and triangles, then the pinch copies or the refined quads' crossing
+  // vertices and triangles. Room for the cap too (a flattened cap has about as many triangles as
+  // boundary edges), so that appending it rarely reallocates.
   VolumeMesh& mesh = result.mesh;
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
-  sizeBuffer(mesh.positions, vertices.count() + boundary.copies);
-  sizeBuffer(mesh.triangles, sheetTriangles, sheetTriangles + sheetTriangles / 4 + 4 * std::size_t(w + h) + 64);
+  const std::uint64_t triangles = sheetTriangles + cells.triangles.size();
+  sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size());
+  sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(scratch_->quadTri, stats.quads);
   try {
     emitSheet(sheet, unproject, use, codes, vertices, mesh, scratch_->quadTri);
@@ -184,18 +238,28 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     capTask.wait();
     throw;
   }
-  emitPinchCopies(grid, boundary, scratch_->quadTri, mesh);
-  stats.msSheet = msSince(t0) - msEdges;
+  if (refine) {
+    const auto tc = Clock::now();
+    emitCrossingVertices(map, edges, refinement, crossingBase, mesh);
+    std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
+    msRefineCells += msSince(tc);
+  } else {
+    emitPinchCopies(grid, boundary, scratch_->quadTri, mesh);
+  }
+  stats.msSheet = msSince(t0) - msEdges - msRefineCells;
+  stats.msRefine = msRefineEdges + msRefineCells;
 
   // 6. The far cap.
   t0 = Clock::now();
-  stats.capTrianglesBefore = sheetTriangles;
+  stats.capTrianglesBefore = sheetTriangles + cells.footprint.size();
   if (flatCap) {
     capTask.wait();
     appendFlatCap(cap, mesh);
     stats.capTrianglesAfter = cap.size();
   } else {
-    stats.capTrianglesAfter = appendMirroredCap(grid, scratch_->quadTri, boundary.edges, unproject, map.farPlane, mesh);
+    const RefinedFootprint footprint{cells, edges, refinement, crossingBase};
+    stats.capTrianglesAfter = appendMirroredCap(grid, scratch_->quadTri, boundary.edges, unproject, map,
+                                                refine ? &footprint : nullptr, mesh);
   }
   stats.msCap = msSince(t0) + msEdges + msCapTask;  // the cap's own work, partly run during the sheet
   stats.msTotal = msSince(tStart);

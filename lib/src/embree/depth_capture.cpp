@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
 
 namespace shadowvol {
@@ -59,6 +60,18 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
+float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
+  RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
+  CaptureContext c;
+  rtcInitIntersectContext(&c.ctx);
+  if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
+  if (mode == CaptureMode::Midpoint) c.ctx.filter = twoLayerFilter;
+  rtcIntersect1(scene, &c.ctx, &rh);
+  if (mode == CaptureMode::Midpoint)
+    return std::isfinite(c.t1) ? 0.5f * (c.t1 + (std::isfinite(c.t2) ? c.t2 : tFar)) : DepthMap::kNoHit;
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : DepthMap::kNoHit;
+}
+
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
   DepthMap map = makeDepthMap(scene.light, width, height, mode);
   std::vector<const TriangleMesh*> meshes;
@@ -69,25 +82,9 @@ DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMo
   const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
 
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j) {
-      for (int i = 0; i < width; ++i) {
-        // The ray parameter equals the light-view depth (TexelUnprojector::ray).
-        const TexelUnprojector::Ray ray = unproject.ray(i, j);
-        RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
-        CaptureContext c;
-        rtcInitIntersectContext(&c.ctx);
-        if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
-        if (mode == CaptureMode::Midpoint) c.ctx.filter = twoLayerFilter;
-        rtcIntersect1(rtScene.get(), &c.ctx, &rh);
-        float d = DepthMap::kNoHit;
-        if (mode == CaptureMode::Midpoint) {
-          if (std::isfinite(c.t1)) d = 0.5f * (c.t1 + (std::isfinite(c.t2) ? c.t2 : tFar));
-        } else if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-          d = rh.ray.tfar;
-        }
-        map.depth[map.index(i, j)] = d;
-      }
-    }
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < width; ++i)
+        map.depth[map.index(i, j)] = captureRay(rtScene.get(), unproject.ray(i, j), tNear, tFar, mode);
   });
   device.throwIfError();
   return map;

@@ -688,6 +688,9 @@ struct Renderer::Impl {
       throw InputError("command line", "shadow bias", "", "must be finite");
     if (!std::isfinite(o.volumeOptions.blurOffset) || (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias)))
       throw InputError("command line", "--bias/--blur-offset", "", "must be finite");
+    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.volumeOptions.refineSteps > 0)
+      throw InputError("render options", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                       "the GPU volume does not refine silhouettes yet: use the explicit volume (--volume explicit)");
   }
 
   RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
@@ -720,6 +723,7 @@ struct Renderer::Impl {
       VolumeBuildResult built = buildVolume(*result.depthMap, vo);
       timer.cpu("build", msSince(t0));
       result.biasUsed = built.stats.biasUsed;
+      result.volumeStats = built.stats;
       t0 = Clock::now();
       uploadVolume(built.mesh);
       glFinish();

@@ -77,7 +77,9 @@ struct RenderOptions {
   int depthHeight = 256;                       ///< light depth map texels (> 1)
   CaptureMode capture = CaptureMode::Back;     ///< back faces: no self-shadow acne on lit faces
   VolumeBuildOptions volumeOptions;            ///< hybrid: triangulation, blur, blurOffset, bias,
-                                               ///< cap (flattenCap applies to explicit only)
+                                               ///< cap (flattenCap and refinement (refineSteps,
+                                               ///< depthOracle) apply to explicit only; the GPU
+                                               ///< volume refuses refineSteps > 0)
   int imageWidth = 0;                          ///< camera image pixels; 0 = scene camera's width
   int imageHeight = 0;                         ///< camera image pixels; 0 = scene camera's height
   double ambient = 0.2;                        ///< ambient factor of the albedo
@@ -129,6 +131,9 @@ struct RenderResult {
                                     ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
                                     ///< silhouette = the silhouette volume's
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
+  std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
+                                                ///< (its time, refinement rays included, is the
+                                                ///< "build" pass)
   std::vector<std::string> receiversOnly;  ///< silhouette: open objects (sheets such as a ground
                                            ///< plane) that receive but cast no shadow, by name
   std::vector<std::string> skippedCasters; ///< silhouette: closed objects entirely behind a spot

@@ -1,6 +1,6 @@
 // Stage 6 of the volume builder: the far cap's triangles, appended to the mesh facing away from
 // the light. Flattened: the CDT of the boundary loops (far_cap.h). Unflattened: the mirror image
-// of every kept sheet triangle on the far plane.
+// of every kept sheet triangle that is not a wall on the far plane.
 #pragma once
 
 #include <array>
@@ -11,6 +11,7 @@
 #include "shadowvol/volume_mesh.h"
 #include "volume/grid_unprojector.h"
 #include "volume/quad_codes.h"
+#include "volume/refined_cells.h"
 
 namespace shadowvol::volume {
 
@@ -18,12 +19,23 @@ namespace shadowvol::volume {
 /// them) reversed, so that they face away from the light.
 void appendFlatCap(const std::vector<std::array<std::uint32_t, 3>>& cap, VolumeMesh& mesh);
 
-/// Appends one far-plane triangle per kept sheet triangle (the grid sheet's, found through the
-/// codes and quadTri), reversed. Vertices on the cap's boundary (the ends of `edges`) are shared
-/// with the sheet (the sheet triangle already names the right pinch copy); every other texel gets
-/// one far-plane vertex, appended in order of first use. Returns the number of cap triangles.
+/// The refined quads' part of the mirrored cap: their footprint triangles, and where the cap
+/// points of crossings are.
+struct RefinedFootprint {
+  const RefinedCells& cells;
+  const BoundaryEdges& edges;
+  const Refinement& refinement;
+  std::uint32_t crossingBase;
+};
+
+/// Appends one far-plane triangle per kept sheet triangle of the grid (found through the codes
+/// and quadTri) and per footprint triangle of the refined quads, reversed. Vertices on the cap's
+/// boundary (the ends of `edges`) are shared with the sheet (the sheet triangle already names the
+/// right pinch copy), so is a far edge's crossing (its far vertex); every other texel and every
+/// surface edge's crossing gets one far-plane vertex, appended in order of first use. Returns the
+/// number of cap triangles.
 std::size_t appendMirroredCap(const QuadGrid& grid, const Scratch<std::uint32_t>& quadTri,
-                              const std::vector<CapEdge>& edges, const GridUnprojector& unproject, double farPlane,
-                              VolumeMesh& mesh);
+                              const std::vector<CapEdge>& edges, const GridUnprojector& unproject, const DepthMap& map,
+                              const RefinedFootprint* refined, VolumeMesh& mesh);
 
 }  // namespace shadowvol::volume

@@ -80,7 +80,7 @@ QuadCodes computeQuadCodes(const SheetDepths& sheet, const GridUnprojector& unpr
   sizeBuffer(code, std::size_t(qw) * qh);
   QuadCodes result;
   result.rowSpan.resize(qh);
-  std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh);
+  std::vector<std::uint32_t> rowFlips(qh), rowDropped(qh), rowTris(qh), rowRefined(qh, 0);
   // codeFor[flip][far mask of the corners A B C D as bits 0..3]: the whole code byte.
   std::uint8_t codeFor[2][16];
   for (int f = 0; f < 2; ++f)
@@ -179,6 +179,22 @@ QuadCodes computeQuadCodes(const SheetDepths& sheet, const GridUnprojector& unpr
         tris += ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
         out[qi] = q;
       }
+      if (options.splitBits && qb < qe) {  // quads with a boundary side (always in [qb, qe))
+        const std::uint8_t* lower = options.splitBits + std::size_t(qj) * w;
+        const std::uint8_t* upper = lower + w;
+        std::uint32_t refined = 0;
+        for (int qi = qb; qi < qe; ++qi) {
+          if (!((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1))) continue;
+          const std::uint8_t q = out[qi];
+          const int nonFar = 15 & ~(farLo[qi] | farLo[qi + 1] << 1 | farHi[qi + 1] << 2 | farHi[qi] << 3);
+          flips -= q & kFlip;
+          dropped -= (q & (kKeep0 | kKeep1)) == 0;
+          tris -= ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
+          out[qi] = std::uint8_t(kRefined | nonFar << kUsedShift);
+          ++refined;
+        }
+        rowRefined[qj] = refined;
+      }
       rowFlips[qj] = flips;
       rowDropped[qj] = dropped;
       rowTris[qj] = tris;
@@ -191,6 +207,7 @@ QuadCodes computeQuadCodes(const SheetDepths& sheet, const GridUnprojector& unpr
   for (int qj = 0; qj < qh; ++qj) {
     result.flipped += rowFlips[qj];
     result.dropped += rowDropped[qj];
+    result.refined += rowRefined[qj];
     result.rowTriOffset[qj + 1] = result.rowTriOffset[qj] + rowTris[qj];
   }
   return result;

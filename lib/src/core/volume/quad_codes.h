@@ -14,8 +14,10 @@
 
 namespace shadowvol::volume {
 
-// Code bits: the diagonal and which of its two triangles the mesh keeps.
-inline constexpr std::uint8_t kFlip = 1, kKeep0 = 2, kKeep1 = 4;
+// Code bits: the diagonal and which of its two triangles the mesh keeps; kRefined marks a quad
+// with a boundary edge (refinement), whose triangles come from refined_cells.h instead (its keep
+// bits are clear, its used bits are its non-far corners).
+inline constexpr std::uint8_t kFlip = 1, kKeep0 = 2, kKeep1 = 4, kRefined = 128;
 constexpr std::uint8_t keepBit(int t) { return t == 0 ? kKeep0 : kKeep1; }
 
 // Corners 0..3 = A (i, j), B (i + 1, j), C (i + 1, j + 1), D (i, j + 1) of quad (i, j).
@@ -69,6 +71,8 @@ struct QuadGrid {
 struct QuadCodeOptions {
   bool exact = true;    ///< exact cap: triangles with three far corners are dropped
   bool perfect = true;  ///< the diagonal by flipDiagonal, else B-D everywhere
+  const std::uint8_t* splitBits = nullptr;  ///< refinement: per texel, bit 0 / 1 = its edge along
+                                            ///< +i / +j is a boundary edge (findBoundaryEdges)
 };
 
 /// What stage 2 found, per quad row.
@@ -76,7 +80,8 @@ struct QuadCodes {
   std::vector<std::pair<int, int>> rowSpan;  ///< quad row qj: no nonzero code outside [first, second)
   std::vector<std::uint64_t> rowTriOffset;   ///< qh + 1 prefix sums: the first sheet triangle of row qj
   std::size_t flipped = 0;                   ///< quads that took the A-C diagonal
-  std::size_t dropped = 0;                   ///< quads that keep no triangle
+  std::size_t dropped = 0;                   ///< quads that keep no triangle (refined quads aside)
+  std::size_t refined = 0;                   ///< quads with a boundary edge (kRefined)
   std::uint64_t sheetTriangles() const { return rowTriOffset.back(); }
 };
 

@@ -75,7 +75,7 @@ std::pair<int, int> TexelUse::row(int j, std::uint8_t* used) const {
   return span;
 }
 
-SheetVertices countSheetVertices(const TexelUse& use) {
+SheetVertices countSheetVertices(const TexelUse& use, bool findBoundary) {
   const QuadGrid& grid = use.grid();
   const int qw = grid.qw, qh = grid.qh, w = qw + 1, h = qh + 1;
   const std::vector<std::uint8_t> zeroRow(std::size_t(qw), 0);
@@ -87,7 +87,7 @@ SheetVertices countSheetVertices(const TexelUse& use) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const auto [b, e] = use.row(j, used.data());
       result.rowVerts[j + 1] = countNonzero(used.data() + b, e - b);
-      if (b == e) continue;
+      if (b == e || !findBoundary) continue;
       const std::uint8_t* cur = j < qh ? grid.code + std::size_t(j) * qw : zeroRow.data();
       const std::uint8_t* prev = j > 0 ? grid.code + std::size_t(j - 1) * qw : zeroRow.data();
       notAllKept(cur, prev, used.data(), candidate.data(), qw, b, e, kKeep0 | kKeep1);

@@ -48,8 +48,10 @@ struct SheetVertices {
   std::uint64_t count() const { return rowVerts.back(); }
 };
 
-/// Stage 3: vertex counts per texel row and the boundary texels, row-parallel.
-SheetVertices countSheetVertices(const TexelUse& use);
+/// Stage 3: vertex counts per texel row and (findBoundary) the boundary texels, row-parallel.
+/// With refinement there are none: every far texel is then unused (a quad with far and non-far
+/// corners is refined), and a non-far texel's fan may be incomplete by design.
+SheetVertices countSheetVertices(const TexelUse& use, bool findBoundary = true);
 
 /// Vertex indices of n texels: consecutive from `first` for used ones, `none` for the others;
 /// returns the next free index.

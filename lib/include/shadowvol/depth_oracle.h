@@ -1,0 +1,24 @@
+// A depth oracle: the captured depth at any point of a light's image plane, not only at texel
+// centres. Silhouette refinement (VolumeBuildOptions::refineSteps) asks it where the near surface
+// ends along a boundary edge. The volume core does not link a ray tracer: the caller hands one in
+// (shadowvol_embree: EmbreeDepthOracle; tests: analytic scenes).
+#pragma once
+
+#include <functional>
+#include <span>
+
+#include <glm/vec2.hpp>
+
+#include "shadowvol/depth_map.h"
+
+namespace shadowvol {
+
+/// Writes depth[k] = what the map's capture would store at light NDC (x, y) = ndc[k] (depth_map.h:
+/// light-view depth in world units, DepthMap::kNoHit where nothing is hit in [near, far]), using
+/// the map's light matrices, near/far and capture mode. At a texel centre it gives the map's own
+/// value (up to capture differences between a GPU light pass and the oracle's rays). Called with
+/// batches of points (one batch per refinement step), from one thread at a time; it may run the
+/// batch in parallel itself. ndc.size() == depth.size().
+using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth)>;
+
+}  // namespace shadowvol

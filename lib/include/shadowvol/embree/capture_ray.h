@@ -1,0 +1,15 @@
+// The capture rule of one light ray (depth_capture.h's modes), shared by the CPU depth capture and
+// the Embree depth oracle so that both record the same surface.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include "shadowvol/depth_map.h"
+
+namespace shadowvol {
+
+/// The light-view depth that `mode` records along the ray (its parameter is the light-view depth,
+/// TexelUnprojector::ray), within [tNear, tFar]; DepthMap::kNoHit when nothing is recorded.
+float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode);
+
+}  // namespace shadowvol

@@ -1,0 +1,31 @@
+// The depth oracle (depth_oracle.h) of a scene, by ray casting with Embree: the same rays and
+// capture rule as captureDepthEmbree, at any point of the light's image plane.
+#pragma once
+
+#include <memory>
+
+#include "shadowvol/depth_oracle.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol {
+
+/// Owns an Embree device and the scene's BVH (built once); oracle() hands out a DepthOracle that
+/// casts one ray per point, in parallel (TBB), each as captureDepthEmbree casts the ray of a texel
+/// centre: from the light through the point, limited to the map's [near, far], recorded by the
+/// map's capture mode. So at a texel centre it returns the CPU capture's value exactly. The
+/// DepthOracle refers to this object: keep it alive while the oracle is in use.
+class EmbreeDepthOracle {
+ public:
+  explicit EmbreeDepthOracle(const Scene& scene);
+  ~EmbreeDepthOracle();
+  EmbreeDepthOracle(const EmbreeDepthOracle&) = delete;
+  EmbreeDepthOracle& operator=(const EmbreeDepthOracle&) = delete;
+
+  DepthOracle oracle() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shadowvol

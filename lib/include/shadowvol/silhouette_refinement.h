@@ -1,0 +1,57 @@
+// Sub-texel silhouette refinement: where along each boundary edge (boundary_edges.h) the near
+// surface ends, found with a few rays of the map's own capture rule (depth_oracle.h).
+//
+// Along the edge from its near end N to its far end R (texel coordinates), bisection keeps a
+// bracket [lo, hi] of the edge parameter s (0 at N, 1 at R), starting at [0, 1], and asks the
+// oracle at its middle m, `steps` times. The sample belongs to the near surface when its sheet
+// depth (SheetDepthRule::fromStored of the oracle's depth, plus the blur offset when blurring) is
+//   far edge:     short of the far plane (any hit);
+//   surface edge: short of the far plane and nearer than the middle of the bracket ends' depths
+//                 (d(lo) + d(hi)) / 2 (both updated as the bracket shrinks, so a sloped surface
+//                 is followed).
+// Near: lo = m (and d(lo) = its depth), else hi = m (and, for a hit, d(hi) = its depth). The crossing
+// is the middle of the last bracket, within 2^-(steps + 1) of a texel of the last sample pair that
+// changes sides: s = (lo + hi) / 2, a dyadic fraction, so its texel coordinate is exact in double.
+// Its wall stands on the light ray through that point: the near vertex at d(lo) (the near end's
+// own sheet depth when no sample was near), the far vertex at the far plane (far edge) or at d(hi)
+// (surface edge). The batches go level by level: one oracle call per step for every edge at once.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "shadowvol/boundary_edges.h"
+#include "shadowvol/depth_oracle.h"
+#include "shadowvol/sheet_depth.h"
+
+namespace shadowvol {
+
+struct Crossing {
+  double s = 0.5;           ///< edge parameter from the near end, in (0, 1)
+  double nearDepth = 0.0;   ///< light-view depth of the wall's near vertex (world units)
+  double farDepth = 0.0;    ///< light-view depth of the wall's far vertex (the far plane for far edges)
+  /// Texel coordinates (i, j) of the crossing on edge e.
+  static glm::dvec2 texel(const BoundaryEdge& e, double s);
+};
+
+struct Refinement {
+  std::vector<Crossing> crossings;  ///< one per boundary edge, in the same order
+  std::vector<double> centreDepths; ///< sheet depth at each requested point (`centres`), the far
+                                    ///< plane where nothing short of it is hit
+  std::size_t raysCast = 0;         ///< oracle queries
+  double msRays = 0.0;              ///< time inside the oracle (ms)
+};
+
+/// Refines every edge of `edges` with `steps` >= 1 bisection rays each (the header comment), and
+/// samples the sheet depth at the extra points `centres` (texel coordinates) in the first batch.
+/// `sheetDepths` are the map's final sheet depths (as for findBoundaryEdges): the near and far
+/// ends' depths come from the unblurred rule, except that a near vertex never lands on the far
+/// plane (it then takes the near end's final sheet depth). `blur`: add rule.blurOffset to the
+/// oracle's depths, as the blur adds it to the sheet's.
+Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule, bool blur,
+                               std::span<const double> sheetDepths, const DepthOracle& oracle, int steps,
+                               std::span<const glm::dvec2> centres = {});
+
+}  // namespace shadowvol

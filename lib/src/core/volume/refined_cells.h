@@ -1,0 +1,74 @@
+// Stage 4r of the volume builder (silhouette refinement): the quads with a boundary edge, each
+// triangulated with walls on the light's rays through its edges' crossings, marching-squares
+// style. The quad's boundary loop is its corners, with each boundary edge's wall edge (the
+// crossing's near and far vertex, on one light ray) inserted between the edge's two corners, the
+// near vertex on the near end's side. The n boundary edges cut the loop into n components, runs of
+// corners joined by continuous edges; each component is closed by the chord between its two
+// crossings and triangulated as its own polygon (a triangle, a quad by the diagonal rule, a
+// pentagon by a fan from its middle corner). What is left between the chords:
+//   n = 1 (only a surface edge, whose jump fades inside the quad): the wall tapers from its
+//         crossing to the opposite corner across the quad;
+//   n = 2: one wall, the vertical quad between the two crossings' wall edges;
+//   n = 3, 4: a middle polygon through one vertex per crossing, picked by one more ray at the
+//         quad's centre (the near vertex of a far edge when the centre ray hits, its far vertex
+//         when not; of a surface edge, the vertex whose depth is closer to the centre's), fanned
+//         from its first vertex, and a wall piece under each of its sides. This decides the
+//         ambiguous saddle (two diagonal corners hit): near vertices join the hit corners across
+//         the centre, far vertices join the no-hit corners.
+// With the exact cap a triangle with three vertices on the far plane is dropped; the far edges of
+// the walls that border a dropped triangle are the far cap's boundary (CapEdge, region on the left).
+// Every boundary edge's crossing is strictly inside it, so no two crossings coincide, polygons are
+// convex in texel space with no three corners on a line, every wall has a nonzero height, and no
+// triangle is degenerate.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "shadowvol/boundary_edges.h"
+#include "shadowvol/far_cap.h"
+#include "shadowvol/silhouette_refinement.h"
+#include "shadowvol/volume_mesh.h"
+#include "volume/sheet_depths.h"
+#include "volume/sheet_vertices.h"
+
+namespace shadowvol::volume {
+
+/// A vertex of the mirrored (unflattened) cap: the far-plane point under a texel or a crossing.
+struct CapPoint {
+  std::uint32_t index = 0;  ///< texel index (j * W + i) or boundary-edge index
+  bool edge = false;        ///< true: a crossing
+};
+
+/// The refined quads, in quad order, with the centre points of the ambiguous ones (3 or 4
+/// boundary edges; texel coordinates).
+struct RefinedQuads {
+  std::vector<std::uint32_t> quads;     ///< quad indices qj * (W - 1) + qi
+  std::vector<std::uint8_t> sides;      ///< per quad: bit k set when side k is a boundary edge
+  std::vector<glm::dvec2> centres;      ///< one per ambiguous quad, in quad order
+};
+RefinedQuads findRefinedQuads(const BoundaryEdges& edges, int width, int height);
+
+struct RefinedCells {
+  std::vector<Tri> triangles;                     ///< kept triangles, in quad order
+  std::vector<CapEdge> capEdges;                  ///< the far cap's boundary edges, in quad order
+  std::vector<std::array<CapPoint, 3>> footprint; ///< triangles that are not walls (counter-clockwise
+                                                  ///< in texel space): what the mirrored cap mirrors
+};
+
+/// The vertex indices of boundary edge e's crossing: base + 2 e (near vertex), base + 2 e + 1 (far).
+inline std::uint32_t nearVertex(std::uint32_t base, std::size_t e) { return base + 2u * std::uint32_t(e); }
+inline std::uint32_t farVertex(std::uint32_t base, std::size_t e) { return base + 2u * std::uint32_t(e) + 1u; }
+
+/// Triangulates every refined quad (see the header comment). `crossingBase` is the first
+/// crossing vertex index; `centreDepths` the sheet depths of quads.centres (Refinement).
+RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices,
+                                     const SheetDepths& sheet, const BoundaryEdges& edges, const Refinement& refinement,
+                                     bool perfect, bool exact, std::uint32_t crossingBase);
+
+/// World positions of every crossing's two vertices, into mesh.positions from crossingBase.
+void emitCrossingVertices(const DepthMap& map, const BoundaryEdges& edges, const Refinement& refinement,
+                          std::uint32_t crossingBase, VolumeMesh& mesh);
+
+}  // namespace shadowvol::volume
