@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <span>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -63,22 +64,36 @@ double boxDepth(const glm::dvec3& apex, const glm::dvec3& v, const glm::dvec3& l
   return back ? t1 : t0;
 }
 
+// The captured depth of the benchmark scene along the light ray through texel (i, j) (fractional
+// allowed) of map m: the depth maps below and the refinement's depth oracle use the same function.
+float sceneDepth(const DepthMap& m, const TexelUnprojector& unproject, double i, double j) {
+  const glm::dvec3 apex = benchLight().position;
+  const bool back = m.capture == CaptureMode::Back;
+  const glm::dvec3 v = unproject.worldPoint(i, j, 1.0) - apex;  // one unit of view depth
+  double d = std::min(sphereDepth(apex, v, {0.0, 2.0, 0.0}, 2.0, back),
+                      boxDepth(apex, v, {2.0, 0.0, -3.0}, {3.5, 2.5, -1.5}, back));
+  if (!back && v.y < 0.0) d = std::min(d, -apex.y / v.y);  // the ground y = 0
+  return (d >= m.nearPlane && d <= m.farPlane) ? float(d) : DepthMap::kNoHit;
+}
+
 const DepthMap& benchMap(int res, bool back) {
   static std::map<std::pair<int, bool>, DepthMap> cache;
   auto it = cache.find({res, back});
   if (it != cache.end()) return it->second;
-  const Light light = benchLight();
-  DepthMap m = makeDepthMap(light, res, res, back ? CaptureMode::Back : CaptureMode::Front);
+  DepthMap m = makeDepthMap(benchLight(), res, res, back ? CaptureMode::Back : CaptureMode::Front);
   const TexelUnprojector unproject(m);
   for (int j = 0; j < res; ++j)
-    for (int i = 0; i < res; ++i) {
-      const glm::dvec3 v = unproject.worldPoint(i, j, 1.0) - light.position;  // one unit of view depth
-      double d = std::min(sphereDepth(light.position, v, {0.0, 2.0, 0.0}, 2.0, back),
-                          boxDepth(light.position, v, {2.0, 0.0, -3.0}, {3.5, 2.5, -1.5}, back));
-      if (!back && v.y < 0.0) d = std::min(d, -light.position.y / v.y);  // the ground y = 0
-      m.depth[m.index(i, j)] = (d >= m.nearPlane && d <= m.farPlane) ? float(d) : DepthMap::kNoHit;
-    }
+    for (int i = 0; i < res; ++i) m.depth[m.index(i, j)] = sceneDepth(m, unproject, i, j);
   return cache.emplace(std::make_pair(res, back), std::move(m)).first->second;
+}
+
+// The analytic scene as a depth oracle (serial: the rays are cheap next to Embree's).
+DepthOracle benchOracle() {
+  return [](const DepthMap& m, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+    const TexelUnprojector unproject(m);
+    for (std::size_t k = 0; k < ndc.size(); ++k)
+      depth[k] = sceneDepth(m, unproject, (ndc[k].x + 1.0) * 0.5 * m.width - 0.5, (ndc[k].y + 1.0) * 0.5 * m.height - 0.5);
+  };
 }
 
 void BM_BuildVolume(benchmark::State& state) {
@@ -134,6 +149,46 @@ void BM_BuildVolume(benchmark::State& state) {
 BENCHMARK(BM_BuildVolume)
     ->ArgNames({"res", "perfect", "blur", "back", "reuse"})
     ->ArgsProduct({{256, 512, 1024, 2048}, {0, 1}, {0, 1}, {1, 0}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Silhouette refinement: a reused builder, perfect triangulation, exact cap, K = refine steps (0 =
+// off, the same build as BM_BuildVolume's reused one). The analytic oracle costs far less than
+// Embree's rays, so rays_ms is reported apart: what refinement adds to the build itself is
+// build_ms - rays_ms - the K = 0 build_ms.
+void BM_RefineVolume(benchmark::State& state) {
+  const int res = int(state.range(0));
+  const bool back = state.range(1) != 0;
+  const int steps = int(state.range(2));
+  const DepthMap& map = benchMap(res, back);
+  VolumeBuildOptions options;
+  options.refineSteps = steps;
+  options.depthOracle = benchOracle();
+  VolumeBuilder builder;
+  VolumeBuildResult result;
+  builder.build(map, options, result);
+  double seconds = 0.0, rays = 0.0, refine = 0.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    builder.build(map, options, result);
+    benchmark::DoNotOptimize(result.mesh.triangles.data());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rays += result.stats.msRays;
+    refine += result.stats.msRefine;
+  }
+  const double n = double(state.iterations());
+  state.counters["build_ms"] = 1e3 * seconds / n;
+  state.counters["refine_ms"] = refine / n;
+  state.counters["rays_ms"] = rays / n;
+  state.counters["edges"] = double(result.stats.boundaryEdges);
+  state.counters["rays"] = double(result.stats.raysCast);
+  state.counters["tris"] = double(result.mesh.triangleCount());
+  state.SetLabel(std::string(back ? "back" : "front") + " refine " + std::to_string(steps));
+}
+
+BENCHMARK(BM_RefineVolume)
+    ->ArgNames({"res", "back", "refine"})
+    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {0, 4}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

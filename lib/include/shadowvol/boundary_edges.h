@@ -61,13 +61,16 @@ struct BoundaryEdges {
   std::size_t find(int i, int j, int axis) const;
 };
 
-/// The boundary edges of `map` whose final sheet depths (blur, bias and ring applied; one per
-/// texel, DepthMap layout) are `sheetDepths`: far edges where exactly one end's sheet depth is the
-/// far plane, surface edges by the rule above on the unblurred depths of `rule`. Row-parallel.
-/// `blur`: the unblurred depths are SheetDepthRule::ofSample(stored, blur), with the blur offset.
-/// When splitBits is given (one byte per texel), bit 0 / bit 1 of texel (i, j) are set when its
-/// edge along +i / +j is a boundary edge.
+/// The boundary edges of `map` under `rule`: far edges where exactly one end's final sheet depth
+/// (sheetDepthOf: ring, blur when `blur`, bias) is the far plane, surface edges by the rule above on
+/// the unblurred depths u = SheetDepthRule::ofSample(stored, blur) (with the blur offset). With
+/// blur, `blurredSheetDepths` holds every texel's final sheet depth (DepthMap layout; the builder's
+/// materialised grid); without, it is not read (the final depth is u, the ring aside).
+/// Row-parallel, deterministic. When splitBits is given (one byte per texel), bit 0 / bit 1 of
+/// texel (i, j) are set when its edge along +i / +j is a boundary edge, and every other bit is
+/// cleared. Quads whose two boundary sides would give a folded wall are made continuous (see the
+/// implementation's keepWallsUnfolded).
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
-                                std::span<const double> sheetDepths, std::uint8_t* splitBits = nullptr);
+                                std::span<const double> blurredSheetDepths = {}, std::uint8_t* splitBits = nullptr);
 
 }  // namespace shadowvol

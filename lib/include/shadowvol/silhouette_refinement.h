@@ -46,12 +46,13 @@ struct Refinement {
 
 /// Refines every edge of `edges` with `steps` >= 1 bisection rays each (the header comment), and
 /// samples the sheet depth at the extra points `centres` (texel coordinates) in the first batch.
-/// `sheetDepths` are the map's final sheet depths (as for findBoundaryEdges): the near and far
-/// ends' depths come from the unblurred rule, except that a near vertex never lands on the far
-/// plane (it then takes the near end's final sheet depth). `blur`: add rule.blurOffset to the
-/// oracle's depths, as the blur adds it to the sheet's.
+/// The near and far ends' depths come from the unblurred rule (SheetDepthRule::ofSample); `blur`
+/// adds rule.blurOffset to them and to the oracle's depths, as the blur adds it to the sheet's. A
+/// near vertex never lands on the far plane: where the unblurred rule puts the near end there
+/// (possible only with blur), it takes the end's final sheet depth from `blurredSheetDepths` (as
+/// for findBoundaryEdges; not read without blur).
 Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule, bool blur,
-                               std::span<const double> sheetDepths, const DepthOracle& oracle, int steps,
+                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
                                std::span<const glm::dvec2> centres = {});
 
 }  // namespace shadowvol

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
+#include "volume/sheet_depths.h"
 
 namespace shadowvol {
 
@@ -115,48 +118,86 @@ std::size_t BoundaryEdges::find(int i, int j, int axis) const {
 }
 
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
-                                std::span<const double> sheetDepths, std::uint8_t* splitBits) {
+                                std::span<const double> blurredSheetDepths, std::uint8_t* splitBits) {
   const int w = map.width, h = map.height;
-  SV_CHECK_EQ(sheetDepths.size(), std::size_t(w) * std::size_t(h));
+  SV_CHECK(!blur || blurredSheetDepths.size() == std::size_t(w) * std::size_t(h));
   const double farPlane = rule.farPlane;
   const TexelFootprint footprint = TexelFootprint::of(map);
-  // The depth without the blur's averaging (the rule's unblurred sample; the ring is far).
-  auto u = [&](int i, int j) {
-    if (SheetDepthRule::ring(i, j, w, h)) return farPlane;
-    return rule.ofSample(map.at(i, j), blur);
+  // Per texel row: u, the depth without the blur's averaging (the ring and invalid depths are the
+  // far plane), and whether the final sheet depth is the far plane.
+  struct Row {
+    std::vector<double> u;
+    std::vector<std::uint8_t> far;
+    int first = 0, last = -1;  // texels whose final depth is short of the far plane lie in [first, last]
   };
-  auto isFar = [&](int i, int j) { return sheetDepths[map.index(i, j)] == farPlane; };
-  // The step beyond texel (i, j) away from its neighbour, along (di, dj); -1 when there is none.
-  auto step = [&](int i, int j, int di, int dj, double ui) {
-    const int ni = i + di, nj = j + dj;
-    if (ni < 0 || nj < 0 || ni >= w || nj >= h) return -1.0;
-    const double un = u(ni, nj);
-    return (un == farPlane || isFar(ni, nj)) ? -1.0 : std::abs(ui - un);
+  auto fill = [&](int j, Row& r) {
+    r.u.resize(std::size_t(w));
+    r.far.resize(std::size_t(w));
+    if (j < 0 || j >= h) {
+      std::fill(r.u.begin(), r.u.end(), farPlane);
+      std::fill(r.far.begin(), r.far.end(), std::uint8_t(1));
+      r.first = w, r.last = -1;
+      return;
+    }
+    const float* src = map.depth.data() + std::size_t(j) * w;
+    double* u = r.u.data();
+    if (j == 0 || j == h - 1) {
+      std::fill(r.u.begin(), r.u.end(), farPlane);
+    } else if (blur) {
+      for (int i = 1; i + 1 < w; ++i) u[i] = rule.ofSample(src[i], true);
+    } else {
+      volume::sheetDepthSpan(src, u, 1, w - 1, rule);  // the builder's row kernel (vectorised)
+    }
+    u[0] = u[w - 1] = farPlane;
+    volume::farFlags(blur ? blurredSheetDepths.data() + std::size_t(j) * w : u, r.far.data(), w, farPlane);
+    std::tie(r.first, r.last) = volume::nearSpan(r.far.data(), w);
   };
   std::vector<std::vector<BoundaryEdge>> rows(h);
   tbb::parallel_for(tbb::blocked_range<int>(0, h, 16), [&](const tbb::blocked_range<int>& range) {
-    for (int j = range.begin(); j != range.end(); ++j)
-      for (int i = 0; i < w; ++i) {
-        std::uint8_t bits = 0;
-        for (int axis = 0; axis < 2; ++axis) {
-          const int di = axis == 0 ? 1 : 0, dj = 1 - di;
-          const int qi = i + di, qj = j + dj;
-          if (qi >= w || qj >= h) continue;
-          const bool farP = isFar(i, j), farQ = isFar(qi, qj);
-          if (farP && farQ) continue;
-          BoundaryEdge e{i, j, std::uint8_t(axis), !farP, false};
-          if (farP == farQ) {  // both hit: a surface edge?
-            const double uP = u(i, j), uQ = u(qi, qj);
-            if (uP == farPlane || uQ == farPlane) continue;
-            if (!discontinuous(uP, uQ, step(i, j, -di, -dj, uP), step(qi, qj, di, dj, uQ), footprint)) continue;
-            e.surface = true;
-            e.nearAtP = uP < uQ;
-          }
-          rows[j].push_back(e);
-          bits |= std::uint8_t(1 << axis);
-        }
-        if (splitBits) splitBits[map.index(i, j)] = bits;
+    // Rolling rows j - 1 .. j + 2 (the vertical steps beyond each end of an up edge).
+    Row ring[4];
+    for (int k = 0; k < 4; ++k) fill(range.begin() - 1 + k, ring[k]);
+    for (int j = range.begin(); j != range.end(); ++j) {
+      if (j != range.begin()) {
+        std::swap(ring[0], ring[1]);
+        std::swap(ring[1], ring[2]);
+        std::swap(ring[2], ring[3]);
+        fill(j + 2, ring[3]);
       }
+      const Row &below = ring[0], &row = ring[1], &above = ring[2], &above2 = ring[3];
+      if (splitBits) std::memset(splitBits + std::size_t(j) * w, 0, std::size_t(w));
+      // The step beyond an end: |u(end) - u(next)|, or -1 when the next texel is far or off the grid.
+      auto step = [&](double uEnd, const Row& r, int i) {
+        return (i < 0 || i >= w || r.far[std::size_t(i)] || r.u[std::size_t(i)] == farPlane) ? -1.0
+                                                                                             : std::abs(uEnd - r.u[std::size_t(i)]);
+      };
+      auto consider = [&](int i, int axis, bool farP, bool farQ, double uP, double uQ, double gP, double gQ) {
+        if (farP && farQ) return;
+        BoundaryEdge e{i, j, std::uint8_t(axis), !farP, false};
+        if (farP == farQ) {  // both hit: a surface edge?
+          if (uP == farPlane || uQ == farPlane) return;
+          if (!(std::abs(uQ - uP) > kJumpFootprints * footprint.at(std::min(uP, uQ)))) return;  // quick reject
+          if (!discontinuous(uP, uQ, gP, gQ, footprint)) return;
+          e.surface = true;
+          e.nearAtP = uP < uQ;
+        }
+        rows[j].push_back(e);
+        if (splitBits) splitBits[std::size_t(j) * w + i] |= std::uint8_t(1 << axis);
+      };
+      // Edges from row j can be boundary edges only next to a non-far texel of rows j, j + 1.
+      const int b = std::max(0, std::min(row.first, above.first) - 1), e = std::min(w - 1, std::max(row.last, above.last) + 1);
+      for (int i = b; i <= e; ++i) {
+        const std::size_t k = std::size_t(i);
+        if (i + 1 < w && !(row.far[k] && row.far[k + 1])) {
+          const double uP = row.u[k], uQ = row.u[k + 1];
+          consider(i, 0, row.far[k], row.far[k + 1], uP, uQ, step(uP, row, i - 1), step(uQ, row, i + 2));
+        }
+        if (j + 1 < h && !(row.far[k] && above.far[k])) {
+          const double uP = row.u[k], uQ = above.u[k];
+          consider(i, 1, row.far[k], above.far[k], uP, uQ, step(uP, below, i), step(uQ, above2, i));
+        }
+      }
+    }
   });
   keepWallsUnfolded(rows, w, h, splitBits);
   BoundaryEdges result;

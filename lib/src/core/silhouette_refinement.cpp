@@ -16,7 +16,7 @@ glm::dvec2 Crossing::texel(const BoundaryEdge& e, double s) {
 }
 
 Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
-                               std::span<const double> sheetDepths, const DepthOracle& oracle, int steps,
+                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
                                std::span<const glm::dvec2> centres) {
   SV_CHECK_GE(steps, 1);
   SV_CHECK(bool(oracle));
@@ -86,8 +86,10 @@ Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundar
       Crossing& c = result.crossings[k];
       c.s = 0.5 * (b.lo + b.hi);
       const glm::ivec2 a = nearEnd(edges[k]);
-      // Never on the far plane: the near end's final sheet depth (short of it) stands in.
-      c.nearDepth = b.dLo != farPlane ? b.dLo : sheetDepths[map.index(a.x, a.y)];
+      // Never on the far plane: the near end's final sheet depth (short of it) stands in. Without
+      // blur the unblurred depth is the final one, so this happens only with blur.
+      if (b.dLo == farPlane) SV_CHECK(blur);
+      c.nearDepth = b.dLo != farPlane ? b.dLo : blurredSheetDepths[map.index(a.x, a.y)];
       c.farDepth = edges[k].surface ? b.dHi : farPlane;
       // Bisection keeps d(lo) < d(hi): a surface edge starts with u(near) < u(far), both short of the
       // far plane, and each step moves one end strictly between them.

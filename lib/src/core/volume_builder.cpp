@@ -152,36 +152,29 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const bool refine = options.refineSteps > 0;
   const bool perfect = options.triangulation == Triangulation::Perfect;
 
-  // 1. Sheet depths: materialised for the blur and for refinement (computed per row where needed
-  // otherwise).
+  // 1. Sheet depths: materialised for the blur (computed per row where needed otherwise).
   auto t0 = Clock::now();
   SheetDepths sheet(map, SheetDepthRule(map, bias, options.blurOffset));
-  if (options.blur || refine) sheet.materialise(options.blur, scratch_->blurred);
-  if (options.blur) stats.msBlur = msSince(t0);
+  if (options.blur) {
+    sheet.materialiseBlurred(scratch_->blurred);
+    stats.msBlur = msSince(t0);
+  }
 
-  // 1r. Refinement: boundary edges, the quads they touch, and the crossings (oracle rays).
+  // 1r. Refinement: the boundary edges and the quads they touch.
   t0 = Clock::now();
   BoundaryEdges edges;
   RefinedQuads refinedQuads;
-  Refinement refinement;
+  const std::span<const double> blurred =
+      options.blur ? std::span<const double>(scratch_->blurred.data(), texels) : std::span<const double>();
   if (refine) {
-    const std::span<const double> depths(scratch_->blurred.data(), texels);
     sizeBuffer(scratch_->splitBits, texels);
-    edges = findBoundaryEdges(map, sheet.rule(), options.blur, depths, scratch_->splitBits.data());
+    edges = findBoundaryEdges(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data());
     refinedQuads = findRefinedQuads(edges, w, h);
-    refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, depths, options.depthOracle,
-                                     options.refineSteps, refinedQuads.centres);
-    stats.boundaryEdges = edges.edges.size();
-    stats.farBoundaryEdges = std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(),
-                                                       [](const BoundaryEdge& e) { return !e.surface; }));
-    stats.ambiguousCells = refinedQuads.centres.size();
-    stats.raysCast = refinement.raysCast;
-    stats.msRays = refinement.msRays;
   }
-  const double msRefineEdges = msSince(t0);
-  double msRefineCells = 0.0;  // the refined quads' part of stages 4 and 5
+  double msRefine = msSince(t0);
 
-  // 2. Quad codes: diagonals and kept triangles (refined quads marked).
+  // 2. Quad codes: diagonals and kept triangles (refined quads marked). Every stored depth is
+  // checked here, before any ray is cast.
   t0 = Clock::now();
   const GridUnprojector unproject(map);
   const QuadCodes codes =
@@ -190,7 +183,25 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.flippedQuads = codes.flipped;
   stats.droppedQuads = codes.dropped;
   stats.refinedCells = codes.refined;
+  double msSheet = msSince(t0);
 
+  // 2r. Refinement: the crossings (the oracle's rays).
+  Refinement refinement;
+  if (refine) {
+    const auto tr = Clock::now();
+    refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
+                                     options.refineSteps, refinedQuads.centres);
+    stats.boundaryEdges = edges.edges.size();
+    stats.farBoundaryEdges = std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(),
+                                                       [](const BoundaryEdge& e) { return !e.surface; }));
+    stats.ambiguousCells = refinedQuads.centres.size();
+    stats.raysCast = refinement.raysCast;
+    stats.msRays = refinement.msRays;
+    msRefine += msSince(tr);
+  }
+  t0 = Clock::now();
+
+  const double refineBefore = msRefine;  // refinement time spent before this point
   // 3. Vertices, and 4. the cap's boundary: pinch and cut copies and cap edges of the grid sheet,
   // or the refined quads' triangles and walls, whose far edges bound the cap.
   const TexelUse use(grid, codes);
@@ -204,7 +215,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     const auto tc = Clock::now();
     cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, perfect, exact, crossingBase);
     boundary.edges = cells.capEdges;
-    msRefineCells += msSince(tc);
+    msRefine += msSince(tc);
   } else {
     boundary = findCapBoundary(use, vertices, sheet);
     msEdges = msSince(tRuns);
@@ -242,12 +253,12 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     const auto tc = Clock::now();
     emitCrossingVertices(map, edges, refinement, crossingBase, mesh);
     std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
-    msRefineCells += msSince(tc);
+    msRefine += msSince(tc);
   } else {
     emitPinchCopies(grid, boundary, scratch_->quadTri, mesh);
   }
-  stats.msSheet = msSince(t0) - msEdges - msRefineCells;
-  stats.msRefine = msRefineEdges + msRefineCells;
+  stats.msSheet = msSheet + msSince(t0) - msEdges - (msRefine - refineBefore);
+  stats.msRefine = msRefine;
 
   // 6. The far cap.
   t0 = Clock::now();

@@ -86,7 +86,7 @@ void validateDepths(const DepthMap& map) {
     }
 }
 
-void SheetDepths::materialise(bool blur, Scratch<double>& grid) {
+void SheetDepths::materialiseBlurred(Scratch<double>& grid) {
   const int w = map_.width, h = map_.height;
   const double farPlane = rule_.farPlane;
   sizeBuffer(grid, std::size_t(w) * h);
@@ -99,16 +99,6 @@ void SheetDepths::materialise(bool blur, Scratch<double>& grid) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const float* src = map_.depth.data() + std::size_t(j) * w;
       double* out = grid.data() + std::size_t(j) * w;
-      if (!blur) {
-        bad |= scanDepthRow(src, below.data(), w, floatBitsAtOrAbove(rule_.farSnap));
-        if (j == 0 || j == h - 1) {
-          std::fill_n(out, w, farPlane);
-        } else {
-          sheetDepthSpan(src, out, 1, w - 1, rule_);
-          out[0] = out[w - 1] = farPlane;
-        }
-        continue;
-      }
       bad |= scanDepthRow(src, below.data(), w, floatBitsAtOrAbove(rule_.farSnap));
       if (j == 0 || j == h - 1) {
         std::fill_n(out, w, farPlane);

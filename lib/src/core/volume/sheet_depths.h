@@ -1,7 +1,7 @@
 // Stage 1 of the volume builder: the sheet depth of every texel (sheet_depth.h's rule), either
-// computed per row where a later stage needs it, or materialised once into a grid (blur, which
-// needs each texel's neighbours; refinement, which reads depths across rows). Also the row
-// kernels that scan stored depths: validity, far flags, spans.
+// computed per row where a later stage needs it, or, with blur (which needs each texel's
+// neighbours), materialised once into a grid. Also the row kernels that scan stored depths:
+// validity, far flags, spans.
 #pragma once
 
 #include <cstdint>
@@ -42,10 +42,9 @@ class SheetDepths {
  public:
   SheetDepths(const DepthMap& map, const SheetDepthRule& rule) : map_(map), rule_(rule) {}
 
-  /// Computes every texel's sheet depth (blurred when `blur`) into `grid`, row-parallel, and
-  /// reads it from there afterwards. Throws InputError (validateDepths) for a NaN or negative
-  /// stored depth.
-  void materialise(bool blur, Scratch<double>& grid);
+  /// Computes every texel's blurred sheet depth into `grid`, row-parallel, and reads it from
+  /// there afterwards. Throws InputError (validateDepths) for a NaN or negative stored depth.
+  void materialiseBlurred(Scratch<double>& grid);
   bool materialised() const { return grid_ != nullptr; }
 
   /// Sheet depth of texel (i, j), one at a time (the row loops give the same values).
