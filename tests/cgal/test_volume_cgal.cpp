@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,9 @@
 #include "shadowvol/cgal/mesh_check.h"
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/scene.h"
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/volume_builder.h"
 #include "test_util.h"
 
@@ -116,39 +119,125 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
   EXPECT_GT(nonEmpty, builds / 3);
 }
 
+// Refinement (refineSteps 3, the scene's Embree rays) on every shipped scene, two sizes, every
+// capture and every option combination it allows (the exact cap, flattened or not): valid closed
+// volumes without coincident vertices (refinement needs no pinch splits).
+TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
+  const auto files = sceneFiles();
+  std::size_t builds = 0, refined = 0;
+  for (const auto& file : files) {
+    const Scene& scene = cachedScene(file);
+    const EmbreeDepthOracle oracle(scene);
+    for (int res : {32, 64})
+      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
+        const DepthMap map = captureDepthEmbree(scene, res, res, mode);
+        double flatVolume = 0.0;
+        for (const Combo& c : allCombos()) {
+          if (c.cap == 2) continue;  // refinement needs the exact cap
+          VolumeBuildOptions o = c.options();
+          o.refineSteps = 3;
+          o.depthOracle = oracle.oracle();
+          const std::string what = file.filename().string() + " " + std::to_string(res) + " " + toString(mode) + " " +
+                                   c.name() + " refine 3";
+          const auto r = buildVolume(map, o);
+          const MeshCheckReport rep = checkMesh(r.mesh);
+          ++builds;
+          refined += r.stats.refinedCells > 0;
+          ASSERT_TRUE(rep.valid()) << what << ": " << rep.summary();
+          EXPECT_EQ(rep.coincidentVertices, 0u) << what;
+          EXPECT_EQ(r.stats.splitVertices, 0u) << what;
+          if (c.cap == 0) flatVolume = rep.volume;
+          else EXPECT_NEAR(rep.volume, flatVolume, 1e-9 * (1 + flatVolume)) << what;  // same region, other cap
+        }
+      }
+  }
+  EXPECT_EQ(builds, files.size() * 2 * 3 * 8);
+  EXPECT_GT(refined, builds * 9 / 10);
+}
+
+// Random hit levels under a random oracle (hits on other levels, misses, anything): refined
+// volumes stay valid and free of self-intersections however inconsistent the rays are.
+TEST(VolumeCgal, RefinedVolumesOfRandomMapsAndRaysAreValid) {
+  std::size_t builds = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::mt19937 gen{std::uint32_t(trial)};
+    Light light = test::directionalDown(20.0);
+    if (trial % 2) {
+      light.type = LightType::Spot;
+      light.fovYDegrees = 50.0;
+      light.nearPlane = 1.0;
+    }
+    const int w = 6 + int(gen() % 14), h = 6 + int(gen() % 14);
+    DepthMap map = makeDepthMap(light, w, h, CaptureMode::Back);
+    const int levels = 1 + int(gen() % 4);
+    auto level = [&](std::mt19937& r) {
+      const int l = int(r() % std::uint32_t(levels + 1));
+      return l == levels ? DepthMap::kNoHit : float(3 + 3 * l + std::uniform_real_distribution<float>(0, 1)(r));
+    };
+    for (auto& d : map.depth) d = level(gen);
+    const DepthOracle oracle = [&](const DepthMap&, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+      for (std::size_t k = 0; k < ndc.size(); ++k) {
+        std::mt19937 r{std::uint32_t(std::hash<double>()(ndc[k].x * 1e6 + ndc[k].y))};
+        depth[k] = level(r);
+      }
+    };
+    for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect})
+      for (bool blur : {false, true})
+        for (bool flat : {true, false}) {
+          VolumeBuildOptions o;
+          o.triangulation = tri;
+          o.blur = blur;
+          o.flattenCap = flat;
+          o.refineSteps = 1 + trial % 5;
+          o.depthOracle = oracle;
+          const auto r = buildVolume(map, o);
+          MeshCheckOptions co;
+          co.selfIntersections = true;
+          co.allowedTouch = onFarPlane(map);
+          const MeshCheckReport rep = checkMesh(r.mesh, co);
+          EXPECT_TRUE(rep.valid()) << "trial " << trial << " " << w << "x" << h << " " << toString(tri) << " blur "
+                                   << blur << " flat " << flat << ": " << rep.summary();
+          ++builds;
+        }
+  }
+  EXPECT_EQ(builds, 40u * 8u);
+}
+
 TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
   std::size_t checked = 0, touching = 0;
   for (const char* name : {"default.json", "plate-rotated.json", "tree.json", "hemisphere-grazing.json", "bunny.json"}) {
     const Scene& scene = cachedScene(test::sourceDir() / "data" / "scenes" / name);
+    const EmbreeDepthOracle oracle(scene);
     for (int res : {16, 24})
       for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
         const DepthMap map = captureDepthEmbree(scene, res, res, mode);
         for (const Combo& c : allCombos()) {
           if (c.cap == 2) continue;  // the quad cap coincides with the far sheet by design
-          const auto r = buildVolume(map, c.options());
-          MeshCheckOptions o;
-          o.selfIntersections = true;
-          o.allowedTouch = onFarPlane(map);
-          const MeshCheckReport rep = checkMesh(r.mesh, o);
-          ASSERT_TRUE(rep.selfIntersectingPairs.has_value()) << rep.summary();
-          EXPECT_EQ(*rep.selfIntersectingPairs, 0u)
-              << name << " " << res << " " << toString(mode) << " " << c.name() << ": " << rep.summary();
-          touching += rep.allowedTouchingPairs;
-          ++checked;
+          for (int steps : {0, 4}) {
+            VolumeBuildOptions vo = c.options();
+            vo.refineSteps = steps;
+            vo.depthOracle = oracle.oracle();
+            const auto r = buildVolume(map, vo);
+            MeshCheckOptions o;
+            o.selfIntersections = true;
+            o.allowedTouch = onFarPlane(map);
+            const MeshCheckReport rep = checkMesh(r.mesh, o);
+            ASSERT_TRUE(rep.selfIntersectingPairs.has_value()) << rep.summary();
+            EXPECT_EQ(*rep.selfIntersectingPairs, 0u) << name << " " << res << " " << toString(mode) << " " << c.name()
+                                                      << " refine " << steps << ": " << rep.summary();
+            touching += rep.allowedTouchingPairs;
+            ++checked;
+          }
         }
       }
   }
-  EXPECT_EQ(checked, 5u * 2 * 2 * 8);
+  EXPECT_EQ(checked, 5u * 2 * 2 * 8 * 2);
   RecordProperty("far_plane_touching_pairs", int(touching));
 }
 
-// Light-view depth of the sheet vertex of texel (i, j) by the documented rule (no blur):
-// ring and invalid texels at the far plane, others depth + bias clamped to [near, far].
+// Light-view depth of the sheet vertex of texel (i, j) by the documented rule (no blur).
 double effectiveDepth(const DepthMap& map, int i, int j, double bias) {
-  const double d = map.at(i, j);
-  if (i == 0 || j == 0 || i == map.width - 1 || j == map.height - 1 || isFarDepth(d, map.farPlane)) return map.farPlane;
-  const double e = std::clamp(d + bias, map.nearPlane, map.farPlane);
-  return isFarDepth(e, map.farPlane) ? map.farPlane : e;
+  return sheetDepthOf(map, i, j, SheetDepthRule(map, bias, 0.0), false);
 }
 
 TEST(VolumeCgal, PointClassificationAgreesWithTheDepthMap) {

@@ -17,11 +17,13 @@
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/volume_builder.h"
+#include "mesh_invariants.h"
 #include "test_util.h"
 
 namespace shadowvol {
 namespace {
 
+using test::closedOrientedManifold;
 using test::directionalDown;
 
 Light spot() {
@@ -38,47 +40,6 @@ Light spot() {
 std::uint64_t lcg(std::uint64_t& s) {
   s = s * 6364136223846793005ull + 1442695040888963407ull;
   return s >> 33;
-}
-
-// Closed, consistently oriented 2-manifold: every directed edge once and its opposite once, each
-// vertex a single fan, no isolated vertex, finite, positive signed volume (divergence theorem).
-::testing::AssertionResult closedOrientedManifold(const VolumeMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  std::vector<std::map<std::uint32_t, std::uint32_t>> link(mesh.vertexCount());
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-      if (a >= mesh.vertexCount()) return ::testing::AssertionFailure() << "index out of range";
-      if (++edges[{a, b}] > 1) return ::testing::AssertionFailure() << "directed edge used twice " << a << "->" << b;
-      link[a][b] = c;
-    }
-  for (const auto& [e, n] : edges)
-    if (!edges.count({e.second, e.first}))
-      return ::testing::AssertionFailure() << "boundary edge " << e.first << "->" << e.second;
-  for (std::size_t v = 0; v < link.size(); ++v) {
-    if (link[v].empty()) return ::testing::AssertionFailure() << "isolated vertex " << v;
-    std::uint32_t at = link[v].begin()->first;
-    std::size_t steps = 0;
-    do {
-      auto it = link[v].find(at);
-      if (it == link[v].end()) return ::testing::AssertionFailure() << "broken fan at " << v;
-      at = it->second;
-      ++steps;
-    } while (at != link[v].begin()->first && steps <= link[v].size());
-    if (steps != link[v].size()) return ::testing::AssertionFailure() << "vertex " << v << " has several fans";
-  }
-  double volume = 0.0;
-  for (const auto& p : mesh.positions)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      return ::testing::AssertionFailure() << "non-finite vertex";
-  for (const auto& t : mesh.triangles) {
-    const auto &p = mesh.positions[t[0]], &q = mesh.positions[t[1]], &r = mesh.positions[t[2]];
-    if (glm::length(glm::cross(q - p, r - p)) == 0.0) return ::testing::AssertionFailure() << "zero-area triangle";
-    volume += glm::dot(p, glm::cross(q, r)) / 6.0;
-  }
-  if (!mesh.triangles.empty() && !(volume > 0.0))
-    return ::testing::AssertionFailure() << "signed volume " << volume << " not positive";
-  return ::testing::AssertionSuccess();
 }
 
 // Random hit / no-hit patterns with random depths: pinches, slits, holes, islands, diagonal

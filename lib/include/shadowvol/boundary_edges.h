@@ -14,11 +14,13 @@
 //        neighbouring texel centres at that depth, at the map's centre (TexelFootprint);
 //   discontinuous iff J > max(kJumpFootprints * F, kJumpSlope * min(gP, gQ)), the min over the
 //   steps that exist, 0 when none does.
-// A continuous surface tilted away from the light changes its depth by the same step texel after
-// texel, so J stays near min(gP, gQ): it is not split, however steep. At an edge over a receiver
-// at least one side is flatter than the jump, so the min is small. kJumpFootprints = 2 keeps
-// surfaces tilted less than atan(2) = 63 degrees from facing the light continuous even where no
-// neighbour tells their slope. A false split on a continuous surface is harmless: bisection then
+// A continuous surface tilted away from the light changes its depth by about the same step texel
+// after texel, so J stays near min(gP, gQ): it is not split, however steep. Towards the rim of a
+// round object the steps grow, but by at most 1 + sqrt(2) = 2.41 from one texel to the next (the
+// depth goes as the square root of the distance to the rim), below kJumpSlope = 3. At an edge over
+// a receiver at least one side is flatter than the jump, so the min is small. kJumpFootprints = 2
+// keeps surfaces tilted less than atan(2) = 63 degrees from facing the light continuous even where
+// no neighbour tells their slope. A false split on a continuous surface is harmless: bisection then
 // stands a wall where the depth crosses the middle of the step, a sub-texel change of the sheet.
 #pragma once
 
@@ -32,7 +34,7 @@
 namespace shadowvol {
 
 inline constexpr double kJumpFootprints = 2.0;  ///< see the header comment
-inline constexpr double kJumpSlope = 2.0;       ///< see the header comment
+inline constexpr double kJumpSlope = 3.0;       ///< see the header comment
 
 /// The texel footprint of a map as a function of light-view depth: F(d) = a + b * d (exact for
 /// orthographic (b = 0) and perspective (a = 0) lights; measured at the map's centre, where a
