@@ -4,7 +4,8 @@
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 dest="$top/data/meshes"
-wanted=(bunny00.off:bunny.off armadillo.off:armadillo.off fandisk.off:fandisk.off elephant.off:elephant.off)
+wanted=(bunny00.off:bunny.off armadillo.off:armadillo.off fandisk.off:fandisk.off elephant.off:elephant.off
+        lion-head.off:lion-head.off)
 
 have_all=1
 for w in "${wanted[@]}"; do [ -f "$dest/${w#*:}" ] || have_all=0; done

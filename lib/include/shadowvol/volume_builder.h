@@ -3,13 +3,10 @@
 // light-view distances (world units, DepthMap), the diagonal rule runs in light view, the result
 // is in world space.
 //
-// Sheet vertex of texel (i, j), in this order (the GPU path mirrors it):
-//   1. the border ring (i or j on the outermost row/column) and invalid texels (kNoHit, or
-//      d >= far * (1 - kFarSnap), see depth_blur.h) -> exactly the far plane; else
-//   2. blur on: d = blurredDepth(map, i, j) + blurOffset (samples the stored map, see depth_blur.h)
-//   3. d = clamp(d + bias, near, far); if that is within kFarSnap of far -> exactly far;
-//   4. unprojected in double at the texel centre: TexelUnprojector's formula, evaluated per row
-//      (multiplying by 1 / P00 and 1 / P11 where the projection allows it: a few ulps from it).
+// Sheet vertex of texel (i, j): its light-view depth by sheet_depth.h's rule (the ring and
+// invalid texels on the far plane, blur, bias; the GPU path mirrors it), unprojected in double at
+// the texel centre: TexelUnprojector's formula, evaluated per row (multiplying by 1 / P00 and
+// 1 / P11 where the projection allows it: a few ulps from it).
 // Triangles: each quad A B C D (triangulation.h) gives two triangles by its diagonal. With the
 // exact cap a triangle whose three vertices are on the far plane is dropped (a quad whose four
 // corners are far loses both; a mixed quad may lose one): it would lie in the cap's plane.
@@ -22,12 +19,17 @@
 // volume has zero thickness at that point and the cap passes under it (touching, not crossing).
 // Quad cap: every triangle kept; the cap closes the border ring (same CDT); pinch rule as above
 // (at the grid corners). Its far-plane sheet and cap coincide: for comparison only.
+// Refinement (refineSteps > 0, docs/volume.md "Refinement"): quads with a boundary edge
+// (boundary_edges.h) are triangulated with walls on the light rays through the edges' crossings
+// (silhouette_refinement.h, rays from options.depthOracle), and the exact cap follows the walls'
+// far edges; no vertex is then split.
 // Work: two row-parallel passes over the grid (TBB): A decides each quad's diagonal and kept
 // triangles (one code byte), B writes vertex positions and sheet triangles; boundary vertices, their
 // pinch copies and the cap's edges come from the codes alone in between, so the cap is
-// triangulated concurrently with pass B. Scratch: 5 bytes per quad (the code and the index of its
-// first triangle), 8 bytes per texel more with blur, a few rows per task; no allocation per quad.
-// VolumeBuilder keeps the scratch and the result's storage from one build to the next.
+// triangulated concurrently with pass B. The stages are in lib/src/core/volume/. Scratch: 5 bytes
+// per quad (the code and the index of its first triangle), 8 bytes per texel more with blur, 1
+// more with refinement, a few rows per task; no allocation per quad. VolumeBuilder keeps the
+// scratch and the result's storage from one build to the next.
 #pragma once
 
 #include <memory>
@@ -140,8 +142,8 @@ class VolumeBuilder {
 };
 
 /// Builds the shadow volume of a depth map (see the header comment). Throws InputError naming
-/// the texel and value if the map holds a NaN or negative depth, or if bias / blurOffset is not
-/// finite. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,
+/// the texel and value if the map holds a NaN or negative depth, if bias / blurOffset is not
+/// finite, or if refineSteps is out of range, lacks a depth oracle or comes with the quad cap. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,
 /// welded (coincident vertices only at documented splits), without zero-area triangles or
 /// non-finite coordinates; empty (no triangles) when no texel is hit. Multithreaded (TBB),
 /// deterministic (the same input gives the same mesh, whatever the thread count).

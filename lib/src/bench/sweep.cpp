@@ -4,10 +4,12 @@
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 #include <unistd.h>
 
 #include "shadowvol/bench/shadow_error.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
 
@@ -28,6 +30,20 @@ SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureM
   m.options.volumeOptions.cap = FarCap::Exact;
   m.description = "shadow volume from the depth map, " + variant + ", " + gl::toString(source) + " volume, " +
                   toString(capture) + " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
+// The refined explicit volume: perfect triangulation, kSweepRefineSteps rays per boundary edge
+// into the scene (the depth oracle is attached per scene by runSweep; its rays are part of the
+// frame's build pass).
+SweepMethod refined(CaptureMode capture) {
+  SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Explicit, capture);
+  m.key = std::string("hybrid-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/explicit";
+  m.options.volumeOptions.refineSteps = kSweepRefineSteps;
+  m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
+                  " rays per boundary edge, perfect triangulation), " + toString(capture) + " capture" +
+                  (capture == CaptureMode::Front ? " (default bias)" : "");
   return m;
 }
 
@@ -75,6 +91,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     // default bias) and between the first two (midpoint).
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Front));
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Midpoint));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     SweepMethod s;
     s.key = "silhouette";
     s.family = "silhouette";
@@ -156,6 +173,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
 
   std::size_t loadedScene = std::size_t(-1);
   Scene scene;
+  std::unique_ptr<EmbreeDepthOracle> oracle;  // the loaded scene's, for refined methods
   std::string sceneName;
   std::vector<PixelClass> exact;
   for (const Cell& c : cells) {
@@ -186,10 +204,15 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       const EmbreeScene rt(device, meshes);
       exact = exactShadows(rt, scene, castPrimaryRays(rt, scene.camera), shadowRayOffset(scene));
       renderer.setScene(scene);
+      oracle.reset();
       loadedScene = c.scene;
     }
     report(label);
     gl::RenderOptions ro = c.method->options;
+    if (ro.volumeOptions.refineSteps > 0) {
+      if (!oracle) oracle = std::make_unique<EmbreeDepthOracle>(scene);
+      ro.volumeOptions.depthOracle = oracle->oracle();
+    }
     ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
     ro.readStencil = false;
     ro.readDepthMap = false;
