@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 #include "shadowvol/error.h"
 #include "shadowvol/scene.h"
 #include "test_util.h"
@@ -202,6 +204,38 @@ TEST(SceneParser, LightInsideAClosedMeshWarns) {
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("shell"), std::string::npos);
   EXPECT_TRUE(parse(kGood).warnings.empty());
+}
+
+// Regression (an abort on Embree's tnear >= 0): a directional light whose position plane cuts the
+// scene gets a fitted near of 0, not below, and a warning; a negative near given is refused.
+TEST(SceneParser, DirectionalLightPlaneCuttingTheSceneIsClampedAndWarned) {
+  const auto r = parse(R"({"objects":[{"type":"box","name":"crate","size":4}],
+    "light":{"type":"directional","direction":[0,-1,0],"position":[0,1,0]},
+    "camera":{"eye":[0,0,9],"target":[0,0,0]}})");
+  EXPECT_EQ(r.scene.light.nearPlane, 0.0);
+  EXPECT_GT(r.scene.light.farPlane, 0.0);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("cuts"), std::string::npos) << r.warnings.back();
+  expectError(withLight(R"({"type":"directional","direction":[0,-1,0],"position":[0,5,0],"near":-1})"), "/light/near",
+              "-1");
+}
+
+// Regression: a mirroring scale was refused although mirroring matrices were accepted.
+TEST(SceneParser, MirroringScaleIsAcceptedAndStaysOutward) {
+  auto signedVolume = [](const TriangleMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles) {
+      const glm::dvec3 a(m.positions[t[0]]), b(m.positions[t[1]]), c(m.positions[t[2]]);
+      v += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    return v;
+  };
+  const auto r = parse(withObject(R"({"type":"box","size":[1,2,3],"transform":{"scale":[-1,1,1]}})"));
+  EXPECT_NEAR(signedVolume(r.scene.objects[0].mesh), 6.0, 1e-5);
+  const auto m = parse(withObject(R"({"type":"box","size":[1,2,3],"transform":{"matrix":[-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})"));
+  EXPECT_NEAR(signedVolume(m.scene.objects[0].mesh), 6.0, 1e-5);
+  expectError(withObject(R"({"type":"box","transform":{"scale":[0,1,1]}})"), "/objects/0/transform/scale");
+  expectError(withObject(R"({"type":"box","size":[-1,1,1]})"), "/objects/0/size");  // sizes stay positive
 }
 
 TEST(SceneParser, MissingFileIsAnError) {

@@ -106,8 +106,9 @@ class ObjectReader {
     return r;
   }
 
-  /// A number (all axes equal) or an array of n positive numbers.
-  std::vector<double> sizes(const std::string& key, int n, double fallback) {
+  /// A number (all axes equal) or an array of n positive numbers; with `mirrors`, negative ones
+  /// too (a scale that mirrors an axis), never zero.
+  std::vector<double> sizes(const std::string& key, int n, double fallback, bool mirrors = false) {
     if (!has(key)) return std::vector<double>(n, fallback);
     const json& v = raw(key);
     std::vector<double> r;
@@ -115,8 +116,11 @@ class ObjectReader {
     else if (v.is_array() && int(v.size()) == n && std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number(); }))
       for (const auto& e : v) r.push_back(e.get<double>());
     else fail(key, v, "expected a number or an array of " + std::to_string(n) + " numbers");
-    for (double d : r)
-      if (!std::isfinite(d) || d <= 0.0) fail(key, v, "sizes must be finite and greater than zero");
+    for (double d : r) {
+      if (mirrors && !(std::isfinite(d) && d != 0.0))
+        fail(key, v, "scale factors must be finite and non-zero (negative ones mirror)");
+      if (!mirrors && !(std::isfinite(d) && d > 0.0)) fail(key, v, "sizes must be finite and greater than zero");
+    }
     return r;
   }
 
@@ -150,7 +154,7 @@ glm::dmat4 readTransform(ObjectReader& parent) {
   } else {
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0));
     const glm::dvec3 rot = r.vec3("rotate", glm::dvec3(0.0));
-    const std::vector<double> s = r.sizes("scale", 3, 1.0);
+    const std::vector<double> s = r.sizes("scale", 3, 1.0, true);
     m = glm::translate(m, t);
     m = glm::rotate(m, glm::radians(rot.z), glm::dvec3(0, 0, 1));
     m = glm::rotate(m, glm::radians(rot.y), glm::dvec3(0, 1, 0));
@@ -261,8 +265,12 @@ Light readLight(const json& v, const std::string& source) {
   }
   if (r.has("near")) {
     light.nearPlane = r.number("near");
-    const bool ok = light.type == LightType::Spot ? light.nearPlane > 0.0 : true;
-    if (!ok) r.fail("near", json(light.nearPlane), "a spot light's near plane must be greater than zero");
+    if (light.type == LightType::Spot && !(light.nearPlane > 0.0))
+      r.fail("near", json(light.nearPlane), "a spot light's near plane must be greater than zero");
+    if (light.type == LightType::Directional && !(light.nearPlane >= 0.0))
+      r.fail("near", json(light.nearPlane),
+             "a directional light's near plane must be >= 0: it is a distance in front of the plane through its "
+             "position, and nothing behind that plane is lit");
   }
   if (r.has("far")) {
     light.farPlane = r.number("far");
@@ -385,8 +393,9 @@ void fitLightAndCamera(Scene& scene) {
   }
   const auto [lo, hi] = depthRange(b, l.position, l.direction);
   if (l.farPlane == 0.0) l.farPlane = std::max(hi, 1e-3 * radius) + 0.01 * radius;
-  if (l.nearPlane == 0.0 && l.type == LightType::Directional)
-    l.nearPlane = lo - 0.01 * radius;
+  // A directional light's view starts at the plane through its position: a fitted near never
+  // goes behind it (loadScene warns when that plane cuts the scene).
+  if (l.nearPlane == 0.0 && l.type == LightType::Directional) l.nearPlane = std::max(lo - 0.01 * radius, 0.0);
   if (l.nearPlane == 0.0 && l.type == LightType::Spot)
     l.nearPlane = std::max(lo - 0.01 * radius, l.farPlane * 1e-3);
   if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
@@ -437,12 +446,16 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   fitLightAndCamera(scene);
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
     throw InputError(source, "/light/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
-  if (scene.light.type == LightType::Spot) {
-    for (const auto& o : scene.objects)
-      if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
-        result.warnings.push_back(source + ": /light/position: the spot light is inside the closed mesh \"" + o.name +
-                                  "\": everything it lights will be in shadow");
-  }
+  for (const auto& o : scene.objects)
+    if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
+      result.warnings.push_back(source + ": /light/position: the " +
+                                (scene.light.type == LightType::Spot ? "spot" : "directional") +
+                                " light is inside the closed mesh \"" + o.name +
+                                "\": everything it lights will be in shadow");
+  if (scene.light.type == LightType::Directional && depthRange(scene.bounds(), scene.light.position,
+                                                               scene.light.direction).first < 0.0)
+    result.warnings.push_back(source + ": /light/position: the plane through the directional light's position cuts "
+                                       "the scene's bounds: what lies behind it is neither lit nor casts a shadow");
   return result;
 }
 
