@@ -1,0 +1,23 @@
+// What a light's depth map will miss, said before it is captured: one sentence per problem,
+// naming the object, for the command line's warnings and the validation report.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol {
+
+/// Warnings for capturing `scene`'s light at W x H texels by `capture`:
+///  - back capture and an open mesh (an object of type "mesh" that is not closed, neither as
+///    stored nor after welding vertices at equal positions): light passes through its openings,
+///    so its shadow leaks; front or midpoint capture record it;
+///  - an object that covers no texel centre (its light-view bounds lie between two neighbouring
+///    texel centres along an axis): it casts no shadow at this resolution; the message gives the
+///    smallest N x N map whose texel spacing is below its extent. Objects wholly or partly behind a
+///    spot light's apex plane are not judged.
+std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture);
+
+}  // namespace shadowvol

@@ -1,0 +1,90 @@
+#include "shadowvol/capture_warnings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+
+#include <glm/vec4.hpp>
+
+namespace shadowvol {
+namespace {
+
+// Every undirected edge used by exactly two triangles, with vertices identified by `id`.
+bool closedBy(const TriangleMesh& m, const std::vector<std::uint32_t>& id) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) ++edges[std::minmax(id[t[k]], id[t[(k + 1) % 3]])];
+  if (edges.empty()) return false;
+  return std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
+}
+
+// Closed as stored, or after welding vertices with exactly equal positions (STL, soups).
+bool closed(const TriangleMesh& m) {
+  std::vector<std::uint32_t> id(m.positions.size());
+  std::iota(id.begin(), id.end(), 0u);
+  if (closedBy(m, id)) return true;
+  std::vector<std::uint32_t> order = id;
+  auto less = [&](std::uint32_t a, std::uint32_t b) {
+    const glm::vec3 &p = m.positions[a], &q = m.positions[b];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z != q.z ? p.z < q.z : a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::uint32_t representative = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k == 0 || m.positions[order[k]] != m.positions[order[k - 1]]) representative = order[k];
+    id[order[k]] = representative;
+  }
+  return closedBy(m, id);
+}
+
+}  // namespace
+
+std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture) {
+  std::vector<std::string> out;
+  if (capture == CaptureMode::Back) {
+    std::vector<std::string> open;
+    for (const auto& o : scene.objects)
+      if (o.type == "mesh" && !closed(o.mesh)) open.push_back("\"" + o.name + "\"");
+    if (!open.empty()) {
+      std::string names;
+      for (const auto& n : open) names += (names.empty() ? "" : ", ") + n;
+      out.push_back("back capture lets light through the openings of the open mesh" + std::string(open.size() > 1 ? "es " : " ") +
+                    names + ": their shadows leak; front or midpoint capture (--capture front|midpoint) records them");
+    }
+  }
+  const DepthMap probe = makeDepthMap(scene.light, width, height, capture);
+  const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
+  for (const auto& o : scene.objects) {
+    if (o.mesh.positions.empty()) continue;
+    glm::dvec2 lo(1e300), hi(-1e300);
+    bool judged = true;
+    for (const auto& p : o.mesh.positions) {
+      const glm::dvec4 c = toClip * glm::dvec4(glm::dvec3(p), 1.0);
+      if (!(c.w > 0.0)) {
+        judged = false;  // behind a spot light's apex plane
+        break;
+      }
+      const glm::dvec2 t = probe.texelOf(glm::dvec3(p));
+      lo = glm::min(lo, t), hi = glm::max(hi, t);
+    }
+    if (!judged) continue;
+    // Entirely outside the map: not this check's business (the frustum does not light it).
+    if (hi.x < -0.5 || hi.y < -0.5 || lo.x > width - 0.5 || lo.y > height - 0.5) continue;
+    // A texel centre (integer coordinates) inside [lo, hi] on both axes?
+    const bool coversX = std::floor(hi.x) >= std::ceil(lo.x), coversY = std::floor(hi.y) >= std::ceil(lo.y);
+    if (coversX && coversY) continue;
+    const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
+    const double need = std::ceil(std::max(width, height) / span);
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre: it "
+                  "casts no shadow at this resolution (a map of about %.0f x %.0f or more would catch it)",
+                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, need, need);
+    out.push_back(buf);
+  }
+  return out;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,60 @@
+// captureWarnings (capture_warnings.h): what a depth map will miss, said by name before capture.
+#include <gtest/gtest.h>
+
+#include "shadowvol/capture_warnings.h"
+#include "shadowvol/primitives.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+Scene sceneWith(std::vector<SceneObject> objects) {
+  Scene s;
+  s.objects = std::move(objects);
+  s.light = test::directionalDown(6.0);
+  return s;
+}
+
+TEST(CaptureWarnings, BackCaptureNamesOpenMeshes) {
+  TriangleMesh bowl = makeHemisphere(1.0, 16, 4);
+  bowl.triangles.resize(bowl.triangles.size() / 2);  // open: half of it gone
+  const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
+                             SceneObject{"bowl", "mesh", bowl},
+                             SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)}});
+  const auto back = captureWarnings(s, 64, 64, CaptureMode::Back);
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_NE(back[0].find("\"bowl\""), std::string::npos) << back[0];
+  EXPECT_EQ(back[0].find("ball"), std::string::npos) << back[0];    // closed
+  EXPECT_EQ(back[0].find("ground"), std::string::npos) << back[0];  // a plane, not a mesh
+  EXPECT_TRUE(captureWarnings(s, 64, 64, CaptureMode::Front).empty());
+  EXPECT_TRUE(captureWarnings(s, 64, 64, CaptureMode::Midpoint).empty());
+}
+
+TEST(CaptureWarnings, SplitVerticesOfAClosedMeshAreNotOpen) {
+  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
+  TriangleMesh stl;  // every triangle's corners stored apart, as STL files do
+  for (const auto& t : box.triangles) {
+    const auto base = std::uint32_t(stl.positions.size());
+    for (auto k : t) stl.positions.push_back(box.positions[k]);
+    stl.triangles.push_back({base, base + 1, base + 2});
+  }
+  EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"stl box", "mesh", stl}}), 64, 64, CaptureMode::Back).empty());
+}
+
+TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatchesIt) {
+  // The 8 x 8 window at 16^2: texels 0.5 apart. A 0.2-wide box centred between two texel centres.
+  const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);
+  const glm::dvec3 mid = 0.5 * (probe.worldPoint(7, 7, 1.0) + probe.worldPoint(8, 8, 1.0));
+  TriangleMesh speck = makeBox(0.2, 0.2, 0.2);
+  for (auto& p : speck.positions) p += glm::vec3(float(mid.x), 2.0f, float(mid.z));
+  const Scene s = sceneWith({SceneObject{"speck", "box", speck}});
+  const auto w = captureWarnings(s, 16, 16, CaptureMode::Front);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("\"speck\""), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("no texel centre"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("40 x 40"), std::string::npos) << w[0];  // 16 / 0.4 texels
+  EXPECT_TRUE(captureWarnings(s, 64, 64, CaptureMode::Front).empty());  // texels 0.125 apart: caught
+}
+
+}  // namespace
+}  // namespace shadowvol
