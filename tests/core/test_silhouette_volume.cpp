@@ -164,6 +164,20 @@ TEST(SilhouetteVolume, SplitVerticesAreWelded) {
   expectClosedAndOutward(buildSilhouetteVolume(occ, s.light).mesh, "welded box");
 }
 
+// Regression (cow.off from libcgal-demo, vertices 44 and 2903 at identical coordinates): a mesh
+// that is closed as stored casts, even where welding by position would make two fans touch.
+TEST(SilhouetteVolume, ClosedMeshWithTwoVerticesAtOnePointCasts) {
+  // Two closed tetrahedra touching at one point, stored with a vertex each there.
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}, {0, 0, 0}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {7, 4, 5}, {7, 6, 4}, {7, 5, 6}, {4, 6, 5}};
+  const Scene s = sceneOf({moved("touching pair", "mesh", m, {0.0f, 2.0f, 0.0f})}, directionalTilted());
+  const SilhouetteOccluders occ(s);
+  EXPECT_EQ(occ.objects()[0].role, SilhouetteRole::Caster);
+  EXPECT_EQ(occ.objects()[0].vertices, 8u);  // as stored, not welded
+  expectClosedAndOutward(buildSilhouetteVolume(occ, s.light).mesh, "touching pair");
+}
+
 TEST(SilhouetteVolume, NonManifoldObjectsAreRefusedByName) {
   auto expectRefused = [](TriangleMesh mesh, const std::string& fragment) {
     const Scene s = sceneOf({SceneObject{"ground", "plane", makePlane(10.0, 10.0, 1)},

@@ -2,8 +2,10 @@
 // half-edge connectivity, extruded away from the light, with a light cap and a dark cap. Pure CPU,
 // no GL: the renderer draws the result with the same z-fail stencil pass as the hybrid volume.
 //
-// Which objects cast (the rule, applied to every scene object after welding vertices with
-// exactly equal positions and dropping triangles with a repeated vertex):
+// Which objects cast (the rule, applied to every scene object with triangles that repeat a vertex
+// dropped: first to the mesh as stored, so that two vertices of a closed mesh may share a
+// position; when that is not a closed 2-manifold, again after welding vertices with exactly equal
+// positions, as an STL file or a triangle soup needs):
 //   - closed 2-manifold (every edge has exactly two triangles, used once in each direction, every
 //     vertex a single fan): a caster;
 //   - open sheet (every edge has one or two triangles, consistently oriented, manifold vertices,
@@ -40,7 +42,7 @@ enum class SilhouetteRole {
 struct SilhouetteObjectInfo {
   std::string name;  ///< SceneObject::name
   SilhouetteRole role = SilhouetteRole::Caster;
-  std::size_t vertices = 0;       ///< after welding equal positions
+  std::size_t vertices = 0;       ///< as classified (stored, or after welding equal positions)
   std::size_t triangles = 0;      ///< after dropping triangles with a repeated vertex
   std::size_t boundaryEdges = 0;  ///< 0 for a caster
 };

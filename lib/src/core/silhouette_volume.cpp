@@ -29,6 +29,13 @@ std::string describe(const glm::dvec3& p) {
   return s.str();
 }
 
+/// The mesh as stored: its own vertices, triangles with a repeated vertex dropped.
+void asStored(const TriangleMesh& in, std::vector<glm::dvec3>& positions, std::vector<Tri>& triangles) {
+  for (const auto& p : in.positions) positions.emplace_back(p);
+  for (const auto& t : in.triangles)
+    if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0]) triangles.push_back(t);
+}
+
 /// Welds vertices with exactly equal positions (sort order, deterministic) and drops triangles
 /// with a repeated vertex (zero area; their edges cancel, so dropping keeps closedness).
 void weld(const TriangleMesh& in, std::vector<glm::dvec3>& positions, std::vector<Tri>& triangles) {
@@ -82,62 +89,91 @@ struct SilhouetteOccluders::Impl {
   std::vector<SilhouetteObjectInfo> infos;
 };
 
+namespace {
+
+/// Classifies o (its positions and triangles set) by the rule of the header and, for a caster,
+/// builds its half-edge connectivity. Returns why it is neither a closed 2-manifold nor an open
+/// sheet, or an empty string.
+std::string classify(Object& o) {
+  o.info.vertices = o.positions.size();
+  o.info.triangles = o.triangles.size();
+  o.info.boundaryEdges = 0;
+  // Edge check: per undirected edge the number of triangles using it in each direction.
+  struct Uses {
+    std::uint32_t forward = 0, backward = 0;  // forward: from the smaller to the larger index
+  };
+  std::unordered_map<std::uint64_t, Uses> edges;
+  edges.reserve(o.triangles.size() * 2);
+  for (const auto& t : o.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      Uses& u = edges[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+      (a < b ? u.forward : u.backward) += 1;
+    }
+  // The first offending edge in index order (deterministic).
+  std::vector<std::pair<std::uint64_t, Uses>> sorted(edges.begin(), edges.end());
+  std::sort(sorted.begin(), sorted.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& [key, u] : sorted) {
+    auto edge = [&, key = key] {
+      return "the edge " + describe(o.positions[key >> 32]) + " - " + describe(o.positions[key & 0xffffffffu]);
+    };
+    if (u.forward + u.backward > 2)
+      return edge() + " has " + std::to_string(u.forward + u.backward) + " triangles (non-manifold edge)";
+    if (u.forward > 1 || u.backward > 1) return edge() + " is used twice in the same direction (inconsistently oriented triangles)";
+    if (u.forward + u.backward == 1) ++o.info.boundaryEdges;
+  }
+  // Half-edge connectivity; OpenMesh refuses a face at a non-manifold vertex (two fans touching).
+  o.mesh = OMesh();
+  for (const auto& p : o.positions) o.mesh.add_vertex(OMesh::Point(float(p.x), float(p.y), float(p.z)));
+  OpenMesh::mostream& err = omerr();
+  const bool wasEnabled = err.is_enabled();
+  err.disable();  // the failure is reported by the caller, naming the object
+  std::string why;
+  for (const auto& t : o.triangles) {
+    const auto f =
+        o.mesh.add_face(OMesh::VertexHandle(int(t[0])), OMesh::VertexHandle(int(t[1])), OMesh::VertexHandle(int(t[2])));
+    if (!f.is_valid()) {
+      why = "a triangle at the vertex " + describe(o.positions[t[0]]) + ", " + describe(o.positions[t[1]]) + " or " +
+            describe(o.positions[t[2]]) + " makes it non-manifold (two fans touching at a vertex)";
+      break;
+    }
+  }
+  if (wasEnabled) err.enable();
+  if (!why.empty()) return why;
+  SV_CHECK_EQ(o.mesh.n_faces(), o.triangles.size());
+  o.info.role = o.info.boundaryEdges == 0 && !o.triangles.empty() ? SilhouetteRole::Caster : SilhouetteRole::ReceiverOnly;
+  if (o.info.role == SilhouetteRole::ReceiverOnly) o.mesh = OMesh();  // connectivity not needed
+  return {};
+}
+
+}  // namespace
+
 SilhouetteOccluders::SilhouetteOccluders(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->source = scene.source;
   for (const auto& so : scene.objects) {
-    Object o;
-    o.info.name = so.name;
-    weld(so.mesh, o.positions, o.triangles);
-    o.info.vertices = o.positions.size();
-    o.info.triangles = o.triangles.size();
-    auto refuse = [&](const std::string& why) {
+    // Closedness is decided on the mesh's own topology first (two vertices of a closed mesh may
+    // share a position); only a mesh that is not closed as stored is welded by position (an STL
+    // or soup stores every triangle's corners apart) and classified again.
+    Object stored, welded;
+    stored.info.name = welded.info.name = so.name;
+    asStored(so.mesh, stored.positions, stored.triangles);
+    const std::string storedWhy = classify(stored);
+    Object* chosen = nullptr;
+    std::string why;
+    if (storedWhy.empty() && stored.info.role == SilhouetteRole::Caster) {
+      chosen = &stored;
+    } else {
+      weld(so.mesh, welded.positions, welded.triangles);
+      why = classify(welded);
+      if (why.empty()) chosen = &welded;
+      else if (storedWhy.empty()) chosen = &stored;  // an open sheet as stored
+    }
+    if (!chosen)
       throw InputError(scene.source, "/objects/" + so.name, "",
                        "object '" + so.name + "' is neither a closed 2-manifold (a shadow caster) nor an open sheet " +
                            "(a receiver only), so silhouette shadow volumes cannot use it: " + why);
-    };
-    // Edge check: per undirected edge the number of triangles using it in each direction.
-    struct Uses {
-      std::uint32_t forward = 0, backward = 0;  // forward: from the smaller to the larger index
-    };
-    std::unordered_map<std::uint64_t, Uses> edges;
-    edges.reserve(o.triangles.size() * 2);
-    for (const auto& t : o.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-        Uses& u = edges[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
-        (a < b ? u.forward : u.backward) += 1;
-      }
-    for (const auto& [key, u] : edges) {
-      auto edge = [&, key = key] {
-        return "the edge " + describe(o.positions[key >> 32]) + " - " + describe(o.positions[key & 0xffffffffu]);
-      };
-      if (u.forward + u.backward > 2)
-        refuse(edge() + " has " + std::to_string(u.forward + u.backward) + " triangles (non-manifold edge)");
-      if (u.forward > 1 || u.backward > 1)
-        refuse(edge() + " is used twice in the same direction (inconsistently oriented triangles)");
-      if (u.forward + u.backward == 1) ++o.info.boundaryEdges;
-    }
-    // Half-edge connectivity; OpenMesh refuses a face at a non-manifold vertex (two fans touching).
-    for (const auto& p : o.positions) o.mesh.add_vertex(OMesh::Point(float(p.x), float(p.y), float(p.z)));
-    OpenMesh::mostream& err = omerr();
-    const bool wasEnabled = err.is_enabled();
-    err.disable();  // we report the failure ourselves, naming the object
-    for (const auto& t : o.triangles) {
-      const auto f = o.mesh.add_face(OMesh::VertexHandle(int(t[0])), OMesh::VertexHandle(int(t[1])),
-                                     OMesh::VertexHandle(int(t[2])));
-      if (!f.is_valid()) {
-        if (wasEnabled) err.enable();
-        refuse("a triangle at the vertex " + describe(o.positions[t[0]]) + ", " + describe(o.positions[t[1]]) + " or " +
-               describe(o.positions[t[2]]) + " makes it non-manifold (two fans touching at a vertex)");
-      }
-    }
-    if (wasEnabled) err.enable();
-    SV_CHECK_EQ(o.mesh.n_faces(), o.triangles.size());
-    o.info.role =
-        o.info.boundaryEdges == 0 && !o.triangles.empty() ? SilhouetteRole::Caster : SilhouetteRole::ReceiverOnly;
-    if (o.info.role == SilhouetteRole::ReceiverOnly) o.mesh = OMesh();  // connectivity not needed
-    impl_->infos.push_back(o.info);
-    impl_->objects.push_back(std::move(o));
+    impl_->infos.push_back(chosen->info);
+    impl_->objects.push_back(std::move(*chosen));
   }
 }
 
