@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "shadowvol/capture_warnings.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol::cli {
@@ -40,8 +41,9 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   return cmd
       .add_option("--refine", o.refine,
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
-                  "put each wall on the light ray within 2^-(K+1) texel of where the surface ends; 0 = off. Needs "
-                  "--cap exact (docs/volume.md 'Refinement')")
+                  "put each wall on the light ray within 2^-(K+1) texel of where the surface ends; 0 = off, 6 is what "
+                  "the sweep uses (README 'Silhouette refinement'). Needs --cap exact; render and validate need "
+                  "--volume explicit (docs/volume.md 'Refinement')")
       ->check(CLI::Range(0, kMaxRefineSteps))
       ->capture_default_str();
 }
@@ -71,6 +73,12 @@ Scene loadSceneOrDefault(const std::string& path) {
   SceneLoadResult r = loadScene(path);
   for (const auto& w : r.warnings) std::fprintf(stderr, "shadowvol: warning: %s\n", w.c_str());
   return std::move(r.scene);
+}
+
+std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture) {
+  std::vector<std::string> w = captureWarnings(scene, width, height, capture);
+  for (const auto& s : w) std::fprintf(stderr, "shadowvol: warning: %s: %s\n", scene.source.c_str(), s.c_str());
+  return w;
 }
 
 void checkResolution(const std::string& option, int resolution) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -46,6 +47,9 @@ void addJsonOption(CLI::App& cmd, bool& json);
 
 /// Loads the scene (or the default one), printing its warnings to stderr.
 Scene loadSceneOrDefault(const std::string& path);
+
+/// Prints captureWarnings (capture_warnings.h) for a W x H map to stderr and returns them.
+std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture);
 
 /// Largest side accepted for a depth map (texels).
 inline constexpr int kMaxResolution = 16384;

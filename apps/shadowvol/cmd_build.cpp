@@ -67,6 +67,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         CaptureMode mode{};
         parseCaptureMode(o->capture, mode);
         scene = loadSceneOrDefault(o->scene.scene);
+        j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
         const auto t0 = std::chrono::steady_clock::now();
         map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
         msCapture = msSince(t0);

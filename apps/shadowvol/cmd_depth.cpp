@@ -40,6 +40,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       CaptureMode mode{};
       parseCaptureMode(o->capture, mode);
       const Scene scene = loadSceneOrDefault(o->scene.scene);
+      const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);
       const auto t0 = std::chrono::steady_clock::now();
       const DepthMap map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
       const double msCapture = msSince(t0);
@@ -60,7 +61,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                           {"depthMax", hits ? nlohmann::json(hi) : nlohmann::json()},
                           {"msCapture", msCapture},
                           {"out", o->out},
-                          {"sidecar", depthSidecarPath(o->out).string()}};
+                          {"sidecar", depthSidecarPath(o->out).string()},
+                          {"warnings", warnings}};
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {

@@ -43,6 +43,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const auto oracle = attachDepthOracle(scene, ro);
+      std::vector<std::string> warnings;
+      if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
+        warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
       renderer.setScene(scene);
@@ -97,6 +100,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"volumeTriangles", result.volumeTriangles},
           {"stencilNonZeroPixels", result.stencil.empty() ? nlohmann::json() : nlohmann::json(shadowed)},
           {"receiversOnly", result.receiversOnly},
+          {"warnings", warnings},
           {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};

@@ -38,18 +38,31 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
     RenderCliOptions render;
     std::string reportDir;
     bool selfIntersections = false;
+    double maxError = kDefaultMaxError;
+    double maxMissedShare = kDefaultMaxMissedShare;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
       "validate",
       "Render a frame on the GPU and check it by ray casting: Embree's signed crossing counts of the explicit volume "
       "against the GPU stencil, z-fail against z-pass, and every shadow test against exact shadow rays; CGAL checks "
-      "of the volume. Writes DIR/report.json and PNGs. Exit 0 when stencil and counts agree on >= 99.99% of visible "
-      "pixels and the mesh checks pass, 3 otherwise");
+      "of the volume. Writes DIR/report.json and PNGs. Exit 0 when the frame is consistent (stencil and counts "
+      "agree on >= 99.99% of visible pixels, the mesh checks pass) and accurate (the method's error within "
+      "--max-error and --max-missed), 3 otherwise, naming what failed");
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--report", o->reportDir, "Folder for report.json and the images (created if missing)")->required();
   cmd->add_flag("--self-intersections", o->selfIntersections,
                 "Also run CGAL's self-intersection check of the volume (slow on large meshes)");
+  cmd->add_option("--max-error", o->maxError,
+                  "Accuracy verdict: the largest fraction of the pixels facing the light that the method may "
+                  "misclassify against exact shadows (every shipped scene meets the default with the default method)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--max-missed", o->maxMissedShare,
+                  "Accuracy verdict: the largest share of the exact shadow's pixels the method may miss (judged when "
+                  "the exact shadow has at least 100 pixels; an empty volume misses all of it)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->callback([&run, o] {
     checkRenderOptionConflicts(o->render);
     run = [o] {
@@ -58,6 +71,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const auto oracle = attachDepthOracle(scene, ro);
+      std::vector<std::string> warnings;
+      if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
+        warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro.readStencil = true;
       ro.readDepthMap = true;
       ro.readVisibility = true;
@@ -75,6 +91,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
       ValidationOptions vo;
       vo.selfIntersections = o->selfIntersections;
+      vo.maxError = o->maxError;
+      vo.maxMissedShare = o->maxMissedShare;
       VolumeBuildOptions volumeOptions = ro.volumeOptions;
       if (frame.hybrid && !result.depthMap) throw std::runtime_error("the renderer returned no depth map");
       const FrameValidation v =
@@ -122,6 +140,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                            {"selfIntersectingPairs", m.selfIntersectingPairs ? nlohmann::json(*m.selfIntersectingPairs)
                                                                              : nlohmann::json("not checked")},
                            {"allowedTouchingPairs", m.allowedTouchingPairs},
+                           {"notApplicable", v.meshChecksNotApplicable.empty()
+                                                 ? nlohmann::json()
+                                                 : nlohmann::json(v.meshChecksNotApplicable)},
                            {"summary", m.summary()}};
         j["stencilVsCount"] = toJson(v.stencilVsCount);
         j["eyeInsideVolume"] = v.eyeInsideVolume;
@@ -139,7 +160,17 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         j["zfailVsZpass"] = na;
         j["againstExact"] = {{"stencil", na}, {"count", na}, {"method", toJson(v.methodError)}};
       }
+      if (ro.method == gl::ShadowMethod::Silhouette) {
+        j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
+        j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
+      }
+      j["warnings"] = warnings;
       j["requiredAgreement"] = kRequiredAgreement;
+      j["verdict"] = {{"consistent", v.consistent},
+                      {"accurate", v.accurate},
+                      {"maxError", o->maxError},
+                      {"maxMissedShare", o->maxMissedShare},
+                      {"failures", v.failures}};
       j["passed"] = v.passed;
       j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png"};
       if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png"};
@@ -177,6 +208,14 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
                     v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
                     100 * v.methodError.falseFraction(), v.methodError.pixels);
+        if (ro.method == gl::ShadowMethod::Silhouette && !result.receiversOnly.empty()) {
+          std::printf("  cast no silhouette shadow (open, receivers only):");
+          for (const auto& name : result.receiversOnly) std::printf(" \"%s\"", name.c_str());
+          std::printf("\n");
+        }
+        if (!v.meshChecksNotApplicable.empty())
+          std::printf("  not applicable: %s\n", v.meshChecksNotApplicable.c_str());
+        for (const auto& f : v.failures) std::printf("  failed: %s\n", f.c_str());
         std::printf("%s: wrote %s\n", v.passed ? "PASSED" : "FAILED", (dir / "report.json").string().c_str());
       }
       return v.passed ? kOk : kValidationFailed;

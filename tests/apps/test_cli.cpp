@@ -133,6 +133,29 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
+TEST(Cli, BuildRefinesAndReportsItsRays) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "r.ply").string();
+  const CliResult r = runCli("build --json --resolution 64 --refine 3 --scene " + scene("plate.json") + " --out " + out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["refine"], 3);
+  EXPECT_EQ(j["boundaryEdges"], 64);  // the plate spans 16 texels a side
+  EXPECT_EQ(j["raysCast"], 3 * 64);
+  EXPECT_EQ(j["splitVertices"], 0);
+  EXPECT_TRUE(j["ms"].contains("refine"));
+  EXPECT_TRUE(std::filesystem::exists(out));
+  const CliResult text = runCli("build --resolution 64 --refine 3 --scene " + scene("plate.json") + " --out " + out);
+  EXPECT_TRUE(contains(text.out, "64 boundary edges")) << text.out;
+  // Refused: out of range (usage), with --depth (no scene for the rays: usage), with the quad cap.
+  EXPECT_EQ(runCli("build --refine 17 --out " + (dir / "a.ply").string()).code, 2);
+  EXPECT_EQ(runCli("build --refine 2 --depth x.pfm --out " + (dir / "a.ply").string()).code, 2);
+  const CliResult quad = runCli("build --resolution 16 --refine 2 --cap quad --out " + (dir / "a.ply").string());
+  EXPECT_EQ(quad.code, 1) << quad.out;
+  EXPECT_TRUE(contains(quad.out, "--refine")) << quad.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
+}
+
 }  // namespace
 }  // namespace shadowvol
 
@@ -189,6 +212,30 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   // A report path that is a file is refused before rendering.
   test::writeText(dir / "afile", "x");
   EXPECT_EQ(runCli("validate --report " + (dir / "afile").string()).code, 1);
+  // The accuracy verdict: the same frame fails when its error must be below what it has.
+  const CliResult strict = runCli("validate --json --max-error 0.0000001 --resolution 64 --size 160x120 --scene " +
+                                  scene("plate.json") + " --report " + (dir / "strict").string());
+  EXPECT_EQ(strict.code, 3) << strict.out;
+  const auto jv = nlohmann::json::parse(strict.out);
+  EXPECT_TRUE(jv["verdict"]["consistent"].get<bool>());
+  EXPECT_FALSE(jv["verdict"]["accurate"].get<bool>());
+  EXPECT_FALSE(jv["verdict"]["failures"].empty());
+}
+
+TEST(CliGl, RefinementNeedsTheExplicitVolume) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const CliResult gpu = runCli("validate --refine 4 --resolution 32 --size 64x48 --report " + (dir / "g").string());
+  EXPECT_EQ(gpu.code, 2) << gpu.out;
+  EXPECT_TRUE(contains(gpu.out, "--volume explicit")) << gpu.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "g"));
+  const CliResult r = runCli("validate --json --volume explicit --refine 4 --resolution 64 --size 160x120 --scene " +
+                             scene("plate.json") + " --report " + (dir / "e").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["options"]["refine"], 4);
+  EXPECT_EQ(j["volume"]["boundaryEdges"], 64);
+  EXPECT_TRUE(j["passed"].get<bool>());
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "shadowvol/check.h"
 #include "shadowvol/embree/embree_scene.h"
@@ -12,6 +14,12 @@ namespace shadowvol {
 namespace {
 
 bool facesLight(PixelClass c) { return c == PixelClass::Lit || c == PixelClass::Shadowed; }
+
+std::string percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g %%", 100.0 * fraction);
+  return buf;
+}
 
 void score(ShadowError& e, PixelClass exact, bool testShadowed) {
   if (!facesLight(exact)) return;
@@ -98,8 +106,31 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     if (!v.eyeInsideVolume) v.zfailVsZpass = zz;
     v.stencilError = stencilErr;
     v.countError = countErr;
-    v.passed = v.stencilVsCount.fraction() >= kRequiredAgreement && v.meshCheck->valid();
+    const MeshCheckReport& m = *v.meshCheck;
+    bool meshOk = m.valid();
+    if (volumeOptions.cap == FarCap::Quad) {
+      v.meshChecksNotApplicable = "outward orientation and self-intersections: the quad cap's far rectangle "
+                                  "coincides with the far-plane sheet by design";
+      meshOk = m.closedManifold() && m.nonFiniteVertices == 0 && m.degenerateTriangles == 0 && m.isolatedVertices == 0;
+    }
+    if (v.stencilVsCount.fraction() < kRequiredAgreement)
+      v.failures.push_back("stencil and crossing counts agree on " + percent(v.stencilVsCount.fraction()) +
+                           " of visible pixels, below the required " + percent(kRequiredAgreement));
+    if (!meshOk) v.failures.push_back("the volume's mesh checks fail: " + m.summary());
+    v.consistent = v.failures.empty();
   }
+  // The accuracy verdict: the method's own test against the exact shadows.
+  const ShadowError& e = v.methodError;
+  std::vector<std::string> inaccurate;
+  if (e.errorFraction() > options.maxError)
+    inaccurate.push_back("the method misclassifies " + percent(e.errorFraction()) + " of the pixels facing the light, "
+                         "above the allowed " + percent(options.maxError) + " (--max-error)");
+  if (v.exactShadowed >= kMinShadowPixels && double(e.missed) > options.maxMissedShare * double(v.exactShadowed))
+    inaccurate.push_back("the method misses " + std::to_string(e.missed) + " of the exact shadow's " +
+                         std::to_string(v.exactShadowed) + " pixels, more than " + percent(options.maxMissedShare));
+  v.accurate = inaccurate.empty();
+  v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());
+  v.passed = v.consistent && v.accurate;
   device.throwIfError();
   return v;
 }

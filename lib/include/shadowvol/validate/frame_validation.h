@@ -29,8 +29,20 @@ struct RenderedFrame {
   bool hybrid = true;                   ///< a shadow-volume method (stencil and volume apply)
 };
 
+/// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
+/// validate's default method and options (README "Validation").
+inline constexpr double kDefaultMaxError = 0.05;        ///< 5 % of the pixels facing the light
+inline constexpr double kDefaultMaxMissedShare = 0.5;   ///< half the exact shadow's pixels
+inline constexpr std::size_t kMinShadowPixels = 100;    ///< below this the missed share is not judged
+
 struct ValidationOptions {
   bool selfIntersections = false;  ///< CGAL self-intersection check of the volume (slow)
+  /// Accuracy verdict: the method's misclassified pixels (missed + false shadow) may be at most
+  /// this fraction of the pixels facing the light inside its frustum ...
+  double maxError = kDefaultMaxError;
+  /// ... and its missed shadow pixels at most this share of the exact shadow's pixels, when the
+  /// exact shadow has at least kMinShadowPixels (so an empty volume over a small shadow fails too).
+  double maxMissedShare = kDefaultMaxMissedShare;
 };
 
 /// Agreement of two per-pixel quantities over a set of pixels.
@@ -67,8 +79,16 @@ struct FrameValidation {
   std::optional<ShadowError> stencilError; ///< stencil != 0 as a shadow test
   std::optional<ShadowError> countError;   ///< zfail != 0 as a shadow test
   ShadowError methodError;                 ///< the method's own test (hybrid: the stencil)
-  /// Exit criterion of `shadowvol validate`: stencil vs count >= kRequiredAgreement and the mesh
-  /// checks pass (hybrid), always true for the shadow-map baselines.
+  /// The consistency verdict (hybrid): stencil vs count >= kRequiredAgreement and the mesh checks
+  /// pass; always true for the shadow-map baselines. With the quad cap the outward check does not
+  /// apply (its far rectangle coincides with the far-plane sheet by design): closed, finite and
+  /// non-degenerate are required, and meshChecksNotApplicable says why.
+  bool consistent = true;
+  /// The accuracy verdict: methodError within ValidationOptions::maxError and maxMissedShare.
+  bool accurate = true;
+  std::vector<std::string> failures;       ///< one sentence per failed criterion (empty when passed)
+  std::string meshChecksNotApplicable;     ///< the checks left out, and why (empty: all apply)
+  /// Exit criterion of `shadowvol validate`: consistent and accurate.
   bool passed = true;
 };
 
