@@ -153,7 +153,7 @@ BENCHMARK(BM_BuildVolume)
     ->UseRealTime();
 
 // Silhouette refinement: a reused builder, perfect triangulation, exact cap, K = refine steps (0 =
-// off, the same build as BM_BuildVolume's reused one). The analytic oracle costs far less than
+// off, the same build as BM_BuildVolume's reused one; kRecommendedRefineSteps, the sweep's). The analytic oracle costs far less than
 // Embree's rays, so rays_ms is reported apart: what refinement adds to the build itself is
 // build_ms - rays_ms - the K = 0 build_ms.
 void BM_RefineVolume(benchmark::State& state) {
@@ -188,7 +188,7 @@ void BM_RefineVolume(benchmark::State& state) {
 
 BENCHMARK(BM_RefineVolume)
     ->ArgNames({"res", "back", "refine"})
-    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {0, 4}})
+    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {0, kRecommendedRefineSteps}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

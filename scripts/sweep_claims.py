@@ -76,6 +76,8 @@ def main():
         cells = [main_rows.get(("default", m, n)) for m in methods]
         print(f"| {n} | " + " | ".join(f"{ms(c):.1f}" if c else "-" for c in cells) + " |")
 
+    refinement(main_rows, scenes)
+
     if len(sys.argv) > 2:
         poly = load(sys.argv[2])
         pscenes = sorted({k[0] for k in poly})
@@ -87,6 +89,54 @@ def main():
             tri = next(r["triangles"] for k, r in poly.items() if k[0] == s)
             cells = [poly.get((s, m, 0 if m == "silhouette" else 256)) for m in methods]
             print(f"| {int(tri):,} | " + " | ".join(f"{ms(c):.1f}" if c else "-" for c in cells) + " |")
+
+
+def pareto(points):
+    """Indices of the (time, error) points no other point beats on both (ties kept)."""
+    front = []
+    for i, (t, e) in enumerate(points):
+        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for j, (t2, e2) in enumerate(points) if j != i):
+            front.append(i)
+    return front
+
+
+def refinement(rows, scenes):
+    """The refined explicit volume against shadow maps and silhouette volumes, and where it lies on
+    each scene's Pareto front of (frame ms, error)."""
+    ref = "hybrid-refined/explicit"
+    if not any(k[1] == ref for k in rows):
+        return
+    print("\n### Silhouette refinement: misclassified % (frame ms)\n")
+    print("| scene | refined 128 | refined 256 | refined-front 128 | refined-midpoint 128 | hybrid-perfect/explicit 256 "
+          "| shadowmap 2048 | smallest shadow map at least as good as refined 128 | silhouette |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    cell = lambda r: f"{err(r):.4f} ({ms(r):.1f})" if r else "-"
+    for s in scenes:
+        g = lambda m, n: rows.get((s, m, n))
+        r128 = g(ref, 128)
+        if not r128:
+            continue
+        sms = sorted(n for (sc, m, n) in rows if sc == s and m == "shadowmap")
+        match = next((n for n in sms if err(rows[(s, "shadowmap", n)]) <= err(r128)), None)
+        print(f"| {s} | {cell(r128)} | {cell(g(ref, 256))} | {cell(g('hybrid-refined-front/explicit', 128))} | "
+              f"{cell(g('hybrid-refined-midpoint/explicit', 128))} | {cell(g('hybrid-perfect/explicit', 256))} | "
+              f"{cell(g('shadowmap', 2048))} | {match if match else 'none up to ' + str(max(sms))} | "
+              f"{cell(g('silhouette', 0))} |")
+
+    print("\n### Silhouette refinement on the Pareto front (frame ms against error, every method and resolution)\n")
+    print("| scene | refined cells on the front | front, fastest first |")
+    print("|---|---|---|")
+    on = 0
+    for s in scenes:
+        keys = [k for k in rows if k[0] == s]
+        pts = [(ms(rows[k]), err(rows[k])) for k in keys]
+        front = sorted(pareto(pts), key=lambda i: pts[i][0])
+        label = lambda k: k[1] + (f" {k[2]}" if k[2] else "")
+        refined = [label(keys[i]) for i in front if keys[i][1].startswith("hybrid-refined")]
+        on += any(keys[i][1] == ref for i in front)
+        print(f"| {s} | {', '.join(refined) if refined else 'none'} | "
+              + ", ".join(f"{label(keys[i])} ({pts[i][0]:.1f} ms, {pts[i][1]:.4f} %)" for i in front) + " |")
+    print(f"\n{ref} is on the front of {on} of {len(scenes)} scenes.")
 
 
 if __name__ == "__main__":

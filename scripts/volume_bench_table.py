@@ -11,7 +11,8 @@ import sys
 def main(path):
     runs = collections.defaultdict(list)
     for b in json.load(open(path))["benchmarks"]:
-        if b.get("run_type") == "iteration":
+        # BM_BuildVolume only (BM_RefineVolume has no floor; README "Silhouette refinement").
+        if b.get("run_type") == "iteration" and b["run_name"].startswith("BM_BuildVolume/"):
             runs[b["run_name"]].append(b)
     print("| map | res | triangulation | blur | buffers | build ms | floor ms | ratio | MB | triangles | cap before -> after | flipped |")
     print("|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|")

@@ -14,7 +14,7 @@
 #include <glm/matrix.hpp>
 
 #include "gl_test_support.h"
-#include "shadowvol/depth_blur.h"
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/triangulation.h"
 
@@ -27,18 +27,9 @@ class VolumeOracle {
  public:
   VolumeOracle(const DepthMap& map, double bias, Triangulation tri) : map_(map), tri_(tri), unproject_(map) {
     depth_.resize(map.depth.size());
+    const SheetDepthRule rule(map, bias, 0.0);
     for (int j = 0; j < map.height; ++j)
-      for (int i = 0; i < map.width; ++i) {
-        double d = map.at(i, j);
-        const bool ring = i == 0 || j == 0 || i == map.width - 1 || j == map.height - 1;
-        if (ring || isFarDepth(d, map.farPlane)) {
-          d = map.farPlane;
-        } else {
-          d = std::clamp(d + bias, map.nearPlane, map.farPlane);
-          if (isFarDepth(d, map.farPlane)) d = map.farPlane;
-        }
-        depth_[map.index(i, j)] = d;
-      }
+      for (int i = 0; i < map.width; ++i) depth_[map.index(i, j)] = sheetDepthOf(map, i, j, rule, false);
   }
 
   /// Light-view depth of the sheet at continuous texel coordinates; nullopt outside the grid.

@@ -73,6 +73,10 @@ struct VolumeBuildOptions {
 /// or a camera pixel resolves, and keeps every crossing's texel coordinate exact in double.
 inline constexpr int kMaxRefineSteps = 16;
 
+/// The refineSteps chosen from measurements (README "Silhouette refinement": the error against K
+/// on 15 scenes); what the sweep's refined methods and the builder benchmark use.
+inline constexpr int kRecommendedRefineSteps = 6;
+
 /// Counts and times of one build (times in milliseconds, wall clock).
 struct VolumeBuildStats {
   std::size_t quads = 0;              ///< (W - 1) * (H - 1); 0 when W or H < 2

@@ -23,9 +23,8 @@ struct SweepMethod {
   std::string description;          ///< one line for --help and the report
 };
 
-/// Refinement steps of the sweep's hybrid-refined methods (chosen from measurements: README,
-/// "Silhouette refinement").
-inline constexpr int kSweepRefineSteps = 4;
+/// Refinement steps of the sweep's hybrid-refined methods.
+inline constexpr int kSweepRefineSteps = kRecommendedRefineSteps;
 
 /// Every method the sweep knows, in report order.
 const std::vector<SweepMethod>& sweepMethods();

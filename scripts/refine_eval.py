@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Silhouette refinement against shadow maps and silhouette volumes, scene by scene (README
+"Silhouette refinement"): runs `shadowvol validate` (640x480, the scene's camera) for each scene and
+method and prints a Markdown table of the misclassified fraction of pixels facing the light (%),
+with the stencil-vs-count agreement of every volume.
+
+Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6] [--out DIR]
+           [--methods "refined 128,refined 256"] SCENE.json ...
+
+Results go to DIR/results.jsonl (default out/refine-eval) as they come; a rerun with the same DIR
+skips what is there. Stdlib only.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+
+def methods(k):
+    """Column key -> validate options."""
+    ref = ["--volume", "explicit", "--refine", str(k)]
+    return {
+        "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"],
+        "hybrid 256": ["--volume", "explicit", "--resolution", "256"],
+        "refined 128": ref + ["--resolution", "128"],
+        "refined 256": ref + ["--resolution", "256"],
+        "refined front 128": ref + ["--resolution", "128", "--capture", "front"],
+        "refined midpoint 128": ref + ["--resolution", "128", "--capture", "midpoint"],
+        "silhouette": ["--method", "silhouette"],
+    }
+
+
+def run(exe, scene, opts, report):
+    r = subprocess.run([exe, "validate", "--scene", scene, "--report", report, "--json"] + opts,
+                       capture_output=True, text=True)
+    if r.returncode not in (0, 3):
+        # Silhouette volumes refuse meshes that are neither closed manifolds nor open sheets.
+        return {"refused": (r.stderr.strip().splitlines() or ["exit %d" % r.returncode])[-1]}
+    j = json.loads(r.stdout)
+    m = j["againstExact"]["method"]
+    agree = j["stencilVsCount"]["fraction"] if isinstance(j["stencilVsCount"], dict) else None
+    return {"error": m["errorFraction"], "missed": m["missedShadow"], "false": m["falseShadow"],
+            "agree": agree, "passed": j["passed"]}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", default="build/apps/shadowvol")
+    ap.add_argument("--refine", type=int, default=6, help="refinement steps K (default 6, the sweep's)")
+    ap.add_argument("--out", default="out/refine-eval")
+    ap.add_argument("--methods", help="comma-separated columns (default: all): " + ", ".join(methods(6)))
+    ap.add_argument("scenes", nargs="+")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    path = os.path.join(a.out, "results.jsonl")
+    done = {}
+    if os.path.exists(path):
+        for line in open(path):
+            rec = json.loads(line)
+            done[(rec["scene"], rec["method"])] = rec
+    cols = methods(a.refine)
+    if a.methods:
+        keys = [k.strip() for k in a.methods.split(",")]
+        unknown = [k for k in keys if k not in cols]
+        if unknown:
+            ap.error("unknown method(s): " + ", ".join(unknown))
+        cols = {k: cols[k] for k in keys}
+    with open(path, "a") as out:
+        for scene in a.scenes:
+            name = os.path.splitext(os.path.basename(scene))[0]
+            for key, opts in cols.items():
+                if (name, key) in done:
+                    continue
+                rec = {"scene": name, "method": key, "refine": a.refine}
+                rec.update(run(a.exe, scene, opts, os.path.join(a.out, "report")))
+                out.write(json.dumps(rec) + "\n")
+                out.flush()
+                done[(name, key)] = rec
+                print(name, key, rec.get("error", rec.get("refused")), file=sys.stderr, flush=True)
+
+    print("| scene | " + " | ".join(cols) + " |")
+    print("|---|" + "---:|" * len(cols))
+    worst = 1.0
+    for scene in a.scenes:
+        name = os.path.splitext(os.path.basename(scene))[0]
+        cells = []
+        for key in cols:
+            rec = done.get((name, key), {})
+            if "error" not in rec:
+                cells.append("refused" if "refused" in rec else "-")
+                continue
+            cells.append("%.4f" % (100 * rec["error"]))
+            if rec.get("agree") is not None:
+                worst = min(worst, rec["agree"])
+        print("| %s | %s |" % (name, " | ".join(cells)))
+    print("\nLowest stencil-vs-count agreement of any volume above: %.5f%%" % (100 * worst))
+
+
+if __name__ == "__main__":
+    main()
