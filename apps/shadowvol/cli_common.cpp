@@ -171,6 +171,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"farBoundaryEdges", s.farBoundaryEdges},
           {"refinedCells", s.refinedCells},
           {"ambiguousCells", s.ambiguousCells},
+          {"chordPoints", s.chordPoints},
           {"raysCast", s.raysCast},
           {"bias", s.biasUsed},
           {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},

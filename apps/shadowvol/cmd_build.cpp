@@ -112,9 +112,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
         if (options.refineSteps > 0)
           std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far plane), %zu refined quads (%zu "
-                      "decided by a centre ray), %zu rays\n",
+                      "decided by a centre ray, %zu chord points), %zu rays\n",
                       options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.ambiguousCells,
-                      s.raysCast);
+                      s.chordPoints, s.raysCast);
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);

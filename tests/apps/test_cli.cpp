@@ -141,7 +141,7 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["refine"], 3);
   EXPECT_EQ(j["boundaryEdges"], 64);  // the plate spans 16 texels a side
-  EXPECT_EQ(j["raysCast"], 3 * 64);
+  EXPECT_EQ(j["raysCast"], 3 * (64 + j["chordPoints"].get<int>()));  // 3 per edge and per chord point
   EXPECT_EQ(j["splitVertices"], 0);
   EXPECT_TRUE(j["ms"].contains("refine"));
   EXPECT_TRUE(std::filesystem::exists(out));

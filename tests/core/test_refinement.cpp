@@ -156,6 +156,23 @@ TEST(Refinement, SphereCrossingsOnItsSilhouetteCircle) {
     for (int steps : {2, 5}) {
       const auto r = refine(s, light, n, mode, steps);
       ASSERT_GT(r.edges.edges.size(), 40u);
+      // The walls' far vertices (every crossing and chord point) lie on the circle too.
+      VolumeBuildOptions o;
+      o.refineSteps = steps;
+      o.depthOracle = s.oracle();
+      if (mode == CaptureMode::Front) o.bias = 0.0;
+      const VolumeBuildResult v = buildVolume(r.map, o);
+      ASSERT_GT(v.stats.chordPoints, 20u);
+      std::size_t onFar = 0;
+      for (const auto& p : v.mesh.positions) {
+        if (std::abs(r.map.viewDepthOf(p) - r.map.farPlane) > 1e-9 * r.map.farPlane) continue;
+        ++onFar;
+        // Along the bisection segment the step is 2^-(K+1) of its length (at most the quad's
+        // diagonal), and the segment meets the circle at any angle: sqrt(2) x the edges' bound.
+        EXPECT_LE(std::abs(std::hypot(p.x - 0.3, p.z + 0.2) - 1.3), std::sqrt(2.0) * std::ldexp(texel, -(steps + 1)) + 1e-9)
+            << toString(mode) << " K " << steps;
+      }
+      EXPECT_EQ(onFar, r.edges.edges.size() + v.stats.chordPoints);
       for (std::size_t e = 0; e < r.edges.edges.size(); ++e) {
         // Only the rim: no step on the sphere's own surface is taken for a second surface.
         EXPECT_FALSE(r.edges.edges[e].surface) << toString(mode);
@@ -173,12 +190,14 @@ TEST(Refinement, RaysGoOnlyToBoundaryEdges) {
   const DepthMap map = s.depthMap(test::directionalDown(6.0), 64, 64, CaptureMode::Back);
   VolumeBuildOptions o;
   o.refineSteps = 4;
+  o.refineChords = false;
   o.depthOracle = s.oracle(&queries, &points);
   const VolumeBuildResult v = buildVolume(map, o);
   // The plate spans 16 texels a side: 4 x 16 edges leave it, each gets 4 rays; no ambiguous quad.
   EXPECT_EQ(v.stats.boundaryEdges, 64u);
   EXPECT_EQ(v.stats.farBoundaryEdges, 64u);
   EXPECT_EQ(v.stats.ambiguousCells, 0u);
+  EXPECT_EQ(v.stats.chordPoints, 0u);
   EXPECT_EQ(queries, 4u * 64u);
   EXPECT_EQ(v.stats.raysCast, queries);
   EXPECT_EQ(v.stats.refinedCells, 4u * 15u + 4u);  // between the side texels, plus one at each corner
@@ -191,6 +210,25 @@ TEST(Refinement, RaysGoOnlyToBoundaryEdges) {
     EXPECT_LT(edges.find(i, j, alongI ? 0 : 1), edges.edges.size()) << p.x << ", " << p.y;
   }
   EXPECT_TRUE(closedOrientedManifold(v.mesh));
+  // With chord points: every refined quad here has two boundary edges, so one more point each,
+  // 4 rays apiece, all inside the refined quads.
+  queries = 0;
+  points.clear();
+  o.refineChords = true;
+  const VolumeBuildResult c = buildVolume(map, o);
+  EXPECT_EQ(c.stats.chordPoints, c.stats.refinedCells);
+  EXPECT_EQ(queries, 4u * (64u + c.stats.chordPoints));
+  EXPECT_EQ(c.stats.raysCast, queries);
+  std::set<std::pair<int, int>> refinedQuads;
+  for (const auto& e : edges.edges) {  // the quads on both sides of every boundary edge
+    refinedQuads.insert({e.i, e.j});
+    refinedQuads.insert(e.axis == 0 ? std::pair{e.i, e.j - 1} : std::pair{e.i - 1, e.j});
+  }
+  for (const glm::dvec2& p : points) {
+    const bool onEdge = p.x == std::floor(p.x) || p.y == std::floor(p.y);
+    EXPECT_TRUE(onEdge || refinedQuads.count({int(std::floor(p.x)), int(std::floor(p.y))})) << p.x << ", " << p.y;
+  }
+  EXPECT_TRUE(closedOrientedManifold(c.mesh));
 }
 
 // The topmost (nearest the light) surface of a volume over texel point (u, v): the smallest
@@ -338,7 +376,7 @@ TEST(Refinement, EveryOptionGivesAClosedOrientedManifold) {
               const VolumeBuildResult v = buildVolume(map, o);
               ASSERT_TRUE(closedOrientedManifold(v.mesh))
                   << toString(mode) << " " << toString(tri) << " blur " << blur << " flat " << flat;
-              EXPECT_EQ(v.stats.raysCast, 3 * v.stats.boundaryEdges + v.stats.ambiguousCells);
+              EXPECT_EQ(v.stats.raysCast, 3 * (v.stats.boundaryEdges + v.stats.chordPoints) + v.stats.ambiguousCells);
               ++builds;
               refinedCells += v.stats.refinedCells;
               surfaceEdges += v.stats.boundaryEdges - v.stats.farBoundaryEdges;

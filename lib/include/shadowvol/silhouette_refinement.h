@@ -29,7 +29,7 @@
 namespace shadowvol {
 
 struct Crossing {
-  double s = 0.5;           ///< edge parameter from the near end, in (0, 1)
+  double s = 0.5;           ///< edge (or segment) parameter from the near end, in (0, 1)
   double nearDepth = 0.0;   ///< light-view depth of the wall's near vertex (world units)
   double farDepth = 0.0;    ///< light-view depth of the wall's far vertex (the far plane for far edges)
   /// Texel coordinates (i, j) of the crossing on edge e.
@@ -43,6 +43,32 @@ struct Refinement {
   std::size_t raysCast = 0;         ///< oracle queries
   double msRays = 0.0;              ///< time inside the oracle (ms)
 };
+
+/// A segment of the image plane to bisect (texel coordinates): from a point on the near surface to
+/// a point off it, by the rule of the header comment (far: off = no hit; surface: off = nearer the
+/// far depth than the near one).
+struct BisectionSegment {
+  glm::dvec2 nearPoint{0.0}, farPoint{0.0};
+  bool surface = false;       ///< a surface segment (both ends hit), else a far one
+  double nearDepth = 0.0;     ///< sheet depth at nearPoint (d(lo) to start with; may be the far plane)
+  double farDepth = 0.0;      ///< surface segments: sheet depth at farPoint (d(hi) to start with)
+  double nearFallback = 0.0;  ///< the near vertex's depth when no sample short of the far plane was near
+};
+
+/// Rays spent, and the time inside the oracle (ms).
+struct RayBudget {
+  std::size_t rays = 0;
+  double ms = 0.0;
+};
+
+/// Bisects every segment with `steps` >= 1 rays (one oracle batch per step for all of them); the
+/// crossings' s run from nearPoint to farPoint. The `extra` points (texel coordinates) are sampled
+/// in the first batch, their sheet depths (the far plane where nothing short of it is hit) written
+/// to *extraDepths. Adds what it spends to `budget`.
+std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
+                                     const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
+                                     RayBudget& budget, std::span<const glm::dvec2> extra = {},
+                                     std::vector<double>* extraDepths = nullptr);
 
 /// Refines every edge of `edges` with `steps` >= 1 bisection rays each (the header comment), and
 /// samples the sheet depth at the extra points `centres` (texel coordinates) in the first batch.

@@ -67,6 +67,9 @@ struct VolumeBuildOptions {
                                 ///< Needs depthOracle and the exact cap (docs/volume.md, "Refinement")
   DepthOracle depthOracle;      ///< refinement only: the captured depth anywhere in the light's image
                                 ///< (depth_oracle.h); unset = no refinement possible
+  bool refineChords = true;     ///< refinement only: bend the wall of a quad with two boundary edges
+                                ///< at one more crossing inside it (refineSteps more rays per such
+                                ///< quad), so it follows a curved outline; false = a straight chord
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -91,8 +94,9 @@ struct VolumeBuildStats {
   std::size_t refinedCells = 0;       ///< refinement: quads with a boundary edge (triangulated with walls)
   std::size_t ambiguousCells = 0;     ///< refinement: refined quads with 3 or 4 boundary edges, decided
                                       ///< by one more ray at the quad's centre
+  std::size_t chordPoints = 0;        ///< refinement: crossings inside quads with two boundary edges
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
-                                      ///< edge, plus one per ambiguous cell)
+                                      ///< edge and per chord point, plus one per ambiguous cell)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)

@@ -15,87 +15,102 @@ glm::dvec2 Crossing::texel(const BoundaryEdge& e, double s) {
   return {e.i + (e.axis == 0 ? t : 0.0), e.j + (e.axis == 1 ? t : 0.0)};
 }
 
-Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
-                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
-                               std::span<const glm::dvec2> centres) {
+std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
+                                     const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
+                                     RayBudget& budget, std::span<const glm::dvec2> extra,
+                                     std::vector<double>* extraDepths) {
   SV_CHECK_GE(steps, 1);
   SV_CHECK(bool(oracle));
-  const std::vector<BoundaryEdge>& edges = boundary.edges;
-  const std::size_t n = edges.size();
+  const std::size_t n = segments.size();
   const double farPlane = rule.farPlane;
-  Refinement result;
-  result.crossings.resize(n);
-  result.centreDepths.resize(centres.size());
-  // Per edge: the bracket [lo, hi] of the parameter from the near end, and its ends' depths.
+  // Per segment: the bracket [lo, hi] of the parameter from the near point, and its ends' depths.
   struct Bracket {
     double lo = 0.0, hi = 1.0, dLo = 0.0, dHi = 0.0;
   };
   std::vector<Bracket> brackets(n);
-  auto nearEnd = [](const BoundaryEdge& e) {
-    return e.nearAtP ? glm::ivec2(e.i, e.j) : glm::ivec2(e.i + (e.axis == 0), e.j + (e.axis == 1));
-  };
-  auto farEnd = [](const BoundaryEdge& e) {
-    return e.nearAtP ? glm::ivec2(e.i + (e.axis == 0), e.j + (e.axis == 1)) : glm::ivec2(e.i, e.j);
-  };
-  auto sample = [&](int i, int j) {
-    if (SheetDepthRule::ring(i, j, map.width, map.height)) return farPlane;
-    return rule.ofSample(map.at(i, j), blur);
-  };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const glm::ivec2 a = nearEnd(edges[k]), b = farEnd(edges[k]);
-      brackets[k].dLo = sample(a.x, a.y);
-      brackets[k].dHi = edges[k].surface ? sample(b.x, b.y) : farPlane;
-    }
-  });
-
+  for (std::size_t k = 0; k < n; ++k) {
+    brackets[k].dLo = segments[k].nearDepth;
+    brackets[k].dHi = segments[k].surface ? segments[k].farDepth : farPlane;
+  }
+  if (extraDepths) extraDepths->assign(extra.size(), farPlane);
+  auto at = [](const BisectionSegment& g, double s) { return g.nearPoint + s * (g.farPoint - g.nearPoint); };
   std::vector<glm::dvec2> ndc;
   std::vector<float> depth;
-  auto toNdc = [&](const glm::dvec2& texel) { return map.texelNdc(texel.x, texel.y); };
-  auto ask = [&] {
+  for (int step = 0; step < steps; ++step) {
+    const std::size_t more = step == 0 ? extra.size() : 0;
+    ndc.resize(n + more);
+    depth.assign(n + more, DepthMap::kNoHit);
+    for (std::size_t k = 0; k < n; ++k) {
+      const glm::dvec2 t = at(segments[k], 0.5 * (brackets[k].lo + brackets[k].hi));
+      ndc[k] = map.texelNdc(t.x, t.y);
+    }
+    for (std::size_t c = 0; c < more; ++c) ndc[n + c] = map.texelNdc(extra[c].x, extra[c].y);
+    if (ndc.empty()) break;
     const auto t0 = std::chrono::steady_clock::now();
     oracle(map, ndc, depth);
-    result.msRays += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    result.raysCast += ndc.size();
-  };
-  for (int step = 0; step < steps; ++step) {
-    const std::size_t extra = step == 0 ? centres.size() : 0;
-    ndc.resize(n + extra);
-    depth.assign(n + extra, DepthMap::kNoHit);
-    for (std::size_t k = 0; k < n; ++k)
-      ndc[k] = toNdc(Crossing::texel(edges[k], 0.5 * (brackets[k].lo + brackets[k].hi)));
-    for (std::size_t c = 0; c < extra; ++c) ndc[n + c] = toNdc(centres[c]);
-    ask();
+    budget.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    budget.rays += ndc.size();
     for (std::size_t k = 0; k < n; ++k) {
       Bracket& b = brackets[k];
       const double m = 0.5 * (b.lo + b.hi);
       const double d = rule.ofSample(depth[k], blur);
       const bool hit = d != farPlane;
-      const bool nearSide = hit && (!edges[k].surface || d < 0.5 * (b.dLo + b.dHi));
-      if (nearSide) b.lo = m, b.dLo = d;
-      else {
+      const bool nearSide = hit && (!segments[k].surface || d < 0.5 * (b.dLo + b.dHi));
+      if (nearSide) {
+        b.lo = m, b.dLo = d;
+      } else {
         b.hi = m;
-        if (hit && edges[k].surface) b.dHi = d;
+        if (hit && segments[k].surface) b.dHi = d;
       }
     }
-    for (std::size_t c = 0; c < extra; ++c) result.centreDepths[c] = rule.ofSample(depth[n + c], blur);
+    for (std::size_t c = 0; c < more; ++c) (*extraDepths)[c] = rule.ofSample(depth[n + c], blur);
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+  std::vector<Crossing> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Bracket& b = brackets[k];
+    Crossing& c = out[k];
+    c.s = 0.5 * (b.lo + b.hi);
+    // Never on the far plane: the segment's fallback (short of it) stands in.
+    c.nearDepth = b.dLo != farPlane ? b.dLo : segments[k].nearFallback;
+    c.farDepth = segments[k].surface ? b.dHi : farPlane;
+    // Bisection keeps d(lo) < d(hi): a surface segment starts with them in that order, both short
+    // of the far plane, and each step moves one end strictly between them.
+    SV_CHECK_LT(c.nearDepth, c.farDepth);
+  }
+  return out;
+}
+
+Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
+                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
+                               std::span<const glm::dvec2> centres) {
+  const std::vector<BoundaryEdge>& edges = boundary.edges;
+  const double farPlane = rule.farPlane;
+  auto sample = [&](int i, int j) {
+    if (SheetDepthRule::ring(i, j, map.width, map.height)) return farPlane;
+    return rule.ofSample(map.at(i, j), blur);
+  };
+  std::vector<BisectionSegment> segments(edges.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const Bracket& b = brackets[k];
-      Crossing& c = result.crossings[k];
-      c.s = 0.5 * (b.lo + b.hi);
-      const glm::ivec2 a = nearEnd(edges[k]);
-      // Never on the far plane: the near end's final sheet depth (short of it) stands in. Without
-      // blur the unblurred depth is the final one, so this happens only with blur.
-      if (b.dLo == farPlane) SV_CHECK(blur);
-      c.nearDepth = b.dLo != farPlane ? b.dLo : blurredSheetDepths[map.index(a.x, a.y)];
-      c.farDepth = edges[k].surface ? b.dHi : farPlane;
-      // Bisection keeps d(lo) < d(hi): a surface edge starts with u(near) < u(far), both short of the
-      // far plane, and each step moves one end strictly between them.
-      SV_CHECK_LT(c.nearDepth, c.farDepth);
+      const BoundaryEdge& e = edges[k];
+      const glm::ivec2 p(e.i, e.j), q(e.i + (e.axis == 0), e.j + (e.axis == 1));
+      const glm::ivec2 a = e.nearAtP ? p : q, f = e.nearAtP ? q : p;
+      BisectionSegment& g = segments[k];
+      g.nearPoint = glm::dvec2(a), g.farPoint = glm::dvec2(f);
+      g.surface = e.surface;
+      g.nearDepth = sample(a.x, a.y);
+      g.farDepth = e.surface ? sample(f.x, f.y) : farPlane;
+      // Without blur the unblurred depth is the final one, so only the blur can put it on the far
+      // plane; then the end's final sheet depth stands in.
+      if (g.nearDepth == farPlane) SV_CHECK(blur);
+      g.nearFallback = g.nearDepth != farPlane ? g.nearDepth : blurredSheetDepths[map.index(a.x, a.y)];
     }
   });
+  Refinement result;
+  RayBudget budget;
+  result.crossings = bisectSegments(map, segments, rule, blur, oracle, steps, budget, centres, &result.centreDepths);
+  result.raysCast = budget.rays;
+  result.msRays = budget.ms;
   return result;
 }
 

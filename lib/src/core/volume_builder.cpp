@@ -144,9 +144,9 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     return;  // no quad: an empty volume
   }
   const std::size_t texels = std::size_t(w) * h;
-  // Sheet + pinch copies + cap vertices, or sheet + two per boundary edge (at most two per texel)
-  // + cap vertices.
-  SV_CHECK_LT(4 * std::uint64_t(texels), std::uint64_t(kNone));
+  // Sheet + pinch copies + cap vertices, or sheet + two per boundary edge (at most two edges per
+  // texel) + two per chord point (at most one per quad) + cap vertices.
+  SV_CHECK_LT(8 * std::uint64_t(texels), std::uint64_t(kNone));
   stats.quads = std::size_t(w - 1) * (h - 1);
   const bool exact = options.cap == FarCap::Exact;
   const bool refine = options.refineSteps > 0;
@@ -185,8 +185,10 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.refinedCells = codes.refined;
   double msSheet = msSince(t0);
 
-  // 2r. Refinement: the crossings (the oracle's rays).
+  // 2r. Refinement: the crossings (the oracle's rays), on the boundary edges, then inside the quads
+  // with two of them (chord points).
   Refinement refinement;
+  ChordPoints chords;
   if (refine) {
     const auto tr = Clock::now();
     refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
@@ -197,6 +199,15 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     stats.ambiguousCells = refinedQuads.centres.size();
     stats.raysCast = refinement.raysCast;
     stats.msRays = refinement.msRays;
+    if (options.refineChords) {
+      chords = planChordPoints(refinedQuads, sheet, edges, refinement);
+      RayBudget budget;
+      chords.crossings =
+          bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget);
+      stats.chordPoints = chords.segments.size();
+      stats.raysCast += budget.rays;
+      stats.msRays += budget.ms;
+    }
     msRefine += msSince(tr);
   }
   t0 = Clock::now();
@@ -210,10 +221,13 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   CapBoundary boundary;
   RefinedCells cells;
   const auto crossingBase = std::uint32_t(vertices.count());
+  const auto chordBase = std::uint32_t(crossingBase + 2 * edges.edges.size());
+  const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;
   double msEdges = 0.0;
   if (refine) {
     const auto tc = Clock::now();
-    cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, perfect, exact, crossingBase);
+    cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, chordPoints, perfect, exact,
+                                    crossingBase, chordBase);
     boundary.edges = cells.capEdges;
     msRefine += msSince(tc);
   } else {
@@ -240,7 +254,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   VolumeMesh& mesh = result.mesh;
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
   const std::uint64_t triangles = sheetTriangles + cells.triangles.size();
-  sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size());
+  sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size() + 2 * chords.segments.size());
   sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(scratch_->quadTri, stats.quads);
   try {
@@ -251,7 +265,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   }
   if (refine) {
     const auto tc = Clock::now();
-    emitCrossingVertices(map, edges, refinement, crossingBase, mesh);
+    emitCrossingVertices(map, edges, refinement, chordPoints, crossingBase, chordBase, mesh);
     std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
     msRefine += msSince(tc);
   } else {
@@ -268,7 +282,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     appendFlatCap(cap, mesh);
     stats.capTrianglesAfter = cap.size();
   } else {
-    const RefinedFootprint footprint{cells, edges, refinement, crossingBase};
+    const RefinedFootprint footprint{cells, edges, refinement, chordPoints, crossingBase, chordBase};
     stats.capTrianglesAfter = appendMirroredCap(grid, scratch_->quadTri, boundary.edges, unproject, map,
                                                 refine ? &footprint : nullptr, mesh);
   }

@@ -43,17 +43,26 @@ std::size_t appendMirroredCap(const QuadGrid& grid, const Scratch<std::uint32_t>
   if (!refined) return added;
   const TexelUnprojector exact(map);
   std::vector<std::uint32_t> crossingVertex(refined->edges.edges.size(), kNone);
-  auto pointVertex = [&](const CapPoint& p) {
-    if (!p.edge) return texelVertex(int(p.index % std::uint32_t(w)), int(p.index / std::uint32_t(w)));
-    const BoundaryEdge& e = refined->edges.edges[p.index];
-    if (!e.surface) return farVertex(refined->crossingBase, p.index);  // on the cap's boundary
-    std::uint32_t& v = crossingVertex[p.index];
+  std::vector<std::uint32_t> chordVertex(refined->chords ? refined->chords->segments.size() : 0, kNone);
+  auto farPoint = [&](std::uint32_t& v, glm::dvec2 t) {  // a far-plane vertex under texel point t, once
     if (v == kNone) {
-      const glm::dvec2 t = Crossing::texel(e, refined->refinement.crossings[p.index].s);
       v = std::uint32_t(mesh.positions.size());
       mesh.positions.push_back(exact.worldPoint(t.x, t.y, farPlane));
     }
     return v;
+  };
+  auto pointVertex = [&](const CapPoint& p) {
+    switch (p.kind) {
+      case CapPoint::Kind::Texel: return texelVertex(int(p.index % std::uint32_t(w)), int(p.index / std::uint32_t(w)));
+      case CapPoint::Kind::Edge: {
+        const BoundaryEdge& e = refined->edges.edges[p.index];
+        if (!e.surface) return farVertex(refined->crossingBase, p.index);  // on the cap's boundary
+        return farPoint(crossingVertex[p.index], Crossing::texel(e, refined->refinement.crossings[p.index].s));
+      }
+      case CapPoint::Kind::Chord: break;
+    }
+    if (!refined->chords->segments[p.index].surface) return farVertex(refined->chordBase, p.index);
+    return farPoint(chordVertex[p.index], refined->chords->texel(p.index));
   };
   for (const auto& tri : refined->cells.footprint) {
     const Tri cap{pointVertex(tri[0]), pointVertex(tri[1]), pointVertex(tri[2])};

@@ -25,14 +25,16 @@ struct RefinedFootprint {
   const RefinedCells& cells;
   const BoundaryEdges& edges;
   const Refinement& refinement;
-  std::uint32_t crossingBase;
+  const ChordPoints* chords;  ///< null without chord points
+  std::uint32_t crossingBase, chordBase;
 };
 
 /// Appends one far-plane triangle per kept sheet triangle of the grid (found through the codes
 /// and quadTri) and per footprint triangle of the refined quads, reversed. Vertices on the cap's
 /// boundary (the ends of `edges`) are shared with the sheet (the sheet triangle already names the
-/// right pinch copy), so is a far edge's crossing (its far vertex); every other texel and every
-/// surface edge's crossing gets one far-plane vertex, appended in order of first use. Returns the
+/// right pinch copy), so is a far edge's crossing or chord point (its far vertex); every other texel
+/// and every surface crossing or chord point gets one far-plane vertex, appended in order of first
+/// use. Returns the
 /// number of cap triangles.
 std::size_t appendMirroredCap(const QuadGrid& grid, const Scratch<std::uint32_t>& quadTri,
                               const std::vector<CapEdge>& edges, const GridUnprojector& unproject, const DepthMap& map,

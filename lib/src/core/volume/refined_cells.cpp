@@ -53,13 +53,15 @@ class CellTriangulator {
   // corners[k]: the quad's corners A B C D; a[k], b[k]: side k's crossing vertices on corner k's
   // and corner k + 1's side (unused where side k has no boundary edge); `centre`: the sheet depth at
   // the quad's centre (3 or 4 boundary edges).
+  // `chordNear`, `chordFar`: the chord point's two vertices (n = 2 only; null: a straight wall).
   void run(const CellVertex* corners, const CellVertex* a, const CellVertex* b, std::uint8_t sides, double centre,
-           double farPlane) {
+           double farPlane, const CellVertex* chordNear = nullptr, const CellVertex* chordFar = nullptr) {
     int split[4], n = 0;
     for (int k = 0; k < 4; ++k)
       if (sides >> k & 1) split[n++] = k;
     SV_CHECK_GE(n, 1);
     if (n == 1) return taper(corners, a[split[0]], b[split[0]], split[0]);
+    if (n == 2 && chordNear) return bentWall(corners, a, b, split[0], split[1], chordNear, chordFar);
     // The components: corners k + 1 .. k' between consecutive boundary sides k and k'.
     for (int m = 0; m < n; ++m) {
       const int s = split[m], s2 = split[(m + 1) % n];
@@ -107,6 +109,31 @@ class CellTriangulator {
  private:
   void add(const CellVertex* p, const CellVertex* q, const CellVertex* r, bool footprint) {
     tris_.push_back({{p, q, r}, footprint});
+  }
+  // n = 2 with a chord point M: component c0 (the corners after side s0, up to s1) and component
+  // c1, each fanned from M's vertex on its side, and the wall in two vertical quads, X -> M and
+  // M -> Y (X, Y the crossings of sides s0 and s1). Each component keeps one side of every wall
+  // (keepWallsUnfolded), so neither quad folds.
+  void bentWall(const CellVertex* corners, const CellVertex* a, const CellVertex* b, int s0, int s1,
+                const CellVertex* mNear, const CellVertex* mFar) {
+    const bool c0Near = b[s0].depth < a[s0].depth;
+    const CellVertex* m0 = c0Near ? mNear : mFar;
+    const CellVertex* m1 = c0Near ? mFar : mNear;
+    auto fan = [&](const CellVertex* m, int from, int to) {  // [b[from], corners from + 1 .. to, a[to]]
+      const CellVertex* path[6];
+      int count = 0;
+      path[count++] = &b[from];
+      for (int c = (from + 1) % 4;; c = (c + 1) % 4) {
+        path[count++] = &corners[c];
+        if (c == to) break;
+      }
+      path[count++] = &a[to];
+      for (int k = 0; k + 1 < count; ++k) add(m, path[k], path[k + 1], true);
+    };
+    fan(m0, s0, s1);
+    fan(m1, s1, s0);
+    wall(&a[s0], &b[s0], m0, m1);
+    wall(m1, m0, &a[s1], &b[s1]);
   }
   // A vertical quad p q r s (two wall edges p-q and r-s on light rays): diagonal p-r.
   void wall(const CellVertex* p, const CellVertex* q, const CellVertex* r, const CellVertex* s) {
@@ -191,10 +218,112 @@ RefinedQuads findRefinedQuads(const BoundaryEdges& boundary, int width, int heig
   return result;
 }
 
+namespace {
+
+// The loop of one refined quad: its corners A B C D, and for each boundary side k its crossing's
+// vertices on corner k's side (a[k]) and corner k + 1's side (b[k]).
+struct Cell {
+  CellVertex corners[4], a[4], b[4];
+};
+
+// Fills the cell of quad (qi, qj) whose boundary sides are `sides`. Vertex ids come from idx[0]
+// and idx[1] (the vertex numbers of texel rows qj and qj + 1) when given.
+void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, const BoundaryEdges& boundary,
+                  const Refinement& refinement, const TexelUnprojector& unproject, const std::uint32_t* const* idx,
+                  std::uint32_t crossingBase, Cell& cell) {
+  const int w = sheet.map().width;
+  const double farPlane = sheet.rule().farPlane;
+  for (int k = 0; k < 4; ++k) {
+    const int i = qi + kCornerDi[k], j = qj + kCornerDj[k];
+    CellVertex& c = cell.corners[k];
+    c.depth = sheet.at(i, j);
+    c.far = c.depth == farPlane;
+    c.id = (idx && !c.far) ? idx[kCornerDj[k]][i] : kNone;
+    SV_CHECK(!idx || c.far == (c.id == kNone));  // refinement: the used texels are the non-far ones
+    c.texel = {double(i), double(j)};
+    c.lv = unproject.lightViewPoint(i, j, c.depth);
+    c.cap = {std::uint32_t(j * w + i), CapPoint::Kind::Texel};
+    if (!(sides >> k & 1)) continue;
+    const SideEdge s = sideEdge(qi, qj, k);
+    const std::size_t e = boundary.find(s.i, s.j, s.axis);
+    SV_CHECK_LT(e, boundary.edges.size());
+    const BoundaryEdge& edge = boundary.edges[e];
+    const Crossing& x = refinement.crossings[e];
+    CellVertex nearV, farV;
+    nearV.texel = farV.texel = Crossing::texel(edge, x.s);
+    nearV.depth = x.nearDepth, farV.depth = x.farDepth;
+    nearV.id = nearVertex(crossingBase, e), farV.id = farVertex(crossingBase, e);
+    farV.far = !edge.surface;
+    nearV.lv = unproject.lightViewPoint(nearV.texel.x, nearV.texel.y, nearV.depth);
+    farV.lv = unproject.lightViewPoint(farV.texel.x, farV.texel.y, farV.depth);
+    nearV.cap = farV.cap = {std::uint32_t(e), CapPoint::Kind::Edge};
+    // Corner k's side of the edge: its P end when the side runs forward.
+    const bool cornerIsNear = s.forward == edge.nearAtP;
+    cell.a[k] = cornerIsNear ? nearV : farV;
+    cell.b[k] = cornerIsNear ? farV : nearV;
+  }
+}
+
+// The boundary sides of a quad, in order; returns their number.
+int splitSides(std::uint8_t sides, int* split) {
+  int n = 0;
+  for (int k = 0; k < 4; ++k)
+    if (sides >> k & 1) split[n++] = k;
+  return n;
+}
+
+double cross2(const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; }
+
+}  // namespace
+
+ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet, const BoundaryEdges& boundary,
+                            const Refinement& refinement) {
+  const int qw = sheet.map().width - 1;
+  const double farPlane = sheet.rule().farPlane;
+  const TexelUnprojector unproject(sheet.map());
+  ChordPoints out;
+  out.ofQuad.assign(quads.quads.size(), ChordPoints::kNone);
+  for (std::size_t q = 0; q < quads.quads.size(); ++q) {
+    int split[4];
+    if (splitSides(quads.sides[q], split) != 2) continue;
+    const int qi = int(quads.quads[q] % std::uint32_t(qw)), qj = int(quads.quads[q] / std::uint32_t(qw));
+    Cell cell;
+    assembleCell(qi, qj, quads.sides[q], sheet, boundary, refinement, unproject, nullptr, 0, cell);
+    const int s0 = split[0], s1 = split[1];
+    const glm::dvec2 x = cell.a[s0].texel, y = cell.a[s1].texel, mid = 0.5 * (x + y);
+    const glm::dvec2 normal(-(y - x).y, (y - x).x);
+    // The perpendicular bisector through the quad: t in [lo, hi] (mid is inside, so lo < 0 < hi).
+    double lo = -1e300, hi = 1e300;
+    const glm::dvec2 box0(qi, qj), box1(qi + 1, qj + 1);
+    for (int k = 0; k < 2; ++k) {
+      if (normal[k] == 0.0) continue;
+      const double t0 = (box0[k] - mid[k]) / normal[k], t1 = (box1[k] - mid[k]) / normal[k];
+      lo = std::max(lo, std::min(t0, t1));
+      hi = std::min(hi, std::max(t0, t1));
+    }
+    const glm::dvec2 endLo = mid + lo * normal, endHi = mid + hi * normal;
+    // The near component's side of the chord: where its first corner lies.
+    const bool c0Near = cell.b[s0].depth < cell.a[s0].depth;
+    const glm::dvec2 nearCorner = cell.corners[((c0Near ? s0 : s1) + 1) % 4].texel;
+    const bool hiNear = (cross2(y - x, nearCorner - x) > 0.0) == (cross2(y - x, endHi - x) > 0.0);
+    BisectionSegment g;
+    g.nearPoint = hiNear ? endHi : endLo;
+    g.farPoint = hiNear ? endLo : endHi;
+    const CellVertex &xNear = c0Near ? cell.b[s0] : cell.a[s0], &xFar = c0Near ? cell.a[s0] : cell.b[s0];
+    const CellVertex &yNear = c0Near ? cell.a[s1] : cell.b[s1], &yFar = c0Near ? cell.b[s1] : cell.a[s1];
+    g.surface = !xFar.far;  // both sides are of one kind: a far component borders far edges only
+    g.nearDepth = g.nearFallback = 0.5 * (xNear.depth + yNear.depth);
+    g.farDepth = g.surface ? 0.5 * (xFar.depth + yFar.depth) : farPlane;
+    out.ofQuad[q] = out.segments.size();
+    out.segments.push_back(g);
+  }
+  return out;
+}
+
 RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices,
                                      const SheetDepths& sheet, const BoundaryEdges& boundary,
-                                     const Refinement& refinement, bool perfect, bool exact,
-                                     std::uint32_t crossingBase) {
+                                     const Refinement& refinement, const ChordPoints* chords, bool perfect, bool exact,
+                                     std::uint32_t crossingBase, std::uint32_t chordBase) {
   const DepthMap& map = sheet.map();
   const int w = map.width, qw = w - 1, qh = map.height - 1;
   const double farPlane = sheet.rule().farPlane;
@@ -220,48 +349,34 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
     std::vector<LocalTri> tris;
     for (int qj = range.begin(); qj != range.end(); ++qj) {
       if (rowStart[qj] == rowStart[qj + 1]) continue;
-      for (int r = 0; r < 2; ++r) {  // vertex indices of texel rows qj and qj + 1
-        std::fill(idx[r].begin(), idx[r].end(), kNone);
+      for (int r = 0; r < 2; ++r) {  // vertex indices of texel rows qj and qj + 1 (read for used texels only)
         const auto [b, e] = use.row(qj + r, used.data());
         numberRow(used.data() + b, idx[r].data() + b, e - b, std::uint32_t(vertices.rowVerts[qj + r]), kNone);
       }
+      const std::uint32_t* rowsIdx[2] = {idx[0].data(), idx[1].data()};
       RowOut& out = rows[qj];
       for (std::size_t q = rowStart[qj]; q < rowStart[qj + 1]; ++q) {
         const int qi = int(quads.quads[q] % std::uint32_t(qw));
-        CellVertex corners[4], a[4], b[4];
-        for (int k = 0; k < 4; ++k) {
-          const int i = qi + kCornerDi[k], j = qj + kCornerDj[k];
-          CellVertex& c = corners[k];
-          c.depth = sheet.at(i, j);
-          c.far = c.depth == farPlane;
-          c.id = idx[kCornerDj[k]][i];
-          SV_CHECK(c.far == (c.id == kNone));  // refinement: the used texels are the non-far ones
-          c.texel = {double(i), double(j)};
-          c.lv = unproject.lightViewPoint(i, j, c.depth);
-          c.cap = {std::uint32_t(j * w + i), false};
-          if (!(quads.sides[q] >> k & 1)) continue;
-          const SideEdge s = sideEdge(qi, qj, k);
-          const std::size_t e = boundary.find(s.i, s.j, s.axis);
-          SV_CHECK_LT(e, boundary.edges.size());
-          const BoundaryEdge& edge = boundary.edges[e];
-          const Crossing& x = refinement.crossings[e];
-          CellVertex nearV, farV;
-          nearV.texel = farV.texel = Crossing::texel(edge, x.s);
-          nearV.depth = x.nearDepth, farV.depth = x.farDepth;
-          nearV.id = nearVertex(crossingBase, e), farV.id = farVertex(crossingBase, e);
-          farV.far = !edge.surface;
-          nearV.lv = unproject.lightViewPoint(nearV.texel.x, nearV.texel.y, nearV.depth);
-          farV.lv = unproject.lightViewPoint(farV.texel.x, farV.texel.y, farV.depth);
-          nearV.cap = farV.cap = {std::uint32_t(e), true};
-          // Corner k's side of the edge: its P end when the side runs forward.
-          const bool cornerIsNear = s.forward == edge.nearAtP;
-          a[k] = cornerIsNear ? nearV : farV;
-          b[k] = cornerIsNear ? farV : nearV;
-        }
+        Cell cell;
+        assembleCell(qi, qj, quads.sides[q], sheet, boundary, refinement, unproject, rowsIdx, crossingBase, cell);
         const bool ambiguous = std::popcount(unsigned(quads.sides[q])) >= 3;
         const double centre = ambiguous ? refinement.centreDepths[centreOf[q]] : farPlane;
+        CellVertex mNear, mFar;  // the chord point's vertices, if any
+        const std::size_t k = chords ? chords->ofQuad[q] : ChordPoints::kNone;
+        if (k != ChordPoints::kNone) {
+          const Crossing& x = chords->crossings[k];
+          mNear.texel = mFar.texel = chords->texel(k);
+          mNear.depth = x.nearDepth, mFar.depth = x.farDepth;
+          mNear.id = nearVertex(chordBase, k), mFar.id = farVertex(chordBase, k);
+          mFar.far = !chords->segments[k].surface;
+          mNear.lv = unproject.lightViewPoint(mNear.texel.x, mNear.texel.y, mNear.depth);
+          mFar.lv = unproject.lightViewPoint(mFar.texel.x, mFar.texel.y, mFar.depth);
+          mNear.cap = mFar.cap = {std::uint32_t(k), CapPoint::Kind::Chord};
+        }
         tris.clear();
-        CellTriangulator(perfect, tris).run(corners, a, b, quads.sides[q], centre, farPlane);
+        CellTriangulator(perfect, tris)
+            .run(cell.corners, cell.a, cell.b, quads.sides[q], centre, farPlane, k != ChordPoints::kNone ? &mNear : nullptr,
+                 k != ChordPoints::kNone ? &mFar : nullptr);
         // Drop the triangles on the far plane; the far edges of kept ones across from a dropped
         // one are the cap's boundary.
         auto dropped = [&](const LocalTri& t) { return exact && t.v[0]->far && t.v[1]->far && t.v[2]->far; };
@@ -269,14 +384,14 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
           if (dropped(t)) continue;
           out.triangles.push_back({t.v[0]->id, t.v[1]->id, t.v[2]->id});
           if (t.footprint) out.footprint.push_back({t.v[0]->cap, t.v[1]->cap, t.v[2]->cap});
-          for (int k = 0; k < 3; ++k) {
-            const CellVertex* u = t.v[k];
-            const CellVertex* v = t.v[(k + 1) % 3];
+          for (int m = 0; m < 3; ++m) {
+            const CellVertex* u = t.v[m];
+            const CellVertex* v = t.v[(m + 1) % 3];
             if (!u->far || !v->far) continue;
             const bool acrossDropped = std::any_of(tris.begin(), tris.end(), [&](const LocalTri& o) {
               if (!dropped(o)) return false;
-              for (int m = 0; m < 3; ++m)
-                if (o.v[m]->id == v->id && o.v[(m + 1) % 3]->id == u->id) return true;
+              for (int c = 0; c < 3; ++c)
+                if (o.v[c]->id == v->id && o.v[(c + 1) % 3]->id == u->id) return true;
               return false;
             });
             if (acrossDropped) out.capEdges.push_back({u->id, v->id, u->texel, v->texel});
@@ -295,7 +410,8 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
 }
 
 void emitCrossingVertices(const DepthMap& map, const BoundaryEdges& boundary, const Refinement& refinement,
-                          std::uint32_t crossingBase, VolumeMesh& mesh) {
+                          const ChordPoints* chords, std::uint32_t crossingBase, std::uint32_t chordBase,
+                          VolumeMesh& mesh) {
   const TexelUnprojector unproject(map);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, boundary.edges.size(), 512),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -306,6 +422,12 @@ void emitCrossingVertices(const DepthMap& map, const BoundaryEdges& boundary, co
                         mesh.positions[farVertex(crossingBase, e)] = unproject.worldPoint(t.x, t.y, x.farDepth);
                       }
                     });
+  if (!chords) return;
+  for (std::size_t k = 0; k < chords->crossings.size(); ++k) {
+    const glm::dvec2 t = chords->texel(k);
+    mesh.positions[nearVertex(chordBase, k)] = unproject.worldPoint(t.x, t.y, chords->crossings[k].nearDepth);
+    mesh.positions[farVertex(chordBase, k)] = unproject.worldPoint(t.x, t.y, chords->crossings[k].farDepth);
+  }
 }
 
 }  // namespace shadowvol::volume

@@ -8,7 +8,11 @@
 // pentagon by a fan from its middle corner). What is left between the chords:
 //   n = 1 (only a surface edge, whose jump fades inside the quad): the wall tapers from its
 //         crossing to the opposite corner across the quad;
-//   n = 2: one wall, the vertical quad between the two crossings' wall edges;
+//   n = 2: one wall between the two crossings' wall edges: with chord points (the default) it
+//         bends at one more crossing M inside the quad, found by bisection on the chord's
+//         perpendicular bisector between the cell's boundary on either side (so the contour
+//         follows a curved or cornered outline instead of cutting it straight); each component is
+//         then fanned from M;
 //   n = 3, 4: a middle polygon through one vertex per crossing, picked by one more ray at the
 //         quad's centre (the near vertex of a far edge when the centre ray hits, its far vertex
 //         when not; of a surface edge, the vertex whose depth is closer to the centre's), fanned
@@ -35,10 +39,12 @@
 
 namespace shadowvol::volume {
 
-/// A vertex of the mirrored (unflattened) cap: the far-plane point under a texel or a crossing.
+/// A vertex of the mirrored (unflattened) cap: the far-plane point under a texel, a boundary
+/// edge's crossing or a chord point.
 struct CapPoint {
-  std::uint32_t index = 0;  ///< texel index (j * W + i) or boundary-edge index
-  bool edge = false;        ///< true: a crossing
+  enum class Kind : std::uint8_t { Texel, Edge, Chord };
+  std::uint32_t index = 0;  ///< texel index (j * W + i), boundary-edge index or chord-point index
+  Kind kind = Kind::Texel;
 };
 
 /// The refined quads, in quad order, with the centre points of the ambiguous ones (3 or 4
@@ -57,18 +63,38 @@ struct RefinedCells {
                                                   ///< in texel space): what the mirrored cap mirrors
 };
 
-/// The vertex indices of boundary edge e's crossing: base + 2 e (near vertex), base + 2 e + 1 (far).
+/// The vertex indices of crossing (or chord point) e: base + 2 e (near vertex), base + 2 e + 1 (far).
 inline std::uint32_t nearVertex(std::uint32_t base, std::size_t e) { return base + 2u * std::uint32_t(e); }
 inline std::uint32_t farVertex(std::uint32_t base, std::size_t e) { return base + 2u * std::uint32_t(e) + 1u; }
 
-/// Triangulates every refined quad (see the header comment). `crossingBase` is the first
-/// crossing vertex index; `centreDepths` the sheet depths of quads.centres (Refinement).
+/// The chord points of the quads with two boundary edges: where to look (segments, for
+/// bisectSegments), and what was found (crossings, filled in by the caller).
+struct ChordPoints {
+  static constexpr std::size_t kNone = std::size_t(-1);
+  std::vector<std::size_t> ofQuad;          ///< per refined quad: its chord point, or kNone
+  std::vector<BisectionSegment> segments;   ///< in quad order
+  std::vector<Crossing> crossings;          ///< one per segment (bisectSegments)
+  glm::dvec2 texel(std::size_t k) const {
+    const BisectionSegment& g = segments[k];
+    return g.nearPoint + crossings[k].s * (g.farPoint - g.nearPoint);
+  }
+};
+
+/// Plans one chord point per quad with exactly two boundary edges (see the header comment).
+ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet, const BoundaryEdges& edges,
+                            const Refinement& refinement);
+
+/// Triangulates every refined quad (see the header comment). `crossingBase` / `chordBase` are the
+/// first crossing / chord-point vertex indices; `chords` may be null (no chord points).
 RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices,
                                      const SheetDepths& sheet, const BoundaryEdges& edges, const Refinement& refinement,
-                                     bool perfect, bool exact, std::uint32_t crossingBase);
+                                     const ChordPoints* chords, bool perfect, bool exact, std::uint32_t crossingBase,
+                                     std::uint32_t chordBase);
 
-/// World positions of every crossing's two vertices, into mesh.positions from crossingBase.
+/// World positions of every crossing's two vertices, into mesh.positions from crossingBase, and
+/// of every chord point's from chordBase.
 void emitCrossingVertices(const DepthMap& map, const BoundaryEdges& edges, const Refinement& refinement,
-                          std::uint32_t crossingBase, VolumeMesh& mesh);
+                          const ChordPoints* chords, std::uint32_t crossingBase, std::uint32_t chordBase,
+                          VolumeMesh& mesh);
 
 }  // namespace shadowvol::volume
