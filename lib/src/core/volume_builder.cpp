@@ -94,6 +94,31 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
                      "refinement replaces by walls");
 }
 
+// Refinement's rays: the boundary edges' crossings (and the ambiguous quads' centre depths), then,
+// with refineChords, the chord points of the quads with two boundary edges; their counts go to
+// `stats`.
+void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& edges, const volume::RefinedQuads& quads,
+                        std::span<const double> blurred, const VolumeBuildOptions& options, Refinement& refinement,
+                        volume::ChordPoints& chords, VolumeBuildStats& stats) {
+  const DepthMap& map = sheet.map();
+  refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
+                                   options.refineSteps, quads.centres);
+  stats.boundaryEdges = edges.edges.size();
+  stats.farBoundaryEdges =
+      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+  stats.ambiguousCells = quads.centres.size();
+  stats.raysCast = refinement.raysCast;
+  stats.msRays = refinement.msRays;
+  if (!options.refineChords) return;
+  chords = volume::planChordPoints(quads, sheet, edges, refinement);
+  RayBudget budget;
+  chords.crossings =
+      bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget);
+  stats.chordPoints = chords.segments.size();
+  stats.raysCast += budget.rays;
+  stats.msRays += budget.ms;
+}
+
 }  // namespace
 
 // Grid-sized scratch kept by a VolumeBuilder between builds.
@@ -185,29 +210,12 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.refinedCells = codes.refined;
   double msSheet = msSince(t0);
 
-  // 2r. Refinement: the crossings (the oracle's rays), on the boundary edges, then inside the quads
-  // with two of them (chord points).
+  // 2r. Refinement: the crossings (the oracle's rays).
   Refinement refinement;
   ChordPoints chords;
   if (refine) {
     const auto tr = Clock::now();
-    refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                     options.refineSteps, refinedQuads.centres);
-    stats.boundaryEdges = edges.edges.size();
-    stats.farBoundaryEdges = std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(),
-                                                       [](const BoundaryEdge& e) { return !e.surface; }));
-    stats.ambiguousCells = refinedQuads.centres.size();
-    stats.raysCast = refinement.raysCast;
-    stats.msRays = refinement.msRays;
-    if (options.refineChords) {
-      chords = planChordPoints(refinedQuads, sheet, edges, refinement);
-      RayBudget budget;
-      chords.crossings =
-          bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget);
-      stats.chordPoints = chords.segments.size();
-      stats.raysCast += budget.rays;
-      stats.msRays += budget.ms;
-    }
+    castRefinementRays(sheet, edges, refinedQuads, blurred, options, refinement, chords, stats);
     msRefine += msSince(tr);
   }
   t0 = Clock::now();
