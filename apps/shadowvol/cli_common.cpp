@@ -38,6 +38,10 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
       ->check(CLI::IsMember({"exact", "quad"}))
       ->capture_default_str();
+  cmd.add_flag("--chord-points", o.chordPoints,
+               "With --refine: bend the wall of each quad with two boundary edges at one more crossing inside it (K "
+               "more rays per such quad), so it follows curved outlines: less error on real meshes, more rays, cap "
+               "vertices and wall triangles (README 'Silhouette refinement')");
   return cmd
       .add_option("--refine", o.refine,
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
@@ -58,8 +62,10 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   if (o.refine > 0 && o.cap != "exact")
     throw InputError("command line", "--refine", std::to_string(o.refine),
                      "needs --cap exact (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
+  if (o.chordPoints && o.refine == 0) throw InputError("command line", "--chord-points", "", "needs --refine");
   VolumeBuildOptions v;
   v.refineSteps = o.refine;
+  v.refineChords = o.chordPoints;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;

@@ -37,6 +37,7 @@ struct VolumeCliOptions {
   std::optional<double> bias;
   std::string cap = "exact";
   int refine = 0;  ///< --refine K: silhouette refinement steps (0 = off)
+  bool chordPoints = false;  ///< --chord-points: refinement with chord points (refineChords)
 };
 /// Adds the options; returns --refine's option (for excludes).
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);

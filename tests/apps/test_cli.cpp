@@ -141,7 +141,15 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["refine"], 3);
   EXPECT_EQ(j["boundaryEdges"], 64);  // the plate spans 16 texels a side
-  EXPECT_EQ(j["raysCast"], 3 * (64 + j["chordPoints"].get<int>()));  // 3 per edge and per chord point
+  EXPECT_EQ(j["raysCast"], 3 * 64);
+  EXPECT_EQ(j["chordPoints"], 0);
+  const CliResult chords =
+      runCli("build --json --resolution 64 --refine 3 --chord-points --scene " + scene("plate.json") + " --out " + out);
+  ASSERT_EQ(chords.code, 0) << chords.out;
+  const auto jc = nlohmann::json::parse(chords.out);
+  EXPECT_EQ(jc["chordPoints"], 64);  // one per refined quad: each has two boundary edges here
+  EXPECT_EQ(jc["raysCast"], 3 * (64 + 64));
+  EXPECT_EQ(runCli("build --resolution 8 --chord-points --out " + out).code, 1);  // needs --refine
   EXPECT_EQ(j["splitVertices"], 0);
   EXPECT_TRUE(j["ms"].contains("refine"));
   EXPECT_TRUE(std::filesystem::exists(out));

@@ -136,6 +136,7 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           if (c.cap == 2) continue;  // refinement needs the exact cap
           VolumeBuildOptions o = c.options();
           o.refineSteps = 3;
+          o.refineChords = c.triangulation == Triangulation::Perfect;  // both ways across the combinations
           o.depthOracle = oracle.oracle();
           const std::string what = file.filename().string() + " " + std::to_string(res) + " " + toString(mode) + " " +
                                    c.name() + " refine 3";
@@ -189,6 +190,7 @@ TEST(VolumeCgal, RefinedVolumesOfRandomMapsAndRaysAreValid) {
           o.blur = blur;
           o.flattenCap = flat;
           o.refineSteps = 1 + trial % 5;
+          o.refineChords = trial % 2 == 0;
           o.depthOracle = oracle;
           const auto r = buildVolume(map, o);
           MeshCheckOptions co;
@@ -213,9 +215,10 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
         const DepthMap map = captureDepthEmbree(scene, res, res, mode);
         for (const Combo& c : allCombos()) {
           if (c.cap == 2) continue;  // the quad cap coincides with the far sheet by design
-          for (int steps : {0, 4}) {
+          for (int steps : {0, 4, -4}) {  // -4: 4 steps with chord points
             VolumeBuildOptions vo = c.options();
-            vo.refineSteps = steps;
+            vo.refineSteps = std::abs(steps);
+            vo.refineChords = steps < 0;
             vo.depthOracle = oracle.oracle();
             const auto r = buildVolume(map, vo);
             MeshCheckOptions o;
@@ -231,7 +234,7 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
         }
       }
   }
-  EXPECT_EQ(checked, 5u * 2 * 2 * 8 * 2);
+  EXPECT_EQ(checked, 5u * 2 * 2 * 8 * 3);
   RecordProperty("far_plane_touching_pairs", int(touching));
 }
 

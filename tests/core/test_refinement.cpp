@@ -159,6 +159,7 @@ TEST(Refinement, SphereCrossingsOnItsSilhouetteCircle) {
       // The walls' far vertices (every crossing and chord point) lie on the circle too.
       VolumeBuildOptions o;
       o.refineSteps = steps;
+      o.refineChords = true;
       o.depthOracle = s.oracle();
       if (mode == CaptureMode::Front) o.bias = 0.0;
       const VolumeBuildResult v = buildVolume(r.map, o);
@@ -371,6 +372,7 @@ TEST(Refinement, EveryOptionGivesAClosedOrientedManifold) {
               o.blurOffset = blur ? 0.01 : 0.0;
               o.flattenCap = flat;
               o.refineSteps = 3;
+              o.refineChords = tri == Triangulation::Perfect;  // both ways across the combinations
               o.depthOracle = s.oracle();
               if (mode == CaptureMode::Front) o.bias = 0.0;  // keep the ground off the far plane
               const VolumeBuildResult v = buildVolume(map, o);
@@ -394,6 +396,7 @@ TEST(Refinement, DeterministicForAnyThreadCount) {
   const DepthMap map = s.depthMap(spot(), 200, 200, CaptureMode::Midpoint);
   VolumeBuildOptions o;
   o.refineSteps = 5;
+  o.refineChords = true;
   o.depthOracle = s.oracle();
   VolumeBuildResult one;
   {

@@ -106,8 +106,9 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
         ro.volumeOptions.triangulation = tri;
         ro.volumeOptions.blur = blur;
         ro.volumeOptions.refineSteps = 4;
+        ro.volumeOptions.refineChords = blur;  // both ways across the combinations
         ro.volumeOptions.depthOracle = oracle.oracle();
-        SCOPED_TRACE(path.filename().string() + " refined " + toString(tri) + (blur ? " blur" : ""));
+        SCOPED_TRACE(path.filename().string() + " refined " + toString(tri) + (blur ? " blur, chord points" : ""));
         const Validated r = renderAndValidate(scene, ro);
         ++frames;
         ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();

@@ -8,7 +8,7 @@
 // pentagon by a fan from its middle corner). What is left between the chords:
 //   n = 1 (only a surface edge, whose jump fades inside the quad): the wall tapers from its
 //         crossing to the opposite corner across the quad;
-//   n = 2: one wall between the two crossings' wall edges: with chord points (the default) it
+//   n = 2: one wall between the two crossings' wall edges: with chord points (refineChords) it
 //         bends at one more crossing M inside the quad, found by bisection on the chord's
 //         perpendicular bisector between the cell's boundary on either side (so the contour
 //         follows a curved or cornered outline instead of cutting it straight); each component is
