@@ -4,8 +4,8 @@
 method and prints a Markdown table of the misclassified fraction of pixels facing the light (%),
 with the stencil-vs-count agreement of every volume.
 
-Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6] [--out DIR]
-           [--methods "refined 128,refined 256"] SCENE.json ...
+Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6] [--chord-points]
+           [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
 
 Results go to DIR/results.jsonl (default out/refine-eval) as they come; a rerun with the same DIR
 skips what is there. Stdlib only.
@@ -17,9 +17,9 @@ import subprocess
 import sys
 
 
-def methods(k):
+def methods(k, chords=False):
     """Column key -> validate options."""
-    ref = ["--volume", "explicit", "--refine", str(k)]
+    ref = ["--volume", "explicit", "--refine", str(k)] + (["--chord-points"] if chords else [])
     return {
         "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"],
         "hybrid 256": ["--volume", "explicit", "--resolution", "256"],
@@ -49,6 +49,7 @@ def main():
     ap.add_argument("--exe", default="build/apps/shadowvol")
     ap.add_argument("--refine", type=int, default=6, help="refinement steps K (default 6, the sweep's)")
     ap.add_argument("--out", default="out/refine-eval")
+    ap.add_argument("--chord-points", action="store_true", help="refined methods with --chord-points")
     ap.add_argument("--methods", help="comma-separated columns (default: all): " + ", ".join(methods(6)))
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args()
@@ -59,7 +60,7 @@ def main():
         for line in open(path):
             rec = json.loads(line)
             done[(rec["scene"], rec["method"])] = rec
-    cols = methods(a.refine)
+    cols = methods(a.refine, a.chord_points)
     if a.methods:
         keys = [k.strip() for k in a.methods.split(",")]
         unknown = [k for k in keys if k not in cols]
