@@ -46,17 +46,35 @@ std::vector<std::filesystem::path> shippedScenes() {
   return out;
 }
 
+// The shipped scenes that load; only the real-mesh scenes may be missing their meshes
+// (scripts/fetch_meshes.sh), anything else that fails to load is a defect.
+std::vector<std::pair<std::filesystem::path, Scene>> loadableScenes() {
+  std::vector<std::pair<std::filesystem::path, Scene>> out;
+  for (const auto& path : shippedScenes()) {
+    try {
+      out.emplace_back(path, loadScene(path).scene);
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("meshes"), std::string::npos) << e.what();
+    }
+  }
+  return out;
+}
+
+// The consistency verdict of one frame, with the numbers that matter when it fails.
+void expectConsistent(const Validated& r) {
+  ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();
+  EXPECT_GE(r.v.stencilVsCount.fraction(), kRequiredAgreement)
+      << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels;
+  EXPECT_TRUE(r.v.consistent) << (r.v.failures.empty() ? "" : r.v.failures.front());
+  if (!r.v.eyeInsideVolume) {
+    ASSERT_TRUE(r.v.zfailVsZpass.has_value());
+    EXPECT_EQ(r.v.zfailVsZpass->agree, r.v.zfailVsZpass->pixels);
+  }
+}
+
 TEST(Validation, StencilMatchesCrossingCountsOnEveryScene) {
   int frames = 0;
-  for (const auto& path : shippedScenes()) {
-    Scene scene;
-    try {
-      scene = loadScene(path).scene;
-    } catch (const InputError& e) {
-      // Only the real-mesh scenes may be missing their meshes (scripts/fetch_meshes.sh).
-      ASSERT_NE(std::string(e.what()).find("meshes"), std::string::npos) << e.what();
-      continue;
-    }
+  for (auto& [path, scene] : loadableScenes()) {
     scene.camera.width = 128;
     scene.camera.height = 96;
     for (auto source : {gl::VolumeSource::Gpu, gl::VolumeSource::Explicit})
@@ -69,16 +87,8 @@ TEST(Validation, StencilMatchesCrossingCountsOnEveryScene) {
           ro.volumeOptions.blur = blur;
           SCOPED_TRACE(path.filename().string() + " " + gl::toString(source) + " " + toString(tri) +
                        (blur ? " blur" : ""));
-          const Validated r = renderAndValidate(scene, ro);
+          expectConsistent(renderAndValidate(scene, ro));
           ++frames;
-          ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();
-          EXPECT_GE(r.v.stencilVsCount.fraction(), kRequiredAgreement)
-              << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels;
-          EXPECT_TRUE(r.v.consistent) << (r.v.failures.empty() ? "" : r.v.failures.front());
-          if (!r.v.eyeInsideVolume) {
-            ASSERT_TRUE(r.v.zfailVsZpass.has_value());
-            EXPECT_EQ(r.v.zfailVsZpass->agree, r.v.zfailVsZpass->pixels);
-          }
         }
   }
   EXPECT_GE(frames, 8 * 10);
@@ -87,14 +97,7 @@ TEST(Validation, StencilMatchesCrossingCountsOnEveryScene) {
 // Refinement (the explicit volume, the scene's Embree rays): the same agreement on every scene.
 TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
   int frames = 0;
-  for (const auto& path : shippedScenes()) {
-    Scene scene;
-    try {
-      scene = loadScene(path).scene;
-    } catch (const InputError& e) {
-      ASSERT_NE(std::string(e.what()).find("meshes"), std::string::npos) << e.what();
-      continue;
-    }
+  for (auto& [path, scene] : loadableScenes()) {
     scene.camera.width = 128;
     scene.camera.height = 96;
     const EmbreeDepthOracle oracle(scene);
@@ -109,16 +112,8 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
         ro.volumeOptions.refineChords = blur;  // both ways across the combinations
         ro.volumeOptions.depthOracle = oracle.oracle();
         SCOPED_TRACE(path.filename().string() + " refined " + toString(tri) + (blur ? " blur, chord points" : ""));
-        const Validated r = renderAndValidate(scene, ro);
+        expectConsistent(renderAndValidate(scene, ro));
         ++frames;
-        ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();
-        EXPECT_GE(r.v.stencilVsCount.fraction(), kRequiredAgreement)
-            << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels;
-        EXPECT_TRUE(r.v.consistent) << (r.v.failures.empty() ? "" : r.v.failures.front());
-        if (!r.v.eyeInsideVolume) {
-          ASSERT_TRUE(r.v.zfailVsZpass.has_value());
-          EXPECT_EQ(r.v.zfailVsZpass->agree, r.v.zfailVsZpass->pixels);
-        }
       }
   }
   EXPECT_GE(frames, 8 * 4);
@@ -208,16 +203,9 @@ TEST(Validation, ShadowMapBaselinesAreScoredWithoutAVolume) {
 // polygon-sweep scenes share one layout; the first of them stands for all.
 TEST(Validation, DefaultOptionsMeetTheAccuracyVerdictOnEveryScene) {
   int frames = 0;
-  for (const auto& path : shippedScenes()) {
+  for (const auto& [path, scene] : loadableScenes()) {
     const std::string name = path.filename().string();
     if (name.rfind("sweep-", 0) == 0 && name != "sweep-000500.json") continue;
-    Scene scene;
-    try {
-      scene = loadScene(path).scene;
-    } catch (const InputError& e) {
-      ASSERT_NE(std::string(e.what()).find("meshes"), std::string::npos) << e.what();
-      continue;
-    }
     gl::RenderOptions ro;
     ro.depthWidth = ro.depthHeight = 512;
     const Validated r = renderAndValidate(scene, ro);

@@ -10,11 +10,13 @@
 //                 (d(lo) + d(hi)) / 2 (both updated as the bracket shrinks, so a sloped surface
 //                 is followed).
 // Near: lo = m (and d(lo) = its depth), else hi = m (and, for a hit, d(hi) = its depth). The crossing
-// is the middle of the last bracket, within 2^-(steps + 1) of a texel of the last sample pair that
-// changes sides: s = (lo + hi) / 2, a dyadic fraction, so its texel coordinate is exact in double.
-// Its wall stands on the light ray through that point: the near vertex at d(lo) (the near end's
-// own sheet depth when no sample was near), the far vertex at the far plane (far edge) or at d(hi)
-// (surface edge). The batches go level by level: one oracle call per step for every edge at once.
+// is the middle of the last bracket, s = (lo + hi) / 2: where the surface ends, within 2^-(steps+1)
+// of a texel, when it ends once along the edge; a dyadic fraction, so its texel coordinate is exact
+// in double. Its wall stands on the light ray through that point: the near vertex at d(lo) (the
+// near end's own sheet depth when no sample was near), the far vertex at the far plane (far edge)
+// or at d(hi) (surface edge). The batches go level by level: one oracle call per step for every
+// edge at once. The same bisection serves any segment of the image plane (bisectSegments): the
+// builder's chord points use it too.
 #pragma once
 
 #include <span>
