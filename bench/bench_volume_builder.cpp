@@ -1,4 +1,4 @@
-// Google Benchmark for buildVolume (issue 3): 256^2 .. 2048^2, fixed / perfect, blur off / on,
+// Google Benchmark for buildVolume: 256^2 .. 2048^2, fixed / perfect, blur off / on,
 // exact cap, on two analytic depth maps of the same spot-lit scene (a sphere and a box over a
 // ground plane):
 //   back  - back-face capture: the sphere's and box's far sides; the ground (single-sided, facing

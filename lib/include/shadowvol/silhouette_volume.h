@@ -1,4 +1,4 @@
-// Classic object-space shadow volumes (issue 6's baseline): silhouette edges from OpenMesh's
+// Classic object-space shadow volumes (the sweep's accuracy baseline): silhouette edges from OpenMesh's
 // half-edge connectivity, extruded away from the light, with a light cap and a dark cap. Pure CPU,
 // no GL: the renderer draws the result with the same z-fail stencil pass as the hybrid volume.
 //

@@ -1,4 +1,4 @@
-// The time-against-error sweep (issue 6): every scene x method x depth-map resolution, timed on
+// The time-against-error sweep: every scene x method x depth-map resolution, timed on
 // the GPU renderer and scored against exact (ray-traced) shadows. Rows go to DIR/results.csv as
 // they are measured, so an interrupted sweep resumes where it stopped.
 #pragma once

@@ -1,4 +1,4 @@
-// The GPU production path (issue 4): a renderer that keeps an EGL context, its programs and
+// The GPU production path: a renderer that keeps an EGL context, its programs and
 // framebuffers alive between frames (style.md point 3).
 //
 // Passes of one frame (docs/gpu.md has the full story):

@@ -1,4 +1,4 @@
-// Validation of one rendered frame (issue 5): the GPU's stencil against Embree's signed crossing
+// Validation of one rendered frame: the GPU's stencil against Embree's signed crossing
 // counts of the explicit volume, z-fail against z-pass, and every shadow test against the exact
 // (ray-traced) shadows. GL-free: the caller passes what the GPU produced.
 //
@@ -92,7 +92,7 @@ struct FrameValidation {
   bool passed = true;
 };
 
-/// Agreement required between stencil and count (issue 5): 99.99 % of visible pixels.
+/// Agreement required between stencil and count: 99.99 % of visible pixels.
 inline constexpr double kRequiredAgreement = 0.9999;
 
 /// Runs every check. `depth` is the depth map the GPU used (read back), `volumeOptions` the options
