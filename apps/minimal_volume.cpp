@@ -10,7 +10,7 @@
 #include <exception>
 
 #include "shadowvol/embree/depth_capture.h"  // captureDepthEmbree: CPU depth capture
-#include "shadowvol/mesh_io.h"               // writeTriangleMesh: PLY/OBJ/OFF/STL writers
+#include "shadowvol/mesh_io.h"               // writeVolumeMesh: PLY/OBJ/OFF/STL writers
 #include "shadowvol/scene.h"                 // Scene, defaultScene, loadScene
 #include "shadowvol/volume_builder.h"        // buildVolume: depth map -> VolumeMesh
 
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
 
     // 4. Export. The mesh is also a plain value (volume.mesh.positions / .triangles), so a caller
     //    can use it without touching a file.
-    shadowvol::writeTriangleMesh(volume.mesh.toTriangleMesh(), out);
+    shadowvol::writeVolumeMesh(volume.mesh, out);
     std::printf("%zu vertices, %zu triangles -> %s\n", volume.mesh.vertexCount(), volume.mesh.triangleCount(), out);
     return 0;
   } catch (const std::exception& e) {

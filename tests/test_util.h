@@ -1,11 +1,14 @@
 // Helpers shared by the test folders.
 #pragma once
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include <glm/vec3.hpp>
 
 #include "shadowvol/light.h"
 
@@ -26,6 +29,27 @@ inline void writeText(const std::filesystem::path& p, const std::string& text) {
 }
 
 inline std::filesystem::path sourceDir() { return SV_SOURCE_DIR; }
+
+/// The default scene's layout as scene JSON (ground, sphere of detail 3, spot light, camera),
+/// scaled by `scale` about the world origin and then moved by `offset`.
+inline std::string movedDefaultScene(const glm::dvec3& offset, double scale = 1.0, int width = 640, int height = 480) {
+  auto at = [&](double x, double y, double z) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", x * scale + offset.x, y * scale + offset.y,
+                  z * scale + offset.z);
+    return std::string(buf);
+  };
+  auto num = [](double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  return R"({"objects":[{"type":"plane","size":)" + num(20 * scale) + R"(,"transform":{"translate":)" + at(0, 0, 0) +
+         R"(}},{"type":"sphere","radius":)" + num(scale) + R"(,"detail":3,"transform":{"translate":)" + at(0, 2, 0) +
+         R"(}}],"light":{"type":"spot","position":)" + at(3, 9, 2) + R"(,"target":)" + at(-0.3, 0, -0.2) +
+         R"(,"fov":55},"camera":{"eye":)" + at(0, 6, 11) + R"(,"target":)" + at(0, 1, 0) + R"(,"width":)" +
+         std::to_string(width) + R"(,"height":)" + std::to_string(height) + "}}";
+}
 
 /// A directional light straight down from y = 5 over a 8 x 8 square (half extent 4), near 0.5.
 inline Light directionalDown(double farPlane = 12.0) {

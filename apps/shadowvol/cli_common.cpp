@@ -139,9 +139,11 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }
 
 nlohmann::json describeScene(const Scene& s) {
+  // Positions in world units (stored + origin); directions need no origin.
   auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+  auto w3 = [&](const glm::dvec3& v) { return v3(v + s.origin); };
   nlohmann::json light = {{"type", s.light.type == LightType::Spot ? "spot" : "directional"},
-                          {"position", v3(s.light.position)},
+                          {"position", w3(s.light.position)},
                           {"direction", v3(s.light.direction)},
                           {"up", v3(lightUp(s.light))},
                           {"near", s.light.nearPlane},
@@ -152,11 +154,12 @@ nlohmann::json describeScene(const Scene& s) {
   return {{"source", s.source},
           {"objects", s.objects.size()},
           {"triangles", s.triangleCount()},
-          {"bounds", {{"min", v3(b.min)}, {"max", v3(b.max)}}},
+          {"origin", v3(s.origin)},
+          {"bounds", {{"min", w3(b.min)}, {"max", w3(b.max)}}},
           {"light", light},
           {"camera",
-           {{"eye", v3(s.camera.eye)},
-            {"target", v3(s.camera.target)},
+           {{"eye", w3(s.camera.eye)},
+            {"target", w3(s.camera.target)},
             {"up", v3(s.camera.up)},
             {"fov", s.camera.fovYDegrees},
             {"width", s.camera.width},

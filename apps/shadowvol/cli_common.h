@@ -73,7 +73,8 @@ void checkOutputFolder(const std::string& option, const std::string& path);
 /// Milliseconds since `start`.
 double msSince(std::chrono::steady_clock::time_point start);
 
-/// JSON description of the scene as used: source, triangle count, light and camera.
+/// JSON description of the scene as used: source, triangle count, local origin (Scene::origin),
+/// bounds, light and camera; positions in world units (stored + origin).
 nlohmann::json describeScene(const Scene& scene);
 
 /// JSON of a volume build's counts and times (VolumeBuildStats; times under "ms").

@@ -23,6 +23,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
     std::string capture = "back";
     VolumeCliOptions volume;
     bool noFlatten = false;
+    bool worldCoords = false;
     std::string out;
   };
   auto o = std::make_shared<Options>();
@@ -46,12 +47,19 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
   cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off or .stl")->required();
+  cmd->add_flag("--world-coords", o->worldCoords,
+                "Write world coordinates in double precision (PLY double properties, OBJ/OFF 17 digits; not STL). "
+                "Without it a scene far from the origin is written relative to its local origin, which the output "
+                "and the PLY/OBJ/STL header name (README 'Far from the origin')");
   cmd->callback([&run, o] {
     run = [o] {
       checkOutputPath("--out", o->out);
       const std::string ext = std::filesystem::path(o->out).extension().string();
       if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
         throw InputError("command line", "--out", o->out, "unsupported mesh format (use .ply, .obj, .off or .stl)");
+      if (o->worldCoords && ext == ".stl")
+        throw InputError("command line", "--world-coords", o->out,
+                         "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");
       VolumeBuildOptions options = toVolumeBuildOptions(o->volume);
       options.flattenCap = !o->noFlatten;
 
@@ -81,7 +89,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       }
       const VolumeBuildResult r = buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
-      writeTriangleMesh(r.mesh.toTriangleMesh(), o->out);
+      writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
       j.update({{"resolution", {map.width, map.height}},
@@ -93,6 +101,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"cap", o->volume.cap},
                 {"flattenCap", options.flattenCap},
                 {"refine", options.refineSteps},
+                {"origin", {map.origin.x, map.origin.y, map.origin.z}},
+                {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
                 {"triangles", r.mesh.triangleCount()},
                 {"out", o->out}});
@@ -118,6 +128,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);
+        if (map.origin != glm::dvec3(0.0))
+          std::printf("  coordinates %s origin (%.17g, %.17g, %.17g)\n",
+                      o->worldCoords ? "in world units (double); local" : "relative to the local", map.origin.x,
+                      map.origin.y, map.origin.z);
         std::printf("wrote %s\n", o->out.c_str());
       }
       return kOk;

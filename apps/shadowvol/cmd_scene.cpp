@@ -12,15 +12,19 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
                                           "camera with fitted near/far) and optionally export its geometry");
   auto opts = std::make_shared<SceneOptions>();
   auto exportPath = std::make_shared<std::string>();
+  auto worldCoords = std::make_shared<bool>(false);
   addSceneOptions(*cmd, *opts);
   cmd->add_option("--export", *exportPath,
                   "Write the scene's world-space triangles to this file (.ply binary, .obj, .off or .stl), "
                   "exactly the geometry the other subcommands use");
-  cmd->callback([&run, opts, exportPath] {
-    run = [opts, exportPath] {
+  cmd->add_flag("--world-coords", *worldCoords,
+                "With --export: world coordinates in double precision (PLY double properties, OBJ/OFF 17 digits; "
+                "not STL) instead of coordinates relative to the scene's local origin (README 'Far from the origin')");
+  cmd->callback([&run, opts, exportPath, worldCoords] {
+    run = [opts, exportPath, worldCoords] {
       if (!exportPath->empty()) checkOutputPath("--export", *exportPath);
       const Scene scene = loadSceneOrDefault(opts->scene);
-      if (!exportPath->empty()) exportSceneMesh(scene, *exportPath);
+      if (!exportPath->empty()) exportSceneMesh(scene, *exportPath, *worldCoords);
       nlohmann::json j = describeScene(scene);
       if (!exportPath->empty()) j["export"] = *exportPath;
       if (opts->json) {
@@ -30,6 +34,8 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
                     scene.triangleCount());
         for (const auto& o : scene.objects)
           std::printf("  %-16s %-10s %8zu triangles\n", o.name.c_str(), o.type.c_str(), o.mesh.triangleCount());
+        std::printf("bounds %s\norigin %s%s\n", j["bounds"].dump().c_str(), j["origin"].dump().c_str(),
+                    scene.origin == glm::dvec3(0.0) ? "" : " (stored and exported coordinates are relative to it)");
         std::printf("light  %s\ncamera %s\n", j["light"].dump().c_str(), j["camera"].dump().c_str());
         if (!exportPath->empty()) std::printf("wrote %s\n", exportPath->c_str());
       }

@@ -133,6 +133,49 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
+// Far from the origin: `scene` names the local origin and reports world coordinates; `build`
+// writes relative to it (named in the header) or, with --world-coords, world coordinates in
+// double, through `depth` + `build --depth` as well; STL with --world-coords is refused up front.
+TEST(Cli, FarSceneExportsRelativeToItsOriginOrInWorldCoordinates) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "far.json", test::movedDefaultScene({1e6, 0, -2e6}, 1.0, 160, 120));
+  const std::string s = (dir / "far.json").string();
+  const CliResult desc = runCli("scene --json --scene " + s);
+  ASSERT_EQ(desc.code, 0) << desc.out;
+  const auto j = nlohmann::json::parse(desc.out);
+  EXPECT_EQ(j["origin"], nlohmann::json::parse("[1000000.0, 1.5, -2000000.0]"));
+  EXPECT_EQ(j["light"]["position"], nlohmann::json::parse("[1000003.0, 9.0, -1999998.0]"));
+  EXPECT_EQ(j["bounds"]["min"][0], 999990.0);
+  EXPECT_TRUE(contains(runCli("scene --scene " + s).out, "origin [1000000.0,1.5,-2000000.0]"));
+
+  const std::string obj = (dir / "v.obj").string(), world = (dir / "w.obj").string();
+  ASSERT_EQ(runCli("build --resolution 32 --scene " + s + " --out " + obj).code, 0);
+  ASSERT_EQ(runCli("depth --resolution 32 --scene " + s + " --out " + (dir / "d.pfm").string()).code, 0);
+  const CliResult w = runCli("build --world-coords --depth " + (dir / "d.pfm").string() + " --out " + world);
+  ASSERT_EQ(w.code, 0) << w.out;
+  std::ifstream a(obj), b(world);
+  std::string la, lb;
+  std::getline(a, la);
+  std::getline(a, la);
+  EXPECT_TRUE(contains(la, "# shadowvol origin 1000000 1.5 -2000000")) << la;
+  std::getline(b, lb);
+  int vertices = 0;
+  while (std::getline(a, la) && std::getline(b, lb) && la[0] == 'v') {
+    double x, y, z, X, Y, Z;
+    ASSERT_EQ(std::sscanf(la.c_str(), "v %lf %lf %lf", &x, &y, &z), 3) << la;
+    ASSERT_EQ(std::sscanf(lb.c_str(), "v %lf %lf %lf", &X, &Y, &Z), 3) << lb;
+    EXPECT_NEAR(X - 1e6, x, 1e-5);
+    EXPECT_NEAR(Y - 1.5, y, 1e-5);
+    EXPECT_NEAR(Z + 2e6, z, 1e-5);
+    ++vertices;
+  }
+  EXPECT_GT(vertices, 50);
+  const CliResult stl = runCli("build --world-coords --scene " + s + " --out " + (dir / "v.stl").string());
+  EXPECT_EQ(stl.code, 1);
+  EXPECT_TRUE(contains(stl.out, "--world-coords")) << stl.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "v.stl"));
+}
+
 TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "r.ply").string();

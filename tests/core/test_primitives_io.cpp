@@ -1,10 +1,14 @@
+#include <cstring>
 #include <map>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <glm/geometric.hpp>
+
+#include <nlohmann/json.hpp>
 
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/error.h"
@@ -88,6 +92,48 @@ TEST(MeshIo, EveryFormatReadsBackThroughOpenMesh) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// Regression (far from the origin: exported PLY files got degenerate faces): without
+// worldCoordinates the stored coordinates are written with the origin in the header; with it,
+// PLY holds doubles and OBJ 17 digits, exactly stored + origin; STL refuses world coordinates.
+TEST(MeshIo, OriginIsNamedOrWorldCoordinatesWrittenInDouble) {
+  const auto dir = test::tempDir();
+  const TriangleMesh box = makeBox(1, 2, 3);
+  const MeshFrame local{{1e6, -2.5e5, 3.25}, false}, world{{1e6, -2.5e5, 3.25}, true};
+  writeTriangleMesh(box, dir / "local.ply", local);
+  writeTriangleMesh(box, dir / "local.obj", local);
+  writeTriangleMesh(box, dir / "world.ply", world);
+  writeTriangleMesh(box, dir / "world.obj", world);
+  auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_NE(text(dir / "local.ply").find("comment shadowvol origin 1000000 -250000 3.25"), std::string::npos);
+  EXPECT_NE(text(dir / "local.obj").find("# shadowvol origin 1000000 -250000 3.25"), std::string::npos);
+  const std::string ply = text(dir / "world.ply");
+  const std::size_t body = ply.find("end_header\n");
+  ASSERT_NE(body, std::string::npos);
+  EXPECT_NE(ply.find("property double x"), std::string::npos);
+  for (std::size_t k = 0; k < box.positions.size(); ++k) {
+    glm::dvec3 p;
+    std::memcpy(&p, ply.data() + body + 11 + k * sizeof p, sizeof p);
+    EXPECT_EQ(p, glm::dvec3(box.positions[k]) + world.origin) << k;
+  }
+  std::istringstream obj(text(dir / "world.obj"));
+  std::string tag;
+  std::getline(obj, tag);
+  for (std::size_t k = 0; k < box.positions.size(); ++k) {
+    glm::dvec3 p;
+    obj >> tag >> p.x >> p.y >> p.z;
+    EXPECT_EQ(p, glm::dvec3(box.positions[k]) + world.origin) << k;
+  }
+  OMesh m;  // OpenMesh reads the double PLY back
+  OpenMesh::IO::Options opt;
+  EXPECT_TRUE(OpenMesh::IO::read_mesh(m, (dir / "world.ply").string(), opt));
+  EXPECT_EQ(m.n_faces(), 12u);
+  EXPECT_THROW(writeTriangleMesh(box, dir / "world.stl", world), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "world.stl"));
+}
+
 TEST(MeshIo, UnknownExtensionWritesNothing) {
   const auto dir = test::tempDir();
   EXPECT_THROW(writeTriangleMesh(makeBox(1, 1, 1), dir / "box.xyz"), InputError);
@@ -115,6 +161,50 @@ TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
   EXPECT_EQ(back.lightView, map.lightView);
   EXPECT_EQ(back.lightProjection, map.lightProjection);
   EXPECT_EQ(back.hitCount(), map.hitCount());
+  EXPECT_EQ(back.origin, glm::dvec3(0.0));
+  map.origin = {1e6, 2.5, -3e5};
+  writeDepthMap(map, dir / "far.pfm");
+  EXPECT_EQ(readDepthMap(dir / "far.pfm").origin, map.origin);
+}
+
+// Regression (non-finite output with exit 0): a side file with a singular or non-rigid lightView,
+// a projection of the wrong kind or with 1e300 entries, or far 1e300 is refused, its field named.
+TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
+  const auto dir = test::tempDir();
+  Light l;
+  l.position = {0, 5, 0};
+  l.direction = {0, -1, 0};
+  l.nearPlane = 1;
+  l.farPlane = 9;
+  writeDepthMap(makeDepthMap(l, 4, 4, CaptureMode::Back), dir / "d.pfm");
+  const auto side = depthSidecarPath(dir / "d.pfm");
+  std::string good;
+  {
+    std::ifstream in(side);
+    good.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto expectRefused = [&](const std::string& key, const std::string& replacement, const std::string& field) {
+    SCOPED_TRACE(key + " -> " + replacement);
+    nlohmann::json j = nlohmann::json::parse(good);
+    j[key] = nlohmann::json::parse(replacement);
+    test::writeText(side, j.dump());
+    try {
+      readDepthMap(dir / "d.pfm");
+      FAIL() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+    }
+  };
+  expectRefused("lightView", "[0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]", "/lightView");
+  expectRefused("lightView", "[2,0,0,0, 0,2,0,0, 0,0,2,0, 0,0,0,1]", "/lightView");
+  expectRefused("lightView", "[1,0,0,0, 0,1,0,0, 0,0,1,0, 1e300,0,0,1]", "/lightView");
+  expectRefused("lightProjection", "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]", "/lightProjection");
+  expectRefused("lightProjection", "[1,0,0,0, 0,1,0,0, 0,0,1e300,-1, 0,0,1e300,0]", "/lightProjection");
+  expectRefused("far", "1e300", "/far");
+  expectRefused("near", "-1", "/near");
+  expectRefused("origin", "[1, 2]", "/origin");
+  test::writeText(side, good);
+  EXPECT_NO_THROW(readDepthMap(dir / "d.pfm"));
 }
 
 TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {

@@ -238,6 +238,29 @@ TEST(SceneParser, MirroringScaleIsAcceptedAndStaysOutward) {
   expectError(withObject(R"({"type":"box","size":[-1,1,1]})"), "/objects/0/size");  // sizes stay positive
 }
 
+// Regression (far from the origin: float world positions lost agreement, a scene of scale 1e-2 at
+// 1e5 came out empty): a scene moved to 1e6 is rebased in double to its centre, and what is stored
+// relative to it equals the scene at the origin to float precision there.
+TEST(SceneParser, FarFromTheOriginIsRebasedInDouble) {
+  const Scene near = parse(test::movedDefaultScene(glm::dvec3(0.0))).scene;
+  EXPECT_EQ(near.origin, glm::dvec3(0.0));  // centred scenes keep origin 0
+  const glm::dvec3 offset(6e5, 3e5, -7.4e5);
+  const Scene far = parse(test::movedDefaultScene(offset)).scene;
+  const glm::dvec3 centre = near.bounds().center();  // (0, 1.5, 0)
+  EXPECT_LT(glm::length(far.origin - (offset + centre)), 1e-9);
+  for (std::size_t o = 0; o < near.objects.size(); ++o)
+    for (std::size_t k = 0; k < near.objects[o].mesh.positions.size(); ++k) {
+      const glm::dvec3 a = glm::dvec3(near.objects[o].mesh.positions[k]) - centre;
+      const glm::dvec3 b(far.objects[o].mesh.positions[k]);
+      ASSERT_LT(glm::length(a - b), 1e-5) << "object " << o << " vertex " << k;
+    }
+  EXPECT_LT(glm::length(far.light.position - (near.light.position - centre)), 1e-9);
+  EXPECT_LT(glm::length(far.camera.eye - (near.camera.eye - centre)), 1e-9);
+  EXPECT_NEAR(far.light.nearPlane, near.light.nearPlane, 1e-9);
+  EXPECT_NEAR(far.light.farPlane, near.light.farPlane, 1e-9);
+  EXPECT_NEAR(far.camera.farPlane, near.camera.farPlane, 1e-9);
+}
+
 TEST(SceneParser, MissingFileIsAnError) {
   EXPECT_THROW(loadScene("/nonexistent/scene.json"), InputError);
 }

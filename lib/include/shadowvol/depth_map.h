@@ -41,6 +41,9 @@ struct DepthMap {
   double nearPlane = 0.0;             ///< light view distance of the near plane
   double farPlane = 0.0;              ///< light view distance of the far plane
   CaptureMode capture = CaptureMode::Back;
+  /// World = the coordinates the matrices use + origin (the scene's local origin, Scene::origin);
+  /// carried into the volume (VolumeMesh::origin) and the side file.
+  glm::dvec3 origin{0.0};
 
   std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(width) + std::size_t(i); }
   float at(int i, int j) const { return depth[index(i, j)]; }

@@ -5,7 +5,10 @@
 #include <filesystem>
 #include <functional>
 
+#include <glm/vec3.hpp>
+
 #include "shadowvol/triangle_mesh.h"
+#include "shadowvol/volume_mesh.h"
 
 namespace shadowvol {
 
@@ -14,9 +17,24 @@ namespace shadowvol {
 /// non-finite coordinates.
 TriangleMesh readTriangleMesh(const std::filesystem::path& path);
 
+/// Where the stored coordinates of a mesh sit in the world (Scene::origin, DepthMap::origin).
+struct MeshFrame {
+  glm::dvec3 origin{0.0};         ///< world = stored + origin
+  /// false: write the stored coordinates (float), and name a non-zero origin in the header comment
+  /// of PLY ("comment shadowvol origin X Y Z"), OBJ ("# shadowvol origin X Y Z") and STL (its
+  /// 80-byte header); OFF has no comments, so there the origin is only in the command's output.
+  /// true: write stored + origin, computed in double: PLY with double properties, OBJ and OFF
+  /// with 17 significant digits; STL (float only) is refused.
+  bool worldCoordinates = false;
+};
+
 /// Writes PLY (binary little-endian), OBJ, OFF or STL by extension, atomically.
-/// Throws InputError for an unknown extension or a failed write.
-void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path);
+/// Throws InputError for an unknown extension, STL with world coordinates, or a failed write.
+void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFrame& frame = {});
+
+/// The same for a volume, its double positions kept when writing world coordinates; the origin
+/// is the mesh's (VolumeMesh::origin).
+void writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates = false);
 
 /// Calls write(tmp) with a temporary path beside `path`, then renames tmp to path. If write throws
 /// or the rename fails, the temporary file is removed and nothing is left at `path`.

@@ -12,15 +12,22 @@
 
 namespace shadowvol {
 
-/// One object of the scene with its transform already applied.
+/// One object of the scene with its transform already applied (and rebased: see Scene::origin).
 struct SceneObject {
   std::string name;   ///< "name" from the file, else "<type>#<index>"
   std::string type;   ///< plane, sphere, box, cylinder, tree, mesh
-  TriangleMesh mesh;  ///< world space
+  TriangleMesh mesh;  ///< world space, relative to Scene::origin
 };
 
 struct Scene {
   std::string source = "default";  ///< file path it was loaded from, or "default"
+  /// Local origin, world units, double: every position in this struct (objects, light, camera,
+  /// bounds) is relative to it, world = stored + origin. loadScene picks the centre of the
+  /// objects' bounds when that centre lies further from the world origin than the bounds' radius
+  /// (a scene placed far away), else 0. Geometry is transformed and rebased in double before it is
+  /// stored as float, so a scene at 1e6 keeps the precision it has at the origin (README "Far from
+  /// the origin").
+  glm::dvec3 origin{0.0};
   std::vector<SceneObject> objects;
   Light light;     ///< near/far (and for directional lights position/extent) fitted when not given
   Camera camera;   ///< near/far fitted when not given
@@ -51,8 +58,9 @@ Scene defaultScene();
 /// half extent) from the scene bounds, camera near/far likewise. Only zero fields are fitted.
 void fitLightAndCamera(Scene& scene);
 
-/// Writes the scene's world-space triangles as PLY (binary) or OBJ, chosen by the extension.
-/// Writes to a temporary file and renames, so a failure leaves no partial file.
-void exportSceneMesh(const Scene& scene, const std::filesystem::path& path);
+/// Writes the scene's triangles as PLY (binary), OBJ, OFF or STL, chosen by the extension:
+/// relative to scene.origin (recorded in the file's header comment), or with `worldCoordinates`
+/// in world units and double precision (see MeshFrame). Atomic: a failure leaves no partial file.
+void exportSceneMesh(const Scene& scene, const std::filesystem::path& path, bool worldCoordinates = false);
 
 }  // namespace shadowvol

@@ -22,6 +22,9 @@ namespace shadowvol {
 struct VolumeMesh {
   std::vector<glm::dvec3, DefaultInitAllocator<glm::dvec3>> positions;
   std::vector<std::array<std::uint32_t, 3>, DefaultInitAllocator<std::array<std::uint32_t, 3>>> triangles;
+  /// The positions are relative to this point: world = position + origin (the depth map's origin,
+  /// see Scene::origin; 0 for a scene near the world origin).
+  glm::dvec3 origin{0.0};
 
   std::size_t vertexCount() const { return positions.size(); }
   std::size_t triangleCount() const { return triangles.size(); }

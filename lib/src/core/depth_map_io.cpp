@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/error.h"
@@ -33,6 +35,53 @@ glm::dmat4 matrixFromJson(const json& a, const std::string& file, const std::str
   return m;
 }
 
+// The side file's light matches what lightView() and lightProjection() produce: a rigid view
+// (orthonormal rotation, bottom row 0 0 0 1), a projection of the light's kind whose near and far
+// map to NDC z = -1 and +1, and finite world corners. Anything else would give a volume with
+// non-finite or meaningless coordinates.
+void checkLightGeometry(const DepthMap& map, const std::string& sfile) {
+  const double tol = 1e-6;
+  if (!(std::isfinite(map.nearPlane) && map.nearPlane >= 0.0))
+    throw InputError(sfile, "/near", std::to_string(map.nearPlane), "near must be finite and >= 0");
+  if (!(map.farPlane > map.nearPlane && map.farPlane < 1e30))
+    throw InputError(sfile, "/far", std::to_string(map.farPlane), "far must be greater than near and below 1e30");
+  if (map.lightType == LightType::Spot && !(map.nearPlane > 0.0))
+    throw InputError(sfile, "/near", std::to_string(map.nearPlane), "a spot light needs near > 0");
+  const glm::dmat4& v = map.lightView;
+  const glm::dmat3 r(v);
+  const glm::dmat3 rrt = r * glm::transpose(r);
+  bool rigid = std::abs(v[0][3]) + std::abs(v[1][3]) + std::abs(v[2][3]) + std::abs(v[3][3] - 1.0) < tol &&
+               glm::determinant(r) > 0.0 && glm::length(v[3]) < 1e30;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) rigid = rigid && std::abs(rrt[a][b] - (a == b ? 1.0 : 0.0)) < tol;
+  if (!rigid)
+    throw InputError(sfile, "/lightView", matrixToJson(v).dump(),
+                     "expected a rigid world -> light view transform (rotation and translation)");
+  const glm::dmat4& p = map.lightProjection;
+  const bool perspective = map.lightType == LightType::Spot;
+  const bool kindOk = perspective ? std::abs(p[2][3] + 1.0) < tol && std::abs(p[3][3]) < tol
+                                  : std::abs(p[2][3]) < tol && std::abs(p[3][3] - 1.0) < tol;
+  auto ndcZ = [&](double d) {
+    const glm::dvec4 c = p * glm::dvec4(0.0, 0.0, -d, 1.0);
+    return c.z / c.w;
+  };
+  const bool depthOk =
+      std::abs(ndcZ(std::max(map.nearPlane, 1e-300)) + 1.0) < 1e-4 && std::abs(ndcZ(map.farPlane) - 1.0) < 1e-4;
+  if (!kindOk || !depthOk || !(std::abs(glm::determinant(p)) > 0.0))
+    throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+                     std::string("expected the ") + (perspective ? "perspective" : "orthographic") +
+                         " projection of a " + (perspective ? "spot" : "directional") +
+                         " light that maps near and far to NDC z -1 and +1");
+  const TexelUnprojector unproject(map);
+  for (double d : {std::max(map.nearPlane, 1e-9), map.farPlane})
+    for (int k = 0; k < 4; ++k) {
+      const glm::dvec3 w = unproject.worldPoint(k & 1 ? map.width - 1 : 0, k & 2 ? map.height - 1 : 0, d);
+      if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z) && glm::length(w) < 1e30))
+        throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+                         "the light's window corners are not finite in world space");
+    }
+}
+
 }  // namespace
 
 std::filesystem::path depthSidecarPath(const std::filesystem::path& pfm) {
@@ -52,6 +101,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"far", map.farPlane},
       {"lightView", matrixToJson(map.lightView)},
       {"lightProjection", matrixToJson(map.lightProjection)},
+      {"origin", {map.origin.x, map.origin.y, map.origin.z}},
   };
   const auto sidecar = depthSidecarPath(pfm);
   writeAtomically(pfm, [&](const std::filesystem::path& tmp) {
@@ -128,6 +178,15 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
     throw InputError(sfile, "/far", side["far"].dump(), "far must be greater than near");
   map.lightView = matrixFromJson(need("lightView"), sfile, "/lightView");
   map.lightProjection = matrixFromJson(need("lightProjection"), sfile, "/lightProjection");
+  checkLightGeometry(map, sfile);
+  if (side.contains("origin")) {  // optional: files from before it was written have origin 0
+    const json& o = side["origin"];
+    if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
+      throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
+    map.origin = {o[0].get<double>(), o[1].get<double>(), o[2].get<double>()};
+    if (!(std::isfinite(map.origin.x) && std::isfinite(map.origin.y) && std::isfinite(map.origin.z)))
+      throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
+  }
   return map;
 }
 

@@ -87,50 +87,86 @@ TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
   return out;
 }
 
-void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path) {
-  // Written directly rather than through OpenMesh: its half-edge kernel refuses non-manifold faces,
-  // which would silently drop triangles of a scene soup. Tests read these files back with OpenMesh.
+namespace {
+
+void checkMeshExtension(const std::filesystem::path& path, const MeshFrame& frame) {
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
     throw InputError(path.string(), "", ext, "unsupported mesh format (use .ply, .obj, .off or .stl)");
+  if (ext == ".stl" && frame.worldCoordinates)
+    throw InputError(path.string(), "", ext,
+                     "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");
+}
+
+std::string originText(const glm::dvec3& o) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "shadowvol origin %.17g %.17g %.17g", o.x, o.y, o.z);
+  return buf;
+}
+
+// The writer for both mesh kinds: `positions` holds float or double 3-vectors, stored coordinates.
+template <class Positions, class Triangles>
+void writeMesh(const Positions& P, const Triangles& T, const std::filesystem::path& path, const MeshFrame& frame) {
+  // Written directly rather than through OpenMesh: its half-edge kernel refuses non-manifold faces,
+  // which would silently drop triangles of a scene soup. Tests read these files back with OpenMesh.
+  checkMeshExtension(path, frame);
+  const std::string ext = lowerExtension(path);
+  const bool world = frame.worldCoordinates;
+  const bool namedOrigin = !world && frame.origin != glm::dvec3(0.0);
+  auto at = [&](std::size_t k) { return world ? glm::dvec3(P[k]) + frame.origin : glm::dvec3(P[k]); };
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError(path.string(), "", "", "cannot create the file");
-    const auto& P = mesh.positions;
-    const auto& T = mesh.triangles;
-    char buf[128];
+    char buf[160];
     if (ext == ".ply") {
-      out << "ply\nformat binary_little_endian 1.0\ncomment written by shadowvol\n"
-          << "element vertex " << P.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
-          << "element face " << T.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
+      const char* type = world ? "double" : "float";
+      out << "ply\nformat binary_little_endian 1.0\ncomment written by shadowvol\n";
+      if (namedOrigin) out << "comment " << originText(frame.origin) << " (world = vertex + origin)\n";
+      out << "element vertex " << P.size() << "\nproperty " << type << " x\nproperty " << type << " y\nproperty "
+          << type << " z\nelement face " << T.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
       static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian host");
-      out.write(reinterpret_cast<const char*>(P.data()), std::streamsize(P.size() * sizeof(glm::vec3)));
+      for (std::size_t k = 0; k < P.size(); ++k) {
+        if (world) {
+          const glm::dvec3 p = at(k);
+          out.write(reinterpret_cast<const char*>(&p), sizeof p);
+        } else {
+          const glm::vec3 p(P[k]);
+          out.write(reinterpret_cast<const char*>(&p), sizeof p);
+        }
+      }
       for (const auto& t : T) {
         const unsigned char n = 3;
         out.write(reinterpret_cast<const char*>(&n), 1);
         out.write(reinterpret_cast<const char*>(t.data()), 12);
       }
-    } else if (ext == ".obj") {
-      out << "# written by shadowvol\n";
-      for (const auto& p : P) {
-        std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    } else if (ext == ".obj" || ext == ".off") {
+      // Stored floats print exactly with 9 digits; world doubles need 17.
+      const char* format = world ? "%.17g %.17g %.17g\n" : "%.9g %.9g %.9g\n";
+      if (ext == ".obj") {
+        out << "# written by shadowvol\n";
+        if (namedOrigin) out << "# " << originText(frame.origin) << " (world = vertex + origin)\n";
+      } else {
+        out << "OFF\n" << P.size() << ' ' << T.size() << " 0\n";
+      }
+      for (std::size_t k = 0; k < P.size(); ++k) {
+        const glm::dvec3 p = world ? at(k) : glm::dvec3(glm::vec3(P[k]));
+        std::snprintf(buf, sizeof buf, format, p.x, p.y, p.z);
+        if (ext == ".obj") out << "v ";
         out << buf;
       }
-      for (const auto& t : T) out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-    } else if (ext == ".off") {
-      out << "OFF\n" << P.size() << ' ' << T.size() << " 0\n";
-      for (const auto& p : P) {
-        std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g\n", p.x, p.y, p.z);
-        out << buf;
+      for (const auto& t : T) {
+        if (ext == ".obj") out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+        else out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
       }
-      for (const auto& t : T) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
     } else {  // binary STL: 80-byte header, count, then normal + 3 vertices + attribute per triangle
-      char header[80] = "binary STL written by shadowvol";
+      char header[80] = {};
+      const std::string text = namedOrigin ? originText(frame.origin) : "binary STL written by shadowvol";
+      std::snprintf(header, sizeof header, "%s", text.c_str());
       out.write(header, 80);
       const auto n = static_cast<std::uint32_t>(T.size());
       out.write(reinterpret_cast<const char*>(&n), 4);
       for (const auto& t : T) {
-        const glm::vec3 a = P[t[0]], b = P[t[1]], c = P[t[2]];
+        const glm::vec3 a(P[t[0]]), b(P[t[1]]), c(P[t[2]]);
         glm::vec3 nrm = glm::cross(b - a, c - a);
         const float len = glm::length(nrm);
         nrm = len > 0.0f ? nrm / len : glm::vec3(0.0f);
@@ -143,6 +179,16 @@ void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& pa
     out.flush();
     if (!out) throw InputError(path.string(), "", "", "writing the file failed (disk full?)");
   });
+}
+
+}  // namespace
+
+void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFrame& frame) {
+  writeMesh(mesh.positions, mesh.triangles, path, frame);
+}
+
+void writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates) {
+  writeMesh(mesh.positions, mesh.triangles, path, MeshFrame{mesh.origin, worldCoordinates});
 }
 
 }  // namespace shadowvol

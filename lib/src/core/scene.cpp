@@ -165,16 +165,29 @@ glm::dmat4 readTransform(ObjectReader& parent) {
   return m;
 }
 
-void applyTransform(TriangleMesh& mesh, const glm::dmat4& m) {
-  for (auto& p : mesh.positions) p = glm::vec3(glm::dvec3(m * glm::dvec4(glm::dvec3(p), 1.0)));
-  if (glm::determinant(glm::dmat3(m)) < 0.0)  // a mirror flips the winding: restore outward faces
+// The mesh's positions under m, in double (not yet rebased); a mirror flips the winding in `mesh`
+// so that faces stay outward.
+std::vector<glm::dvec3> applyTransform(TriangleMesh& mesh, const glm::dmat4& m) {
+  std::vector<glm::dvec3> world;
+  world.reserve(mesh.positions.size());
+  for (const auto& p : mesh.positions) world.emplace_back(m * glm::dvec4(glm::dvec3(p), 1.0));
+  if (glm::determinant(glm::dmat3(m)) < 0.0)
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  return world;
 }
 
-SceneObject readObject(const json& v, std::size_t index, const std::string& source,
-                       const std::filesystem::path& baseDir) {
-  ObjectReader r(v, "/objects/" + std::to_string(index), source);
+// An object as read from the file: topology in `obj.mesh`, world positions in double in `world`
+// (obj.mesh.positions are filled once the scene's origin is known).
+struct ReadObject {
   SceneObject obj;
+  std::vector<glm::dvec3> world;
+};
+
+ReadObject readObject(const json& v, std::size_t index, const std::string& source,
+                      const std::filesystem::path& baseDir) {
+  ObjectReader r(v, "/objects/" + std::to_string(index), source);
+  ReadObject read;
+  SceneObject& obj = read.obj;
   obj.type = r.string("type");
   obj.name = r.string("name", obj.type + "#" + std::to_string(index));
   const std::string& t = obj.type;
@@ -220,12 +233,42 @@ SceneObject readObject(const json& v, std::size_t index, const std::string& sour
   } else {
     r.fail("type", json(t), "unknown object type (plane, sphere, hemisphere, box, cylinder, tree, mesh)");
   }
-  applyTransform(obj.mesh, readTransform(r));
+  read.world = applyTransform(obj.mesh, readTransform(r));
   r.finish();
-  for (const auto& p : obj.mesh.positions)
+  for (const auto& p : read.world)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       r.fail("transform", json(), "the transform makes coordinates non-finite");
-  return obj;
+  return read;
+}
+
+// Scene::origin's rule: the bounds' centre when it lies further from the world origin than the
+// bounds' radius, else 0 (then stored coordinates are at most about twice the scene's extent, and
+// float keeps what it would keep for the scene centred).
+glm::dvec3 chooseOrigin(const Bounds3& b) {
+  if (b.empty() || glm::length(b.center()) <= b.radius()) return glm::dvec3(0.0);
+  return b.center();
+}
+
+// Picks the scene's origin and stores every position relative to it: the objects' (double -> float
+// only now), the light's and the camera's.
+void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std::string& source) {
+  Bounds3 b;
+  for (const auto& w : world)
+    for (const auto& p : w) b.extend(p);
+  scene.origin = chooseOrigin(b);
+  for (std::size_t k = 0; k < world.size(); ++k) {
+    auto& positions = scene.objects[k].mesh.positions;
+    for (std::size_t i = 0; i < world[k].size(); ++i) {
+      positions[i] = glm::vec3(world[k][i] - scene.origin);
+      if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+        throw InputError(source, "/objects/" + std::to_string(k) + "/transform", "",
+                         "coordinates beyond single precision's range (|x| > 3.4e38 from the scene's centre)");
+    }
+    world[k] = {};
+  }
+  scene.light.position -= scene.origin;
+  scene.camera.eye -= scene.origin;
+  scene.camera.target -= scene.origin;
 }
 
 Light readLight(const json& v, const std::string& source) {
@@ -431,7 +474,12 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   const json& objects = top.raw("objects");
   if (!objects.is_array() || objects.empty())
     top.fail("objects", objects, "expected a non-empty array of objects");
-  for (std::size_t k = 0; k < objects.size(); ++k) scene.objects.push_back(readObject(objects[k], k, source, baseDir));
+  std::vector<std::vector<glm::dvec3>> world;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    ReadObject read = readObject(objects[k], k, source, baseDir);
+    scene.objects.push_back(std::move(read.obj));
+    world.push_back(std::move(read.world));
+  }
   if (!top.has("light")) top.fail("light", json(), "required field is missing");
   scene.light = readLight(top.raw("light"), source);
   if (!top.has("camera")) top.fail("camera", json(), "required field is missing");
@@ -442,6 +490,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   if (scene.triangleCount() > kMaxSceneTriangles)
     throw InputError(source, "/objects", std::to_string(scene.triangleCount()) + " triangles",
                      "more than the limit of " + std::to_string(kMaxSceneTriangles));
+  rebase(scene, world, source);
   const Light given = scene.light;
   fitLightAndCamera(scene);
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
@@ -488,8 +537,8 @@ Scene defaultScene() {
   return s;
 }
 
-void exportSceneMesh(const Scene& scene, const std::filesystem::path& path) {
-  writeTriangleMesh(scene.merged(), path);
+void exportSceneMesh(const Scene& scene, const std::filesystem::path& path, bool worldCoordinates) {
+  writeTriangleMesh(scene.merged(), path, MeshFrame{scene.origin, worldCoordinates});
 }
 
 }  // namespace shadowvol

@@ -144,6 +144,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
 void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
   result.mesh.positions.clear();
   result.mesh.triangles.clear();
+  result.mesh.origin = map.origin;
   result.stats = {};
   try {
     buildInto(map, options, result);

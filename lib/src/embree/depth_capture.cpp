@@ -74,6 +74,7 @@ float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, 
 
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
   DepthMap map = makeDepthMap(scene.light, width, height, mode);
+  map.origin = scene.origin;
   std::vector<const TriangleMesh*> meshes;
   for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
   const EmbreeDevice device;

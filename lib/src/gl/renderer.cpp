@@ -448,6 +448,7 @@ struct Renderer::Impl {
 
   DepthMap readBack(CaptureMode mode) {
     DepthMap map = makeDepthMap(light, lightW, lightH, mode);
+    map.origin = scene.origin;
     const std::size_t n = std::size_t(lightW) * std::size_t(lightH);
     std::vector<float> w0(n), w1;
     SV_GL(glBindTexture(GL_TEXTURE_2D, layer0.id()));
