@@ -97,10 +97,38 @@ TEST(SceneParser, DirectionalLightFitsPositionExtentAndRange) {
   EXPECT_GT(s.light.farPlane, glm::dot(b.min - s.light.position, s.light.direction));
 }
 
-TEST(SceneParser, GivenNearFarAreKept) {
-  const Scene s = parse(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":0.5,"far":50})")).scene;
-  EXPECT_DOUBLE_EQ(s.light.nearPlane, 0.5);
-  EXPECT_DOUBLE_EQ(s.light.farPlane, 50.0);
+// Given planes that cut the scene are kept; planes beyond what the scene needs are tightened to it,
+// with a note naming the field (regression: a light far/near of 1e6 cost 3 % of stencil agreement).
+TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
+  const auto kept = parse(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":4.8,"far":5.2})"));
+  EXPECT_DOUBLE_EQ(kept.scene.light.nearPlane, 4.8);
+  EXPECT_DOUBLE_EQ(kept.scene.light.farPlane, 5.2);
+  EXPECT_TRUE(kept.warnings.empty());
+  const auto tight = parse(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":1e-3,"far":1e6})"));
+  // The unit box spans light depths 4.5 .. 5.5; its bounding radius is sqrt(3) / 2.
+  const double r = std::sqrt(3.0) / 2.0;
+  EXPECT_NEAR(tight.scene.light.nearPlane, 4.5 - 0.01 * r, 1e-12);
+  EXPECT_NEAR(tight.scene.light.farPlane, 5.5 + 0.01 * r, 1e-12);
+  ASSERT_GE(tight.warnings.size(), 2u);
+  EXPECT_NE(tight.warnings[0].find("/light/far"), std::string::npos) << tight.warnings[0];
+  EXPECT_NE(tight.warnings[1].find("/light/near"), std::string::npos) << tight.warnings[1];
+  const auto cam = parse(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"near":1e-4,"far":1e4})"));
+  EXPECT_NEAR(cam.scene.camera.nearPlane, 4.5 * 0.99, 1e-12);
+  EXPECT_LT(cam.scene.camera.farPlane, 6.0);
+}
+
+// A spot light close to a small object over a huge ground: the bounds start behind the light, so
+// the near plane comes from the nearest geometry (regression: it was far * 1e-3 = 319 units,
+// beyond the object, and the frame showed no shadow).
+TEST(SceneParser, SpotNearComesFromTheNearestGeometryWhenTheBoundsSurroundTheLight) {
+  const auto r = parse(R"({"objects":[{"type":"plane","size":2e6},
+      {"type":"sphere","radius":0.2,"transform":{"translate":[0,1,0]}}],
+    "light":{"type":"spot","position":[0.3,1.6,0.2],"target":[0,0,0],"fov":120},
+    "camera":{"eye":[0,3,4],"target":[0,0,0]}})");
+  const double toSphere = glm::length(glm::dvec3(0.3, 0.6, 0.2)) - 0.2;
+  EXPECT_GT(r.scene.light.nearPlane, 1e-7 * r.scene.light.farPlane);
+  EXPECT_LT(r.scene.light.nearPlane, toSphere);
+  EXPECT_LT(r.scene.camera.nearPlane, glm::length(glm::dvec3(0, 2, 4)) - 0.2);
 }
 
 TEST(SceneParser, MalformedJsonNamesLineAndColumn) {

@@ -13,8 +13,8 @@ struct Camera {
   double fovYDegrees = 45.0;           ///< full vertical field of view
   int width = 640;                     ///< image pixels
   int height = 480;                    ///< image pixels
-  double nearPlane = 0.0;              ///< view distance; 0 = fitted to the scene by fitCamera
-  double farPlane = 0.0;               ///< view distance; 0 = fitted to the scene by fitCamera
+  double nearPlane = 0.0;              ///< view distance; 0 = fitted to the scene by fitLightAndCamera
+  double farPlane = 0.0;               ///< view distance; 0 = fitted to the scene by fitLightAndCamera
 };
 
 glm::dmat4 cameraView(const Camera& camera);        ///< world -> camera view

@@ -20,7 +20,8 @@ struct Light {
   double fovYDegrees = 60.0;              ///< spot only: full vertical (= horizontal) opening angle
   double halfExtent = 0.0;                ///< directional only: half width of the square view, world units
   double nearPlane = 0.0;                 ///< distance along the light axis, world units (> 0 for
-                                          ///< spot); 0 = fitted to the scene by fitLightAndCamera
+                                          ///< spot); 0 = fitted to the scene by fitLightAndCamera,
+                                          ///< which also tightens given planes to the scene
   double farPlane = 0.0;                  ///< distance along the light axis (> near); 0 = fitted
 };
 

@@ -55,8 +55,11 @@ SceneLoadResult parseScene(const std::string& jsonText, const std::string& sourc
 Scene defaultScene();
 
 /// Fills in what the file left open: light near/far (and a directional light's position and
-/// half extent) from the scene bounds, camera near/far likewise. Only zero fields are fitted.
-void fitLightAndCamera(Scene& scene);
+/// half extent) from the scene bounds, camera near/far likewise. A given far beyond the scene's
+/// far side (+1 % of its radius), or a given near before its near side (-1 %), is moved there:
+/// it would capture nothing more and only cost depth precision (README "Depth range"); the
+/// camera's near only when the whole scene lies in front of it. Returns one note per moved plane.
+std::vector<std::string> fitLightAndCamera(Scene& scene);
 
 /// Writes the scene's triangles as PLY (binary), OBJ, OFF or STL, chosen by the extension:
 /// relative to scene.origin (recorded in the file's header comment), or with `worldCoordinates`

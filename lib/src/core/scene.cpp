@@ -16,6 +16,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
+#include "scene_fit_range.h"
 
 namespace shadowvol {
 namespace {
@@ -353,18 +354,6 @@ Camera readCamera(const json& v, const std::string& source) {
   return c;
 }
 
-// Depth range of the box's corners along an axis from an origin.
-std::pair<double, double> depthRange(const Bounds3& b, const glm::dvec3& origin, const glm::dvec3& axis) {
-  double lo = 1e300, hi = -1e300;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
-    const double d = glm::dot(c - origin, axis);
-    lo = std::min(lo, d);
-    hi = std::max(hi, d);
-  }
-  return {lo, hi};
-}
-
 // Parity of crossings of a ray with a closed mesh, in double; odd = inside.
 bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
   const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5377, 0.8421, 0.0419));  // skewed: avoids edges
@@ -415,42 +404,6 @@ TriangleMesh Scene::merged() const {
   return m;
 }
 
-void fitLightAndCamera(Scene& scene) {
-  const Bounds3 b = scene.bounds();
-  if (b.empty()) return;
-  const double radius = std::max(b.radius(), 1e-6);
-  Light& l = scene.light;
-  l.direction = glm::normalize(l.direction);
-  if (l.type == LightType::Directional) {
-    if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
-    if (l.halfExtent <= 0.0) {
-      const glm::dmat4 v = lightView(l);
-      double e = 0.0;
-      for (int k = 0; k < 8; ++k) {
-        const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
-        const glm::dvec4 p = v * glm::dvec4(c, 1.0);
-        e = std::max({e, std::abs(p.x), std::abs(p.y)});
-      }
-      l.halfExtent = e * 1.02;  // 2% margin so the far-plane border ring stays off the geometry
-    }
-  }
-  const auto [lo, hi] = depthRange(b, l.position, l.direction);
-  if (l.farPlane == 0.0) l.farPlane = std::max(hi, 1e-3 * radius) + 0.01 * radius;
-  // A directional light's view starts at the plane through its position: a fitted near never
-  // goes behind it (loadScene warns when that plane cuts the scene).
-  if (l.nearPlane == 0.0 && l.type == LightType::Directional) l.nearPlane = std::max(lo - 0.01 * radius, 0.0);
-  if (l.nearPlane == 0.0 && l.type == LightType::Spot)
-    l.nearPlane = std::max(lo - 0.01 * radius, l.farPlane * 1e-3);
-  if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
-
-  Camera& c = scene.camera;
-  const glm::dvec3 axis = glm::normalize(c.target - c.eye);
-  const auto [clo, chi] = depthRange(b, c.eye, axis);
-  if (c.farPlane <= 0.0) c.farPlane = std::max(chi, 1e-3 * radius) * 1.01 + 1e-6;
-  if (c.nearPlane <= 0.0) c.nearPlane = std::max(clo * 0.99, c.farPlane * 1e-3);
-  if (c.farPlane <= c.nearPlane) c.farPlane = c.nearPlane * 2.0 + radius;
-}
-
 SceneLoadResult parseScene(const std::string& text, const std::string& source,
                            const std::filesystem::path& baseDir) {
   json doc;
@@ -492,7 +445,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                      "more than the limit of " + std::to_string(kMaxSceneTriangles));
   rebase(scene, world, source);
   const Light given = scene.light;
-  fitLightAndCamera(scene);
+  for (auto& note : fitLightAndCamera(scene)) result.warnings.push_back(std::move(note));
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
     throw InputError(source, "/light/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
   for (const auto& o : scene.objects)
@@ -501,7 +454,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                                 (scene.light.type == LightType::Spot ? "spot" : "directional") +
                                 " light is inside the closed mesh \"" + o.name +
                                 "\": everything it lights will be in shadow");
-  if (scene.light.type == LightType::Directional && depthRange(scene.bounds(), scene.light.position,
+  if (scene.light.type == LightType::Directional && detail::depthRange(scene.bounds(), scene.light.position,
                                                                scene.light.direction).first < 0.0)
     result.warnings.push_back(source + ": /light/position: the plane through the directional light's position cuts "
                                        "the scene's bounds: what lies behind it is neither lit nor casts a shadow");

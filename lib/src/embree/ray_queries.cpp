@@ -76,6 +76,11 @@ CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
 
 double shadowRayOffset(const Scene& scene) { return 1e-4 * std::max(scene.bounds().radius(), 1e-9); }
 
+double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale) {
+  const double size = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  return std::max(std::min(sceneOffset, 1e-3 * localScale), std::ldexp(size + localScale, -18));
+}
+
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
                                      double offset) {
   const Light& light = description.light;
@@ -108,8 +113,10 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
         out[k] = PixelClass::FacingAway;
         continue;
       }
-      const glm::dvec3 org = p + n * offset;
-      RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - offset : INFINITY)).ray;
+      const double local = std::min(glm::length(p - description.camera.eye), tfar);
+      const double off = shadowRayOffsetAt(offset, p, local);
+      const glm::dvec3 org = p + n * off;
+      RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - off : INFINITY)).ray;
       RTCIntersectContext ctx;
       rtcInitIntersectContext(&ctx);
       rtcOccluded1(scene.get(), &ctx, &ray);

@@ -204,6 +204,7 @@ struct Renderer::Impl {
   std::vector<Query> queryPool;
   Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
   bool volumeTrianglesPending = false;
+  bool reversedDepth = false;                   // the camera passes' depth convention (useDepthConvention)
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
@@ -330,7 +331,7 @@ struct Renderer::Impl {
     SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, w, h));
     depthStencilRb = makeRenderbuffer();
     SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, depthStencilRb.id()));
-    SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h));
+    SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH32F_STENCIL8, w, h));  // reversed Z: see cameraSetup
     visibilityRb = makeRenderbuffer();
     SV_GL(glBindRenderbuffer(GL_RENDERBUFFER, visibilityRb.id()));
     SV_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_R8, w, h));
@@ -350,6 +351,17 @@ struct Renderer::Impl {
 
   // ---- passes --------------------------------------------------------------------------------
 
+  // Depth conventions: the light passes use GL's default (NDC z in [-1, 1], window depth 0 at the
+  // near plane, LESS); the camera passes reversed Z (glClipControl ZERO_TO_ONE, window depth 1 at
+  // the near plane and 0 at the far plane, GREATER, cleared to 0) into a 32-bit float buffer, whose
+  // relative precision then holds at every distance (a 24-bit buffer ran out at far/near 1e6).
+  void useDepthConvention(bool reversed) {
+    reversedDepth = reversed;
+    SV_GL(glClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE));
+  }
+  GLenum nearer() const { return reversedDepth ? GL_GREATER : GL_LESS; }
+  GLenum nearerOrEqual() const { return reversedDepth ? GL_GEQUAL : GL_LEQUAL; }
+
   void resetState() {
     SV_GL(glDisable(GL_BLEND));
     SV_GL(glDisable(GL_STENCIL_TEST));
@@ -360,7 +372,7 @@ struct Renderer::Impl {
     SV_GL(glDepthMask(GL_TRUE));
     SV_GL(glStencilMask(0xFF));
     SV_GL(glEnable(GL_DEPTH_TEST));
-    SV_GL(glDepthFunc(GL_LESS));
+    SV_GL(glDepthFunc(nearer()));
   }
 
   void drawScene() {
@@ -372,6 +384,7 @@ struct Renderer::Impl {
   /// The light's depth into layer0 (and layer1 for midpoint): window depth, cleared to 1.
   void lightPass(int w, int h, CaptureMode mode) {
     ensureLightTargets(w, h);
+    useDepthConvention(false);
     resetState();
     const glm::dmat4 worldToLightClip = lightProjection(light, double(w) / double(h)) * lightView(light);
     SV_GL(glViewport(0, 0, w, h));
@@ -425,7 +438,7 @@ struct Renderer::Impl {
     SV_GL(glBindVertexArray(emptyVao.id()));
     SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
     SV_GL(glBindVertexArray(0));
-    SV_GL(glDepthFunc(GL_LESS));
+    SV_GL(glDepthFunc(nearer()));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
@@ -482,7 +495,13 @@ struct Renderer::Impl {
     Camera c = camera;
     if (o.imageWidth > 0) c.width = o.imageWidth;
     if (o.imageHeight > 0) c.height = o.imageHeight;
-    return {cameraView(c), cameraProjection(c), c.width, c.height};
+    // Reversed Z: clip z' = (w - z) / 2 maps GL's NDC z in [-1, 1] to window depth 1 .. 0
+    // (near .. far) under glClipControl ZERO_TO_ONE. Composed in double, so the float matrix
+    // holds n / (f - n) and f n / (f - n) without cancellation.
+    glm::dmat4 reverse(1.0);
+    reverse[2][2] = -0.5;
+    reverse[3][2] = 0.5;
+    return {cameraView(c), reverse * cameraProjection(c), c.width, c.height};
   }
 
   /// Uniforms of sceneProgram shared by every mode.
@@ -515,11 +534,12 @@ struct Renderer::Impl {
   /// test into COLOR_ATTACHMENT1 (cleared to 1 = lit); otherwise only attachment 0 is drawn.
   void beginCamera(const CameraSetup& cam, bool withVisibility = false) {
     ensureCameraTargets(cam.w, cam.h);
+    useDepthConvention(true);
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
     SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));
-    SV_GL(glClearDepth(1.0));
+    SV_GL(glClearDepth(0.0));  // reversed Z: 0 is the far plane
     SV_GL(glClearStencil(0));
     const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     SV_GL(glDrawBuffers(withVisibility ? 2 : 1, both));
@@ -534,7 +554,7 @@ struct Renderer::Impl {
   void beginVolume() {
     SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(GL_LESS));
+    SV_GL(glDepthFunc(nearer()));
     SV_GL(glEnable(GL_DEPTH_CLAMP));
     SV_GL(glDisable(GL_CULL_FACE));
     SV_GL(glEnable(GL_STENCIL_TEST));
@@ -555,7 +575,7 @@ struct Renderer::Impl {
     SV_GL(glStencilFunc(GL_EQUAL, 0, 0xFF));
     SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(GL_LEQUAL));
+    SV_GL(glDepthFunc(nearerOrEqual()));
     SV_GL(glEnable(GL_BLEND));
     SV_GL(glBlendFunc(GL_ONE, GL_ONE));
     sceneProgram.use();

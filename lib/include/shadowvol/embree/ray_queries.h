@@ -39,9 +39,17 @@ enum class PixelClass : std::uint8_t {
   Shadowed = 4,
 };
 
-/// The documented shadow-ray offset: 1e-4 of the scene's bounding radius, along the normal
-/// towards the light side. Scales with the scene; far below a texel at any tested resolution.
+/// The documented shadow-ray offset's scene part: 1e-4 of the scene's bounding radius. exactShadows
+/// uses it at each point p capped by its local scale and floored by float's spacing there:
+///   max(min(offset, 1e-3 * local), 2^-18 * (max|p| + local)),  local = distance from p to the
+///   camera (and to a spot light, whichever is smaller),
+/// along the normal towards the light side. The cap keeps a large ground (radius 1e6) from
+/// lifting rays from a small object by 141 units; the floor stays 2^-18 / 2^-24 = 64 float
+/// spacings above where Embree's float hit point may lie. In shipped scenes the cap never binds.
 double shadowRayOffset(const Scene& scene);
+
+/// The offset actually used at p (see shadowRayOffset).
+double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale);
 
 /// Exact shadows: one occlusion ray per visible point towards the light (to the spot light's
 /// apex; along -direction for a directional light), started `offset` off the surface along its

@@ -1,0 +1,137 @@
+// fitLightAndCamera: the light's and the camera's near and far planes from the scene (and a
+// directional light's position and window), and given planes tightened to what the scene needs.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/squared_distance_3.h>
+#include <glm/geometric.hpp>
+
+#include "scene_fit_range.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol {
+namespace {
+
+using detail::depthRange;
+
+// Euclidean distance from p to the nearest triangle of the scene (CGAL's point-triangle distance
+// in double; degenerate triangles count as their points and edges).
+double nearestGeometry(const Scene& scene, const glm::dvec3& p) {
+  using K = CGAL::Simple_cartesian<double>;
+  const K::Point_3 q(p.x, p.y, p.z);
+  double best = 1e300;
+  for (const auto& o : scene.objects) {
+    const auto& P = o.mesh.positions;
+    auto pt = [&](std::uint32_t k) { return K::Point_3(P[k].x, P[k].y, P[k].z); };
+    for (const auto& t : o.mesh.triangles) {
+      const K::Triangle_3 tri(pt(t[0]), pt(t[1]), pt(t[2]));
+      const double d2 = tri.is_degenerate()
+                            ? std::min({CGAL::squared_distance(q, K::Segment_3(tri[0], tri[1])),
+                                        CGAL::squared_distance(q, K::Segment_3(tri[1], tri[2])),
+                                        CGAL::squared_distance(q, K::Segment_3(tri[0], tri[2]))})
+                            : CGAL::squared_distance(q, tri);
+      best = std::min(best, d2);
+    }
+  }
+  return std::sqrt(best);
+}
+
+// The nearest view depth a frustum of vertical opening fovY and aspect can see of geometry at
+// least `distance` away: distance times the cosine of the half-diagonal angle.
+double nearestViewDepth(double distance, double fovYDegrees, double aspect) {
+  const double t = std::tan(0.5 * fovYDegrees * std::numbers::pi / 180.0) * std::sqrt(1.0 + std::max(aspect, 1.0) * std::max(aspect, 1.0));
+  return distance / std::sqrt(1.0 + t * t);
+}
+
+// The near plane of a perspective view whose far plane is `far` and whose view of the bounds
+// starts at `boundsNear`. When the bounds reach (almost) behind the eye, the bounds say nothing:
+// then 99 % of the nearest view depth of the actual geometry, kept to at most far * 1e-3 (the
+// bounds' floor) and at least far * 1e-7 (float depth resolution).
+double perspectiveNear(double boundsNear, double far, const Scene& scene, const glm::dvec3& eye, double fovY,
+                       double aspect) {
+  if (boundsNear >= far * 1e-3) return boundsNear;
+  const double geometry = 0.99 * nearestViewDepth(nearestGeometry(scene, eye), fovY, aspect);
+  return std::max(std::min({far * 1e-3, std::max(geometry, boundsNear)}), far * 1e-7);
+}
+
+// "0.0123 (given 1e+06)" for the notes.
+std::string planeChange(double used, double given) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.6g (given %.6g)", used, given);
+  return buf;
+}
+
+void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius) {
+  Light& l = scene.light;
+  if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
+  if (l.halfExtent > 0.0) return;
+  const glm::dmat4 v = lightView(l);
+  double e = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+    const glm::dvec4 p = v * glm::dvec4(c, 1.0);
+    e = std::max({e, std::abs(p.x), std::abs(p.y)});
+  }
+  l.halfExtent = e * 1.02;  // 2% margin so the far-plane border ring stays off the geometry
+}
+
+// What the scene needs: from just before its near side to just past its far side (1 % of the
+// radius each way). A given plane outside that range is moved to it: it would capture nothing
+// more, and only spend depth precision (a light far/near ratio of 1e6 cost 3 % of stencil
+// agreement).
+void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
+  Light& l = scene.light;
+  const auto [lo, hi] = depthRange(b, l.position, l.direction);
+  const double far = std::max(hi, 1e-3 * radius) + 0.01 * radius;
+  if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
+  if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
+  // A directional light's view starts at the plane through its position: a fitted near never
+  // goes behind it (loadScene warns when that plane cuts the scene).
+  const double near = l.type == LightType::Directional
+                          ? std::max(lo - 0.01 * radius, 0.0)
+                          : perspectiveNear(lo - 0.01 * radius, l.farPlane, scene, l.position, l.fovYDegrees, 1.0);
+  const bool raise = l.nearPlane > 0.0 && l.nearPlane < near && near < l.farPlane;
+  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane));
+  if (l.nearPlane == 0.0 || raise) l.nearPlane = near;
+  if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
+}
+
+void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
+  Camera& c = scene.camera;
+  const glm::dvec3 axis = glm::normalize(c.target - c.eye);
+  const auto [lo, hi] = depthRange(b, c.eye, axis);
+  const double far = std::max(hi, 1e-3 * radius) * 1.01 + 1e-6;
+  if (c.farPlane > far) notes.push_back("/camera/far: " + planeChange(far, c.farPlane));
+  if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
+  const double aspect = double(c.width) / double(c.height);
+  const double near = perspectiveNear(lo * 0.99, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
+  // A given near is raised only when the whole scene lies in front of the camera.
+  const bool raise = c.nearPlane > 0.0 && lo > 0.0 && c.nearPlane < near && near < c.farPlane;
+  if (raise) notes.push_back("/camera/near: " + planeChange(near, c.nearPlane));
+  if (c.nearPlane <= 0.0 || raise) c.nearPlane = near;
+  if (c.farPlane <= c.nearPlane) c.farPlane = c.nearPlane * 2.0 + radius;
+}
+
+}  // namespace
+
+std::vector<std::string> fitLightAndCamera(Scene& scene) {
+  std::vector<std::string> notes;
+  const Bounds3 b = scene.bounds();
+  if (b.empty()) return notes;
+  const double radius = std::max(b.radius(), 1e-6);
+  scene.light.direction = glm::normalize(scene.light.direction);
+  if (scene.light.type == LightType::Directional) fitDirectionalWindow(scene, b, radius);
+  fitLightPlanes(scene, b, radius, notes);
+  fitCameraPlanes(scene, b, radius, notes);
+  for (auto& n : notes)
+    n = scene.source + ": " + n + ": moved to the scene's depth range; planes beyond it capture nothing more and "
+                                  "only cost depth precision";
+  return notes;
+}
+
+}  // namespace shadowvol
