@@ -354,7 +354,7 @@ struct Renderer::Impl {
   // Depth conventions: the light passes use GL's default (NDC z in [-1, 1], window depth 0 at the
   // near plane, LESS); the camera passes reversed Z (glClipControl ZERO_TO_ONE, window depth 1 at
   // the near plane and 0 at the far plane, GREATER, cleared to 0) into a 32-bit float buffer, whose
-  // relative precision then holds at every distance (a 24-bit buffer ran out at far/near 1e6).
+  // relative precision then holds at every distance.
   void useDepthConvention(bool reversed) {
     reversedDepth = reversed;
     SV_GL(glClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE));

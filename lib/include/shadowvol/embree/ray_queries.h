@@ -71,7 +71,7 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
 /// capture's sheet on an occluder's back face that the camera sees), the GPU's depth test and the
 /// ray parameter decide the order of coincident surfaces by round-off. Events within the tie band
 /// |t - t_visible| <= tieTolerance(t_visible) * t_visible count as behind the point in zfail
-/// (GL_LESS fails on equal depths), and zfailMin / zfailMax give the range of z-fail counts for
+/// (the camera's reversed-Z GL_GREATER fails on equal depths), and zfailMin / zfailMax give the range of z-fail counts for
 /// every split of the band's events (each split is a consistent ordering; the values of successive
 /// splits differ by one, so every integer in the range is admissible).
 struct CrossingCounts {
@@ -82,7 +82,8 @@ struct CrossingCounts {
 inline constexpr double kCrossingMergeTolerance = 1e-6;
 
 /// Relative half-width of the tie band at camera view depth d: 1e-4, or 16 steps of a 24-bit depth
-/// buffer at d (2^-24 d (far - near) / (far near) relative), whichever is larger.
+/// buffer at d (2^-24 d (far - near) / (far near) relative), whichever is larger. The renderer's
+/// camera buffer is 32-bit float with reversed Z, finer at every depth: the band is conservative.
 double tieTolerance(const Camera& camera, double d);
 
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits);
