@@ -289,6 +289,27 @@ TEST(SceneParser, FarFromTheOriginIsRebasedInDouble) {
   EXPECT_NEAR(far.camera.farPlane, near.camera.farPlane, 1e-9);
 }
 
+// Regression (aborts on Embree's ray.valid() and light.cpp's internal check): numbers beyond
+// +-1e12 and fields of view below 0.01 degrees are refused, the field named.
+TEST(SceneParser, OutOfRangeNumbersAreRefusedNotAborted) {
+  expectError(withLight(R"({"type":"spot","position":[1e300,9,2],"direction":[0,-1,0]})"), "/light/position", "1e+300");
+  expectError(withLight(R"({"type":"directional","direction":[0,-1,0],"position":[0,1e300,0]})"), "/light/position");
+  expectError(withLight(R"({"type":"directional","direction":[0,-1,0],"extent":1e300})"), "/light/extent");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":1e300,"far":1e301})"),
+              "/light/near");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"far":1e300})"), "/light/far");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"fov":1e-300})"), "/light/fov");
+  expectError(withCamera(R"({"eye":[1e300,0,5],"target":[0,0,0]})"), "/camera/eye");
+  expectError(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"fov":1e-300})"), "/camera/fov");
+  expectError(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"far":1e300})"), "/camera/far");
+  expectError(withObject(R"({"type":"box","size":1e300})"), "/objects/0/size");
+  expectError(withObject(R"({"type":"box","transform":{"translate":[1e300,0,0]}})"), "/objects/0/transform/translate");
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,1e300, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})"),
+              "/objects/0/transform/matrix");
+  // The edge of the range still loads: a scene 1e11 from the origin.
+  EXPECT_NO_THROW(parse(test::movedDefaultScene({1e11, 0, -1e11})));
+}
+
 TEST(SceneParser, MissingFileIsAnError) {
   EXPECT_THROW(loadScene("/nonexistent/scene.json"), InputError);
 }

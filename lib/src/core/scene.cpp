@@ -25,6 +25,12 @@ using nlohmann::json;
 
 constexpr int kMaxImageSide = 16384;
 constexpr std::size_t kMaxSceneTriangles = 50'000'000;
+// Every number of a scene file lies within +-kMaxMagnitude (README "Scene files"): double keeps
+// 1e-4 units there, and products of two such numbers stay far from overflow.
+constexpr double kMaxMagnitude = 1e12;
+constexpr const char* kMagnitudeProblem = "beyond the supported range (|value| <= 1e12)";
+// Fields of view in degrees: at least this, below 179.
+constexpr double kMinFovDegrees = 0.01;
 
 std::string show(const json& v) {
   std::string s = v.dump();
@@ -63,6 +69,7 @@ class ObjectReader {
     if (!v.is_number()) fail(key, v, "expected a number");
     const double d = v.get<double>();
     if (!std::isfinite(d)) fail(key, v, "expected a finite number");
+    if (std::abs(d) > kMaxMagnitude) fail(key, v, kMagnitudeProblem);
     return d;
   }
 
@@ -103,6 +110,7 @@ class ObjectReader {
     for (int k = 0; k < 3; ++k) {
       if (!v[k].is_number() || !std::isfinite(v[k].get<double>())) fail(key, v, "expected 3 finite numbers");
       r[k] = v[k].get<double>();
+      if (std::abs(r[k]) > kMaxMagnitude) fail(key, v, kMagnitudeProblem);
     }
     return r;
   }
@@ -121,6 +129,7 @@ class ObjectReader {
       if (mirrors && !(std::isfinite(d) && d != 0.0))
         fail(key, v, "scale factors must be finite and non-zero (negative ones mirror)");
       if (!mirrors && !(std::isfinite(d) && d > 0.0)) fail(key, v, "sizes must be finite and greater than zero");
+      if (std::abs(d) > kMaxMagnitude) fail(key, v, kMagnitudeProblem);
     }
     return r;
   }
@@ -149,6 +158,7 @@ glm::dmat4 readTransform(ObjectReader& parent) {
     if (!v.is_array() || v.size() != 16) r.fail("matrix", v, "expected 16 numbers (row-major 4x4)");
     for (int k = 0; k < 16; ++k) {
       if (!v[k].is_number() || !std::isfinite(v[k].get<double>())) r.fail("matrix", v, "expected 16 finite numbers");
+      if (std::abs(v[k].get<double>()) > kMaxMagnitude) r.fail("matrix", v, kMagnitudeProblem);
       m[k % 4][k / 4] = v[k].get<double>();  // row-major in the file, column-major in GLM
     }
     if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-12) r.fail("matrix", v, "the matrix is singular");
@@ -302,8 +312,8 @@ Light readLight(const json& v, const std::string& source) {
 
   if (light.type == LightType::Spot) {
     light.fovYDegrees = r.number("fov", 60.0);
-    if (!(light.fovYDegrees > 0.0 && light.fovYDegrees < 179.0))
-      r.fail("fov", json(light.fovYDegrees), "a spot light's field of view must be in (0, 179) degrees");
+    if (!(light.fovYDegrees >= kMinFovDegrees && light.fovYDegrees < 179.0))
+      r.fail("fov", json(light.fovYDegrees), "a spot light's field of view must be in [0.01, 179) degrees");
   } else if (r.has("extent")) {
     light.halfExtent = r.positive("extent");
   }
@@ -340,8 +350,8 @@ Camera readCamera(const json& v, const std::string& source) {
   if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-6)
     r.fail("up", upValue, "up is parallel to the view direction (target - eye)");
   c.fovYDegrees = r.number("fov", 45.0);
-  if (!(c.fovYDegrees > 0.0 && c.fovYDegrees < 179.0))
-    r.fail("fov", json(c.fovYDegrees), "the camera's field of view must be in (0, 179) degrees");
+  if (!(c.fovYDegrees >= kMinFovDegrees && c.fovYDegrees < 179.0))
+    r.fail("fov", json(c.fovYDegrees), "the camera's field of view must be in [0.01, 179) degrees");
   c.width = r.integer("width", 640, 1, kMaxImageSide);
   c.height = r.integer("height", 480, 1, kMaxImageSide);
   if (r.has("near")) c.nearPlane = r.positive("near");
