@@ -57,7 +57,7 @@ Scene defaultScene();
 /// Fills in what the file left open: light near/far (and a directional light's position and
 /// half extent) from the scene bounds, camera near/far likewise. A given far beyond the scene's
 /// far side (+1 % of its radius), or a given near before its near side (-1 %), is moved there:
-/// it would capture nothing more and only cost depth precision (README "Depth range"); the
+/// it would capture nothing more and only cost depth precision (README "Scene files", Light); the
 /// camera's near only when the whole scene lies in front of it. Returns one note per moved plane.
 std::vector<std::string> fitLightAndCamera(Scene& scene);
 
