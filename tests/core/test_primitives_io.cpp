@@ -231,5 +231,24 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("ok.pfm", "side file");
 }
 
+// Regression (a PFM header of 46341^2 allocated 8 GB before the data length was checked; /dev/zero
+// read as a PFM ran for a minute): the length is checked first, and devices are refused.
+TEST(DepthMapIo, HugeHeadersAndDevicesAreRefusedBeforeAllocating) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "huge.pfm", "Pf\n46341 46341\n-1.0\n0123");
+  try {
+    readDepthMap(dir / "huge.pfm");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("shorter"), std::string::npos) << e.what();
+  }
+  try {
+    readDepthMap("/dev/zero");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace shadowvol

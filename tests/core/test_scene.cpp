@@ -1,3 +1,4 @@
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -308,6 +309,46 @@ TEST(SceneParser, OutOfRangeNumbersAreRefusedNotAborted) {
               "/objects/0/transform/matrix");
   // The edge of the range still loads: a scene 1e11 from the origin.
   EXPECT_NO_THROW(parse(test::movedDefaultScene({1e11, 0, -1e11})));
+}
+
+// Regression (exit 4 from nlohmann's out_of_range.406 with nothing named; a stack overflow on JSON
+// nested 1e5 deep): both are InputErrors naming the problem, the number with its line.
+TEST(SceneParser, HugeNumbersAndDeepNestingAreNamed) {
+  try {
+    parse("{\n \"objects\": [{\"type\": \"box\", \"size\": 1e400}]}");
+    FAIL() << "accepted 1e400";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("1e400"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+  }
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  try {
+    parse(deep);
+    FAIL() << "accepted deep nesting";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested deeper"), std::string::npos) << e.what();
+  }
+}
+
+// Regression (a uv sphere of 8192 x 8192 took 147 s and 2.6 GB before the triangle limit refused
+// it): the count is checked before generating, the field named.
+TEST(SceneParser, TriangleLimitIsCheckedBeforeGenerating) {
+  const auto t0 = std::chrono::steady_clock::now();
+  expectError(withObject(R"({"type":"sphere","tessellation":"uv","segments":8192,"rings":8192})"), "/objects/0/rings");
+  expectError(withObject(R"({"type":"hemisphere","segments":8192,"rings":8192})"), "/objects/0/rings");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+}
+
+// Regression (/dev/zero read as a scene ran for 30-90 s and 2 GB): not a regular file.
+TEST(SceneParser, NonRegularFilesAreRefused) {
+  for (const char* p : {"/dev/zero", "/tmp"}) {
+    try {
+      loadScene(p);
+      FAIL() << p;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(SceneParser, MissingFileIsAnError) {

@@ -121,19 +121,37 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
   });
 }
 
+// Refuses what is not a regular file (a folder, /dev/zero, a pipe) before anything is read.
+static void requireRegularFile(const std::filesystem::path& p, const char* what) {
+  std::error_code ec;
+  if (std::filesystem::exists(p, ec) && !std::filesystem::is_regular_file(p, ec))
+    throw InputError(p.string(), "", "", std::string(what) + " is not a regular file (a folder, device or pipe)");
+}
+
 DepthMap readDepthMap(const std::filesystem::path& pfm) {
   const std::string file = pfm.string();
+  requireRegularFile(pfm, "the depth map");
   std::ifstream in(pfm, std::ios::binary);
   if (!in) throw InputError(file, "", "", "cannot open the depth map");
   std::string magic;
   int w = 0, h = 0;
   double scale = 0;
-  in >> magic >> w >> h >> scale;
+  in.width(8);  // header tokens are short: "Pf"
+  in >> magic;
+  in.width(0);
+  in >> w >> h >> scale;
   if (magic != "Pf") throw InputError(file, "header", magic, "not a single-channel PFM (expected \"Pf\")");
   if (!in || w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw InputError(file, "header", std::to_string(w) + "x" + std::to_string(h), "bad PFM size");
   if (!(scale < 0)) throw InputError(file, "header", std::to_string(scale), "only little-endian PFM is supported");
   in.get();  // the single whitespace after the scale
+  // The data's length is checked against the file before anything is allocated.
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(pfm, ec);
+  const auto dataBytes = std::uintmax_t(w) * std::uintmax_t(h) * sizeof(float);
+  if (ec || in.tellg() < 0 || bytes - std::uintmax_t(in.tellg()) < dataBytes)
+    throw InputError(file, "data", std::to_string(w) + "x" + std::to_string(h),
+                     "the file is shorter than its header says (" + std::to_string(dataBytes) + " bytes of depths)");
   DepthMap map;
   map.width = w;
   map.height = h;
@@ -149,6 +167,9 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
 
   const auto sidecar = depthSidecarPath(pfm);
   const std::string sfile = sidecar.string();
+  requireRegularFile(sidecar, "the side file");
+  if (std::filesystem::exists(sidecar, ec) && std::filesystem::file_size(sidecar, ec) > (1u << 20))
+    throw InputError(sfile, "", "", "larger than a depth map's side file may be (1 MiB)");
   std::ifstream js(sidecar);
   if (!js) throw InputError(sfile, "", "", "cannot open the depth map's side file");
   json side;

@@ -194,45 +194,68 @@ struct ReadObject {
   std::vector<glm::dvec3> world;
 };
 
+// The mesh of a built-in primitive type. Each refuses, before generating anything, a tessellation
+// whose triangle count (an upper bound) exceeds `budget`, the triangles the scene may still hold.
+TriangleMesh makePrimitive(ObjectReader& r, const std::string& t, std::size_t budget) {
+  auto within = [&](const char* field, double triangles) {
+    if (triangles > double(budget))
+      r.fail(field, r.has(field) ? r.raw(field) : json(),
+             "up to " + std::to_string(std::size_t(triangles)) + " triangles: more than the " +
+                 std::to_string(budget) + " the scene may still hold (limit " + std::to_string(kMaxSceneTriangles) +
+                 ")");
+  };
+  if (t == "plane") {
+    const auto s = r.sizes("size", 2, 10.0);
+    const int n = r.integer("subdivisions", 1, 1, 4096);
+    within("subdivisions", 2.0 * n * n);
+    return makePlane(s[0], s[1], n);
+  }
+  if (t == "sphere") {
+    const double radius = r.positive("radius", 1.0);
+    const std::string tess = r.string("tessellation", std::string("ico"));
+    if (tess == "ico") {
+      const int detail = r.integer("detail", 3, 0, 8);
+      return makeIcoSphere(radius, detail);  // at most 1.3 million triangles
+    }
+    if (tess != "uv") r.fail("tessellation", json(tess), "expected \"ico\" or \"uv\"");
+    const int segments = r.integer("segments", 32, 3, 8192);
+    const int rings = r.integer("rings", 16, 2, 8192);
+    within("rings", 2.0 * segments * rings);
+    return makeUvSphere(radius, segments, rings);
+  }
+  if (t == "hemisphere") {
+    const double radius = r.positive("radius", 1.0);
+    const int segments = r.integer("segments", 64, 3, 8192);
+    const int rings = r.integer("rings", 16, 1, 8192);
+    within("rings", 2.0 * segments * (rings + 1.0));
+    return makeHemisphere(radius, segments, rings);
+  }
+  if (t == "box") {
+    const auto s = r.sizes("size", 3, 1.0);
+    return makeBox(s[0], s[1], s[2]);
+  }
+  if (t == "cylinder") {
+    const double radius = r.positive("radius", 0.5);
+    const double height = r.positive("height", 1.0);
+    return makeCylinder(radius, height, r.integer("segments", 32, 3, 8192));
+  }
+  if (t == "tree") {
+    const double trunkRadius = r.positive("trunkRadius", 0.08);
+    const double trunkHeight = r.positive("trunkHeight", 2.0);
+    const double crownRadius = r.positive("crownRadius", 0.8);
+    return makeTree(trunkRadius, trunkHeight, crownRadius, r.integer("detail", 3, 0, 8));
+  }
+  r.fail("type", json(t), "unknown object type (plane, sphere, hemisphere, box, cylinder, tree, mesh)");
+}
+
 ReadObject readObject(const json& v, std::size_t index, const std::string& source,
-                      const std::filesystem::path& baseDir) {
+                      const std::filesystem::path& baseDir, std::size_t budget) {
   ObjectReader r(v, "/objects/" + std::to_string(index), source);
   ReadObject read;
   SceneObject& obj = read.obj;
   obj.type = r.string("type");
   obj.name = r.string("name", obj.type + "#" + std::to_string(index));
-  const std::string& t = obj.type;
-  if (t == "plane") {
-    const auto s = r.sizes("size", 2, 10.0);
-    obj.mesh = makePlane(s[0], s[1], r.integer("subdivisions", 1, 1, 4096));
-  } else if (t == "sphere") {
-    const double radius = r.positive("radius", 1.0);
-    const std::string tess = r.string("tessellation", std::string("ico"));
-    if (tess == "ico") {
-      obj.mesh = makeIcoSphere(radius, r.integer("detail", 3, 0, 8));
-    } else if (tess == "uv") {
-      const int segments = r.integer("segments", 32, 3, 8192);
-      obj.mesh = makeUvSphere(radius, segments, r.integer("rings", 16, 2, 8192));
-    } else {
-      r.fail("tessellation", json(tess), "expected \"ico\" or \"uv\"");
-    }
-  } else if (t == "hemisphere") {
-    const double radius = r.positive("radius", 1.0);
-    const int segments = r.integer("segments", 64, 3, 8192);
-    obj.mesh = makeHemisphere(radius, segments, r.integer("rings", 16, 1, 8192));
-  } else if (t == "box") {
-    const auto s = r.sizes("size", 3, 1.0);
-    obj.mesh = makeBox(s[0], s[1], s[2]);
-  } else if (t == "cylinder") {
-    const double radius = r.positive("radius", 0.5);
-    const double height = r.positive("height", 1.0);
-    obj.mesh = makeCylinder(radius, height, r.integer("segments", 32, 3, 8192));
-  } else if (t == "tree") {
-    const double trunkRadius = r.positive("trunkRadius", 0.08);
-    const double trunkHeight = r.positive("trunkHeight", 2.0);
-    const double crownRadius = r.positive("crownRadius", 0.8);
-    obj.mesh = makeTree(trunkRadius, trunkHeight, crownRadius, r.integer("detail", 3, 0, 8));
-  } else if (t == "mesh") {
+  if (obj.type == "mesh") {
     const std::string file = r.string("file");
     std::filesystem::path p(file);
     if (p.is_relative()) p = baseDir / p;
@@ -242,14 +265,53 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
       throw InputError(source, r.pointer("file"), show(json(file)), e.what());
     }
   } else {
-    r.fail("type", json(t), "unknown object type (plane, sphere, hemisphere, box, cylinder, tree, mesh)");
+    obj.mesh = makePrimitive(r, obj.type, budget);
   }
+  if (obj.mesh.triangleCount() > budget)
+    r.fail("", json(), std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " +
+                           std::to_string(budget) + " the scene may still hold (limit " +
+                           std::to_string(kMaxSceneTriangles) + ")");
   read.world = applyTransform(obj.mesh, readTransform(r));
   r.finish();
   for (const auto& p : read.world)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       r.fail("transform", json(), "the transform makes coordinates non-finite");
   return read;
+}
+
+// "line L, column C" of a byte offset into text.
+std::string lineColumn(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t k = 0; k + 1 < byte && k < text.size(); ++k) {
+    if (text[k] == '\n') { ++line; col = 1; } else { ++col; }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
+// The JSON document, or InputError naming line and column: malformed text, a number beyond double
+// (1e400; nlohmann reports no position for it, so the token is looked up), or nesting deeper than
+// kMaxJsonDepth (deeper documents would overflow the stack when printed).
+json parseJson(const std::string& text, const std::string& source) {
+  constexpr int kMaxJsonDepth = 64;
+  const json::parser_callback_t limitDepth = [&](int depth, json::parse_event_t, json&) {
+    if (depth > kMaxJsonDepth)
+      throw InputError(source, "", "", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    return true;
+  };
+  try {
+    return json::parse(text, limitDepth);
+  } catch (const json::parse_error& e) {
+    throw InputError(source, "", "", "malformed JSON at " + lineColumn(text, e.byte) + ": " + e.what());
+  } catch (const json::out_of_range& e) {
+    // "... number overflow parsing '1e400'": find the token for its position.
+    const std::string what = e.what();
+    const auto q = what.find('\''), q2 = what.rfind('\'');
+    const std::string token = q != std::string::npos && q2 > q ? what.substr(q + 1, q2 - q - 1) : "";
+    const std::size_t at = token.empty() ? std::string::npos : text.find(token);
+    throw InputError(source, "", token,
+                     "a number beyond double precision's range" +
+                         (at == std::string::npos ? std::string() : " at " + lineColumn(text, at + 1)));
+  }
 }
 
 // Scene::origin's rule: the bounds' centre when it lies further from the world origin than the
@@ -416,18 +478,7 @@ TriangleMesh Scene::merged() const {
 
 SceneLoadResult parseScene(const std::string& text, const std::string& source,
                            const std::filesystem::path& baseDir) {
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // Turn the byte offset into line:column for the message.
-    std::size_t line = 1, col = 1;
-    for (std::size_t k = 0; k + 1 < e.byte && k < text.size(); ++k) {
-      if (text[k] == '\n') { ++line; col = 1; } else { ++col; }
-    }
-    throw InputError(source, "", "", "malformed JSON at line " + std::to_string(line) + ", column " +
-                                         std::to_string(col) + ": " + e.what());
-  }
+  const json doc = parseJson(text, source);
   SceneLoadResult result;
   Scene& scene = result.scene;
   scene.source = source;
@@ -438,8 +489,10 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   if (!objects.is_array() || objects.empty())
     top.fail("objects", objects, "expected a non-empty array of objects");
   std::vector<std::vector<glm::dvec3>> world;
+  std::size_t budget = kMaxSceneTriangles;
   for (std::size_t k = 0; k < objects.size(); ++k) {
-    ReadObject read = readObject(objects[k], k, source, baseDir);
+    ReadObject read = readObject(objects[k], k, source, baseDir, budget);
+    budget -= read.obj.mesh.triangleCount();
     scene.objects.push_back(std::move(read.obj));
     world.push_back(std::move(read.world));
   }
@@ -450,9 +503,6 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   top.finish();
 
   if (scene.triangleCount() == 0) throw InputError(source, "/objects", "", "the scene has no triangles");
-  if (scene.triangleCount() > kMaxSceneTriangles)
-    throw InputError(source, "/objects", std::to_string(scene.triangleCount()) + " triangles",
-                     "more than the limit of " + std::to_string(kMaxSceneTriangles));
   rebase(scene, world, source);
   const Light given = scene.light;
   for (auto& note : fitLightAndCamera(scene)) result.warnings.push_back(std::move(note));
@@ -472,6 +522,13 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
 }
 
 SceneLoadResult loadScene(const std::filesystem::path& path) {
+  constexpr std::uintmax_t kMaxSceneFileBytes = 64u << 20;  // scene files are small; meshes are separate
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path.string(), "", "", "not a regular file (a folder, device or pipe)");
+  if (std::filesystem::exists(path, ec) && std::filesystem::file_size(path, ec) > kMaxSceneFileBytes)
+    throw InputError(path.string(), "", std::to_string(std::filesystem::file_size(path, ec)) + " bytes",
+                     "larger than a scene file may be (64 MiB)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "", "", "cannot open the scene file");
   std::ostringstream ss;
