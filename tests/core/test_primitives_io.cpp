@@ -231,6 +231,28 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("ok.pfm", "side file");
 }
 
+// Regression (an interrupted `depth` could leave a new side file beside an old PFM, and `build`
+// then used mismatched data with exit 0): the side file's checksum of the depths must match.
+TEST(DepthMapIo, SideFileOfAnotherDepthMapIsRefused) {
+  const auto dir = test::tempDir();
+  Light l;
+  l.nearPlane = 1;
+  l.farPlane = 2;
+  DepthMap a = makeDepthMap(l, 3, 3, CaptureMode::Back), b = a;
+  b.depth[4] = 1.5f;
+  writeDepthMap(a, dir / "a.pfm");
+  writeDepthMap(b, dir / "b.pfm");
+  std::filesystem::copy_file(depthSidecarPath(dir / "b.pfm"), depthSidecarPath(dir / "a.pfm"),
+                             std::filesystem::copy_options::overwrite_existing);
+  try {
+    readDepthMap(dir / "a.pfm");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "/depthChecksum") << e.what();
+  }
+  EXPECT_EQ(readDepthMap(dir / "b.pfm").depth, b.depth);
+}
+
 // Regression (a PFM header of 46341^2 allocated 8 GB before the data length was checked; /dev/zero
 // read as a PFM ran for a minute): the length is checked first, and devices are refused.
 TEST(DepthMapIo, HugeHeadersAndDevicesAreRefusedBeforeAllocating) {

@@ -2,6 +2,8 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -82,6 +84,17 @@ void checkLightGeometry(const DepthMap& map, const std::string& sfile) {
     }
 }
 
+// FNV-1a (64-bit) of the depths as stored: the side file records it, so a side file beside a PFM
+// it was not written with (a write interrupted between the two renames) is refused.
+std::string depthChecksum(const std::vector<float>& depth) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(depth.data());
+  for (std::size_t k = 0; k < depth.size() * sizeof(float); ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
 }  // namespace
 
 std::filesystem::path depthSidecarPath(const std::filesystem::path& pfm) {
@@ -102,6 +115,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"lightView", matrixToJson(map.lightView)},
       {"lightProjection", matrixToJson(map.lightProjection)},
       {"origin", {map.origin.x, map.origin.y, map.origin.z}},
+      {"depthChecksum", "fnv1a64:" + depthChecksum(map.depth)},
   };
   const auto sidecar = depthSidecarPath(pfm);
   writeAtomically(pfm, [&](const std::filesystem::path& tmp) {
@@ -200,6 +214,12 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   map.lightView = matrixFromJson(need("lightView"), sfile, "/lightView");
   map.lightProjection = matrixFromJson(need("lightProjection"), sfile, "/lightProjection");
   checkLightGeometry(map, sfile);
+  if (side.contains("depthChecksum")) {  // optional: files from before it was written lack it
+    const std::string want = side["depthChecksum"].is_string() ? side["depthChecksum"].get<std::string>() : "";
+    if (want != "fnv1a64:" + depthChecksum(map.depth))
+      throw InputError(sfile, "/depthChecksum", want,
+                       "does not match the depths in " + file + ": the side file belongs to another depth map");
+  }
   if (side.contains("origin")) {  // optional: files from before it was written have origin 0
     const json& o = side["origin"];
     if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
