@@ -17,11 +17,11 @@ uniform vec3 lightPosition;       // world, spot apex
 uniform vec3 lightDirection;      // world, unit, the way the light shines
 uniform mat4 worldToLightClip;    // P_light * V_light
 uniform mat4 worldToLightView;    // V_light
-uniform vec4 lightDepthParams;    // light projection P22, P32, P23, P33
+uniform vec4 lightDepthParams;    // reversed-Z light projection P22, P32, P23, P33
 uniform float ambient;
 uniform float diffuse;
 uniform int shadowTaps;           // 0: no shadow test; 1: one tap; 3 or 5: PCF n x n
-uniform sampler2DShadow shadowMap;  // window depth, compare LEQUAL, nearest
+uniform sampler2DShadow shadowMap;  // window depth (reversed Z), compare GEQUAL, nearest
 uniform vec2 shadowMapSize;       // texels
 uniform float biasConstant;       // world units
 uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
@@ -39,8 +39,7 @@ float shadowVisibility(vec4 lightClip, float cosTheta) {
   float c = clamp(cosTheta, 1e-4, 1.0);
   float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / c, 10.0);
   float z = -(d - (biasConstant + biasSlope * footprint * tanTheta));
-  float ndc = (lightDepthParams.x * z + lightDepthParams.y) / (lightDepthParams.z * z + lightDepthParams.w);
-  float ref = 0.5 * ndc + 0.5;
+  float ref = (lightDepthParams.x * z + lightDepthParams.y) / (lightDepthParams.z * z + lightDepthParams.w);
   vec2 uv = lightClip.xy / lightClip.w * 0.5 + 0.5;
   int r = shadowTaps / 2;
   float sum = 0.0;

@@ -94,10 +94,22 @@ glm::vec4 depthParams(const glm::dmat4& p) {
   return glm::vec4(float(p[2][2]), float(p[3][2]), float(p[2][3]), float(p[3][3]));
 }
 
-/// Window depth in [0, 1] -> light-view depth (world units), in double (the read-back path).
+/// Reversed Z, as every pass of this renderer draws (with glClipControl ZERO_TO_ONE): clip
+/// z' = (w - z) / 2 maps GL's NDC z in [-1, 1] to window depth 1 .. 0 (near .. far). Composed in
+/// double, so the float matrix holds n / (f - n) and f n / (f - n) without cancellation, and a
+/// 32-bit float depth keeps its relative precision at every distance (GL's default convention
+/// loses it near 1: at far/near 1e6 a depth was off by several percent).
+glm::dmat4 reversedZ(const glm::dmat4& projection) {
+  glm::dmat4 reverse(1.0);
+  reverse[2][2] = -0.5;
+  reverse[3][2] = 0.5;
+  return reverse * projection;
+}
+
+/// Window depth (reversed Z, 0 = far .. 1 = near) -> view depth (world units), in double (the
+/// read-back path; resolve.frag's viewDepth is the float mirror). `p` is reversedZ(projection).
 double viewDepthFromWindow(const glm::dmat4& p, double window) {
-  const double ndc = 2.0 * window - 1.0;
-  const double z = (ndc * p[3][3] - p[3][2]) / (p[2][2] - ndc * p[2][3]);
+  const double z = (window * p[3][3] - p[3][2]) / (p[2][2] - window * p[2][3]);
   return -z;
 }
 
@@ -204,7 +216,6 @@ struct Renderer::Impl {
   std::vector<Query> queryPool;
   Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
   bool volumeTrianglesPending = false;
-  bool reversedDepth = false;                   // the camera passes' depth convention (useDepthConvention)
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
@@ -254,7 +265,7 @@ struct Renderer::Impl {
     for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T})
       SV_GL(glSamplerParameteri(shadowSampler.id(), p, GL_CLAMP_TO_EDGE));
     SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE));
-    SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL));
+    SV_GL(glSamplerParameteri(shadowSampler.id(), GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL));  // reversed Z
 
     emptyVao = makeVertexArray();
     primitivesQuery = makeQuery();
@@ -351,18 +362,10 @@ struct Renderer::Impl {
 
   // ---- passes --------------------------------------------------------------------------------
 
-  // Depth conventions: the light passes use GL's default (NDC z in [-1, 1], window depth 0 at the
-  // near plane, LESS); the camera passes reversed Z (glClipControl ZERO_TO_ONE, window depth 1 at
-  // the near plane and 0 at the far plane, GREATER, cleared to 0) into a 32-bit float buffer, whose
-  // relative precision then holds at every distance.
-  void useDepthConvention(bool reversed) {
-    reversedDepth = reversed;
-    SV_GL(glClipControl(GL_LOWER_LEFT, reversed ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE));
-  }
-  GLenum nearer() const { return reversedDepth ? GL_GREATER : GL_LESS; }
-  GLenum nearerOrEqual() const { return reversedDepth ? GL_GEQUAL : GL_LEQUAL; }
-
+  // Every pass draws with reversed Z (see reversedZ): glClipControl ZERO_TO_ONE, window depth 1 at
+  // the near plane and 0 at the far plane, depth cleared to 0, nearer = GL_GREATER.
   void resetState() {
+    SV_GL(glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE));
     SV_GL(glDisable(GL_BLEND));
     SV_GL(glDisable(GL_STENCIL_TEST));
     SV_GL(glDisable(GL_DEPTH_CLAMP));
@@ -372,7 +375,7 @@ struct Renderer::Impl {
     SV_GL(glDepthMask(GL_TRUE));
     SV_GL(glStencilMask(0xFF));
     SV_GL(glEnable(GL_DEPTH_TEST));
-    SV_GL(glDepthFunc(nearer()));
+    SV_GL(glDepthFunc(GL_GREATER));
   }
 
   void drawScene() {
@@ -381,15 +384,14 @@ struct Renderer::Impl {
     SV_GL(glBindVertexArray(0));
   }
 
-  /// The light's depth into layer0 (and layer1 for midpoint): window depth, cleared to 1.
+  /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to 0.
   void lightPass(int w, int h, CaptureMode mode) {
     ensureLightTargets(w, h);
-    useDepthConvention(false);
     resetState();
-    const glm::dmat4 worldToLightClip = lightProjection(light, double(w) / double(h)) * lightView(light);
+    const glm::dmat4 worldToLightClip = reversedZ(lightProjection(light, double(w) / double(h))) * lightView(light);
     SV_GL(glViewport(0, 0, w, h));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer0Fbo.id()));
-    SV_GL(glClearDepth(1.0));
+    SV_GL(glClearDepth(0.0));  // reversed Z: 0 = nothing seen
     SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
     if (mode == CaptureMode::Back) {
       SV_GL(glEnable(GL_CULL_FACE));
@@ -423,7 +425,7 @@ struct Renderer::Impl {
   /// resolvedDepth (window depth of the same, for the shadow maps).
   void resolvePass(CaptureMode mode) {
     resetState();
-    const glm::dmat4 proj = lightProjection(light, double(lightW) / double(lightH));
+    const glm::dmat4 proj = reversedZ(lightProjection(light, double(lightW) / double(lightH)));
     SV_GL(glViewport(0, 0, lightW, lightH));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.id()));
     SV_GL(glDepthFunc(GL_ALWAYS));
@@ -438,7 +440,7 @@ struct Renderer::Impl {
     SV_GL(glBindVertexArray(emptyVao.id()));
     SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
     SV_GL(glBindVertexArray(0));
-    SV_GL(glDepthFunc(nearer()));
+    SV_GL(glDepthFunc(GL_GREATER));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
@@ -472,12 +474,12 @@ struct Renderer::Impl {
       SV_GL(glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w1.data()));
     }
     SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
-    const glm::dmat4& p = map.lightProjection;
+    const glm::dmat4 p = reversedZ(map.lightProjection);
     for (std::size_t k = 0; k < n; ++k) {
-      if (w0[k] >= 1.0f) continue;  // cleared: the light saw nothing (kNoHit)
+      if (w0[k] <= 0.0f) continue;  // cleared: the light saw nothing (kNoHit)
       double d = viewDepthFromWindow(p, double(w0[k]));
       if (mode == CaptureMode::Midpoint)
-        d = 0.5 * (d + (w1[k] >= 1.0f ? map.farPlane : viewDepthFromWindow(p, double(w1[k]))));
+        d = 0.5 * (d + (w1[k] <= 0.0f ? map.farPlane : viewDepthFromWindow(p, double(w1[k]))));
       map.depth[k] = float(d);
     }
     return map;
@@ -495,13 +497,7 @@ struct Renderer::Impl {
     Camera c = camera;
     if (o.imageWidth > 0) c.width = o.imageWidth;
     if (o.imageHeight > 0) c.height = o.imageHeight;
-    // Reversed Z: clip z' = (w - z) / 2 maps GL's NDC z in [-1, 1] to window depth 1 .. 0
-    // (near .. far) under glClipControl ZERO_TO_ONE. Composed in double, so the float matrix
-    // holds n / (f - n) and f n / (f - n) without cancellation.
-    glm::dmat4 reverse(1.0);
-    reverse[2][2] = -0.5;
-    reverse[3][2] = 0.5;
-    return {cameraView(c), reverse * cameraProjection(c), c.width, c.height};
+    return {cameraView(c), reversedZ(cameraProjection(c)), c.width, c.height};
   }
 
   /// Uniforms of sceneProgram shared by every mode.
@@ -517,7 +513,7 @@ struct Renderer::Impl {
     sceneProgram.set("lightDirection", glm::vec3(glm::normalize(light.direction)));
     sceneProgram.set("worldToLightClip", toFloat(lp * lv));
     sceneProgram.set("worldToLightView", toFloat(lv));
-    sceneProgram.set("lightDepthParams", depthParams(lp));
+    sceneProgram.set("lightDepthParams", depthParams(reversedZ(lp)));
     sceneProgram.set("ambient", float(o.ambient));
     sceneProgram.set("diffuse", float(o.diffuse));
     sceneProgram.set("shadowTaps", shadowTaps);
@@ -534,7 +530,6 @@ struct Renderer::Impl {
   /// test into COLOR_ATTACHMENT1 (cleared to 1 = lit); otherwise only attachment 0 is drawn.
   void beginCamera(const CameraSetup& cam, bool withVisibility = false) {
     ensureCameraTargets(cam.w, cam.h);
-    useDepthConvention(true);
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
@@ -554,7 +549,7 @@ struct Renderer::Impl {
   void beginVolume() {
     SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(nearer()));
+    SV_GL(glDepthFunc(GL_GREATER));
     SV_GL(glEnable(GL_DEPTH_CLAMP));
     SV_GL(glDisable(GL_CULL_FACE));
     SV_GL(glEnable(GL_STENCIL_TEST));
@@ -575,7 +570,7 @@ struct Renderer::Impl {
     SV_GL(glStencilFunc(GL_EQUAL, 0, 0xFF));
     SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(nearerOrEqual()));
+    SV_GL(glDepthFunc(GL_GEQUAL));
     SV_GL(glEnable(GL_BLEND));
     SV_GL(glBlendFunc(GL_ONE, GL_ONE));
     sceneProgram.use();
