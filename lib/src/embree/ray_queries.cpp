@@ -172,7 +172,7 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
           while (e < buf.size() && buf[e].t - t0 <= tol) sum += buf[e++].sign;
           const int sign = (sum > 0) - (sum < 0);
           if (std::abs(t0 - tVisible) <= band) {
-            zfail += sign;  // nominal: behind (GL_LESS fails on equal depths)
+            zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)
             if (sign != 0) tieSigns.push_back(sign);
           } else if (t0 > tVisible) {
             zfail += sign;
