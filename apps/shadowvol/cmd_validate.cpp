@@ -146,6 +146,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                            {"summary", m.summary()}};
         j["stencilVsCount"] = toJson(v.stencilVsCount);
         j["eyeInsideVolume"] = v.eyeInsideVolume;
+        j["recountedPixels"] = v.recountedPixels;
         j["zfailVsZpass"] = v.zfailVsZpass ? toJson(*v.zfailVsZpass) : nlohmann::json("not applicable: eye inside");
         j["againstExact"] = {{"stencil", toJson(*v.stencilError)},
                              {"count", toJson(*v.countError)},

@@ -8,6 +8,8 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/validate/double_recount.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "test_util.h"
 
@@ -272,6 +274,51 @@ TEST(Validation, FarFromTheOriginKeepsTheExactShadowAndTheError) {
       EXPECT_TRUE(r.v.passed) << (r.v.failures.empty() ? "" : r.v.failures.front());
     }
   }
+}
+
+// Counts that contradict the eye's side are recounted in double and come back as Embree counted
+// them where Embree was right: corrupted counts of the plate's frame are restored exactly.
+TEST(Validation, InconsistentCountsAreRecountedInDouble) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 96;
+  scene.camera.height = 72;
+  const DepthMap map = captureDepthEmbree(scene, 64, 64, CaptureMode::Back);
+  const VolumeMesh volume = buildVolume(map, {}).mesh;
+  const TriangleMesh volumeF = volume.toTriangleMesh();
+  const EmbreeDevice device;
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  const EmbreeScene sceneRt(device, meshes), volumeRt(device, {&volumeF});
+  const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
+  const CrossingCounts good = countCrossings(volumeRt, scene.camera, hits);
+  CrossingCounts bad = good;
+  std::size_t corrupted = 0, shadowed = 0;
+  for (std::size_t k = 0; k < bad.zfail.size(); k += 7) {
+    if (hits.isBackground(k)) continue;
+    shadowed += good.zfail[k] != 0;
+    bad.zfail[k] += 2;  // net +2: impossible with the eye outside
+    ++corrupted;
+  }
+  ASSERT_GT(shadowed, 0u);
+  EXPECT_EQ(recountInconsistentPixels(volume, scene.camera, hits, 0, bad), corrupted);
+  EXPECT_EQ(bad.zfail, good.zfail);
+  EXPECT_EQ(bad.zpass, good.zpass);
+  EXPECT_EQ(recountInconsistentPixels(volume, scene.camera, hits, 0, bad), 0u);  // nothing left to fix
+}
+
+// Regression (Embree lost or doubled hits on walls running 1e4 units under a 2e4 ground: z-fail
+// != z-pass on pixels where the eye is outside): after the recount the frame is consistent.
+TEST(Validation, FarReachingVolumeUnderAHugeGroundIsConsistent) {
+  const Scene scene = parseScene(R"({"objects":[{"type":"plane","size":2e4},
+      {"type":"sphere","radius":0.2,"transform":{"translate":[0,1,0]}}],
+    "light":{"type":"spot","position":[0.3,1.6,0.2],"target":[0,0,0],"fov":120},
+    "camera":{"eye":[0,3,4],"target":[0,0,0],"fov":50,"width":160,"height":120}})", "huge-ground", ".").scene;
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Explicit;
+  ro.depthWidth = ro.depthHeight = 128;
+  const Validated r = renderAndValidate(scene, ro);
+  expectConsistent(r);
+  EXPECT_GT(r.v.exactShadowed, kMinShadowPixels);
 }
 
 // The quad cap cannot pass the outward check by design: reported as not applicable, not failed.

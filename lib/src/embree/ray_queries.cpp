@@ -19,14 +19,9 @@ TexelUnprojector::Ray pixelRay(const TexelUnprojector& u, int x, int r, int heig
   return u.ray(x, height - 1 - r);  // GL rows count from the bottom
 }
 
-struct Crossing {
-  double t;
-  int sign;  // +1 leaving (normal along the ray), -1 entering, 0 edge-on
-};
-
 struct CollectContext {
   RTCIntersectContext ctx;
-  std::vector<Crossing>* hits;
+  std::vector<VolumeCrossing>* hits;
 };
 
 void collectAll(const RTCFilterFunctionNArguments* args) {
@@ -131,6 +126,45 @@ double tieTolerance(const Camera& camera, double d) {
   return std::max(1e-4, 16.0 * std::ldexp(1.0, -24) * d * (f - n) / (f * n));
 }
 
+PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, double band) {
+  std::sort(crossings.begin(), crossings.end(), [](const VolumeCrossing& a, const VolumeCrossing& b) {
+    return a.t < b.t || (a.t == b.t && a.sign < b.sign);
+  });
+  int zfail = 0, zpass = 0;
+  std::vector<int> tieSigns;
+  for (std::size_t g = 0; g < crossings.size();) {
+    // One event: every hit within the tolerance of the group's first hit.
+    const double t0 = crossings[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
+    int sum = 0;
+    std::size_t e = g;
+    while (e < crossings.size() && crossings[e].t - t0 <= tol) sum += crossings[e++].sign;
+    const int sign = (sum > 0) - (sum < 0);
+    if (std::abs(t0 - tVisible) <= band) {
+      zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)
+      if (sign != 0) tieSigns.push_back(sign);
+    } else if (t0 > tVisible) {
+      zfail += sign;
+    } else {
+      zpass -= sign;
+    }
+    g = e;
+  }
+  // Splits of the band: the first m tie events in front of the point, the rest behind.
+  int tieSuffix = 0, tieMin = 0, tieMax = 0;  // suffix sums of the band's events, last to first
+  for (auto it = tieSigns.rbegin(); it != tieSigns.rend(); ++it) {
+    tieSuffix += *it;
+    tieMin = std::min(tieMin, tieSuffix);
+    tieMax = std::max(tieMax, tieSuffix);
+  }
+  const int base = zfail - tieSuffix;  // z-fail with every tie event in front
+  return {zfail, zpass, base + tieMin, base + tieMax};
+}
+
+TexelUnprojector::Ray primaryRay(const Camera& camera, int x, int row) {
+  const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
+  return pixelRay(u, x, row, camera.height);
+}
+
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits) {
   CrossingCounts out;
   out.width = hits.width;
@@ -140,10 +174,9 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
   out.zfailMin.assign(hits.depth.size(), 0);
   out.zfailMax.assign(hits.depth.size(), 0);
   const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
-  tbb::enumerable_thread_specific<std::vector<Crossing>> buffers;
+  tbb::enumerable_thread_specific<std::vector<VolumeCrossing>> buffers;
   tbb::parallel_for(tbb::blocked_range<int>(0, hits.height), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<Crossing>& buf = buffers.local();
-    std::vector<int> tieSigns;
+    std::vector<VolumeCrossing>& buf = buffers.local();
     for (int r = rows.begin(); r != rows.end(); ++r)
       for (int x = 0; x < hits.width; ++x) {
         const std::size_t k = std::size_t(r) * std::size_t(hits.width) + std::size_t(x);
@@ -156,42 +189,11 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
         c.ctx.filter = collectAll;
         c.hits = &buf;
         rtcIntersect1(volume.get(), &c.ctx, &rh);
-        std::sort(buf.begin(), buf.end(), [](const Crossing& a, const Crossing& b) {
-          return a.t < b.t || (a.t == b.t && a.sign < b.sign);
-        });
-        const double tVisible = hits.depth[k];
-        const double band = tieTolerance(camera, tVisible) * tVisible;
-        int zfail = 0, zpass = 0;
-        int tieSuffix = 0, tieMin = 0, tieMax = 0;  // suffix sums of the band's events, last to first
-        tieSigns.clear();
-        for (std::size_t g = 0; g < buf.size();) {
-          // One event: every hit within the tolerance of the group's first hit.
-          const double t0 = buf[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
-          int sum = 0;
-          std::size_t e = g;
-          while (e < buf.size() && buf[e].t - t0 <= tol) sum += buf[e++].sign;
-          const int sign = (sum > 0) - (sum < 0);
-          if (std::abs(t0 - tVisible) <= band) {
-            zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)
-            if (sign != 0) tieSigns.push_back(sign);
-          } else if (t0 > tVisible) {
-            zfail += sign;
-          } else {
-            zpass -= sign;
-          }
-          g = e;
-        }
-        // Splits of the band: the first m tie events in front of the point, the rest behind.
-        for (auto it = tieSigns.rbegin(); it != tieSigns.rend(); ++it) {
-          tieSuffix += *it;
-          tieMin = std::min(tieMin, tieSuffix);
-          tieMax = std::max(tieMax, tieSuffix);
-        }
-        const int base = zfail - tieSuffix;  // z-fail with every tie event in front
-        out.zfail[k] = zfail;
-        out.zpass[k] = zpass;
-        out.zfailMin[k] = base + tieMin;
-        out.zfailMax[k] = base + tieMax;
+        const PixelCounts pc = countPixel(buf, hits.depth[k], tieTolerance(camera, hits.depth[k]) * hits.depth[k]);
+        out.zfail[k] = pc.zfail;
+        out.zpass[k] = pc.zpass;
+        out.zfailMin[k] = pc.zfailMin;
+        out.zfailMax[k] = pc.zfailMax;
       }
   });
   return out;

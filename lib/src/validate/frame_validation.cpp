@@ -1,5 +1,7 @@
 #include "shadowvol/validate/frame_validation.h"
 
+#include "shadowvol/validate/double_recount.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -80,8 +82,12 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     const TriangleMesh volumeF = volume.toTriangleMesh();
     const EmbreeScene volumeRt(device, {&volumeF});
     v.counts = countCrossings(volumeRt, scene.camera, hits);
-    if (v.meshCheck->closedManifold() && volume.triangleCount() > 0)
-      v.eyeInsideVolume = VolumeClassifier(volume).classify(scene.camera.eye) != VolumeClassifier::Side::Outside;
+    if (v.meshCheck->closedManifold() && volume.triangleCount() > 0) {
+      const auto side = VolumeClassifier(volume).classify(scene.camera.eye);
+      v.eyeInsideVolume = side != VolumeClassifier::Side::Outside;
+      if (side != VolumeClassifier::Side::Boundary)
+        v.recountedPixels = recountInconsistentPixels(volume, scene.camera, hits, v.eyeInsideVolume ? 1 : 0, *v.counts);
+    }
     Agreement zz;
     ShadowError stencilErr, countErr;
     for (std::size_t k = 0; k < n; ++k) {

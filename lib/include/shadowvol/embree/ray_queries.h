@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowvol/camera.h"
+#include "shadowvol/depth_map.h"  // TexelUnprojector::Ray
 #include "shadowvol/embree/embree_scene.h"
 #include "shadowvol/light.h"
 #include "shadowvol/scene.h"
@@ -87,5 +88,26 @@ inline constexpr double kCrossingMergeTolerance = 1e-6;
 double tieTolerance(const Camera& camera, double d);
 
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits);
+
+/// One crossing of a pixel ray with the volume: the ray parameter (camera view depth, as
+/// CameraHits::depth) and +1 leaving (normal along the ray), -1 entering, 0 edge-on.
+struct VolumeCrossing {
+  double t;
+  int sign;
+};
+
+/// A pixel's counts (see CrossingCounts).
+struct PixelCounts {
+  int zfail, zpass, zfailMin, zfailMax;
+};
+
+/// The counting rule of countCrossings for one pixel, written once: sorts `crossings`, merges
+/// hits within kCrossingMergeTolerance into events, and splits them at tVisible with the tie
+/// band `band` (world units). Also used by the double-precision recount (validate).
+PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, double band);
+
+/// The primary ray of pixel (x, row), row 0 at the top (CameraHits' order): origin and a
+/// direction scaled so that the ray parameter is the camera view depth.
+TexelUnprojector::Ray primaryRay(const Camera& camera, int x, int row);
 
 }  // namespace shadowvol

@@ -73,6 +73,9 @@ struct FrameValidation {
   std::optional<MeshCheckReport> meshCheck;
   std::optional<CrossingCounts> counts;
   bool eyeInsideVolume = false;
+  /// Pixels whose Embree counts contradicted the eye's side and were recounted in double
+  /// (double_recount.h); counts holds the recounted values.
+  std::size_t recountedPixels = 0;
   Agreement stencilVsCount;                ///< over visible pixels: stencil == a z-fail count of the
                                            ///< admissible range (ray_queries.h, ties), mod 256
   std::optional<Agreement> zfailVsZpass;   ///< over visible pixels, when the eye is outside the volume
