@@ -142,13 +142,19 @@ TEST(MeshIo, UnknownExtensionWritesNothing) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
-TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
-  const auto dir = test::tempDir();
+// A spot light at y = 5 looking straight down, near 1, far 9.
+Light spotDown() {
   Light l;
   l.position = {0, 5, 0};
   l.direction = {0, -1, 0};
   l.nearPlane = 1;
   l.farPlane = 9;
+  return l;
+}
+
+TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
+  const auto dir = test::tempDir();
+  const Light l = spotDown();
   DepthMap map = makeDepthMap(l, 5, 3, CaptureMode::Midpoint);
   for (std::size_t k = 0; k < map.depth.size(); ++k) map.depth[k] = k % 4 == 0 ? DepthMap::kNoHit : 1.0f + 0.5f * float(k);
   writeDepthMap(map, dir / "d.pfm");
@@ -171,11 +177,7 @@ TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
 // a projection of the wrong kind or with 1e300 entries, or far 1e300 is refused, its field named.
 TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   const auto dir = test::tempDir();
-  Light l;
-  l.position = {0, 5, 0};
-  l.direction = {0, -1, 0};
-  l.nearPlane = 1;
-  l.farPlane = 9;
+  const Light l = spotDown();
   writeDepthMap(makeDepthMap(l, 4, 4, CaptureMode::Back), dir / "d.pfm");
   const auto side = depthSidecarPath(dir / "d.pfm");
   std::string good;
