@@ -1,0 +1,103 @@
+#include "config_runner.h"
+
+#include <fstream>
+#include <sstream>
+
+namespace shadowvol::stress {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::optional<nlohmann::json> parseJson(const std::string& text) {
+  nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded()) return std::nullopt;
+  return j;
+}
+
+std::vector<RunKind> runsOf(const StressConfig& c) {
+  std::vector<RunKind> runs = {RunKind::Explicit};
+  if (c.gpu && !c.refused) runs.push_back(RunKind::Gpu);
+  if (c.front && !c.refused) runs.push_back(RunKind::Front);
+  runs.push_back(RunKind::Build);
+  return runs;
+}
+
+RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, const RunSettings& s) {
+  fs::create_directories(dir);
+  RunOutcome r;
+  r.kind = kind;
+  const fs::path reportDir = dir / "report", ply = dir / "volume.ply";
+  const std::string resolution = std::to_string(s.resolution);
+  if (kind == RunKind::Build) {
+    r.argv = {s.shadowvol.string(), "build", "--scene",    scene.string(), "--resolution",
+              resolution,           "--out", ply.string(), "--json"};
+  } else {
+    r.argv = {
+        s.shadowvol.string(), "validate",         "--scene", scene.string(), "--resolution",
+        resolution,           "--size",           s.size,    "--volume",     kind == RunKind::Gpu ? "gpu" : "explicit",
+        "--report",           reportDir.string(), "--json"};
+    if (kind == RunKind::Front) {
+      r.argv.push_back("--capture");
+      r.argv.push_back("front");
+    }
+  }
+  r.process = runProcess(r.argv, dir / "stdout.txt", dir / "stderr.txt", s.timeoutSeconds);
+  r.stdoutJson = parseJson(r.process.stdoutText);
+  if (kind == RunKind::Build) {
+    r.leftOutput = fs::exists(ply);
+    if (r.leftOutput && r.process.exitCode == 0) r.ply = checkPly(ply);
+  } else {
+    const fs::path report = reportDir / "report.json";
+    r.leftOutput = fs::exists(report);
+    if (r.leftOutput) {
+      std::ifstream in(report);
+      std::ostringstream ss;
+      ss << in.rdbuf();
+      r.report = parseJson(ss.str());
+      if (!r.report) r.reportProblem = "report.json does not parse";
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+const char* runName(RunKind k) {
+  switch (k) {
+    case RunKind::Explicit:
+      return "explicit";
+    case RunKind::Gpu:
+      return "gpu";
+    case RunKind::Front:
+      return "front";
+    case RunKind::Build:
+      return "build";
+  }
+  return "?";
+}
+
+const RunOutcome* ConfigOutcome::find(RunKind k) const {
+  for (const auto& r : runs)
+    if (r.kind == k) return &r;
+  return nullptr;
+}
+
+fs::path writeScene(const StressConfig& c, const fs::path& outDir) {
+  const fs::path file = outDir / "scenes" / (c.name + ".json");
+  fs::create_directories(file.parent_path());
+  std::ofstream(file, std::ios::binary) << (c.sceneText.empty() ? c.scene.dump(2) : c.sceneText) << '\n';
+  return file;
+}
+
+ConfigOutcome runConfig(const StressConfig& c, const fs::path& sceneFile, const RunSettings& s) {
+  const fs::path dir = s.outDir / "runs" / c.name;
+  fs::remove_all(dir);
+  ConfigOutcome out;
+  for (RunKind k : runsOf(c)) {
+    out.runs.push_back(runOne(k, sceneFile, dir / runName(k), s));
+    out.seconds += out.runs.back().process.seconds;
+  }
+  return out;
+}
+
+}  // namespace shadowvol::stress
