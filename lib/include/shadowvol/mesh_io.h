@@ -1,5 +1,5 @@
-// Reading and writing triangle meshes through OpenMesh's IO (OBJ, OFF, PLY, STL), plus the
-// atomic-write helper every writer of this library uses.
+// Reading and writing triangle meshes (OBJ, OFF, PLY, STL) with readers and writers of our own,
+// plus the atomic-write helper every writer of this library uses.
 #pragma once
 
 #include <filesystem>
@@ -12,9 +12,15 @@
 
 namespace shadowvol {
 
-/// Reads OBJ, OFF, PLY or STL (by extension); polygons are triangulated by OpenMesh.
-/// Throws InputError (file named) when the file is missing, unreadable, has no triangles or has
-/// non-finite coordinates.
+/// Reads OBJ, ASCII OFF (OFF, COFF, NOFF...; '#' comments), PLY (ASCII or binary) or STL (binary
+/// or ASCII) by extension, with strict readers bounded by the file's size (lib/src/core/mesh_readers/):
+/// positions in float as stored, polygons fanned from their first corner (exact when convex),
+/// every face kept (degenerate and non-manifold ones too; STL corners welded by position).
+/// Throws InputError naming the file, the line (OBJ, OFF, ASCII STL) or element ("face 17", PLY;
+/// "triangle 3", binary STL) and the value when the file is missing or malformed, declares more
+/// than it holds, has a non-finite coordinate (or one beyond float), a face with fewer than 3
+/// vertices or an index out of range (OBJ: 0, or counting back past the first vertex), or no
+/// triangles.
 TriangleMesh readTriangleMesh(const std::filesystem::path& path);
 
 /// Where the stored coordinates of a mesh sit in the world (Scene::origin, DepthMap::origin).

@@ -9,16 +9,35 @@
 #include <system_error>
 #include <unistd.h>
 
-// OpenMesh's IO header must come before the mesh kernel headers.
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
+#include "mesh_readers/obj_reader.h"
+#include "mesh_readers/off_reader.h"
+#include "mesh_readers/ply_reader.h"
+#include "mesh_readers/stl_reader.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol {
 namespace {
 
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+// The whole file: the readers walk it in memory, every loop bounded by its size.
+std::string fileBytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "", "", "mesh file not found");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path.string(), "", "", "not a regular file (a folder, device or pipe)");
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes;
+  if (in) {
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size >= 0) {
+      bytes.resize(std::size_t(size));
+      in.read(bytes.data(), size);
+    }
+  }
+  if (!in) throw InputError(path.string(), "", "", "cannot read the file");
+  return bytes;
+}
 
 std::string lowerExtension(const std::filesystem::path& p) {
   std::string e = p.extension().string();
@@ -57,34 +76,17 @@ TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
     throw InputError(path.string(), "", ext, "unsupported mesh format (use .obj, .off, .ply or .stl)");
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path.string(), "", "", "mesh file not found");
-  OMesh m;
-  OpenMesh::IO::Options opt;
-  if (!OpenMesh::IO::read_mesh(m, path.string(), opt))
-    throw InputError(path.string(), "", "", "cannot read the mesh (unreadable or malformed)");
-  TriangleMesh out;
-  out.positions.reserve(m.n_vertices());
-  for (const auto vh : m.vertices()) {
-    const auto& p = m.point(vh);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw InputError(path.string(), "vertex " + std::to_string(vh.idx()),
-                       std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]),
-                       "non-finite vertex coordinate");
-    out.positions.emplace_back(p[0], p[1], p[2]);
-  }
-  out.triangles.reserve(m.n_faces());
-  for (const auto fh : m.faces()) {
-    std::array<std::uint32_t, 3> t{};
-    int k = 0;
-    for (const auto vh : m.fv_range(fh)) {
-      if (k < 3) t[k] = std::uint32_t(vh.idx());
-      ++k;
-    }
-    if (k == 3) out.triangles.push_back(t);
-  }
-  if (out.triangles.empty()) throw InputError(path.string(), "", "", "the mesh has no triangles");
-  return out;
+  const std::string source = path.string();
+  const std::string bytes = fileBytes(path);
+  // Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
+  // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
+  // silently dropped or shifted faces).
+  TriangleMesh mesh = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
+                      : ext == ".off" ? mesh_readers::readOff(source, bytes)
+                      : ext == ".ply" ? mesh_readers::readPly(source, bytes)
+                                      : mesh_readers::readStl(source, bytes);
+  if (mesh.triangles.empty()) throw InputError(source, "", "", "the mesh has no triangles");
+  return mesh;
 }
 
 namespace {

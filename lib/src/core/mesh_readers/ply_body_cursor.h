@@ -1,0 +1,50 @@
+// The values of a PLY body one after another, ASCII tokens or binary scalars.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "mesh_readers/ply_header.h"
+#include "mesh_readers/text_lines.h"
+
+namespace shadowvol::mesh_readers {
+
+/// Reads the body after the header. Every read consumes at least one byte or fails, so a loop of
+/// reads ends within the size of the file whatever the counts say.
+class PlyBodyCursor {
+ public:
+  PlyBodyCursor(std::string_view bytes, const PlyHeader& header);
+
+  /// The next value of type t (exact in double for every PLY type), or nullopt at the end of the
+  /// body or, in ASCII, when the token is not a number of that kind (an integer for integer types).
+  std::optional<double> read(PlyType t);
+  /// Skips n values of type t; false when the body ends first.
+  bool skip(PlyType t, std::uint64_t n);
+  /// An upper bound on the values of type t still in the body (bytes / size, or bytes / 2 in ASCII).
+  std::uint64_t valuesLeft(PlyType t) const;
+
+  /// True when the last failed read found the end of the body (rather than a malformed token).
+  bool ended() const { return ended_; }
+
+  /// Where the cursor is, for messages: " (line N)" in ASCII, empty in binary.
+  std::string where() const;
+  /// The last ASCII token read (quoted), or the last binary value; for messages.
+  std::string lastValue() const;
+
+ private:
+  std::string_view nextToken();
+
+  bool ascii_;
+  bool swap_;  // big-endian body on a little-endian host
+  std::string_view bytes_;
+  std::size_t pos_;   // binary: next byte
+  LineReader lines_;  // ASCII
+  std::string_view rest_, token_;
+  std::size_t firstLine_;
+  double last_ = 0;
+  bool ended_ = false;
+};
+
+}  // namespace shadowvol::mesh_readers
