@@ -4,9 +4,11 @@
 
 #include "cli_common.h"
 #include "shadowvol/error.h"
+#include "shadowvol/temporary_files.h"
 
 int main(int argc, char** argv) {
   using namespace shadowvol;
+  removeTemporaryFilesOnSignal();  // a killed command leaves no .tmp file behind
   CLI::App app{
       "shadowvol: turn a light's depth map into a closed shadow-volume mesh, render it with OpenGL "
       "(z-fail stencil) and check it by ray casting.\n"

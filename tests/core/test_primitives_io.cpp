@@ -1,4 +1,8 @@
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <map>
 #include <sstream>
 
@@ -14,6 +18,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
+#include "shadowvol/temporary_files.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -132,6 +137,26 @@ TEST(MeshIo, OriginIsNamedOrWorldCoordinatesWrittenInDouble) {
   EXPECT_EQ(m.n_faces(), 12u);
   EXPECT_THROW(writeTriangleMesh(box, dir / "world.stl", world), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir / "world.stl"));
+}
+
+// Regression (an interrupted command left .tmp files beside its target): a process killed by
+// SIGTERM while writing removes the temporary file; neither it nor the target remains.
+TEST(MeshIo, KilledWhileWritingLeavesNothing) {
+  const auto dir = test::tempDir();
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    removeTemporaryFilesOnSignal();
+    writeAtomically(dir / "mesh.ply", [](const std::filesystem::path& tmp) {
+      std::ofstream(tmp) << "half written";
+      std::raise(SIGTERM);
+    });
+    std::_Exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
 TEST(MeshIo, UnknownExtensionWritesNothing) {

@@ -14,6 +14,7 @@
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
 #include "shadowvol/error.h"
+#include "shadowvol/temporary_files.h"
 
 namespace shadowvol {
 namespace {
@@ -57,6 +58,7 @@ void writeAtomically(const std::filesystem::path& path,
   name += std::to_string(::getpid());
   name += path.extension().string();
   tmp.replace_filename(name);
+  const TemporaryFileGuard guard(tmp);  // removed if a signal ends the process meanwhile
   try {
     write(tmp);
   } catch (...) {
