@@ -215,7 +215,8 @@ TriangleMesh makePrimitive(ObjectReader& r, const std::string& t, std::size_t bu
     const std::string tess = r.string("tessellation", std::string("ico"));
     if (tess == "ico") {
       const int detail = r.integer("detail", 3, 0, 8);
-      return makeIcoSphere(radius, detail);  // at most 1.3 million triangles
+      within("detail", 20.0 * std::pow(4.0, detail));  // at most 1.3 million triangles
+      return makeIcoSphere(radius, detail);
     }
     if (tess != "uv") r.fail("tessellation", json(tess), "expected \"ico\" or \"uv\"");
     const int segments = r.integer("segments", 32, 3, 8192);
