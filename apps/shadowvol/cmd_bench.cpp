@@ -56,8 +56,11 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       "command again to resume an interrupted sweep; Ctrl-C stops after the current cell) and DIR/report.md with "
       "SVG plots");
   cmd->add_option("--scenes", o->scenes, "Scene files (default: every data/scenes/*.json; 'default' = built-in scene)");
-  cmd->add_option("--methods", o->methods, "Method keys (default: all; see --list-methods)");
-  cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N)")->capture_default_str();
+  cmd->add_option("--methods", o->methods, "Method keys, separated by spaces or commas (default: all; see --list-methods)")
+      ->delimiter(',');
+  cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N), separated by spaces or commas")
+      ->delimiter(',')
+      ->capture_default_str();
   cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Measured frames per cell (median, min, max)")
       ->check(CLI::Range(1, 1000))

@@ -273,6 +273,19 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   EXPECT_FALSE(jv["verdict"]["failures"].empty());
 }
 
+// Regression: `--resolutions 256,2048` failed; lists take commas as well as spaces.
+TEST(CliGl, BenchListsTakeCommas) {
+  const auto dir = test::tempDir();
+  const CliResult r = runCli("bench --scenes default --methods shadowmap,pcf3 --resolutions 32,48 --size 32x24 "
+                             "--repeat 1 --warmup 0 --out " + (dir / "b").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream csv(dir / "b" / "results.csv");
+  std::string line;
+  int rows = -1;  // the header
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 4);
+}
+
 TEST(CliGl, RefinementNeedsTheExplicitVolume) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();
