@@ -1,4 +1,5 @@
 // shadowvol build: depth map -> closed shadow-volume mesh, exported as PLY/OBJ/OFF/STL.
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -54,7 +55,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   cmd->callback([&run, o] {
     run = [o] {
       checkOutputPath("--out", o->out);
-      const std::string ext = std::filesystem::path(o->out).extension().string();
+      std::string ext = std::filesystem::path(o->out).extension().string();
+      for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));  // .PLY works as .ply
       if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
         throw InputError("command line", "--out", o->out, "unsupported mesh format (use .ply, .obj, .off or .stl)");
       if (o->worldCoords && ext == ".stl")

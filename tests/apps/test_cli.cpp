@@ -176,6 +176,14 @@ TEST(Cli, FarSceneExportsRelativeToItsOriginOrInWorldCoordinates) {
   EXPECT_FALSE(std::filesystem::exists(dir / "v.stl"));
 }
 
+// Regression: `--out volume.PLY` was refused; extensions are matched in any case.
+TEST(Cli, UpperCaseExtensionsAreAccepted) {
+  const auto dir = test::tempDir();
+  const CliResult r = runCli("build --resolution 16 --out " + (dir / "v.PLY").string());
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "v.PLY"));
+}
+
 TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "r.ply").string();
