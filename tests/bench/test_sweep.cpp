@@ -171,6 +171,17 @@ TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   EXPECT_EQ(rows.size(), 5u);
   EXPECT_EQ(last.skipped, 4u);  // only the interrupted cell was measured again
   EXPECT_EQ(readSweepCsv(csv).size(), 5u);
+  // Regression: a run killed while creating results.csv left it empty, and every later run failed
+  // ("not a shadowvol sweep file"); an empty file now starts afresh.
+  const auto dir3 = dir / "empty";
+  std::filesystem::create_directories(dir3);
+  test::writeText(dir3 / "results.csv", "");
+  SweepOptions one = o;
+  one.out = dir3;
+  one.methods = {"shadowmap"};
+  one.resolutions = {16};
+  EXPECT_EQ(runSweep(renderer, one, stop, nullptr, notes).size(), 1u);
+  EXPECT_EQ(readSweepCsv(dir3 / "results.csv").size(), 1u);
   // A stop request before the first cell measures nothing.
   stop = true;
   const auto dir2 = dir / "stopped";

@@ -12,6 +12,7 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"  // writeAtomically
 
 namespace shadowvol {
 namespace {
@@ -134,7 +135,10 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const auto csv = o.out / "results.csv";
   std::vector<SweepRow> rows;
   std::set<std::string> done;
-  if (std::filesystem::exists(csv)) {
+  std::error_code ec;
+  // An empty file is what a run killed while creating it could leave (before the header was
+  // written atomically): start afresh.
+  if (std::filesystem::exists(csv) && std::filesystem::file_size(csv, ec) > 0) {
     rows = readSweepCsv(csv);
     for (const auto& r : rows) done.insert(cellKey(r));
     // Drop an interrupted last line so appends start on a fresh line.
@@ -145,7 +149,12 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       notes.push_back("dropped an incomplete last line of " + csv.string());
     }
   } else {
-    std::ofstream(csv) << sweepCsvHeader() << '\n';
+    writeAtomically(csv, [](const std::filesystem::path& tmp) {  // the header whole, or no file
+      std::ofstream out(tmp);
+      out << sweepCsvHeader() << '\n';
+      out.flush();
+      if (!out) throw InputError(tmp.string(), "", "", "writing the file failed (disk full?)");
+    });
   }
   std::ofstream append(csv, std::ios::app);
 
