@@ -19,6 +19,7 @@
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/temporary_files.h"
+#include "shadowvol/volume_builder.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -278,6 +279,28 @@ TEST(DepthMapIo, SideFileOfAnotherDepthMapIsRefused) {
     EXPECT_EQ(e.field(), "/depthChecksum") << e.what();
   }
   EXPECT_EQ(readDepthMap(dir / "b.pfm").depth, b.depth);
+}
+
+// The depth-map fuzz harness's seed corpus (tests/fuzz/corpus/depth: a side file, a NUL, a PFM),
+// replayed as the harness does: each reads and builds into a finite, in-range volume.
+TEST(DepthMapIo, FuzzCorpusReplaysThroughTheBuilder) {
+  const auto dir = test::tempDir();
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / "tests/fuzz/corpus/depth")) {
+    SCOPED_TRACE(e.path().string());
+    std::ifstream in(e.path(), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t cut = bytes.find('\0');
+    ASSERT_NE(cut, std::string::npos);
+    test::writeText(depthSidecarPath(dir / "map.pfm"), bytes.substr(0, cut));
+    test::writeText(dir / "map.pfm", bytes.substr(cut + 1));
+    const VolumeBuildResult r = buildVolume(readDepthMap(dir / "map.pfm"), {});
+    EXPECT_GT(r.mesh.triangleCount(), 0u);
+    for (const auto& t : r.mesh.triangles)
+      for (auto i : t) ASSERT_LT(i, r.mesh.positions.size());
+    ++files;
+  }
+  EXPECT_GE(files, 2);
 }
 
 // Regression (a PFM header of 46341^2 allocated 8 GB before the data length was checked; /dev/zero

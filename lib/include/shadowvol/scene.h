@@ -19,6 +19,9 @@ struct SceneObject {
   TriangleMesh mesh;  ///< world space, relative to Scene::origin
 };
 
+/// The default limit on a scene's triangles (parseScene's maxTriangles).
+inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;
+
 struct Scene {
   std::string source = "default";  ///< file path it was loaded from, or "default"
   /// Local origin, world units, double: every position in this struct (objects, light, camera,
@@ -48,8 +51,10 @@ struct SceneLoadResult {
 SceneLoadResult loadScene(const std::filesystem::path& path);
 
 /// Parses scene JSON text; `source` names it in errors, `baseDir` resolves mesh paths.
+/// `maxTriangles` caps the scene's triangles (checked before a primitive is generated and after a
+/// mesh file is read); a service that loads untrusted scenes may want less than the default.
 SceneLoadResult parseScene(const std::string& jsonText, const std::string& source,
-                           const std::filesystem::path& baseDir);
+                           const std::filesystem::path& baseDir, std::size_t maxTriangles = kMaxSceneTriangles);
 
 /// The built-in default scene: a sphere floating above a ground plane under a spot light.
 Scene defaultScene();

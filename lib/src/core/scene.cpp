@@ -24,7 +24,6 @@ namespace {
 using nlohmann::json;
 
 constexpr int kMaxImageSide = 16384;
-constexpr std::size_t kMaxSceneTriangles = 50'000'000;
 // Every number of a scene file lies within +-kMaxMagnitude (README "Scene files"): double keeps
 // 1e-4 units there, and products of two such numbers stay far from overflow.
 constexpr double kMaxMagnitude = 1e12;
@@ -201,8 +200,7 @@ TriangleMesh makePrimitive(ObjectReader& r, const std::string& t, std::size_t bu
     if (triangles > double(budget))
       r.fail(field, r.has(field) ? r.raw(field) : json(),
              "up to " + std::to_string(std::size_t(triangles)) + " triangles: more than the " +
-                 std::to_string(budget) + " the scene may still hold (limit " + std::to_string(kMaxSceneTriangles) +
-                 ")");
+                 std::to_string(budget) + " the scene may still hold");
   };
   if (t == "plane") {
     const auto s = r.sizes("size", 2, 10.0);
@@ -270,8 +268,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
   }
   if (obj.mesh.triangleCount() > budget)
     r.fail("", json(), std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " +
-                           std::to_string(budget) + " the scene may still hold (limit " +
-                           std::to_string(kMaxSceneTriangles) + ")");
+                           std::to_string(budget) + " the scene may still hold");
   read.world = applyTransform(obj.mesh, readTransform(r));
   r.finish();
   for (const auto& p : read.world)
@@ -478,7 +475,7 @@ TriangleMesh Scene::merged() const {
 }
 
 SceneLoadResult parseScene(const std::string& text, const std::string& source,
-                           const std::filesystem::path& baseDir) {
+                           const std::filesystem::path& baseDir, std::size_t maxTriangles) {
   const json doc = parseJson(text, source);
   SceneLoadResult result;
   Scene& scene = result.scene;
@@ -490,7 +487,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   if (!objects.is_array() || objects.empty())
     top.fail("objects", objects, "expected a non-empty array of objects");
   std::vector<std::vector<glm::dvec3>> world;
-  std::size_t budget = kMaxSceneTriangles;
+  std::size_t budget = maxTriangles;
   for (std::size_t k = 0; k < objects.size(); ++k) {
     ReadObject read = readObject(objects[k], k, source, baseDir, budget);
     budget -= read.obj.mesh.triangleCount();
