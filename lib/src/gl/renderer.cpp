@@ -98,7 +98,7 @@ glm::vec4 depthParams(const glm::dmat4& p) {
 /// z' = (w - z) / 2 maps GL's NDC z in [-1, 1] to window depth 1 .. 0 (near .. far). Composed in
 /// double, so the float matrix holds n / (f - n) and f n / (f - n) without cancellation, and a
 /// 32-bit float depth keeps its relative precision at every distance (GL's default convention
-/// loses it near 1: at far/near 1e6 a depth was off by several percent).
+/// stores 1 - near/d, where float's spacing near 1 makes the relative error grow as d / near).
 glm::dmat4 reversedZ(const glm::dmat4& projection) {
   glm::dmat4 reverse(1.0);
   reverse[2][2] = -0.5;
