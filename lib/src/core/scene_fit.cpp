@@ -82,8 +82,7 @@ void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius) {
 
 // What the scene needs: from just before its near side to just past its far side (1 % of the
 // radius each way). A given plane outside that range is moved to it: it would capture nothing
-// more, and only spend depth precision (a light far/near ratio of 1e6 cost 3 % of stencil
-// agreement).
+// more, and only spend depth precision (README "Scene files", Light, has the measurement).
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
   const auto [lo, hi] = depthRange(b, l.position, l.direction);
