@@ -106,7 +106,8 @@ TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
   EXPECT_DOUBLE_EQ(kept.scene.light.farPlane, 5.2);
   EXPECT_TRUE(kept.warnings.empty());
   const auto tight = parse(withLight(R"({"type":"spot","position":[0,5,0],"direction":[0,-1,0],"near":1e-3,"far":1e6})"));
-  // The unit box spans light depths 4.5 .. 5.5; its bounding radius is sqrt(3) / 2.
+  // The unit box spans light depths 4.5 .. 5.5, all of it inside the frustum; the margin is 1 % of
+  // the smaller of that extent (1) and its bounding radius, sqrt(3) / 2.
   const double r = std::sqrt(3.0) / 2.0;
   EXPECT_NEAR(tight.scene.light.nearPlane, 4.5 - 0.01 * r, 1e-12);
   EXPECT_NEAR(tight.scene.light.farPlane, 5.5 + 0.01 * r, 1e-12);
@@ -114,7 +115,7 @@ TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
   EXPECT_NE(tight.warnings[0].find("/light/far"), std::string::npos) << tight.warnings[0];
   EXPECT_NE(tight.warnings[1].find("/light/near"), std::string::npos) << tight.warnings[1];
   const auto cam = parse(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"near":1e-4,"far":1e4})"));
-  EXPECT_NEAR(cam.scene.camera.nearPlane, 4.5 * 0.99, 1e-12);
+  EXPECT_NEAR(cam.scene.camera.nearPlane, 4.5 - 0.01 * std::min(r, 1.0), 1e-12);
   EXPECT_LT(cam.scene.camera.farPlane, 6.0);
 }
 
@@ -130,6 +131,24 @@ TEST(SceneParser, SpotNearComesFromTheNearestGeometryWhenTheBoundsSurroundTheLig
   EXPECT_GT(r.scene.light.nearPlane, 1e-7 * r.scene.light.farPlane);
   EXPECT_LT(r.scene.light.nearPlane, toSphere);
   EXPECT_LT(r.scene.camera.nearPlane, glm::length(glm::dvec3(0, 2, 4)) - 0.2);
+}
+
+// The light's far plane comes from the part of the bounds its frustum sees, not from the bounds'
+// farthest corner (regression: a spot light 1.6 over a ground of side 2e6 got far = 3.2e5 from the
+// ground's corners, every wall of its volume ran that deep, and the frame lost 0.2 % agreement).
+TEST(SceneParser, FarPlanesFitWhatTheFrustumSeesNotTheBoundsCorners) {
+  const auto r = parse(R"({"objects":[{"type":"plane","size":2e6},
+      {"type":"sphere","radius":0.2,"transform":{"translate":[0,1,0]}}],
+    "light":{"type":"spot","position":[0,1.6,0],"target":[0,0,0],"fov":90},
+    "camera":{"eye":[0,3,4],"target":[0,0,0],"fov":50}})");
+  // Straight down with a 90-degree square frustum: the ground it sees lies at depth 1.6.
+  EXPECT_GT(r.scene.light.farPlane, 1.6);
+  EXPECT_LT(r.scene.light.farPlane, 1.6 * 1.02);
+  // The camera looks down 36.87 degrees with a 25-degree half-opening: its top plane meets the
+  // ground along a line 3 / tan(11.87 deg) = 14.26 units out, at view depth 3 * 0.6 + 14.26 * 0.8.
+  const double top = 3.0 * 0.6 + 3.0 / std::tan((36.8699 - 25.0) * 3.14159265358979 / 180.0) * 0.8;
+  EXPECT_GT(r.scene.camera.farPlane, top);
+  EXPECT_LT(r.scene.camera.farPlane, top * 1.02);
 }
 
 TEST(SceneParser, MalformedJsonNamesLineAndColumn) {
@@ -407,3 +426,4 @@ TEST(DefaultScene, TheShippedFileIsTheBuiltInScene) {
 
 }  // namespace
 }  // namespace shadowvol
+

@@ -1,7 +1,8 @@
-// libFuzzer harness for readTriangleMesh: each input is written to a temporary file under every
-// mesh extension (.obj, .off, .ply, .stl) and read. Reading must end in a mesh whose indices are in
-// range and whose coordinates are finite, or in InputError; anything else (another exception, a
-// crash, a sanitizer report, a hang, an allocation beyond -rss_limit_mb) is a finding.
+// libFuzzer harness for the mesh readers: each input is parsed in memory as every format (.obj,
+// .off, .ply, .stl) by parseTriangleMesh, the code readTriangleMesh runs on a file's bytes.
+// Reading must end in a mesh whose indices are in range and whose coordinates are finite, or in
+// InputError; anything else (another exception, a crash, a sanitizer report, a hang, an
+// allocation beyond -rss_limit_mb) is a finding.
 //
 // Build (Clang): cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang
 //   -DSHADOWVOL_FUZZ=ON -DSHADOWVOL_BUILD_TESTS=OFF -DSHADOWVOL_BUILD_BENCHMARKS=OFF -DSHADOWVOL_BUILD_GL=OFF
@@ -13,25 +14,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
-
-#include <unistd.h>
+#include <string_view>
 
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 
 namespace {
-
-const std::filesystem::path& scratchDir() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("shadowvol-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
 
 void check(bool ok, const char* what) {
   if (ok) return;
@@ -42,14 +31,10 @@ void check(bool ok, const char* what) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   for (const char* ext : {".obj", ".off", ".ply", ".stl"}) {
-    const auto path = scratchDir() / (std::string("input") + ext);
-    {
-      std::ofstream out(path, std::ios::binary | std::ios::trunc);
-      out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
-    }
     try {
-      const shadowvol::TriangleMesh mesh = shadowvol::readTriangleMesh(path);
+      const shadowvol::TriangleMesh mesh = shadowvol::parseTriangleMesh(bytes, ext, std::string("input") + ext);
       check(!mesh.triangles.empty(), "a mesh without triangles was returned");
       for (const auto& p : mesh.positions)
         check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "non-finite position");

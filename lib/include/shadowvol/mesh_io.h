@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <string_view>
 
 #include <glm/vec3.hpp>
 
@@ -22,6 +24,11 @@ namespace shadowvol {
 /// vertices or an index out of range (OBJ: 0, or counting back past the first vertex), or no
 /// triangles.
 TriangleMesh readTriangleMesh(const std::filesystem::path& path);
+
+/// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):
+/// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", any case), `source`
+/// names the input in error messages. Throws InputError as readTriangleMesh does.
+TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source);
 
 /// Where the stored coordinates of a mesh sit in the world (Scene::origin, DepthMap::origin).
 struct MeshFrame {

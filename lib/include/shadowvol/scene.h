@@ -60,10 +60,14 @@ SceneLoadResult parseScene(const std::string& jsonText, const std::string& sourc
 Scene defaultScene();
 
 /// Fills in what the file left open: light near/far (and a directional light's position and
-/// half extent) from the scene bounds, camera near/far likewise. A given far beyond the scene's
-/// far side (+1 % of its radius), or a given near before its near side (-1 %), is moved there:
-/// it would capture nothing more and only cost depth precision (README "Scene files", Light); the
-/// camera's near only when the whole scene lies in front of it. Returns one note per moved plane.
+/// half extent) from the part of the scene bounds inside the light's frustum (computed exactly:
+/// the box clipped by the frustum's side planes), camera near/far likewise from the part inside
+/// the camera's. The margin beyond that part is 1 % of the smaller of its depth extent and the
+/// scene's radius. A given far beyond that far side, or a given near before its near side, is
+/// moved there: it would capture nothing more and only cost depth precision (README "Scene
+/// files", Light); the camera's near only when the whole scene lies in front of it. Light planes
+/// are fitted to a square map's frustum: a map wider than tall sees further in x, so a capture
+/// with W > H needs the light's near and far given. Returns one note per moved plane.
 std::vector<std::string> fitLightAndCamera(Scene& scene);
 
 /// Writes the scene's triangles as PLY (binary), OBJ, OFF or STL, chosen by the extension:

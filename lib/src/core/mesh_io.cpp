@@ -40,10 +40,17 @@ std::string fileBytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-std::string lowerExtension(const std::filesystem::path& p) {
-  std::string e = p.extension().string();
+std::string lowerText(std::string_view text) {
+  std::string e(text);
   for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
   return e;
+}
+
+std::string lowerExtension(const std::filesystem::path& p) { return lowerText(p.extension().string()); }
+
+void checkReadableExtension(const std::string& ext, const std::string& source) {
+  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
+    throw InputError(source, "", ext, "unsupported mesh format (use .obj, .off, .ply or .stl)");
 }
 
 }  // namespace
@@ -74,12 +81,9 @@ void writeAtomically(const std::filesystem::path& path,
   }
 }
 
-TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
-  const std::string ext = lowerExtension(path);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
-    throw InputError(path.string(), "", ext, "unsupported mesh format (use .obj, .off, .ply or .stl)");
-  const std::string source = path.string();
-  const std::string bytes = fileBytes(path);
+TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source) {
+  const std::string ext = lowerText(format);
+  checkReadableExtension(ext, source);
   // Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
   // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
   // silently dropped or shifted faces).
@@ -89,6 +93,12 @@ TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
                                       : mesh_readers::readStl(source, bytes);
   if (mesh.triangles.empty()) throw InputError(source, "", "", "the mesh has no triangles");
   return mesh;
+}
+
+TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  checkReadableExtension(ext, path.string());  // before touching the file
+  return parseTriangleMesh(fileBytes(path), ext, path.string());
 }
 
 namespace {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/eye_plane_split.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
 #include "scene_fit_range.h"
@@ -506,6 +507,12 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   for (auto& note : fitLightAndCamera(scene)) result.warnings.push_back(std::move(note));
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
     throw InputError(source, "/light/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
+  if (!splitSceneAcrossEyePlanes(scene, maxTriangles).complete)
+    result.warnings.push_back(source + ": /objects: triangles crossing the camera's or light's eye plane are more than " +
+                              std::to_string(int(kEyePlaneEdgeRatio)) +
+                              " near planes long, and splitting them all would pass the triangle budget: the GPU "
+                              "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
+                              "or shrink the largest objects (README \"Known limits\")");
   for (const auto& o : scene.objects)
     if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
       result.warnings.push_back(source + ": /light/position: the " +
@@ -552,6 +559,7 @@ Scene defaultScene() {
   s.camera.width = 640;
   s.camera.height = 480;
   fitLightAndCamera(s);
+  splitSceneAcrossEyePlanes(s, kMaxSceneTriangles);
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include <CGAL/squared_distance_3.h>
 #include <glm/geometric.hpp>
 
+#include "frustum_depth_range.h"
 #include "scene_fit_range.h"
 #include "shadowvol/scene.h"
 
@@ -80,20 +81,52 @@ void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius) {
   l.halfExtent = e * 1.02;  // 2% margin so the far-plane border ring stays off the geometry
 }
 
-// What the scene needs: from just before its near side to just past its far side (1 % of the
-// radius each way). A given plane outside that range is moved to it: it would capture nothing
-// more, and only spend depth precision (README "Scene files", Light, has the measurement).
+// The light planes are fitted to the frustum of a square map (every map the CLI makes). A map
+// wider than tall (W > H) sees further out in x, where geometry may lie beyond the fitted far
+// plane: such a capture needs the light's near and far given (scene.h, fitLightAndCamera).
+constexpr double kFittedLightAspect = 1.0;
+
+// The depth range of the part of the bounds the view sees (frustum_depth_range.h), with a margin
+// of 1 % of the smaller of that part's depth extent and the scene's radius (that extent taken as
+// at least 1e-3 of the far side's depth and 1e-6 of the radius, so a part seen edge-on still gets
+// one), and the far plane just past it; when the view sees none of the bounds, their whole
+// range, 1 % of the radius, and a far plane at least 1e-3 of the radius deep.
+struct FittedRange {
+  double lo, hi, margin, far;
+};
+FittedRange seenRange(const Bounds3& b, const detail::ViewFrustum& f, const glm::dvec3& eye, const glm::dvec3& axis,
+                      double radius) {
+  if (const auto seen = detail::depthRangeInFrustum(b, f)) {
+    const auto [lo, hi] = *seen;
+    const double extent = hi - std::max(lo, 0.0);
+    const double margin = 0.01 * std::min(radius, std::max({extent, 1e-3 * std::max(hi, 0.0), 1e-6 * radius}));
+    return {lo, hi, margin, std::max(hi, 0.0) + margin};
+  }
+  const auto [lo, hi] = depthRange(b, eye, axis);
+  return {lo, hi, 0.01 * radius, std::max(hi, 1e-3 * radius) + 0.01 * radius};
+}
+
+detail::ViewFrustum lightFrustum(const Light& l) {
+  if (l.type == LightType::Directional)
+    return {lightView(l), l.halfExtent * kFittedLightAspect, l.halfExtent, true};
+  const double t = std::tan(0.5 * l.fovYDegrees * std::numbers::pi / 180.0);
+  return {lightView(l), t * kFittedLightAspect, t, false};
+}
+
+// What the scene needs: from just before the near side of the part of the bounds the light sees
+// to just past its far side (FittedRange's margin each way). A given plane outside that range is
+// moved to it: it would capture nothing more, and only spend depth precision (README "Scene
+// files", Light, has the measurement).
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
-  const auto [lo, hi] = depthRange(b, l.position, l.direction);
-  const double far = std::max(hi, 1e-3 * radius) + 0.01 * radius;
+  const auto [lo, hi, margin, far] = seenRange(b, lightFrustum(l), l.position, l.direction, radius);
   if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
   if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
   // A directional light's view starts at the plane through its position: a fitted near never
   // goes behind it (loadScene warns when that plane cuts the scene).
   const double near = l.type == LightType::Directional
-                          ? std::max(lo - 0.01 * radius, 0.0)
-                          : perspectiveNear(lo - 0.01 * radius, l.farPlane, scene, l.position, l.fovYDegrees, 1.0);
+                          ? std::max(lo - margin, 0.0)
+                          : perspectiveNear(lo - margin, l.farPlane, scene, l.position, l.fovYDegrees, kFittedLightAspect);
   const bool raise = l.nearPlane > 0.0 && l.nearPlane < near && near < l.farPlane;
   if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane));
   if (l.nearPlane == 0.0 || raise) l.nearPlane = near;
@@ -103,12 +136,12 @@ void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<s
 void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Camera& c = scene.camera;
   const glm::dvec3 axis = glm::normalize(c.target - c.eye);
-  const auto [lo, hi] = depthRange(b, c.eye, axis);
-  const double far = std::max(hi, 1e-3 * radius) * 1.01 + 1e-6;
+  const double aspect = double(c.width) / double(c.height);
+  const double t = std::tan(0.5 * c.fovYDegrees * std::numbers::pi / 180.0);
+  const auto [lo, hi, margin, far] = seenRange(b, {cameraView(c), t * aspect, t, false}, c.eye, axis, radius);
   if (c.farPlane > far) notes.push_back("/camera/far: " + planeChange(far, c.farPlane));
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
-  const double aspect = double(c.width) / double(c.height);
-  const double near = perspectiveNear(lo * 0.99, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
+  const double near = perspectiveNear(lo - margin, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
   // A given near is raised only when the whole scene lies in front of the camera.
   const bool raise = c.nearPlane > 0.0 && lo > 0.0 && c.nearPlane < near && near < c.farPlane;
   if (raise) notes.push_back("/camera/near: " + planeChange(near, c.nearPlane));
