@@ -156,8 +156,9 @@ void addLightDepthRange(std::vector<StressConfig>& out) {
     out.push_back(std::move(c));
   }
   // The scene's own depth range: a small sphere 0.6 below a wide-angle spot light over a square
-  // ground of side 2e2 .. 2e6, so the light's frustum needs far/near up to about 1e6. Not in the
-  // quick subset: the two largest fail today (README "Stress suite").
+  // ground of side 2e2 .. 2e6: fitted to the whole bounds, the light's far/near was about 1e6 and
+  // the 2e6 ground, two triangles, was clipped imprecisely under the eye (99.79 % agreement, README
+  // "Huge triangles near the eye"); the 2e6 one is in the quick subset as their regression test.
   for (double side : {2e2, 2e4, 2e6}) {
     const json scene = {
         {"objects",
@@ -165,8 +166,10 @@ void addLightDepthRange(std::vector<StressConfig>& out) {
           {{"type", "sphere"}, {"name", "ball"}, {"radius", 0.2}, {"transform", {{"translate", {0, 1, 0}}}}}}},
         {"light", {{"type", "spot"}, {"position", {0.3, 1.6, 0.2}}, {"target", {0, 0, 0}}, {"fov", 120}}},
         {"camera", {{"eye", {0, 3, 4}}, {"target", {0, 0, 0}}, {"fov", 50}}}};
-    out.push_back(makeConfig("light-depth-range", "scene-depth-ground-" + numberName(side),
-                             "spot light 0.6 over a small sphere, ground of side " + numberName(side), scene));
+    StressConfig c = makeConfig("light-depth-range", "scene-depth-ground-" + numberName(side),
+                                "spot light 0.6 over a small sphere, ground of side " + numberName(side), scene);
+    c.quick = side == 2e6;
+    out.push_back(std::move(c));
   }
 }
 
