@@ -65,7 +65,7 @@ Scene defaultScene();
 /// the camera's. The margin beyond that part is 1 % of the smaller of its depth extent and the
 /// scene's radius. A given far beyond that far side, or a given near before its near side, is
 /// moved there: it would capture nothing more and only cost depth precision (README "Scene
-/// files", Light); the camera's near only when the whole scene lies in front of it. Light planes
+/// files", Light); the camera's near only when the part it sees lies wholly in front of it. Light planes
 /// are fitted to a square map's frustum: a map wider than tall sees further in x, so a capture
 /// with W > H needs the light's near and far given. Returns one note per moved plane.
 std::vector<std::string> fitLightAndCamera(Scene& scene);

@@ -142,7 +142,7 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
   if (c.farPlane > far) notes.push_back("/camera/far: " + planeChange(far, c.farPlane));
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
   const double near = perspectiveNear(lo - margin, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
-  // A given near is raised only when the whole scene lies in front of the camera.
+  // A given near is raised only when the part of the scene the camera sees lies wholly in front of it.
   const bool raise = c.nearPlane > 0.0 && lo > 0.0 && c.nearPlane < near && near < c.farPlane;
   if (raise) notes.push_back("/camera/near: " + planeChange(near, c.nearPlane));
   if (c.nearPlane <= 0.0 || raise) c.nearPlane = near;
