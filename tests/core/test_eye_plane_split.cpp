@@ -73,7 +73,9 @@ TEST(EyePlaneSplit, AClosedBoxStaysClosedOrientedAndTheSameSurface) {
       lo = std::min(lo, d), hi = std::max(hi, d);
       longest = std::max(longest, glm::length(corner(box, t[k]) - corner(box, t[(k + 1) % 3])));
     }
-    if (lo < eye.nearPlane && hi > 0.0) EXPECT_LE(longest, eye.maxEdge);
+    if (lo < eye.nearPlane && hi > 0.0) {
+      EXPECT_LE(longest, eye.maxEdge);
+    }
   }
 }
 
