@@ -1,3 +1,4 @@
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -228,6 +229,13 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   expectRefused("lightView", "[1,0,0,0, 0,1,0,0, 0,0,1,0, 1e300,0,0,1]", "/lightView");
   expectRefused("lightProjection", "[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]", "/lightProjection");
   expectRefused("lightProjection", "[1,0,0,0, 0,1,0,0, 0,0,1e300,-1, 0,0,1e300,0]", "/lightProjection");
+  // Regression (fuzz_depth_map): a w row that varies with x passed the kind check, and the builder
+  // put texels at infinity; entries the unprojection does not read must be 0.
+  for (int entry : {1, 2, 3, 4, 6, 7}) {
+    nlohmann::json p = nlohmann::json::parse(good)["lightProjection"];
+    p[entry] = 0.5;
+    expectRefused("lightProjection", p.dump(), "/lightProjection");
+  }
   expectRefused("far", "1e300", "/far");
   expectRefused("near", "-1", "/near");
   expectRefused("origin", "[1, 2]", "/origin");
@@ -281,11 +289,13 @@ TEST(DepthMapIo, SideFileOfAnotherDepthMapIsRefused) {
   EXPECT_EQ(readDepthMap(dir / "b.pfm").depth, b.depth);
 }
 
-// The depth-map fuzz harness's seed corpus (tests/fuzz/corpus/depth: a side file, a NUL, a PFM),
-// replayed as the harness does: each reads and builds into a finite, in-range volume.
+// The depth-map fuzz harness's corpus (tests/fuzz/corpus/depth: a side file, a NUL, a PFM; seeds
+// and the inputs fuzzing found), replayed as the harness does: each is refused with InputError or
+// reads and builds into a finite, in-range volume. regression-projective-w.bin is refused (its
+// projection's w varied with x; the volume had non-finite vertices).
 TEST(DepthMapIo, FuzzCorpusReplaysThroughTheBuilder) {
   const auto dir = test::tempDir();
-  int files = 0;
+  int files = 0, refused = 0;
   for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / "tests/fuzz/corpus/depth")) {
     SCOPED_TRACE(e.path().string());
     std::ifstream in(e.path(), std::ios::binary);
@@ -294,12 +304,21 @@ TEST(DepthMapIo, FuzzCorpusReplaysThroughTheBuilder) {
     ASSERT_NE(cut, std::string::npos);
     test::writeText(depthSidecarPath(dir / "map.pfm"), bytes.substr(0, cut));
     test::writeText(dir / "map.pfm", bytes.substr(cut + 1));
-    const VolumeBuildResult r = buildVolume(readDepthMap(dir / "map.pfm"), {});
+    VolumeBuildResult r;
+    try {
+      r = buildVolume(readDepthMap(dir / "map.pfm"), {});
+    } catch (const InputError&) {
+      EXPECT_NE(e.path().filename().string().find("regression"), std::string::npos) << "a seed was refused";
+      ++refused;
+      continue;
+    }
     EXPECT_GT(r.mesh.triangleCount(), 0u);
+    for (const auto& p : r.mesh.positions) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
     for (const auto& t : r.mesh.triangles)
       for (auto i : t) ASSERT_LT(i, r.mesh.positions.size());
     ++files;
   }
+  EXPECT_GE(refused, 1);
   EXPECT_GE(files, 2);
 }
 

@@ -61,8 +61,15 @@ void checkLightGeometry(const DepthMap& map, const std::string& sfile) {
                      "expected a rigid world -> light view transform (rotation and translation)");
   const glm::dmat4& p = map.lightProjection;
   const bool perspective = map.lightType == LightType::Spot;
-  const bool kindOk = perspective ? std::abs(p[2][3] + 1.0) < tol && std::abs(p[3][3]) < tol
-                                  : std::abs(p[2][3]) < tol && std::abs(p[3][3] - 1.0) < tol;
+  // The unprojection (TexelUnprojector, volume_common.glsl) reads P00, P11, P20, P21, P30, P31 and
+  // the z and w rows' last two columns; the other entries are 0 in both kinds, and a non-zero one
+  // (a w that varies with x, say) would put texels at infinity.
+  const double scale = std::max({1.0, std::abs(p[0][0]), std::abs(p[1][1])});
+  bool zeroElsewhere = true;
+  for (const auto& [c, r] : {std::pair{0, 1}, {0, 2}, {0, 3}, {1, 0}, {1, 2}, {1, 3}})
+    zeroElsewhere = zeroElsewhere && std::abs(p[c][r]) < tol * scale;
+  const bool kindOk = zeroElsewhere && (perspective ? std::abs(p[2][3] + 1.0) < tol && std::abs(p[3][3]) < tol
+                                                    : std::abs(p[2][3]) < tol && std::abs(p[3][3] - 1.0) < tol);
   auto ndcZ = [&](double d) {
     const glm::dvec4 c = p * glm::dvec4(0.0, 0.0, -d, 1.0);
     return c.z / c.w;

@@ -445,13 +445,22 @@ bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
   return crossings % 2 == 1;
 }
 
+// Every undirected edge used by exactly two triangles. A sorted array of edge keys, 8 bytes per
+// edge (a std::map here took 64 and, under ASan, passed the fuzzer's 500 MB on a legal 118,000
+// triangle hemisphere).
 bool isClosed(const TriangleMesh& m) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * m.triangles.size());
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) {
+      const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+      edges.push_back(std::uint64_t(a) << 32 | b);
+    }
   if (edges.empty()) return false;
-  for (const auto& [e, n] : edges)
-    if (n != 2) return false;
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t k = 0; k < edges.size(); k += 2)
+    if (k + 1 >= edges.size() || edges[k] != edges[k + 1] || (k + 2 < edges.size() && edges[k + 2] == edges[k]))
+      return false;
   return true;
 }
 
