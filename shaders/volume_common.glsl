@@ -1,6 +1,7 @@
 #version 330 core
-// Shared by volume_quads.frag and volume_gpu.vert (prepended to both as the first source
-// string): the sheet vertex of a texel and the diagonal rule, mirroring buildVolume.
+// Shared by volume_gpu.geom and volume_keep.geom (prepended to both as the first source string):
+// the sheet vertex of a texel, the quads the exact cap drops and the diagonal rule, mirroring
+// buildVolume.
 //
 // Quad q = (i, j), i in [0, W-2], j in [0, H-2], corners (triangulation.h):
 //   A = (i, j), B = (i+1, j), C = (i+1, j+1), D = (i, j+1).
@@ -30,6 +31,20 @@ float sheetDepth(ivec2 t) {
   if (!(d < farSnap)) return farPlane;
   d = clamp(d + bias, nearPlane, farPlane);
   return d < farSnap ? d : farPlane;
+}
+
+// Texel (i, j) of corner A of quad q (q = j * (W - 1) + i).
+ivec2 quadCorner(int q) {
+  int quadsX = size.x - 1;
+  return ivec2(q - (q / quadsX) * quadsX, q / quadsX);
+}
+
+// With the exact cap, a quad whose four corners all lie on the far plane contributes nothing
+// (volume_builder.h: such quads are dropped; the cap closes what is left).
+bool quadAllFar(ivec2 t0) {
+  for (int k = 0; k < 4; ++k)
+    if (sheetDepth(t0 + kCornerOffset[k]) < farPlane) return false;
+  return true;
 }
 
 // Light-view point of the centre of texel t at light-view depth d (the inverse of the projection

@@ -1,5 +1,6 @@
 // (volume_common.glsl comes first.) The shadow volume drawn straight from the light-view depth
-// texture: one point per quad in, up to two triangle strips out. No vertex buffer, no read-back.
+// texture: one point per quad in (every quad, or only those volume_keep.geom kept), up to two
+// triangle strips out. No read-back.
 // exactCap = 1: the quad's two sheet triangles (fixed B-D: ABD, BCD; flipped A-C: ABC, ACD) and
 //   the same two triangles on the far plane with reversed winding (the quad's share of the exact
 //   far cap); a quad with all four corners on the far plane emits nothing.
@@ -29,16 +30,10 @@ void main() {
     EndPrimitive();
     return;
   }
-  int quadsX = size.x - 1;
-  int q = vQuad[0];
-  ivec2 t0 = ivec2(q - (q / quadsX) * quadsX, q / quadsX);
+  ivec2 t0 = quadCorner(vQuad[0]);
+  if (exactCap != 0 && quadAllFar(t0)) return;
   float d[4];
-  bool allFar = true;
-  for (int k = 0; k < 4; ++k) {
-    d[k] = sheetDepth(t0 + kCornerOffset[k]);
-    allFar = allFar && !(d[k] < farPlane);
-  }
-  if (exactCap != 0 && allFar) return;
+  for (int k = 0; k < 4; ++k) d[k] = sheetDepth(t0 + kCornerOffset[k]);
   vec3 p[4], f[4];
   for (int k = 0; k < 4; ++k) {
     p[k] = lightViewPoint(t0 + kCornerOffset[k], d[k]);

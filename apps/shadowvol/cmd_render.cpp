@@ -98,6 +98,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"passes", passes},
           {"frameMs", median(totals)},
           {"volumeTriangles", result.volumeTriangles},
+          {"volumeQuads", result.gpuVolumeQuads},
+          {"volumeQuadsDrawn", result.gpuVolumeQuadsDrawn},
           {"stencilNonZeroPixels", result.stencil.empty() ? nlohmann::json() : nlohmann::json(shadowed)},
           {"receiversOnly", result.receiversOnly},
           {"warnings", warnings},
@@ -117,6 +119,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
                       o->render.volume.c_str(), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
                       result.volumeTriangles, shadowed);
+        if (result.gpuVolumeQuads > 0)
+          std::printf(", %zu of %zu quads drawn", result.gpuVolumeQuadsDrawn, result.gpuVolumeQuads);
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
           std::printf(", refined: %zu boundary edges, %zu rays", result.volumeStats->boundaryEdges,
                       result.volumeStats->raysCast);

@@ -28,6 +28,8 @@ SweepRow sampleRow() {
   r.frame = {12.5, 11.25, 14.125};
   r.phases = {{"light", {1.5, 1.5, 1.5}}, {"volume", {7.25, 7.25, 7.25}}};
   r.volumeTriangles = 123456;
+  r.volumeQuads = 65025;
+  r.volumeQuadsDrawn = 3252;
   r.pixels = 1000;
   r.error = 0.0123;
   r.leak = 0.01;
@@ -59,7 +61,25 @@ TEST(SweepCsv, HeaderAndRowHaveTheSameColumnsAndRoundTrip) {
   EXPECT_DOUBLE_EQ(b.error, 0.0123);
   EXPECT_DOUBLE_EQ(*b.distP99, 2.5);
   EXPECT_FALSE(b.distMax.has_value());  // empty field = not applicable
+  EXPECT_EQ(b.volumeQuads, 65025u);
+  EXPECT_EQ(b.volumeQuadsDrawn, 3252u);
   EXPECT_EQ(cellKey(b), cellKey(r));
+}
+
+// Results written before the volume_quads columns (docs/results/main) still read, with 0 quads.
+TEST(SweepCsv, ResultsWithoutTheQuadColumnsStillRead) {
+  const auto dir = test::tempDir();
+  const auto csv = dir / "results.csv";
+  auto dropLastTwo = [](std::string line) {
+    for (int k = 0; k < 2; ++k) line.erase(line.rfind(','));
+    return line;
+  };
+  test::writeText(csv, dropLastTwo(sweepCsvHeader()) + "\n" + dropLastTwo(toCsv(sampleRow())) + "\n");
+  const auto rows = readSweepCsv(csv);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].volumeTriangles, 123456u);
+  EXPECT_EQ(rows[0].volumeQuads, 0u);
+  EXPECT_EQ(readSweepCsv(test::sourceDir() / "docs/results/main/results.csv").empty(), false);
 }
 
 TEST(SweepCsv, InterruptedLastLineIsIgnoredAndBadFilesAreNamed) {

@@ -51,7 +51,7 @@ TEST(GlShaders, EmbeddedSourcesArePresent) {
     EXPECT_NE(text->find("#version"), std::string::npos) << name;
   }
   // Stage bodies that follow volume_common.glsl carry no #version of their own.
-  for (const char* name : {"volume_gpu.geom"}) {
+  for (const char* name : {"volume_gpu.geom", "volume_keep.geom"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
     EXPECT_EQ(text->find("#version"), std::string::npos) << name;

@@ -45,9 +45,13 @@ void expectAgreement(const Scene& scene, const Variant& v, int mapSize) {
       shadowed, gpu.volumeTriangles, cpu.volumeTriangles);
   EXPECT_GT(shadowed, cpu.stencil.size() / 50) << "the view must contain shadow";
   const std::size_t quads = std::size_t(mapSize - 1) * std::size_t(mapSize - 1);
+  EXPECT_EQ(gpu.gpuVolumeQuads, quads);
   if (v.cap == FarCap::Quad) {
     EXPECT_EQ(gpu.volumeTriangles, 2 * quads + 2);  // the full sheet and the far rectangle
+    EXPECT_EQ(gpu.gpuVolumeQuadsDrawn, quads);      // no quad may be skipped: no compaction
   } else {
+    EXPECT_EQ(gpu.volumeTriangles, 4 * gpu.gpuVolumeQuadsDrawn);  // only the kept quads were expanded
+    EXPECT_LT(gpu.gpuVolumeQuadsDrawn, quads);
     EXPECT_EQ(gpu.volumeTriangles % 4, 0u);  // 2 sheet + 2 cap triangles per kept quad
     EXPECT_GT(gpu.volumeTriangles, 0u);
     EXPECT_LT(gpu.volumeTriangles, 4 * quads);  // all-far quads are dropped
@@ -56,6 +60,29 @@ void expectAgreement(const Scene& scene, const Variant& v, int mapSize) {
 }
 
 }  // namespace
+
+// The compacted GPU volume (a transform-feedback pass keeps the quads not all on the far plane)
+// draws exactly what drawing every quad draws: the same triangles and the same stencil, pixel for
+// pixel, while expanding only the kept quads.
+TEST(GlVolumeAgreement, CompactedDrawEqualsDrawingEveryQuad) {
+  gl::Renderer& r = gltest::sharedRenderer();
+  r.setScene(defaultScene());
+  for (CaptureMode capture : {CaptureMode::Back, CaptureMode::Front}) {
+    gl::RenderOptions o;
+    o.depthWidth = o.depthHeight = 128;
+    o.capture = capture;
+    const gl::RenderResult compact = r.render(o);
+    o.compactGpuVolume = false;
+    const gl::RenderResult all = r.render(o);
+    EXPECT_EQ(compact.stencil, all.stencil) << toString(capture);
+    EXPECT_EQ(compact.volumeTriangles, all.volumeTriangles) << toString(capture);
+    EXPECT_EQ(all.gpuVolumeQuadsDrawn, all.gpuVolumeQuads);
+    EXPECT_EQ(compact.volumeTriangles, 4 * compact.gpuVolumeQuadsDrawn);
+    if (capture == CaptureMode::Back) {
+      EXPECT_LT(compact.gpuVolumeQuadsDrawn, compact.gpuVolumeQuads / 4);
+    }
+  }
+}
 
 TEST(GlVolumeAgreement, FixedNoBlur) {
   expectAgreement(gltest::clutterScene(), {Triangulation::Fixed, false, CaptureMode::Back, FarCap::Exact}, 96);

@@ -92,6 +92,13 @@ const std::vector<SweepMethod>& sweepMethods() {
     // default bias) and between the first two (midpoint).
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Front));
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Midpoint));
+    // The GPU volume without compaction (every quad through the geometry shader): the skip's gain.
+    SweepMethod full = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu);
+    full.key = "hybrid-perfect-allquads/gpu";
+    full.options.compactGpuVolume = false;
+    full.description = "GPU volume drawn from every quad of the map, none skipped (compactGpuVolume off), "
+                       "perfect triangulation, back capture";
+    v.push_back(full);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     SweepMethod s;
     s.key = "silhouette";
@@ -144,6 +151,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     // Drop an interrupted last line so appends start on a fresh line.
     std::ifstream in(csv, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.compare(0, text.find('\n'), sweepCsvHeader()) != 0)
+      throw InputError(csv.string(), "header", "", "written by an earlier version (without the volume_quads columns): "
+                                                   "new rows cannot be appended; use another --out folder");
     if (!text.empty() && text.back() != '\n') {
       std::filesystem::resize_file(csv, text.rfind('\n') + 1);
       notes.push_back("dropped an incomplete last line of " + csv.string());
@@ -255,6 +265,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     row.frame = stat(frameTimes);
     for (const auto& name : phaseOrder) row.phases.push_back({name, stat(phaseTimes[name])});
     row.volumeTriangles = result.volumeTriangles;
+    row.volumeQuads = result.gpuVolumeQuads;
+    row.volumeQuadsDrawn = result.gpuVolumeQuadsDrawn;
     row.pixels = m.pixels;
     row.error = m.pixels ? double(m.leak + m.acne) / double(m.pixels) : 0.0;
     row.leak = m.pixels ? double(m.leak) / double(m.pixels) : 0.0;

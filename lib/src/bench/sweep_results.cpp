@@ -31,14 +31,24 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-std::vector<std::string> columns() {
+// `withQuads` false: the columns of results written before the GPU volume reported its quads
+// (docs/results/main), still read.
+std::vector<std::string> columns(bool withQuads = true) {
   std::vector<std::string> c = {"scene", "triangles", "method", "family", "capture", "resolution", "width", "height",
                                 "timing", "frames", "frame_ms", "frame_ms_min", "frame_ms_max"};
   for (const auto& p : sweepPhases()) c.push_back(p + "_ms");
   for (const char* s : {"volume_triangles", "pixels", "error", "leak", "acne", "band_pixels", "band_error",
                         "band_leak", "band_acne", "dist_mean", "dist_p99", "dist_max"})
     c.push_back(s);
+  if (withQuads)
+    for (const char* s : {"volume_quads", "volume_quads_drawn"}) c.push_back(s);
   return c;
+}
+
+std::string headerOf(const std::vector<std::string>& cols) {
+  std::string h;
+  for (const auto& c : cols) h += (h.empty() ? "" : ",") + c;
+  return h;
 }
 
 }  // namespace
@@ -49,11 +59,7 @@ const std::vector<std::string>& sweepPhases() {
   return p;
 }
 
-std::string sweepCsvHeader() {
-  std::string h;
-  for (const auto& c : columns()) h += (h.empty() ? "" : ",") + c;
-  return h;
-}
+std::string sweepCsvHeader() { return headerOf(columns()); }
 
 std::string toCsv(const SweepRow& r) {
   std::vector<std::string> f = {r.scene,
@@ -87,6 +93,8 @@ std::string toCsv(const SweepRow& r) {
   f.push_back(r.distMean ? num(*r.distMean) : "");
   f.push_back(r.distP99 ? num(*r.distP99) : "");
   f.push_back(r.distMax ? num(*r.distMax) : "");
+  f.push_back(std::to_string(r.volumeQuads));
+  f.push_back(std::to_string(r.volumeQuadsDrawn));
   std::string line;
   for (std::size_t k = 0; k < f.size(); ++k) {
     for (char c : f[k])
@@ -96,9 +104,9 @@ std::string toCsv(const SweepRow& r) {
   return line;
 }
 
-SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber) {
+SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber, bool withQuads) {
   const auto f = split(line);
-  const auto cols = columns();
+  const auto cols = columns(withQuads);
   const std::string where = source + " line " + std::to_string(lineNumber);
   if (f.size() != cols.size())
     throw InputError(where, "", std::to_string(f.size()) + " fields", "expected " + std::to_string(cols.size()));
@@ -159,6 +167,10 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
   r.distMean = maybe();
   r.distP99 = maybe();
   r.distMax = maybe();
+  if (withQuads) {
+    r.volumeQuads = std::size_t(whole());
+    r.volumeQuadsDrawn = std::size_t(whole());
+  }
   return r;
 }
 
@@ -170,6 +182,7 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
   const std::string text = ss.str();
   std::vector<SweepRow> rows;
   std::size_t pos = 0, lineNumber = 0;
+  bool withQuads = true;
   while (pos < text.size()) {
     const std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) break;  // an interrupted last line
@@ -177,12 +190,13 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
     pos = end + 1;
     ++lineNumber;
     if (lineNumber == 1) {
-      if (line != sweepCsvHeader())
+      withQuads = line == sweepCsvHeader();
+      if (!withQuads && line != headerOf(columns(false)))
         throw InputError(path.string(), "header", line.substr(0, 60), "not a shadowvol sweep file of this version");
       continue;
     }
     if (line.empty()) continue;
-    rows.push_back(parseSweepRow(line, path.string(), lineNumber));
+    rows.push_back(parseSweepRow(line, path.string(), lineNumber, withQuads));
   }
   return rows;
 }

@@ -211,6 +211,7 @@ struct Renderer::Impl {
   EglContext context;
   ShaderLibrary shaders;
   Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
+  Program volumeKeepProgram, volumeGpuKeptProgram;  // the compacted GPU volume (exact cap)
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
@@ -233,6 +234,12 @@ struct Renderer::Impl {
   VertexArray volumeVao;
   Buffer volumeVbo, volumeEbo;
 
+  // Compacted GPU volume: the indices of the kept quads (transform feedback), drawn as points
+  VertexArray keptVao;
+  Buffer keptBuffer;
+  std::int64_t keptCapacity = 0;  // quads the buffer holds
+  Query keptQuery;                // GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of the keep pass
+
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
   Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
@@ -252,6 +259,10 @@ struct Renderer::Impl {
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
     volumeGpuProgram =
         Program(shaders, {"volume_gpu_points.vert"}, {"volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+    volumeKeepProgram =
+        Program(shaders, {"volume_gpu_points.vert"}, {"volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
+    volumeGpuKeptProgram =
+        Program(shaders, {"volume_gpu_kept.vert"}, {"volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
 
     fetchSampler = makeSampler();
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
@@ -275,6 +286,9 @@ struct Renderer::Impl {
     volumeVao = makeVertexArray();
     volumeVbo = makeBuffer();
     volumeEbo = makeBuffer();
+    keptVao = makeVertexArray();
+    keptBuffer = makeBuffer();
+    keptQuery = makeQuery();
     SV_GL(glBindVertexArray(volumeVao.id()));
     SV_GL(glBindBuffer(GL_ARRAY_BUFFER, volumeVbo.id()));
     SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, volumeEbo.id()));
@@ -599,14 +613,21 @@ struct Renderer::Impl {
   }
 
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
-                     RenderResult& result) {
+                     bool compact, RenderResult& result) {
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
+    const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
+    result.gpuVolumeQuads = std::size_t(quads);
+    result.gpuVolumeQuadsDrawn = std::size_t(quads);
+    // Compaction needs the exact cap (with the thesis's rectangle every quad's sheet is part of the
+    // closed volume) and a buffer of 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
+    constexpr std::int64_t kMaxCompactQuads = std::int64_t(1) << 26;
+    if (compact && vo.cap == FarCap::Exact && quads <= kMaxCompactQuads)
+      return drawCompactGpuVolume(lightViewToClip, vo, bias, depth, quads, result);
     setVolumeUniforms(volumeGpuProgram, vo, bias);
     volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
     bindTexture(0, depth, fetchSampler);
     // gl_VertexID and GLsizei are 32-bit: draw at most kChunkQuads points (quads) per call.
     constexpr std::int64_t kChunkQuads = std::int64_t(1) << 30;
-    const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
     SV_GL(glBindVertexArray(emptyVao.id()));
     SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
     volumeGpuProgram.set("drawRectangle", 0);
@@ -618,6 +639,50 @@ struct Renderer::Impl {
       volumeGpuProgram.set("drawRectangle", 1);
       SV_GL(glDrawArrays(GL_POINTS, 0, 1));
     }
+    SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
+    SV_GL(glBindVertexArray(0));
+    volumeTrianglesPending = true;
+  }
+
+  /// The GPU volume in two passes: volume_keep.geom writes the indices of the quads that are not
+  /// all on the far plane (transform feedback, rasteriser off), then volume_gpu.geom expands only
+  /// those. Same triangles as the direct draw, in the same quad order.
+  void drawCompactGpuVolume(const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo, double bias,
+                            const Texture& depth, std::int64_t quads, RenderResult& result) {
+    if (keptCapacity < quads) {
+      SV_GL(glBindBuffer(GL_ARRAY_BUFFER, keptBuffer.id()));
+      SV_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(quads * 4), nullptr, GL_DYNAMIC_COPY));
+      SV_GL(glBindVertexArray(keptVao.id()));
+      SV_GL(glEnableVertexAttribArray(0));
+      SV_GL(glVertexAttribIPointer(0, 1, GL_INT, 4, nullptr));
+      SV_GL(glBindVertexArray(0));
+      SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
+      keptCapacity = quads;
+    }
+    bindTexture(0, depth, fetchSampler);
+    setVolumeUniforms(volumeKeepProgram, vo, bias);
+    volumeKeepProgram.set("firstQuad", 0);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glEnable(GL_RASTERIZER_DISCARD));
+    SV_GL(glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, keptBuffer.id()));
+    SV_GL(glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, keptQuery.id()));
+    SV_GL(glBeginTransformFeedback(GL_POINTS));
+    constexpr std::int64_t kQuadsPerKeepPoint = 32;  // volume_keep.geom's
+    SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei((quads + kQuadsPerKeepPoint - 1) / kQuadsPerKeepPoint)));
+    SV_GL(glEndTransformFeedback());
+    SV_GL(glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN));
+    SV_GL(glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0));
+    SV_GL(glDisable(GL_RASTERIZER_DISCARD));
+    // The count is needed for the draw (GL 3.3 has no draw from a feedback object's count).
+    GLuint kept = 0;
+    SV_GL(glGetQueryObjectuiv(keptQuery.id(), GL_QUERY_RESULT, &kept));
+    result.gpuVolumeQuadsDrawn = kept;
+    setVolumeUniforms(volumeGpuKeptProgram, vo, bias);
+    volumeGpuKeptProgram.set("lightViewToClip", toFloat(lightViewToClip));
+    volumeGpuKeptProgram.set("drawRectangle", 0);
+    SV_GL(glBindVertexArray(keptVao.id()));
+    SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
+    SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(kept)));
     SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
     SV_GL(glBindVertexArray(0));
     volumeTrianglesPending = true;
@@ -800,7 +865,7 @@ struct Renderer::Impl {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume();
         if (volumeDepth)
-          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
+          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, o.compactGpuVolume, result);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();

@@ -76,7 +76,8 @@ Program::Program(const ShaderLibrary& library, const std::vector<std::string>& v
     : Program(library, vertexFiles, {}, fragmentFiles) {}
 
 Program::Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
-                 const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles) {
+                 const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles,
+                 const std::vector<std::string>& feedbackVaryings) {
   std::vector<Shader> stages;
   std::string all;
   const std::pair<GLenum, const std::vector<std::string>*> list[] = {
@@ -91,6 +92,11 @@ Program::Program(const ShaderLibrary& library, const std::vector<std::string>& v
   program_ = ProgramName(glCreateProgram());
   if (!program_) throw GlError(all + ": glCreateProgram failed");
   for (const auto& st : stages) glAttachShader(program_.id(), st.id());
+  if (!feedbackVaryings.empty()) {
+    std::vector<const char*> names;
+    for (const auto& v : feedbackVaryings) names.push_back(v.c_str());
+    glTransformFeedbackVaryings(program_.id(), GLsizei(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+  }
   glLinkProgram(program_.id());
   GLint ok = 0, len = 0;
   glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);

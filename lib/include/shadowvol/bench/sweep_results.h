@@ -33,6 +33,8 @@ struct SweepRow {
   std::vector<std::pair<std::string, TimeStat>> phases;  ///< light, resolve, blur, readback, build,
                                                           ///< upload, camera, volume, lighting, shade, silhouette
   std::size_t volumeTriangles = 0;  ///< hybrid and silhouette: triangles drawn for the volume
+  std::size_t volumeQuads = 0;      ///< hybrid/gpu: quads of the depth map (0 otherwise)
+  std::size_t volumeQuadsDrawn = 0; ///< hybrid/gpu: quads the geometry shader expanded
   // Error against the exact shadows, over visible pixels facing the light inside its frustum.
   std::size_t pixels = 0;           ///< pixels compared
   double error = 0.0, leak = 0.0, acne = 0.0;           ///< fractions of `pixels`
@@ -53,7 +55,10 @@ std::string sweepCsvHeader();
 /// One CSV line (no newline).
 std::string toCsv(const SweepRow& row);
 /// Parses one CSV line; throws InputError naming `source`, the line number and the column on bad input.
-SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber);
+/// `withQuads` false reads the columns of results written before volume_quads and
+/// volume_quads_drawn were added (they stay 0).
+SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber,
+                       bool withQuads = true);
 
 /// Reads results.csv. A last line without its newline (an interrupted write) is ignored.
 std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path);

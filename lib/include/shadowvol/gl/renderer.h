@@ -96,6 +96,10 @@ struct RenderOptions {
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
                                                ///< shadow test per pixel); off = no extra cost
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
+  /// hybrid/gpu with the exact cap: draw only the quads that are not all on the far plane (a
+  /// transform-feedback pass finds them, GL 3.3 core); false draws every quad, as before (same
+  /// stencil; kept for comparison). docs/gpu.md "Compacted GPU volume".
+  bool compactGpuVolume = true;
 };
 
 struct PassTime {
@@ -130,6 +134,9 @@ struct RenderResult {
   std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
                                     ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
                                     ///< silhouette = the silhouette volume's
+  std::size_t gpuVolumeQuads = 0;       ///< hybrid/gpu: quads of the depth map, (W - 1) (H - 1)
+  std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads expanded by the geometry shader
+                                        ///< (all of them unless compactGpuVolume applied)
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
   std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
                                                 ///< (its time, refinement rays included, is the

@@ -43,9 +43,12 @@ class Program {
   /// file; the first holds #version). Driver logs number lines "string:line", string = file index.
   Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
           const std::vector<std::string>& fragmentFiles);
-  /// With a geometry stage (empty geometryFiles = none).
+  /// With a geometry stage (empty geometryFiles = none; empty fragmentFiles = none, for a program
+  /// whose output is only captured), and the outputs that transform feedback captures, interleaved
+  /// in this order (set before linking; empty = none).
   Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
-          const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles);
+          const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles,
+          const std::vector<std::string>& feedbackVaryings = {});
 
   GLuint id() const { return program_.id(); }
   void use() const;
