@@ -1,7 +1,6 @@
-#version 330 core
-// Shared by volume_gpu.geom and volume_keep.geom (prepended to both as the first source string):
-// the sheet vertex of a texel, the quads the exact cap drops and the diagonal rule, mirroring
-// buildVolume.
+// Shared by volume_gpu.geom, volume_keep.geom and volume_mesh.comp (each program's sources are
+// version_330.glsl or version_430.glsl, then this file, then the stage's body): the sheet vertex
+// of a texel, the quads the exact cap drops and the diagonal rule, mirroring buildVolume.
 //
 // Quad q = (i, j), i in [0, W-2], j in [0, H-2], corners (triangulation.h):
 //   A = (i, j), B = (i+1, j), C = (i+1, j+1), D = (i, j+1).

@@ -100,6 +100,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"volumeTriangles", result.volumeTriangles},
           {"volumeQuads", result.gpuVolumeQuads},
           {"volumeQuadsDrawn", result.gpuVolumeQuadsDrawn},
+          {"volumeDraw", result.gpuVolumeQuads ? nlohmann::json(gl::toString(result.gpuVolumeDrawUsed)) : nlohmann::json()},
           {"stencilNonZeroPixels", result.stencil.empty() ? nlohmann::json() : nlohmann::json(shadowed)},
           {"receiversOnly", result.receiversOnly},
           {"warnings", warnings},
@@ -120,7 +121,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                       o->render.volume.c_str(), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
                       result.volumeTriangles, shadowed);
         if (result.gpuVolumeQuads > 0)
-          std::printf(", %zu of %zu quads drawn", result.gpuVolumeQuadsDrawn, result.gpuVolumeQuads);
+          std::printf(", %zu of %zu quads drawn (%s)", result.gpuVolumeQuadsDrawn, result.gpuVolumeQuads,
+                      gl::toString(result.gpuVolumeDrawUsed));
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
           std::printf(", refined: %zu boundary edges, %zu rays", result.volumeStats->boundaryEdges,
                       result.volumeStats->raysCast);

@@ -45,13 +45,14 @@ TEST(GlContext, EveryPlatformEitherWorksOrThrowsGlError) {
 }
 
 TEST(GlShaders, EmbeddedSourcesArePresent) {
-  for (const char* name : {"light.vert", "volume_common.glsl", "scene.frag", "blur.frag", "resolve.frag"}) {
+  for (const char* name : {"light.vert", "version_330.glsl", "version_430.glsl", "scene.frag", "blur.frag", "resolve.frag"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
     EXPECT_NE(text->find("#version"), std::string::npos) << name;
   }
-  // Stage bodies that follow volume_common.glsl carry no #version of their own.
-  for (const char* name : {"volume_gpu.geom", "volume_keep.geom"}) {
+  // volume_common.glsl and the stage bodies after it carry no #version of their own (a
+  // version_*.glsl file comes first).
+  for (const char* name : {"volume_common.glsl", "volume_gpu.geom", "volume_keep.geom", "volume_mesh.comp"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
     EXPECT_EQ(text->find("#version"), std::string::npos) << name;

@@ -1,6 +1,7 @@
 #include "shadowvol/bench/sweep.h"
 
 #include <algorithm>
+#include <tuple>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -92,13 +93,19 @@ const std::vector<SweepMethod>& sweepMethods() {
     // default bias) and between the first two (midpoint).
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Front));
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Midpoint));
-    // The GPU volume without compaction (every quad through the geometry shader): the skip's gain.
-    SweepMethod full = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu);
-    full.key = "hybrid-perfect-allquads/gpu";
-    full.options.compactGpuVolume = false;
-    full.description = "GPU volume drawn from every quad of the map, none skipped (compactGpuVolume off), "
-                       "perfect triangulation, back capture";
-    v.push_back(full);
+    // The GPU volume's other ways of drawing (gl::GpuVolumeDraw; the default skips the quads all
+    // on the far plane with a transform-feedback pass): every quad through the geometry shader,
+    // and the kept quads' triangles built by a compute pass (GL 4.3).
+    for (auto [how, name, what] :
+         {std::tuple{gl::GpuVolumeDraw::AllQuads, "allquads", "every quad of the map through the geometry shader, none skipped"},
+          std::tuple{gl::GpuVolumeDraw::ComputeMesh, "computemesh",
+                     "a compute pass writes the triangles of the quads not all on the far plane into a buffer (GL 4.3)"}}) {
+      SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu);
+      m.key = std::string("hybrid-perfect-") + name + "/gpu";
+      m.options.gpuVolumeDraw = how;
+      m.description = std::string("GPU volume, ") + what + "; perfect triangulation, back capture";
+      v.push_back(m);
+    }
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     SweepMethod s;
     s.key = "silhouette";
@@ -122,6 +129,13 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   for (const auto& key : o.methods)
     if (std::none_of(methods.begin(), methods.end(), [&](const SweepMethod* m) { return m->key == key; }))
       throw InputError("command line", "--methods", key, "unknown method (see 'shadowvol bench --list-methods')");
+  const gl::ContextInfo& gli = renderer.info();
+  if (gli.glMajor < 4 || (gli.glMajor == 4 && gli.glMinor < 3))
+    std::erase_if(methods, [&](const SweepMethod* m) {
+      const bool needsCompute = m->options.gpuVolumeDraw == gl::GpuVolumeDraw::ComputeMesh;
+      if (needsCompute) notes.push_back(m->key + " skipped: needs GL 4.3 compute shaders, the context is " + gli.glVersion);
+      return needsCompute;
+    });
   // Resolutions that fit: the depth map, the explicit volume and the GPU textures, well inside memory.
   std::vector<int> resolutions;
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);

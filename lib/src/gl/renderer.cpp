@@ -73,6 +73,15 @@ bool parseVolumeSource(const std::string& text, VolumeSource& v) {
   return true;
 }
 
+const char* toString(GpuVolumeDraw d) {
+  switch (d) {
+    case GpuVolumeDraw::Auto: return "auto";
+    case GpuVolumeDraw::ComputeMesh: return "compute-mesh";
+    case GpuVolumeDraw::KeptQuads: return "kept-quads";
+    default: return "all-quads";
+  }
+}
+
 const char* toString(TimingMethod t) {
   return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish";
 }
@@ -211,7 +220,9 @@ struct Renderer::Impl {
   EglContext context;
   ShaderLibrary shaders;
   Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
-  Program volumeKeepProgram, volumeGpuKeptProgram;  // the compacted GPU volume (exact cap)
+  Program volumeKeepProgram, volumeGpuKeptProgram;  // GpuVolumeDraw::KeptQuads
+  Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
+  bool hasCompute = false;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
@@ -240,6 +251,11 @@ struct Renderer::Impl {
   std::int64_t keptCapacity = 0;  // quads the buffer holds
   Query keptQuery;                // GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN of the keep pass
 
+  // GPU-built volume mesh: light-view vertices (3 floats each) and their count
+  VertexArray meshVao;
+  Buffer meshBuffer, meshCount;
+  std::int64_t meshCapacity = 0;  // vertices the buffer holds
+
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
   Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
@@ -258,11 +274,21 @@ struct Renderer::Impl {
     sceneProgram = Program(shaders, "scene.vert", "scene.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
     volumeGpuProgram =
-        Program(shaders, {"volume_gpu_points.vert"}, {"volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
     volumeKeepProgram =
-        Program(shaders, {"volume_gpu_points.vert"}, {"volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
+        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
     volumeGpuKeptProgram =
-        Program(shaders, {"volume_gpu_kept.vert"}, {"volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+        Program(shaders, {"volume_gpu_kept.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+    const ContextInfo& ci = context.info();
+    // Every pass draws in reversed Z through glClipControl: core in 4.5, an extension before.
+    if (!(ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 5)) && !epoxy_has_gl_extension("GL_ARB_clip_control"))
+      throw GlError("the renderer needs OpenGL 4.5 or GL_ARB_clip_control (reversed-Z depth); the context is " +
+                    ci.glVersion + " on " + ci.glRenderer);
+    hasCompute = ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 3);
+    if (hasCompute) {
+      volumeMeshProgram = Program::compute(shaders, {"version_430.glsl", "volume_common.glsl", "volume_mesh.comp"});
+      volumeMeshDrawProgram = Program(shaders, "volume_mesh.vert", "depth_only.frag");
+    }
 
     fetchSampler = makeSampler();
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
@@ -289,6 +315,9 @@ struct Renderer::Impl {
     keptVao = makeVertexArray();
     keptBuffer = makeBuffer();
     keptQuery = makeQuery();
+    meshVao = makeVertexArray();
+    meshBuffer = makeBuffer();
+    meshCount = makeBuffer();
     SV_GL(glBindVertexArray(volumeVao.id()));
     SV_GL(glBindBuffer(GL_ARRAY_BUFFER, volumeVbo.id()));
     SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, volumeEbo.id()));
@@ -613,15 +642,28 @@ struct Renderer::Impl {
   }
 
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
-                     bool compact, RenderResult& result) {
+                     GpuVolumeDraw how, RenderResult& result) {
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
     const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
     result.gpuVolumeQuads = std::size_t(quads);
     result.gpuVolumeQuadsDrawn = std::size_t(quads);
-    // Compaction needs the exact cap (with the thesis's rectangle every quad's sheet is part of the
-    // closed volume) and a buffer of 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
-    constexpr std::int64_t kMaxCompactQuads = std::int64_t(1) << 26;
-    if (compact && vo.cap == FarCap::Exact && quads <= kMaxCompactQuads)
+    // Skipping needs the exact cap (with the thesis's rectangle every quad's sheet is part of the
+    // closed volume). KeptQuads needs 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
+    constexpr std::int64_t kMaxKeptQuads = std::int64_t(1) << 26;
+    if (vo.cap != FarCap::Exact) how = GpuVolumeDraw::AllQuads;
+    // Auto is KeptQuads: measured on llvmpipe, the compute mesh took longer (docs/gpu.md).
+    if (how == GpuVolumeDraw::Auto) how = GpuVolumeDraw::KeptQuads;
+    if (how == GpuVolumeDraw::ComputeMesh && !hasCompute)
+      throw InputError("RenderOptions", "gpuVolumeDraw", "compute-mesh", "needs GL 4.3 compute shaders; this context is " + context.info().glVersion);
+    if (how == GpuVolumeDraw::ComputeMesh &&
+        drawComputedGpuVolume(lightViewToClip, vo, bias, depth, quads, result)) {
+      result.gpuVolumeDrawUsed = how;
+      return;
+    }
+    if (how == GpuVolumeDraw::ComputeMesh) how = GpuVolumeDraw::KeptQuads;  // its mesh would not fit
+    if (how == GpuVolumeDraw::KeptQuads && quads > kMaxKeptQuads) how = GpuVolumeDraw::AllQuads;
+    result.gpuVolumeDrawUsed = how;
+    if (how == GpuVolumeDraw::KeptQuads)
       return drawCompactGpuVolume(lightViewToClip, vo, bias, depth, quads, result);
     setVolumeUniforms(volumeGpuProgram, vo, bias);
     volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
@@ -642,6 +684,58 @@ struct Renderer::Impl {
     SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
     SV_GL(glBindVertexArray(0));
     volumeTrianglesPending = true;
+  }
+
+  /// The GPU volume built by a compute pass (volume_mesh.comp) as a light-view triangle list, then
+  /// drawn with a plain vertex shader. The buffer grows to what the frame needs (the count is read
+  /// back after the pass; a frame that overflows it runs the pass again) up to kMaxMeshBytes;
+  /// false when the mesh would be larger (the caller falls back to KeptQuads).
+  bool drawComputedGpuVolume(const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo, double bias,
+                             const Texture& depth, std::int64_t quads, RenderResult& result) {
+    constexpr std::int64_t kMaxMeshBytes = std::int64_t(1) << 29;  // 512 MiB
+    constexpr std::int64_t kVertexBytes = 12;
+    if (meshCapacity == 0) growMesh(std::min<std::int64_t>(quads * 12, 12 * 65536));
+    bindTexture(0, depth, fetchSampler);
+    setVolumeUniforms(volumeMeshProgram, vo, bias);
+    GLuint count = 0;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const GLuint zero = 0;
+      SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, meshCount.id()));
+      SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(GLuint), &zero, GL_DYNAMIC_READ));
+      SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, meshCount.id()));
+      SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, meshBuffer.id()));
+      volumeMeshProgram.set("capacity", int(std::min<std::int64_t>(meshCapacity, 0x7fffffff)));
+      SV_GL(glDispatchCompute(GLuint((quads + 63) / 64), 1, 1));
+      SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT));
+      SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, meshCount.id()));
+      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), &count));
+      if (std::int64_t(count) <= meshCapacity) break;
+      if (std::int64_t(count) * kVertexBytes > kMaxMeshBytes) return false;
+      growMesh(std::int64_t(count) + std::int64_t(count) / 4);
+    }
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0));
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0));
+    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+    if (std::int64_t(count) > meshCapacity) return false;
+    result.gpuVolumeQuadsDrawn = count / 12;
+    result.volumeTriangles = count / 3;
+    volumeMeshDrawProgram.use();
+    volumeMeshDrawProgram.set("lightViewToClip", toFloat(lightViewToClip));
+    SV_GL(glBindVertexArray(meshVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, GLsizei(count)));
+    SV_GL(glBindVertexArray(0));
+    return true;
+  }
+
+  void growMesh(std::int64_t vertices) {
+    SV_GL(glBindBuffer(GL_ARRAY_BUFFER, meshBuffer.id()));
+    SV_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices * 12), nullptr, GL_DYNAMIC_COPY));
+    SV_GL(glBindVertexArray(meshVao.id()));
+    SV_GL(glEnableVertexAttribArray(0));
+    SV_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr));
+    SV_GL(glBindVertexArray(0));
+    SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
+    meshCapacity = vertices;
   }
 
   /// The GPU volume in two passes: volume_keep.geom writes the indices of the quads that are not
@@ -865,7 +959,7 @@ struct Renderer::Impl {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume();
         if (volumeDepth)
-          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, o.compactGpuVolume, result);
+          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, o.gpuVolumeDraw, result);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();

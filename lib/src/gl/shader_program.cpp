@@ -77,11 +77,19 @@ Program::Program(const ShaderLibrary& library, const std::vector<std::string>& v
 
 Program::Program(const ShaderLibrary& library, const std::vector<std::string>& vertexFiles,
                  const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles,
+                 const std::vector<std::string>& feedbackVaryings)
+    : Program(library,
+              {{GL_VERTEX_SHADER, &vertexFiles}, {GL_GEOMETRY_SHADER, &geometryFiles}, {GL_FRAGMENT_SHADER, &fragmentFiles}},
+              feedbackVaryings) {}
+
+Program Program::compute(const ShaderLibrary& library, const std::vector<std::string>& files) {
+  return Program(library, {{GL_COMPUTE_SHADER, &files}}, {});
+}
+
+Program::Program(const ShaderLibrary& library, std::initializer_list<Stage> list,
                  const std::vector<std::string>& feedbackVaryings) {
   std::vector<Shader> stages;
   std::string all;
-  const std::pair<GLenum, const std::vector<std::string>*> list[] = {
-      {GL_VERTEX_SHADER, &vertexFiles}, {GL_GEOMETRY_SHADER, &geometryFiles}, {GL_FRAGMENT_SHADER, &fragmentFiles}};
   for (const auto& [type, files] : list) {
     if (files->empty()) continue;
     std::string origin;

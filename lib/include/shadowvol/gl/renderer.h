@@ -70,6 +70,17 @@ struct RendererOptions {
   std::filesystem::path shaderDir;  ///< empty = $SHADOWVOL_SHADER_DIR if set, else embedded shaders
 };
 
+/// How the GPU volume is drawn. With the exact cap, quads whose four corners lie on the far plane
+/// contribute nothing and can be skipped; with the quad cap every quad's sheet is needed.
+enum class GpuVolumeDraw {
+  Auto,         ///< KeptQuads (the fastest measured on llvmpipe); AllQuads with the quad cap
+  ComputeMesh,  ///< a compute pass writes the kept quads' triangles into a buffer, drawn as a plain
+                ///< list (GL 4.3; falls back to KeptQuads past a 512 MiB mesh); InputError without 4.3
+  KeptQuads,    ///< a transform-feedback pass lists the kept quads, the geometry shader expands them (GL 3.3)
+  AllQuads,     ///< one point per quad through the geometry shader, none skipped (the first version)
+};
+const char* toString(GpuVolumeDraw d);
+
 struct RenderOptions {
   ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
   VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
@@ -96,10 +107,9 @@ struct RenderOptions {
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
                                                ///< shadow test per pixel); off = no extra cost
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
-  /// hybrid/gpu with the exact cap: draw only the quads that are not all on the far plane (a
-  /// transform-feedback pass finds them, GL 3.3 core); false draws every quad, as before (same
-  /// stencil; kept for comparison). docs/gpu.md "Compacted GPU volume".
-  bool compactGpuVolume = true;
+  /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
+  /// quads"). All give the same stencil.
+  GpuVolumeDraw gpuVolumeDraw = GpuVolumeDraw::Auto;
 };
 
 struct PassTime {
@@ -135,8 +145,9 @@ struct RenderResult {
                                     ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
                                     ///< silhouette = the silhouette volume's
   std::size_t gpuVolumeQuads = 0;       ///< hybrid/gpu: quads of the depth map, (W - 1) (H - 1)
-  std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads expanded by the geometry shader
-                                        ///< (all of them unless compactGpuVolume applied)
+  std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads whose triangles were drawn (all of
+                                        ///< them with AllQuads)
+  GpuVolumeDraw gpuVolumeDrawUsed = GpuVolumeDraw::Auto;  ///< hybrid/gpu: the way actually taken
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
   std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
                                                 ///< (its time, refinement rays included, is the

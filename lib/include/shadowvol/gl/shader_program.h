@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -50,6 +51,9 @@ class Program {
           const std::vector<std::string>& geometryFiles, const std::vector<std::string>& fragmentFiles,
           const std::vector<std::string>& feedbackVaryings = {});
 
+  /// A compute program (GL 4.3+) from several files concatenated in order.
+  static Program compute(const ShaderLibrary& library, const std::vector<std::string>& files);
+
   GLuint id() const { return program_.id(); }
   void use() const;
   /// Uniform location (cached); -1 for a uniform the compiler removed (setting it is a no-op).
@@ -63,6 +67,12 @@ class Program {
   void set(const char* name, const glm::mat4& v) const;
 
  private:
+  struct Stage {
+    GLenum type;
+    const std::vector<std::string>* files;
+  };
+  Program(const ShaderLibrary& library, std::initializer_list<Stage> stages,
+          const std::vector<std::string>& feedbackVaryings);
   ProgramName program_;
   mutable std::unordered_map<std::string, GLint> locations_;
 };

@@ -1,0 +1,2 @@
+#version 430 core
+// The first source string of the GL 4.3 compute programs that share volume_common.glsl.
