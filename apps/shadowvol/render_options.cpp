@@ -34,6 +34,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "read back, the CPU-built mesh uploaded)")
       ->check(CLI::IsMember({"gpu", "explicit"}))
       ->capture_default_str();
+  cmd.add_option("--gpu-draw", o.gpuDraw,
+                 "hybrid with --volume gpu and the exact cap: auto (= kept-quads), kept-quads (a transform-feedback "
+                 "pass skips the quads all on the far plane, GL 3.3), compute-mesh (a compute pass builds the kept "
+                 "quads' triangles, GL 4.3), all-quads (every quad through the geometry shader); same stencil "
+                 "(docs/gpu.md 'Skipping the far quads')")
+      ->check(CLI::IsMember({"auto", "kept-quads", "compute-mesh", "all-quads"}))
+      ->capture_default_str();
   cmd.add_option("--resolution", o.resolution, "Light depth map size N (N x N texels)")->capture_default_str();
   cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
       ->check(CLI::IsMember({"back", "front", "midpoint"}))
@@ -65,6 +72,10 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
   gl::parseVolumeSource(o.volume, ro.volume);
+  ro.gpuVolumeDraw = o.gpuDraw == "kept-quads"     ? gl::GpuVolumeDraw::KeptQuads
+                     : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
+                     : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
+                                                   : gl::GpuVolumeDraw::Auto;
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
   ro.volumeOptions = toVolumeBuildOptions(o.shape);

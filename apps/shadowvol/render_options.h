@@ -15,6 +15,7 @@ struct RenderCliOptions {
   SceneOptions scene;
   std::string method = "hybrid";
   std::string volume = "gpu";
+  std::string gpuDraw = "auto";
   int resolution = 512;
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
@@ -25,7 +26,7 @@ struct RenderCliOptions {
   std::string shaderDir;
 };
 
-/// Adds --scene, --json, --method, --volume, --resolution, --capture, --triangulation, --blur,
+/// Adds --scene, --json, --method, --volume, --gpu-draw, --resolution, --capture, --triangulation, --blur,
 /// --blur-offset, --bias, --cap, --refine, --size, --shadow-bias, --shadow-slope, --platform,
 /// --shader-dir.
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);

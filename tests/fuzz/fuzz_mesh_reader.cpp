@@ -7,8 +7,8 @@
 // Build (Clang): cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang
 //   -DSHADOWVOL_FUZZ=ON -DSHADOWVOL_BUILD_TESTS=OFF -DSHADOWVOL_BUILD_BENCHMARKS=OFF -DSHADOWVOL_BUILD_GL=OFF
 //   && ninja -C build-fuzz fuzz_mesh_reader fuzz_scene_parser fuzz_depth_map
-// Run:   build-fuzz/tests/fuzz/fuzz_mesh_reader -max_total_time=300 -rss_limit_mb=500 -timeout=2
-//          /tmp/mesh-corpus tests/fuzz/corpus/mesh
+// Run:   build-fuzz/tests/fuzz/fuzz_mesh_reader -runs=10000000 -rss_limit_mb=2048 -malloc_limit_mb=500
+//          -timeout=30 /tmp/mesh-corpus tests/fuzz/corpus/mesh   (README "Fuzzing" says why these limits)
 // (likewise fuzz_scene_parser with tests/fuzz/corpus/scene, fuzz_depth_map with .../depth)
 #include <cmath>
 #include <cstdint>

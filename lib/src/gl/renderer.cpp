@@ -655,7 +655,7 @@ struct Renderer::Impl {
     if (how == GpuVolumeDraw::Auto) how = GpuVolumeDraw::KeptQuads;
     if (how == GpuVolumeDraw::ComputeMesh && !hasCompute)
       throw InputError("RenderOptions", "gpuVolumeDraw", "compute-mesh", "needs GL 4.3 compute shaders; this context is " + context.info().glVersion);
-    if (how == GpuVolumeDraw::ComputeMesh &&
+    if (how == GpuVolumeDraw::ComputeMesh && quads <= kMaxKeptQuads &&
         drawComputedGpuVolume(lightViewToClip, vo, bias, depth, quads, result)) {
       result.gpuVolumeDrawUsed = how;
       return;
@@ -705,7 +705,9 @@ struct Renderer::Impl {
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, meshCount.id()));
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, meshBuffer.id()));
       volumeMeshProgram.set("capacity", int(std::min<std::int64_t>(meshCapacity, 0x7fffffff)));
-      SV_GL(glDispatchCompute(GLuint((quads + 63) / 64), 1, 1));
+      // Work groups of 64 quads, in rows of at most 65535 (the smallest GL_MAX_COMPUTE_WORK_GROUP_COUNT).
+      const std::int64_t groups = (quads + 63) / 64, row = std::min<std::int64_t>(groups, 65535);
+      SV_GL(glDispatchCompute(GLuint(row), GLuint((groups + row - 1) / row), 1));
       SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT));
       SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, meshCount.id()));
       SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), &count));
