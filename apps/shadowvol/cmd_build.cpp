@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "capture_device.h"
 #include "cli_common.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
@@ -26,10 +27,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
     bool noFlatten = false;
     bool worldCoords = false;
     std::string out;
+    CaptureDeviceOptions device;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
-      "build", "Build the explicit shadow volume of the light: capture the depth map (Embree) or read one, turn it "
+      "build", "Build the explicit shadow volume of the light: capture the depth map (Embree, or the GPU with --device "
+               "gpu) or read one, turn it "
                "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl)");
   addSceneOptions(*cmd, o->scene);
   auto* depthOpt = cmd->add_option("--depth", o->depth,
@@ -43,7 +46,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                                  "midpoint (between the first two surfaces)")
                      ->check(CLI::IsMember({"back", "front", "midpoint"}))
                      ->capture_default_str();
-  depthOpt->excludes(resOpt)->excludes(capOpt);
+  addCaptureDeviceOptions(*cmd, o->device);
+  depthOpt->excludes(resOpt)->excludes(capOpt)->excludes(cmd->get_option("--device"));
   cmd->get_option("--scene")->excludes(depthOpt);
   addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
@@ -79,8 +83,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         scene = loadSceneOrDefault(o->scene.scene);
         j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
         const auto t0 = std::chrono::steady_clock::now();
-        map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
+        map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
         msCapture = msSince(t0);
+        j["device"] = o->device.device;
         j["scene"] = describeScene(scene);
       }
       // With --refine, the rays go to the same scene (built once, before the timed build).

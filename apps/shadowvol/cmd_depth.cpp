@@ -1,9 +1,11 @@
-// shadowvol depth: capture the light's depth map on the CPU with Embree and write it as PFM + JSON.
+// shadowvol depth: capture the light's depth map (Embree on the CPU, or the GPU's light pass) and
+// write it as PFM + JSON.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include "capture_device.h"
 #include "cli_common.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
@@ -17,10 +19,12 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     int resolution = 512;
     std::string capture = "back";
     std::string out;
+    CaptureDeviceOptions device;
   };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("depth", "Capture the light's depth map by ray casting (Embree, CPU) and write it as "
-                                          "a PFM with a JSON side file (matrices, near/far, capture mode)");
+  auto* cmd = app.add_subcommand("depth", "Capture the light's depth map (by ray casting with Embree, or on the GPU "
+                                          "with --device gpu) and write it as a PFM with a JSON side file (matrices, "
+                                          "near/far, capture mode)");
   addSceneOptions(*cmd, o->scene);
   cmd->add_option("--resolution", o->resolution, "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
       ->capture_default_str();
@@ -30,6 +34,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                   "surfaces; the far plane stands in for a missing second one)")
       ->check(CLI::IsMember({"back", "front", "midpoint"}))
       ->capture_default_str();
+  addCaptureDeviceOptions(*cmd, o->device);
   cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
   cmd->callback([&run, o] {
     run = [o] {
@@ -42,7 +47,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       const Scene scene = loadSceneOrDefault(o->scene.scene);
       const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);
       const auto t0 = std::chrono::steady_clock::now();
-      const DepthMap map = captureDepthEmbree(scene, o->resolution, o->resolution, mode);
+      const DepthMap map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
       const double msCapture = msSince(t0);
       writeDepthMap(map, o->out);
       float lo = DepthMap::kNoHit, hi = 0.0f;
@@ -55,6 +60,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       nlohmann::json j = {{"scene", describeScene(scene)},
                           {"resolution", o->resolution},
                           {"capture", o->capture},
+                          {"device", o->device.device},
                           {"texels", map.depth.size()},
                           {"hits", hits},
                           {"depthMin", hits ? nlohmann::json(lo) : nlohmann::json()},
@@ -66,8 +72,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
-        std::printf("depth %dx%d (%s capture) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
-                    o->capture.c_str(), scene.source.c_str(), hits, map.depth.size());
+        std::printf("depth %dx%d (%s capture, %s) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
+                    o->capture.c_str(), o->device.device.c_str(), scene.source.c_str(), hits, map.depth.size());
         if (hits) std::printf(", depth %.6g .. %.6g", lo, hi);
         std::printf("\ncapture %.1f ms\nwrote %s and %s\n", msCapture, o->out.c_str(),
                     depthSidecarPath(o->out).string().c_str());

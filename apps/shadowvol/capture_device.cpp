@@ -1,0 +1,38 @@
+#include "capture_device.h"
+
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/error.h"
+#ifdef SHADOWVOL_WITH_GL
+#include "shadowvol/gl/renderer.h"
+#endif
+
+namespace shadowvol::cli {
+
+void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
+  cmd.add_option("--device", o.device,
+                 "Where the depth map is captured: cpu (Embree ray casting through the texel centres) or gpu (the "
+                 "light pass rendered through EGL + OpenGL and read back: the same depths within 1e-4 relative, "
+                 "docs/gpu.md 'Read-back and encodings')")
+      ->check(CLI::IsMember({"cpu", "gpu"}))
+      ->capture_default_str();
+  cmd.add_option("--platform", o.platform,
+                 "With --device gpu, the EGL platform: auto (device, then Mesa surfaceless, then the default "
+                 "display), device, surfaceless, default")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
+      ->capture_default_str();
+}
+
+DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
+  if (o.device == "cpu") return captureDepthEmbree(scene, width, height, mode);
+#ifdef SHADOWVOL_WITH_GL
+  gl::RendererOptions ro;
+  ro.context.platform = o.platform;
+  gl::Renderer renderer(ro);
+  renderer.setScene(scene);
+  return renderer.captureDepth(width, height, mode);
+#else
+  throw InputError("command line", "--device", o.device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+#endif
+}
+
+}  // namespace shadowvol::cli

@@ -1,0 +1,27 @@
+// `--device cpu|gpu` of `depth` and `build`: where the light's depth map is captured.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/scene.h"
+
+namespace shadowvol::cli {
+
+struct CaptureDeviceOptions {
+  std::string device = "cpu";
+  std::string platform = "auto";
+};
+
+/// Adds --device (cpu: Embree ray casting; gpu: the light pass through EGL, read back) and
+/// --platform (EGL platform for --device gpu).
+void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o);
+
+/// The depth map of `scene` at width x height on the chosen device. Throws InputError naming
+/// --device when this build has no GL (SHADOWVOL_BUILD_GL=OFF) and gpu was asked for, GlError when
+/// no EGL context can be made.
+DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode);
+
+}  // namespace shadowvol::cli
