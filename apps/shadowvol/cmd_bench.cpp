@@ -71,10 +71,12 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--platform", o->platform, "EGL platform: auto, device, surfaceless, default")
       ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
       ->capture_default_str();
-  cmd->add_option("--out", o->out, "Output folder (results.csv, report.md, plots/)");
+  cmd->add_option("--out", o->out, "Output folder (results.csv, report.md, plots/); required unless --list-methods");
   cmd->add_flag("--report-only", o->reportOnly, "Only rewrite report.md and the plots from DIR/results.csv");
   cmd->add_flag("--list-methods", o->listMethods, "Print the method keys and exit");
   cmd->callback([&run, o] {
+    // A missing folder is a usage error (exit 2), as for every other required option.
+    if (!o->listMethods && o->out.empty()) throw CLI::RequiredError("--out (the output folder)");
     run = [o] {
       if (o->listMethods) {
         for (const auto& m : sweepMethods()) std::printf("%-26s %s\n", m.key.c_str(), m.description.c_str());

@@ -8,6 +8,7 @@
 
 #include "capture_device.h"
 #include "cli_common.h"
+#include "shadowvol/version.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/embree/embree_depth_oracle.h"
@@ -115,6 +116,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"out", o->out}});
       j.update(describeVolumeStats(s));
       j["ms"].update({{"capture", msCapture}, {"build", s.msTotal}, {"write", msWrite}});
+      j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {

@@ -7,6 +7,7 @@
 
 #include "capture_device.h"
 #include "cli_common.h"
+#include "shadowvol/version.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
@@ -68,7 +69,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                           {"msCapture", msCapture},
                           {"out", o->out},
                           {"sidecar", depthSidecarPath(o->out).string()},
-                          {"warnings", warnings}};
+                          {"warnings", warnings},
+                          {"shadowvolVersion", SHADOWVOL_VERSION}};
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "render_options.h"
+#include "shadowvol/version.h"
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
 #include "shadowvol/gl/renderer.h"
@@ -107,6 +108,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};
+      j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (result.volumeStats) j["volumeBuild"] = describeVolumeStats(*result.volumeStats);
       if (o->render.scene.json) {
         std::cout << j.dump(2) << '\n';

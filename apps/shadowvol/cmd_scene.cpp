@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli_common.h"
+#include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 
 namespace shadowvol::cli {
@@ -26,6 +27,7 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
       const Scene scene = loadSceneOrDefault(opts->scene);
       if (!exportPath->empty()) exportSceneMesh(scene, *exportPath, *worldCoords);
       nlohmann::json j = describeScene(scene);
+      j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (!exportPath->empty()) j["export"] = *exportPath;
       if (opts->json) {
         std::cout << j.dump(2) << '\n';

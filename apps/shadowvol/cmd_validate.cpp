@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "render_options.h"
+#include "shadowvol/version.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/validate/frame_validation.h"
@@ -173,6 +174,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"maxMissedShare", o->maxMissedShare},
                       {"failures", v.failures}};
       j["passed"] = v.passed;
+      j["shadowvolVersion"] = SHADOWVOL_VERSION;
       j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png"};
       if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png"};
 

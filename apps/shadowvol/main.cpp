@@ -3,8 +3,10 @@
 #include <exception>
 
 #include "cli_common.h"
+#include "cli_suggest.h"
 #include "shadowvol/error.h"
 #include "shadowvol/temporary_files.h"
+#include "shadowvol/version.h"
 
 int main(int argc, char** argv) {
   using namespace shadowvol;
@@ -14,7 +16,7 @@ int main(int argc, char** argv) {
       "(z-fail stencil) and check it by ray casting.\n"
       "Exit codes: 0 ok, 1 bad input (file, field and value named on stderr), 2 usage, 3 validation failed, "
       "4 runtime failure (no EGL display, Embree error), 130 bench interrupted (resume with the same command)."};
-  app.set_version_flag("--version", "shadowvol 0.1.0");
+  app.set_version_flag("--version", "shadowvol " SHADOWVOL_VERSION);
   app.require_subcommand(1);
   cli::setCommandLine(argc, argv);
   cli::Runner run;
@@ -26,6 +28,10 @@ int main(int argc, char** argv) {
   cli::registerValidateCommand(app, run);
   cli::registerBenchCommand(app, run);
 #endif
+  if (const auto misspelt = cli::misspeltName(app, argc, argv)) {
+    std::fprintf(stderr, "shadowvol: error: %s\nRun with --help for more information.\n", misspelt->c_str());
+    return cli::kUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -50,6 +50,41 @@ TEST(Cli, HelpAndUsage) {
   EXPECT_TRUE(contains(depthHelp.out, "midpoint"));
 }
 
+// A misspelt subcommand or option is named with the nearest valid name (regression: `buidl` said
+// "A subcommand is required", `build --hepl` "--out is required"); exit 2, nothing written.
+TEST(Cli, MisspeltNamesAreNamedWithTheNearest) {
+  const CliResult a = runCli("buidl");
+  EXPECT_EQ(a.code, 2);
+  EXPECT_TRUE(contains(a.out, "unknown subcommand \"buidl\"; did you mean \"build\"?")) << a.out;
+  const CliResult b = runCli("build --hepl");
+  EXPECT_EQ(b.code, 2);
+  EXPECT_TRUE(contains(b.out, "did you mean \"--help\"?")) << b.out;
+  const CliResult c = runCli("depth --resolutoin 32 --out x.pfm");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_TRUE(contains(c.out, "did you mean \"--resolution\"?")) << c.out;
+  const CliResult d = runCli("xyzzy");
+  EXPECT_EQ(d.code, 2);
+  EXPECT_FALSE(contains(d.out, "did you mean")) << d.out;  // nothing near enough
+  EXPECT_FALSE(std::filesystem::exists("x.pfm"));
+}
+
+// One version, from CMake's project(VERSION): --version, the JSON outputs and depth side files.
+TEST(Cli, VersionIsTheSameEverywhere) {
+  const CliResult v = runCli("--version");
+  ASSERT_EQ(v.code, 0);
+  ASSERT_EQ(v.out.rfind("shadowvol ", 0), 0u) << v.out;
+  std::string version = v.out.substr(10);
+  while (!version.empty() && (version.back() == '\n' || version.back() == '\r')) version.pop_back();
+  EXPECT_EQ(nlohmann::json::parse(runCli("scene --json").out)["shadowvolVersion"], version);
+  const auto dir = test::tempDir();
+  const std::string pfm = (dir / "d.pfm").string();
+  const CliResult d = runCli("depth --json --resolution 8 --out " + pfm);
+  ASSERT_EQ(d.code, 0) << d.out;
+  EXPECT_EQ(nlohmann::json::parse(d.out)["shadowvolVersion"], version);
+  std::ifstream side(pfm + ".json");
+  EXPECT_EQ(nlohmann::json::parse(side)["writer"], "shadowvol " + version);
+}
+
 TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "d.pfm").string();
@@ -295,6 +330,11 @@ TEST(CliGl, BenchListsTakeCommas) {
   int rows = -1;  // the header
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 4);
+  // Without --out: a usage error like any missing required option (exit 2; it was 1).
+  const CliResult u = runCli("bench --methods shadowmap");
+  EXPECT_EQ(u.code, 2) << u.out;
+  EXPECT_TRUE(contains(u.out, "--out")) << u.out;
+  EXPECT_EQ(runCli("bench --list-methods").code, 0);
 }
 
 TEST(CliGl, RefinementNeedsTheExplicitVolume) {

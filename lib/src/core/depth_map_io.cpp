@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 
 namespace shadowvol {
@@ -112,6 +113,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
   static_assert(std::endian::native == std::endian::little, "PFM writer assumes a little-endian host");
   json side = {
       {"format", "shadowvol depth map 1"},
+      {"writer", "shadowvol " SHADOWVOL_VERSION},
       {"width", map.width},
       {"height", map.height},
       {"quantity", "light-view depth (-z in light view space), world units; +inf = no hit"},
