@@ -1,0 +1,21 @@
+# ctest package_install: cmake --install the build tree into WORK/prefix, configure and build
+# tests/package against it as an outside project would, run the example and check its PLY.
+# Arguments: -DBUILD_DIR=<shadowvol build tree> -DSOURCE_DIR=<shadowvol source> -DWORK=<scratch>
+file(REMOVE_RECURSE ${WORK})
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+endfunction()
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK}/prefix)
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package -B ${WORK}/build -DCMAKE_BUILD_TYPE=Release
+    -DCMAKE_PREFIX_PATH=${WORK}/prefix -DSHADOWVOL_EXAMPLE_SOURCE=${SOURCE_DIR}/apps/minimal_volume.cpp)
+run(${CMAKE_COMMAND} --build ${WORK}/build)
+run(${WORK}/build/minimal_volume ${WORK}/volume.ply)
+run(${WORK}/build/link_all)
+file(SIZE ${WORK}/volume.ply size)
+if(size LESS 1000)
+  message(FATAL_ERROR "minimal_volume wrote ${size} bytes")
+endif()
+message(STATUS "outside project built against ${WORK}/prefix; volume.ply ${size} bytes")
