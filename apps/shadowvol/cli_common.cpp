@@ -125,13 +125,17 @@ void setCommandLine(int argc, char** argv) {
 
 void checkOutputFolder(const std::string& option, const std::string& path) {
   if (path.empty()) throw InputError("command line", option, "\"\"", "an output folder is required");
-  const std::filesystem::path dir(path);
-  const auto parent = dir.has_parent_path() ? dir.parent_path() : std::filesystem::path(".");
+  // Missing folders, parents included, are created when the results are written; the nearest one
+  // that exists must be a folder.
+  const std::filesystem::path dir = std::filesystem::absolute(path);
   std::error_code ec;
-  if (!std::filesystem::is_directory(parent, ec))
-    throw InputError("command line", option, path, "the folder " + parent.string() + " does not exist");
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw InputError("command line", option, path, "exists and is not a folder");
+  std::filesystem::path existing = dir;
+  while (!std::filesystem::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!std::filesystem::is_directory(existing, ec))
+    throw InputError("command line", option, path, existing.string() + " is not a folder");
 }
 
 double msSince(std::chrono::steady_clock::time_point start) {

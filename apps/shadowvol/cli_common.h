@@ -66,8 +66,8 @@ void checkOutputPath(const std::string& option, const std::string& path);
 const std::string& commandLine();
 void setCommandLine(int argc, char** argv);
 
-/// Refuses an output folder (created later if missing) whose parent does not exist, or a path
-/// that exists and is not a folder. Throws InputError naming the option.
+/// Refuses an output folder (created later, parents included, if missing) that exists and is not a
+/// folder, or whose nearest existing ancestor is not a folder. Throws InputError naming the option.
 void checkOutputFolder(const std::string& option, const std::string& path);
 
 /// Milliseconds since `start`.

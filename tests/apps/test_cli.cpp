@@ -398,3 +398,21 @@ TEST(CliGl, DepthAndBuildCaptureOnTheGpuLikeTheCpu) {
 
 }  // namespace
 }  // namespace shadowvol
+
+namespace shadowvol {
+namespace {
+
+// --report a/b creates a as well (its help says "created if missing"; it refused a missing parent).
+TEST(CliGl, ReportFolderParentsAreCreated) {
+  if (!contains(runCli("--help").out, "render")) GTEST_SKIP() << "built without the GL renderer";
+  const auto dir = test::tempDir();
+  const auto report = dir / "a" / "b";
+  const CliResult r = runCli("validate --resolution 32 --size 80x60 --report " + report.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(report / "report.json"));
+  test::writeText(dir / "file", "x");
+  EXPECT_EQ(runCli("validate --resolution 32 --size 80x60 --report " + (dir / "file" / "b").string()).code, 1);
+}
+
+}  // namespace
+}  // namespace shadowvol
