@@ -12,7 +12,7 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
   cmd.add_option("--device", o.device,
                  "Where the depth map is captured: cpu (Embree ray casting through the texel centres) or gpu (the "
                  "light pass rendered through EGL + OpenGL and read back: the same depths within 1e-4 relative, "
-                 "docs/gpu.md 'Read-back and encodings')")
+                 "docs/gpu.md 'Passes of one frame')")
       ->check(CLI::IsMember({"cpu", "gpu"}))
       ->capture_default_str();
   cmd.add_option("--platform", o.platform,
