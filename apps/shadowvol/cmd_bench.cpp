@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "render_options.h"
+#include "shadowvol/version.h"
 #include "shadowvol/bench/sweep.h"
 #include "shadowvol/bench/sweep_report.h"
 #include "shadowvol/error.h"
@@ -35,6 +36,40 @@ std::string machineDescription() {
 
 }  // namespace
 
+namespace {
+
+// One cell of results.csv as JSON (the same fields; times in ms, fractions of the pixels).
+nlohmann::json rowJson(const SweepRow& r) {
+  nlohmann::json phases = nlohmann::json::object();
+  for (const auto& [name, t] : r.phases) phases[name] = t.median;
+  auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  return {{"scene", r.scene},
+          {"triangles", r.triangles},
+          {"method", r.method},
+          {"family", r.family},
+          {"capture", r.capture},
+          {"resolution", r.resolution},
+          {"size", {r.width, r.height}},
+          {"timing", r.timing},
+          {"frames", r.frames},
+          {"frameMs", {{"median", r.frame.median}, {"min", r.frame.min}, {"max", r.frame.max}}},
+          {"phasesMs", phases},
+          {"volumeTriangles", r.volumeTriangles},
+          {"volumeQuads", r.volumeQuads},
+          {"volumeQuadsDrawn", r.volumeQuadsDrawn},
+          {"pixels", r.pixels},
+          {"error", r.error},
+          {"leak", r.leak},
+          {"acne", r.acne},
+          {"bandPixels", r.bandPixels},
+          {"bandError", r.bandError},
+          {"distMean", optional(r.distMean)},
+          {"distP99", optional(r.distP99)},
+          {"distMax", optional(r.distMax)}};
+}
+
+}  // namespace
+
 void registerBenchCommand(CLI::App& app, Runner& run) {
   struct Options {
     std::vector<std::string> scenes;
@@ -46,6 +81,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
     std::string out;
     bool reportOnly = false;
     bool listMethods = false;
+    bool json = false;
     std::string platform = "auto";
   };
   auto o = std::make_shared<Options>();
@@ -74,6 +110,9 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--out", o->out, "Output folder (results.csv, report.md, plots/); required unless --list-methods");
   cmd->add_flag("--report-only", o->reportOnly, "Only rewrite report.md and the plots from DIR/results.csv");
   cmd->add_flag("--list-methods", o->listMethods, "Print the method keys and exit");
+  cmd->add_flag("--json", o->json,
+                "Print one JSON document on stdout: the cells of this results.csv (finished earlier ones too), the "
+                "notes and the files written; progress stays on stderr");
   cmd->callback([&run, o] {
     // A missing folder is a usage error (exit 2), as for every other required option.
     if (!o->listMethods && o->out.empty()) throw CLI::RequiredError("--out (the output folder)");
@@ -147,7 +186,20 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       std::signal(SIGINT, SIG_DFL);
       for (const auto& n : notes) std::fprintf(stderr, "shadowvol: note: %s\n", n.c_str());
       info.timing = rows.empty() ? "" : rows.back().timing;
-      for (const auto& p : writeSweepReport(rows, info, dir)) std::printf("wrote %s\n", p.string().c_str());
+      const auto written = writeSweepReport(rows, info, dir);
+      if (o->json) {
+        nlohmann::json cells = nlohmann::json::array();
+        for (const auto& r : rows) cells.push_back(rowJson(r));
+        nlohmann::json files = nlohmann::json::array();
+        for (const auto& p : written) files.push_back(p.string());
+        const nlohmann::json j = {{"shadowvolVersion", SHADOWVOL_VERSION}, {"out", o->out},
+                                  {"machine", info.machine},                 {"glRenderer", info.glRenderer},
+                                  {"interrupted", bool(gStop)},              {"notes", notes},
+                                  {"files", files},                          {"cells", cells}};
+        std::cout << j.dump(2) << '\n';
+      } else {
+        for (const auto& p : written) std::printf("wrote %s\n", p.string().c_str());
+      }
       if (gStop) {
         std::fprintf(stderr, "interrupted: %zu cells in %s; run the same command to resume\n", rows.size(),
                      (dir / "results.csv").string().c_str());

@@ -330,6 +330,14 @@ TEST(CliGl, BenchListsTakeCommas) {
   int rows = -1;  // the header
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, 4);
+  // --json: one document with every cell of the results file (resumed: nothing re-rendered).
+  const CliResult jr = runCli("bench --json --scenes default --methods shadowmap,pcf3 --resolutions 32,48 --size 32x24 "
+                              "--repeat 1 --warmup 0 --out " + (dir / "b").string());
+  ASSERT_EQ(jr.code, 0) << jr.out;
+  const auto j = nlohmann::json::parse(jr.out.substr(jr.out.find('{')));
+  EXPECT_EQ(j["cells"].size(), 4u);
+  EXPECT_EQ(j["cells"][0]["scene"], "default");
+  EXPECT_FALSE(j["files"].empty());
   // Without --out: a usage error like any missing required option (exit 2; it was 1).
   const CliResult u = runCli("bench --methods shadowmap");
   EXPECT_EQ(u.code, 2) << u.out;
