@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -13,6 +14,16 @@
 #include "shadowvol/gl/renderer.h"
 
 namespace shadowvol::cli {
+
+namespace {
+
+// "s.png" -> "s-counts.png": where --stencil's raw counts go.
+std::filesystem::path stencilCountsPath(const std::filesystem::path& picture) {
+  std::filesystem::path p = picture;
+  return p.replace_filename(picture.stem().string() + "-counts" + picture.extension().string());
+}
+
+}  // namespace
 
 void registerRenderCommand(CLI::App& app, Runner& run) {
   struct Options {
@@ -31,7 +42,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output image (PNG, RGBA, top row first)")->required();
   cmd->add_option("--stencil", o->stencil,
-                  "hybrid: also write the stencil counts as an 8-bit grey PNG (value = count, wrapping; 0 = lit)");
+                  "hybrid, silhouette: also write the stencil as a picture (RGB PNG: 0 = lit black, +1 grey, more "
+                  "brighter, negative red) and the raw counts beside it as <name>-counts.png (8-bit grey, value = "
+                  "count, wrapping)");
   cmd->callback([&run, o] {
     checkRenderOptionConflicts(o->render);
     run = [o] {
@@ -69,7 +82,10 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       };
       writePng(o->out, result.width, result.height, 4, result.rgba);
       std::size_t shadowed = 0;
-      if (!o->stencil.empty()) writePng(o->stencil, result.width, result.height, 1, result.stencil);
+      if (!o->stencil.empty()) {
+        writePng(o->stencil, result.width, result.height, 3, stencilPicture(result.stencil));
+        writePng(stencilCountsPath(o->stencil), result.width, result.height, 1, result.stencil);
+      }
       for (auto s : result.stencil) shadowed += s != 0;
 
       const gl::ContextInfo& info = renderer.info();

@@ -175,8 +175,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"failures", v.failures}};
       j["passed"] = v.passed;
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
-      j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png"};
-      if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png"};
+      j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
+      if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};
 
       // Everything is computed; now write. Images first, the report last (its presence means done).
       std::filesystem::create_directories(dir);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/depth_map_io.h"
+#include "shadowvol/image_io.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -273,7 +274,17 @@ TEST(CliGl, RenderWritesImageStencilAndTimes) {
   EXPECT_GT(j["stencilNonZeroPixels"].get<int>(), 0);  // the sphere's shadow
   EXPECT_FALSE(j["passes"].empty());
   EXPECT_TRUE(std::filesystem::exists(png));
-  EXPECT_TRUE(std::filesystem::exists(st));
+  // The stencil as a picture (RGB, the shadow visible) and its raw counts beside it.
+  const Image8 picture = readPng(st), counts = readPng((dir / "s-counts.png").string());
+  EXPECT_EQ(picture.channels, 3);
+  EXPECT_EQ(counts.channels, 1);
+  std::size_t bright = 0, ones = 0;
+  for (std::size_t k = 0; k < counts.pixels.size(); ++k) {
+    ones += counts.pixels[k] == 1;
+    bright += counts.pixels[k] == 1 && picture.pixels[3 * k] >= 100;
+  }
+  EXPECT_GT(ones, 0u);
+  EXPECT_EQ(bright, ones);
   // Bad values: named, nothing written.
   const std::string bad = (dir / "bad.png").string();
   for (const char* args : {"--size 0x5", "--size big", "--resolution 1", "--blur-offset 0.1"}) {

@@ -1,5 +1,8 @@
 #include "shadowvol/image_io.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -34,6 +37,24 @@ Image8 readPng(const std::filesystem::path& path, int channels) {
   img.pixels.assign(data, data + std::size_t(w) * std::size_t(h) * std::size_t(img.channels));
   stbi_image_free(data);
   return img;
+}
+
+std::vector<std::uint8_t> countPicture(const std::vector<int>& counts) {
+  std::vector<std::uint8_t> rgb(counts.size() * 3, 0);
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    const int c = counts[k];
+    if (c == 0) continue;
+    const auto level = std::uint8_t(100 + 38 * std::min(std::abs(c), 4));
+    rgb[3 * k] = level;
+    rgb[3 * k + 1] = rgb[3 * k + 2] = c > 0 ? level : 0;
+  }
+  return rgb;
+}
+
+std::vector<std::uint8_t> stencilPicture(const std::vector<std::uint8_t>& stencil) {
+  std::vector<int> counts(stencil.size());
+  for (std::size_t k = 0; k < stencil.size(); ++k) counts[k] = stencil[k] > 127 ? int(stencil[k]) - 256 : int(stencil[k]);
+  return countPicture(counts);
 }
 
 }  // namespace shadowvol

@@ -10,7 +10,6 @@
 #include "shadowvol/check.h"
 #include "shadowvol/embree/embree_scene.h"
 #include "shadowvol/error.h"
-#include "shadowvol/image_io.h"
 
 namespace shadowvol {
 namespace {
@@ -139,60 +138,6 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   v.passed = v.consistent && v.accurate;
   device.throwIfError();
   return v;
-}
-
-void writeValidationImages(const std::filesystem::path& dir, const FrameValidation& v, const RenderedFrame& frame) {
-  const std::size_t n = std::size_t(v.width) * std::size_t(v.height);
-  std::vector<std::uint8_t> exact(n * 3), overlay(n * 3);
-  for (std::size_t k = 0; k < n; ++k) {
-    std::uint8_t rgb[3] = {0, 0, 0};
-    switch (v.exact[k]) {
-      case PixelClass::Background: break;
-      case PixelClass::FacingAway: rgb[0] = 40; rgb[1] = 60; rgb[2] = 120; break;    // dark blue
-      case PixelClass::OutsideLight: rgb[0] = rgb[1] = rgb[2] = 50; break;            // dark grey
-      case PixelClass::Lit: rgb[0] = rgb[1] = rgb[2] = 235; break;                    // white
-      case PixelClass::Shadowed: rgb[0] = rgb[1] = rgb[2] = 110; break;               // grey
-    }
-    std::copy(rgb, rgb + 3, &exact[3 * k]);
-    // Overlay: the frame in grey (or the exact classes), disagreements coloured by kind.
-    std::uint8_t g = rgb[0];
-    if (!frame.rgba.empty())
-      g = std::uint8_t((int(frame.rgba[4 * k]) * 3 + int(frame.rgba[4 * k + 1]) * 6 + int(frame.rgba[4 * k + 2])) / 10);
-    std::uint8_t o[3] = {g, g, g};
-    const bool facing = v.exact[k] == PixelClass::Lit || v.exact[k] == PixelClass::Shadowed;
-    const bool methodShadowed = !frame.shadowed.empty() ? frame.shadowed[k] != 0
-                                                        : (frame.hybrid && frame.stencil[k] != 0);
-    if (facing && v.exact[k] == PixelClass::Shadowed && !methodShadowed) { o[0] = 255; o[1] = 0; o[2] = 0; }
-    if (facing && v.exact[k] == PixelClass::Lit && methodShadowed) { o[0] = 255; o[1] = 220; o[2] = 0; }
-    if (v.counts && v.exact[k] != PixelClass::Background) {
-      if (v.zfailVsZpass && v.counts->zfail[k] != v.counts->zpass[k]) { o[0] = 0; o[1] = 220; o[2] = 255; }
-      bool admissible = false;
-      for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c) admissible |= std::uint8_t(c) == frame.stencil[k];
-      if (!admissible) { o[0] = 255; o[1] = 0; o[2] = 255; }
-    }
-    std::copy(o, o + 3, &overlay[3 * k]);
-  }
-  writePng(dir / "exact.png", v.width, v.height, 3, exact);
-  writePng(dir / "overlay.png", v.width, v.height, 3, overlay);
-  if (!frame.rgba.empty()) writePng(dir / "frame.png", v.width, v.height, 4, frame.rgba);
-  if (frame.hybrid) {
-    // Counts shown for a person: 0 black, 1 mid grey, 2+ brighter; negative counts (z-fail) red.
-    auto shade = [](int c, std::uint8_t* px) {
-      if (c == 0) { px[0] = px[1] = px[2] = 0; return; }
-      const int m = std::min(std::abs(c), 4);
-      const auto level = std::uint8_t(100 + 38 * m);
-      if (c > 0) { px[0] = px[1] = px[2] = level; }
-      else { px[0] = level; px[1] = px[2] = 0; }
-    };
-    std::vector<std::uint8_t> stencil(n * 3), count(n * 3);
-    for (std::size_t k = 0; k < n; ++k) {
-      const int s = frame.stencil[k];
-      shade(s > 127 ? s - 256 : s, &stencil[3 * k]);
-      shade(v.counts ? v.counts->zfail[k] : 0, &count[3 * k]);
-    }
-    writePng(dir / "stencil.png", v.width, v.height, 3, stencil);
-    writePng(dir / "count.png", v.width, v.height, 3, count);
-  }
 }
 
 }  // namespace shadowvol

@@ -104,9 +104,10 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
                               const RenderedFrame& frame, const ValidationOptions& options = {});
 
 /// Writes DIR/exact.png, stencil.png, count.png, overlay.png (and frame.png when the frame has
-/// colour), rows top first. Overlay colours: red = light leak (exact shadow, method lit),
-/// yellow = false shadow, magenta = stencil != count, cyan = z-fail != z-pass; other pixels are
-/// the frame in grey.
+/// colour), rows top first, and overlay.svg (overlay.png with a legend: colours, meanings, pixel
+/// counts). Overlay colours: red = light leak (exact shadow, method lit), yellow = false shadow,
+/// magenta = stencil != count, cyan = z-fail != z-pass, each ringed 2 pixels wide at half strength
+/// so that one wrong pixel shows in a whole frame; other pixels are the frame in grey.
 void writeValidationImages(const std::filesystem::path& dir, const FrameValidation& v, const RenderedFrame& frame);
 
 }  // namespace shadowvol
