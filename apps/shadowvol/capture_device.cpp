@@ -1,5 +1,6 @@
 #include "capture_device.h"
 
+#include "cli_common.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
 #ifdef SHADOWVOL_WITH_GL
@@ -15,11 +16,7 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
                  "docs/gpu.md 'Passes of one frame')")
       ->check(CLI::IsMember({"cpu", "gpu"}))
       ->capture_default_str();
-  cmd.add_option("--platform", o.platform,
-                 "With --device gpu, the EGL platform: auto (device, then Mesa surfaceless, then the default "
-                 "display), device, surfaceless, default")
-      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
-      ->capture_default_str();
+  addPlatformOption(cmd, o.platform, "With --device gpu: ");
 }
 
 DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {

@@ -138,6 +138,14 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
     throw InputError("command line", option, path, existing.string() + " is not a folder");
 }
 
+void addPlatformOption(CLI::App& cmd, std::string& platform, const std::string& when) {
+  cmd.add_option("--platform", platform,
+                 when + "EGL platform: auto (device, then Mesa surfaceless, then the default display), device, "
+                        "surfaceless, default")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
+      ->capture_default_str();
+}
+
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -28,6 +28,10 @@ struct SceneOptions {
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
 
+/// Adds --platform (the EGL platform: auto, device, surfaceless, default); `when` prefixes the
+/// help ("With --device gpu, ") where the option does not always apply.
+void addPlatformOption(CLI::App& cmd, std::string& platform, const std::string& when = "");
+
 /// Options of the volume (build, render, validate): --triangulation, --blur, --blur-offset, --bias,
 /// --cap, --refine.
 struct VolumeCliOptions {

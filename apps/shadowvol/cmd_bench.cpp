@@ -104,9 +104,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--warmup", o->warmup, "Frames rendered and discarded before measuring")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  cmd->add_option("--platform", o->platform, "EGL platform: auto, device, surfaceless, default")
-      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
-      ->capture_default_str();
+  addPlatformOption(*cmd, o->platform);
   cmd->add_option("--out", o->out, "Output folder (results.csv, report.md, plots/); required unless --list-methods");
   cmd->add_flag("--report-only", o->reportOnly, "Only rewrite report.md and the plots from DIR/results.csv");
   cmd->add_flag("--list-methods", o->listMethods, "Print the method keys and exit");

@@ -53,11 +53,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   cmd.add_option("--shadow-slope", o.shadowSlope,
                  "Shadow maps: slope-scaled bias, in texel footprints x tan(angle to the light)")
       ->capture_default_str();
-  cmd.add_option("--platform", o.platform,
-                 "EGL platform: auto (device, then Mesa surfaceless, then the default display), device, "
-                 "surfaceless, default")
-      ->check(CLI::IsMember({"auto", "device", "surfaceless", "default"}))
-      ->capture_default_str();
+  addPlatformOption(cmd, o.platform);
   cmd.add_option("--shader-dir", o.shaderDir,
                  "Load GLSL from this folder instead of the embedded copies (also: $SHADOWVOL_SHADER_DIR)")
       ->check(CLI::ExistingDirectory);
