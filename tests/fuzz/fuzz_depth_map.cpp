@@ -13,19 +13,10 @@
 
 #include <unistd.h>
 
+#include "fuzz_check.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/error.h"
 #include "shadowvol/volume_builder.h"
-
-namespace {
-
-void check(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "fuzz_depth_map: %s\n", what);
-  std::abort();
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::filesystem::path dir = [] {
@@ -48,9 +39,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (map.depth.size() > 256 * 256) return 0;  // keep each execution short
     const shadowvol::VolumeBuildResult r = shadowvol::buildVolume(map, {});
     for (const auto& p : r.mesh.positions)
-      check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "non-finite volume vertex");
+      fuzz::check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "fuzz_depth_map", "non-finite volume vertex");
     for (const auto& t : r.mesh.triangles)
-      for (const auto i : t) check(i < r.mesh.positions.size(), "index out of range");
+      for (const auto i : t) fuzz::check(i < r.mesh.positions.size(), "fuzz_depth_map", "index out of range");
   } catch (const shadowvol::InputError&) {
     // refused with a message: fine
   }

@@ -17,29 +17,20 @@
 #include <string>
 #include <string_view>
 
+#include "fuzz_check.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
-
-namespace {
-
-void check(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "fuzz_mesh_reader: %s\n", what);
-  std::abort();
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   for (const char* ext : {".obj", ".off", ".ply", ".stl"}) {
     try {
       const shadowvol::TriangleMesh mesh = shadowvol::parseTriangleMesh(bytes, ext, std::string("input") + ext);
-      check(!mesh.triangles.empty(), "a mesh without triangles was returned");
+      fuzz::check(!mesh.triangles.empty(), "fuzz_mesh_reader", "a mesh without triangles was returned");
       for (const auto& p : mesh.positions)
-        check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "non-finite position");
+        fuzz::check(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z), "fuzz_mesh_reader", "non-finite position");
       for (const auto& t : mesh.triangles)
-        for (const auto i : t) check(i < mesh.positions.size(), "index out of range");
+        for (const auto i : t) fuzz::check(i < mesh.positions.size(), "fuzz_mesh_reader", "index out of range");
     } catch (const shadowvol::InputError&) {
       // refused with a message: fine
     }

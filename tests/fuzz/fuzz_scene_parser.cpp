@@ -10,18 +10,9 @@
 #include <cstdlib>
 #include <string>
 
+#include "fuzz_check.h"
 #include "shadowvol/error.h"
 #include "shadowvol/scene.h"
-
-namespace {
-
-void check(bool ok, const char* what) {
-  if (ok) return;
-  std::fprintf(stderr, "fuzz_scene_parser: %s\n", what);
-  std::abort();
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -29,12 +20,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A legal scene may hold 50 M triangles and take seconds to generate; the fuzzer's scenes are
     // capped at 200,000 (the same budget rule, a smaller budget) to keep executions short.
     const shadowvol::Scene s = shadowvol::parseScene(text, "fuzz.json", ".", 200'000).scene;
-    check(std::isfinite(s.light.nearPlane) && std::isfinite(s.light.farPlane) && s.light.farPlane > s.light.nearPlane,
-          "light planes not fitted");
-    check(std::isfinite(s.camera.nearPlane) && s.camera.farPlane > s.camera.nearPlane, "camera planes not fitted");
+    fuzz::check(std::isfinite(s.light.nearPlane) && std::isfinite(s.light.farPlane) && s.light.farPlane > s.light.nearPlane,
+                "fuzz_scene_parser", "light planes not fitted");
+    fuzz::check(std::isfinite(s.camera.nearPlane) && s.camera.farPlane > s.camera.nearPlane, "fuzz_scene_parser", "camera planes not fitted");
     for (const auto& o : s.objects)
       for (const auto& t : o.mesh.triangles)
-        for (const auto i : t) check(i < o.mesh.positions.size(), "index out of range");
+        for (const auto i : t) fuzz::check(i < o.mesh.positions.size(), "fuzz_scene_parser", "index out of range");
   } catch (const shadowvol::InputError&) {
     // refused with a message: fine
   }
