@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/depth_map.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/volume_builder.h"
 
@@ -76,13 +77,6 @@ void checkOutputFolder(const std::string& option, const std::string& path);
 
 /// Milliseconds since `start`.
 double msSince(std::chrono::steady_clock::time_point start);
-
-/// JSON description of the scene as used: source, triangle count, local origin (Scene::origin),
-/// bounds, light and camera; positions in world units (stored + origin).
-nlohmann::json describeScene(const Scene& scene);
-
-/// JSON of a volume build's counts and times (VolumeBuildStats; times under "ms").
-nlohmann::json describeVolumeStats(const VolumeBuildStats& s);
 
 /// Registers the subcommand `name` whose body runs `run` and returns an exit code.
 using Runner = std::function<int()>;

@@ -34,7 +34,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   auto* cmd = app.add_subcommand(
       "build", "Build the explicit shadow volume of the light: capture the depth map (Embree, or the GPU with --device "
                "gpu) or read one, turn it "
-               "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl)");
+               "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl, .gltf, .glb)");
   addSceneOptions(*cmd, o->scene);
   auto* depthOpt = cmd->add_option("--depth", o->depth,
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
@@ -52,9 +52,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   cmd->get_option("--scene")->excludes(depthOpt);
   addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
-  cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off or .stl")->required();
+  cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off, .stl, .gltf (one JSON file) or .glb (binary glTF)")->required();
   cmd->add_flag("--world-coords", o->worldCoords,
-                "Write world coordinates in double precision (PLY double properties, OBJ/OFF 17 digits; not STL). "
+                "Write world coordinates in double precision (PLY double properties, OBJ/OFF 17 digits; not STL; glTF "
+                "keeps float positions and the local origin as its node's translation). "
                 "Without it a scene far from the origin is written relative to its local origin, which the output "
                 "and the PLY/OBJ/STL header name (README 'Far from the origin')");
   cmd->callback([&run, o] {
@@ -62,8 +63,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       checkOutputPath("--out", o->out);
       std::string ext = std::filesystem::path(o->out).extension().string();
       for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));  // .PLY works as .ply
-      if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl")
-        throw InputError("command line", "--out", o->out, "unsupported mesh format (use .ply, .obj, .off or .stl)");
+      if (!isMeshOutputFormat(o->out))
+        throw InputError("command line", "--out", o->out,
+                         std::string("unsupported mesh format (use ") + kMeshOutputFormats + ")");
       if (o->worldCoords && ext == ".stl")
         throw InputError("command line", "--world-coords", o->out,
                          "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");

@@ -16,7 +16,7 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
   auto worldCoords = std::make_shared<bool>(false);
   addSceneOptions(*cmd, *opts);
   cmd->add_option("--export", *exportPath,
-                  "Write the scene's world-space triangles to this file (.ply binary, .obj, .off or .stl), "
+                  "Write the scene's world-space triangles to this file (.ply binary, .obj, .off, .stl, .gltf or .glb), "
                   "exactly the geometry the other subcommands use");
   cmd->add_flag("--world-coords", *worldCoords,
                 "With --export: world coordinates in double precision (PLY double properties, OBJ/OFF 17 digits; "

@@ -11,26 +11,11 @@
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/validate/frame_validation.h"
+#include "shadowvol/validate/gl_frame.h"
+#include "shadowvol/validate/validation_report.h"
 
 namespace shadowvol::cli {
 namespace {
-
-nlohmann::json toJson(const ShadowError& e) {
-  return {{"pixels", e.pixels},
-          {"missedShadow", e.missed},
-          {"falseShadow", e.falseShadow},
-          {"missedFraction", e.missedFraction()},
-          {"falseFraction", e.falseFraction()},
-          {"errorFraction", e.errorFraction()}};
-}
-
-nlohmann::json toJson(const Agreement& a) {
-  return {{"pixels", a.pixels},
-          {"agree", a.agree},
-          {"ties", a.ties},
-          {"disagree", a.pixels - a.agree},
-          {"fraction", a.fraction()}};
-}
 
 }  // namespace
 
@@ -75,29 +60,16 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       std::vector<std::string> warnings;
       if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
         warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
-      ro.readStencil = true;
-      ro.readDepthMap = true;
-      ro.readVisibility = true;
+      ro = validationRenderOptions(ro);
       gl::Renderer renderer(toRendererOptions(o->render));
       renderer.setScene(scene);
       const gl::RenderResult result = renderer.render(ro);
-
-      RenderedFrame frame;
-      frame.width = result.width;
-      frame.height = result.height;
-      frame.rgba = result.rgba;
-      frame.hybrid = ro.method == gl::ShadowMethod::Hybrid;
-      if (frame.hybrid) frame.stencil = result.stencil;
-      frame.shadowed.resize(result.visibility.size());
-      for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
+      const RenderedFrame frame = toRenderedFrame(result, ro.method);
       ValidationOptions vo;
       vo.selfIntersections = o->selfIntersections;
       vo.maxError = o->maxError;
       vo.maxMissedShare = o->maxMissedShare;
-      VolumeBuildOptions volumeOptions = ro.volumeOptions;
-      if (frame.hybrid && !result.depthMap) throw std::runtime_error("the renderer returned no depth map");
-      const FrameValidation v =
-          validateFrame(scene, result.depthMap ? *result.depthMap : DepthMap{}, volumeOptions, frame, vo);
+      const FrameValidation v = validateRender(scene, ro, result, frame, vo);
 
       nlohmann::json j;
       j["scene"] = describeScene(scene);
@@ -117,63 +89,12 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"shadowSlope", o->render.shadowSlope},
                       {"selfIntersections", o->selfIntersections}};
       if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
-      j["pixels"] = {{"total", std::size_t(v.width) * std::size_t(v.height)},
-                     {"visible", v.visible},
-                     {"background", v.background},
-                     {"facingAway", v.facingAway},
-                     {"outsideLight", v.outsideLight},
-                     {"exactLit", v.exactLit},
-                     {"exactShadowed", v.exactShadowed}};
-      if (v.meshCheck) {
-        const MeshCheckReport& m = *v.meshCheck;
-        j["meshChecks"] = {{"valid", m.valid()},
-                           {"vertices", m.vertices},
-                           {"triangles", m.triangles},
-                           {"closedManifold", m.closedManifold()},
-                           {"outward", m.outward},
-                           {"volume", m.volume},
-                           {"boundaryEdges", m.boundaryEdges},
-                           {"overusedEdges", m.overusedEdges},
-                           {"nonManifoldVertices", m.nonManifoldVertices},
-                           {"degenerateTriangles", m.degenerateTriangles},
-                           {"nonFiniteVertices", m.nonFiniteVertices},
-                           {"coincidentVertices", m.coincidentVertices},
-                           {"selfIntersectingPairs", m.selfIntersectingPairs ? nlohmann::json(*m.selfIntersectingPairs)
-                                                                             : nlohmann::json("not checked")},
-                           {"allowedTouchingPairs", m.allowedTouchingPairs},
-                           {"notApplicable", v.meshChecksNotApplicable.empty()
-                                                 ? nlohmann::json()
-                                                 : nlohmann::json(v.meshChecksNotApplicable)},
-                           {"summary", m.summary()}};
-        j["stencilVsCount"] = toJson(v.stencilVsCount);
-        j["eyeInsideVolume"] = v.eyeInsideVolume;
-        j["recountedPixels"] = v.recountedPixels;
-        j["zfailVsZpass"] = v.zfailVsZpass ? toJson(*v.zfailVsZpass) : nlohmann::json("not applicable: eye inside");
-        j["againstExact"] = {{"stencil", toJson(*v.stencilError)},
-                             {"count", toJson(*v.countError)},
-                             {"method", toJson(v.methodError)}};
-      } else {
-        const char* na = ro.method == gl::ShadowMethod::Silhouette
-                             ? "not applicable: the silhouette volume is scored against exact only (it crosses itself "
-                               "by construction, so the depth-map volume's mesh checks do not apply)"
-                             : "not applicable: no shadow volume";
-        j["meshChecks"] = na;
-        j["stencilVsCount"] = na;
-        j["zfailVsZpass"] = na;
-        j["againstExact"] = {{"stencil", na}, {"count", na}, {"method", toJson(v.methodError)}};
-      }
+      j.update(describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette));
       if (ro.method == gl::ShadowMethod::Silhouette) {
         j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
         j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
       }
       j["warnings"] = warnings;
-      j["requiredAgreement"] = kRequiredAgreement;
-      j["verdict"] = {{"consistent", v.consistent},
-                      {"accurate", v.accurate},
-                      {"maxError", o->maxError},
-                      {"maxMissedShare", o->maxMissedShare},
-                      {"failures", v.failures}};
-      j["passed"] = v.passed;
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
       if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};

@@ -1,5 +1,5 @@
-// Reading and writing triangle meshes (OBJ, OFF, PLY, STL) with readers and writers of our own,
-// plus the atomic-write helper every writer of this library uses.
+// Reading and writing triangle meshes (read: OBJ, OFF, PLY, STL; written: those and glTF 2.0) with
+// code of our own, plus the atomic-write helper every writer of this library uses.
 #pragma once
 
 #include <filesystem>
@@ -41,8 +41,18 @@ struct MeshFrame {
   bool worldCoordinates = false;
 };
 
-/// Writes PLY (binary little-endian), OBJ, OFF or STL by extension, atomically.
-/// Throws InputError for an unknown extension, STL with world coordinates, or a failed write.
+/// The formats the writers below write, as their extensions read in messages.
+inline constexpr const char* kMeshOutputFormats = ".ply, .obj, .off, .stl, .gltf or .glb";
+
+/// Whether the writers write `path`'s extension (any case): a caller can refuse an output path
+/// before the work that produces the mesh.
+bool isMeshOutputFormat(const std::filesystem::path& path);
+
+/// Writes PLY (binary little-endian), OBJ, OFF, STL, glTF 2.0 (.gltf with the buffer embedded, or
+/// binary .glb) by extension (any case), atomically. glTF holds float positions: the stored
+/// coordinates, with a non-zero origin as the node's translation (so world placement is exact
+/// either way). Throws InputError for an unknown extension, STL with world coordinates, a mesh too
+/// large for glTF's 32-bit buffer, or a failed write.
 void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFrame& frame = {});
 
 /// The same for a volume, its double positions kept when writing world coordinates; the origin

@@ -38,11 +38,39 @@ glm::dmat4 matrixFromJson(const json& a, const std::string& file, const std::str
   return m;
 }
 
+// FNV-1a (64-bit) of the depths as stored: the side file records it, so a side file beside a PFM
+// it was not written with (a write interrupted between the two renames) is refused.
+std::string depthChecksum(const std::vector<float>& depth) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(depth.data());
+  for (std::size_t k = 0; k < depth.size() * sizeof(float); ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace
+
+void checkDepthValues(const DepthMap& map, const std::string& source) {
+  if (map.depth.size() != std::size_t(std::max(map.width, 0)) * std::size_t(std::max(map.height, 0)))
+    throw InputError(source, "depth", std::to_string(map.depth.size()) + " values",
+                     "expected width x height = " + std::to_string(map.width) + " x " + std::to_string(map.height));
+  for (std::size_t k = 0; k < map.depth.size(); ++k) {
+    const float d = map.depth[k];
+    if (std::isnan(d) || d < 0)
+      throw InputError(source, "texel " + std::to_string(k % map.width) + "," + std::to_string(k / map.width),
+                       std::to_string(d), "depth must be >= 0 or +inf (no hit)");
+  }
+}
+
 // The side file's light matches what lightView() and lightProjection() produce: a rigid view
 // (orthonormal rotation, bottom row 0 0 0 1), a projection of the light's kind whose near and far
 // map to NDC z = -1 and +1, and finite world corners. Anything else would give a volume with
 // non-finite or meaningless coordinates.
-void checkLightGeometry(const DepthMap& map, const std::string& sfile) {
+void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
+  if (map.width < 2 || map.height < 2)
+    throw InputError(sfile, "/width", std::to_string(map.width) + "x" + std::to_string(map.height),
+                     "a depth map needs at least 2 x 2 texels");
   const double tol = 1e-6;
   if (!(std::isfinite(map.nearPlane) && map.nearPlane >= 0.0))
     throw InputError(sfile, "/near", std::to_string(map.nearPlane), "near must be finite and >= 0");
@@ -92,18 +120,6 @@ void checkLightGeometry(const DepthMap& map, const std::string& sfile) {
     }
 }
 
-// FNV-1a (64-bit) of the depths as stored: the side file records it, so a side file beside a PFM
-// it was not written with (a write interrupted between the two renames) is refused.
-std::string depthChecksum(const std::vector<float>& depth) {
-  std::uint64_t h = 14695981039346656037ull;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(depth.data());
-  for (std::size_t k = 0; k < depth.size() * sizeof(float); ++k) h = (h ^ bytes[k]) * 1099511628211ull;
-  char buf[24];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
-
-}  // namespace
 
 std::filesystem::path depthSidecarPath(const std::filesystem::path& pfm) {
   return std::filesystem::path(pfm.string() + ".json");
@@ -181,12 +197,7 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   map.depth.resize(std::size_t(w) * std::size_t(h));
   in.read(reinterpret_cast<char*>(map.depth.data()), std::streamsize(map.depth.size() * sizeof(float)));
   if (!in) throw InputError(file, "data", "", "the file is shorter than its header says");
-  for (std::size_t k = 0; k < map.depth.size(); ++k) {
-    const float d = map.depth[k];
-    if (std::isnan(d) || (std::isinf(d) && d < 0) || d < 0)
-      throw InputError(file, "texel " + std::to_string(k % w) + "," + std::to_string(k / w), std::to_string(d),
-                       "depth must be >= 0 or +inf (no hit)");
-  }
+  checkDepthValues(map, file);
 
   const auto sidecar = depthSidecarPath(pfm);
   const std::string sfile = sidecar.string();
@@ -222,7 +233,7 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
     throw InputError(sfile, "/far", side["far"].dump(), "far must be greater than near");
   map.lightView = matrixFromJson(need("lightView"), sfile, "/lightView");
   map.lightProjection = matrixFromJson(need("lightProjection"), sfile, "/lightProjection");
-  checkLightGeometry(map, sfile);
+  checkDepthMapLight(map, sfile);
   if (side.contains("depthChecksum")) {  // optional: files from before it was written lack it
     const std::string want = side["depthChecksum"].is_string() ? side["depthChecksum"].get<std::string>() : "";
     if (want != "fnv1a64:" + depthChecksum(map.depth))

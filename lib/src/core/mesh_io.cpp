@@ -13,6 +13,7 @@
 #include "mesh_readers/off_reader.h"
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
+#include "mesh_writers/gltf_writer.h"
 #include "shadowvol/error.h"
 #include "shadowvol/temporary_files.h"
 
@@ -103,10 +104,15 @@ TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
 
 namespace {
 
+// glTF's buffer and GLB's total length are 32-bit: 12 bytes per vertex and per triangle must fit.
+constexpr std::size_t kMaxGltfElements = 170'000'000;
+
+bool isGltf(const std::string& ext) { return ext == ".gltf" || ext == ".glb"; }
+
 void checkMeshExtension(const std::filesystem::path& path, const MeshFrame& frame) {
   const std::string ext = lowerExtension(path);
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
-    throw InputError(path.string(), "", ext, "unsupported mesh format (use .ply, .obj, .off or .stl)");
+  if (!isMeshOutputFormat(path))
+    throw InputError(path.string(), "", ext, std::string("unsupported mesh format (use ") + kMeshOutputFormats + ")");
   if (ext == ".stl" && frame.worldCoordinates)
     throw InputError(path.string(), "", ext,
                      "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");
@@ -118,84 +124,129 @@ std::string originText(const glm::dvec3& o) {
   return buf;
 }
 
+// What every format writer gets: the stored coordinates, how to write them, and the stream.
+template <class Positions, class Triangles>
+struct MeshOut {
+  const Positions& P;
+  const Triangles& T;
+  const MeshFrame& frame;
+  std::ostream& out;
+  bool world() const { return frame.worldCoordinates; }
+  bool namedOrigin() const { return !world() && frame.origin != glm::dvec3(0.0); }
+  glm::dvec3 at(std::size_t k) const { return world() ? glm::dvec3(P[k]) + frame.origin : glm::dvec3(P[k]); }
+};
+
+template <class M>
+void writePly(const M& m) {
+  const char* type = m.world() ? "double" : "float";
+  m.out << "ply\nformat binary_little_endian 1.0\ncomment written by shadowvol\n";
+  if (m.namedOrigin()) m.out << "comment " << originText(m.frame.origin) << " (world = vertex + origin)\n";
+  m.out << "element vertex " << m.P.size() << "\nproperty " << type << " x\nproperty " << type << " y\nproperty "
+        << type << " z\nelement face " << m.T.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
+  static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian host");
+  for (std::size_t k = 0; k < m.P.size(); ++k) {
+    if (m.world()) {
+      const glm::dvec3 p = m.at(k);
+      m.out.write(reinterpret_cast<const char*>(&p), sizeof p);
+    } else {
+      const glm::vec3 p(m.P[k]);
+      m.out.write(reinterpret_cast<const char*>(&p), sizeof p);
+    }
+  }
+  for (const auto& t : m.T) {
+    const unsigned char n = 3;
+    m.out.write(reinterpret_cast<const char*>(&n), 1);
+    m.out.write(reinterpret_cast<const char*>(t.data()), 12);
+  }
+}
+
+template <class M>
+void writeObjOrOff(const M& m, bool obj) {
+  // Stored floats print exactly with 9 digits; world doubles need 17.
+  const char* format = m.world() ? "%.17g %.17g %.17g\n" : "%.9g %.9g %.9g\n";
+  if (obj) {
+    m.out << "# written by shadowvol\n";
+    if (m.namedOrigin()) m.out << "# " << originText(m.frame.origin) << " (world = vertex + origin)\n";
+  } else {
+    m.out << "OFF\n" << m.P.size() << ' ' << m.T.size() << " 0\n";
+  }
+  char buf[160];
+  for (std::size_t k = 0; k < m.P.size(); ++k) {
+    const glm::dvec3 p = m.world() ? m.at(k) : glm::dvec3(glm::vec3(m.P[k]));
+    std::snprintf(buf, sizeof buf, format, p.x, p.y, p.z);
+    if (obj) m.out << "v ";
+    m.out << buf;
+  }
+  for (const auto& t : m.T) {
+    if (obj) m.out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+    else m.out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  }
+}
+
+template <class M>
+void writeStl(const M& m) {  // binary: 80-byte header, count, then normal + 3 vertices + attribute per triangle
+  char header[80] = {};
+  const std::string text = m.namedOrigin() ? originText(m.frame.origin) : "binary STL written by shadowvol";
+  std::snprintf(header, sizeof header, "%s", text.c_str());
+  m.out.write(header, 80);
+  const auto n = static_cast<std::uint32_t>(m.T.size());
+  m.out.write(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : m.T) {
+    const glm::vec3 a(m.P[t[0]]), b(m.P[t[1]]), c(m.P[t[2]]);
+    glm::vec3 nrm = glm::cross(b - a, c - a);
+    const float len = glm::length(nrm);
+    nrm = len > 0.0f ? nrm / len : glm::vec3(0.0f);
+    const glm::vec3 v[4] = {nrm, a, b, c};
+    m.out.write(reinterpret_cast<const char*>(v), 48);
+    const std::uint16_t attr = 0;
+    m.out.write(reinterpret_cast<const char*>(&attr), 2);
+  }
+}
+
+// glTF stores floats: the stored coordinates, with the origin as the node's translation (also for
+// world coordinates: stored + origin is then carried exactly by the pair).
+template <class M>
+void writeGltfFile(const M& m, const std::filesystem::path& path, bool binary) {
+  if (m.P.size() > kMaxGltfElements || m.T.size() > kMaxGltfElements)
+    throw InputError(path.string(), "", std::to_string(m.T.size()) + " triangles",
+                     "too large for one glTF buffer (at most " + std::to_string(kMaxGltfElements) +
+                         " vertices and triangles): write .ply");
+  mesh_writers::GltfMesh g;
+  g.positions.reserve(m.P.size());
+  for (const auto& p : m.P) g.positions.emplace_back(glm::vec3(p));
+  g.triangles.assign(m.T.begin(), m.T.end());
+  g.origin = m.frame.origin;
+  g.name = path.stem().string();
+  mesh_writers::writeGltf(m.out, g, binary);
+}
+
 // The writer for both mesh kinds: `positions` holds float or double 3-vectors, stored coordinates.
 template <class Positions, class Triangles>
 void writeMesh(const Positions& P, const Triangles& T, const std::filesystem::path& path, const MeshFrame& frame) {
   // Written directly rather than through OpenMesh: its half-edge kernel refuses non-manifold faces,
-  // which would silently drop triangles of a scene soup. Tests read these files back with OpenMesh.
+  // which would silently drop triangles of a scene soup. Tests read these files back with OpenMesh
+  // (and the glTF files with tinygltf).
   checkMeshExtension(path, frame);
   const std::string ext = lowerExtension(path);
-  const bool world = frame.worldCoordinates;
-  const bool namedOrigin = !world && frame.origin != glm::dvec3(0.0);
-  auto at = [&](std::size_t k) { return world ? glm::dvec3(P[k]) + frame.origin : glm::dvec3(P[k]); };
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError(path.string(), "", "", "cannot create the file");
-    char buf[160];
-    if (ext == ".ply") {
-      const char* type = world ? "double" : "float";
-      out << "ply\nformat binary_little_endian 1.0\ncomment written by shadowvol\n";
-      if (namedOrigin) out << "comment " << originText(frame.origin) << " (world = vertex + origin)\n";
-      out << "element vertex " << P.size() << "\nproperty " << type << " x\nproperty " << type << " y\nproperty "
-          << type << " z\nelement face " << T.size() << "\nproperty list uchar uint vertex_indices\nend_header\n";
-      static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian host");
-      for (std::size_t k = 0; k < P.size(); ++k) {
-        if (world) {
-          const glm::dvec3 p = at(k);
-          out.write(reinterpret_cast<const char*>(&p), sizeof p);
-        } else {
-          const glm::vec3 p(P[k]);
-          out.write(reinterpret_cast<const char*>(&p), sizeof p);
-        }
-      }
-      for (const auto& t : T) {
-        const unsigned char n = 3;
-        out.write(reinterpret_cast<const char*>(&n), 1);
-        out.write(reinterpret_cast<const char*>(t.data()), 12);
-      }
-    } else if (ext == ".obj" || ext == ".off") {
-      // Stored floats print exactly with 9 digits; world doubles need 17.
-      const char* format = world ? "%.17g %.17g %.17g\n" : "%.9g %.9g %.9g\n";
-      if (ext == ".obj") {
-        out << "# written by shadowvol\n";
-        if (namedOrigin) out << "# " << originText(frame.origin) << " (world = vertex + origin)\n";
-      } else {
-        out << "OFF\n" << P.size() << ' ' << T.size() << " 0\n";
-      }
-      for (std::size_t k = 0; k < P.size(); ++k) {
-        const glm::dvec3 p = world ? at(k) : glm::dvec3(glm::vec3(P[k]));
-        std::snprintf(buf, sizeof buf, format, p.x, p.y, p.z);
-        if (ext == ".obj") out << "v ";
-        out << buf;
-      }
-      for (const auto& t : T) {
-        if (ext == ".obj") out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
-        else out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-      }
-    } else {  // binary STL: 80-byte header, count, then normal + 3 vertices + attribute per triangle
-      char header[80] = {};
-      const std::string text = namedOrigin ? originText(frame.origin) : "binary STL written by shadowvol";
-      std::snprintf(header, sizeof header, "%s", text.c_str());
-      out.write(header, 80);
-      const auto n = static_cast<std::uint32_t>(T.size());
-      out.write(reinterpret_cast<const char*>(&n), 4);
-      for (const auto& t : T) {
-        const glm::vec3 a(P[t[0]]), b(P[t[1]]), c(P[t[2]]);
-        glm::vec3 nrm = glm::cross(b - a, c - a);
-        const float len = glm::length(nrm);
-        nrm = len > 0.0f ? nrm / len : glm::vec3(0.0f);
-        const glm::vec3 v[4] = {nrm, a, b, c};
-        out.write(reinterpret_cast<const char*>(v), 48);
-        const std::uint16_t attr = 0;
-        out.write(reinterpret_cast<const char*>(&attr), 2);
-      }
-    }
+    const MeshOut<Positions, Triangles> m{P, T, frame, out};
+    if (ext == ".ply") writePly(m);
+    else if (ext == ".obj" || ext == ".off") writeObjOrOff(m, ext == ".obj");
+    else if (ext == ".stl") writeStl(m);
+    else writeGltfFile(m, path, ext == ".glb");
     out.flush();
     if (!out) throw InputError(path.string(), "", "", "writing the file failed (disk full?)");
   });
 }
 
 }  // namespace
+
+bool isMeshOutputFormat(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl" || isGltf(ext);
+}
 
 void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFrame& frame) {
   writeMesh(mesh.positions, mesh.triangles, path, frame);

@@ -1,0 +1,43 @@
+// From the GL renderer's result to the validation's input. Header-only, so that shadowvol::validate
+// stays GL-free; include it where both shadowvol::gl and shadowvol::validate are linked (the
+// command line's validate, the Python module).
+#pragma once
+
+#include <stdexcept>
+
+#include "shadowvol/gl/renderer.h"
+#include "shadowvol/validate/frame_validation.h"
+
+namespace shadowvol {
+
+/// The render options a validated frame needs on top of the caller's: stencil, depth map and the
+/// method's own shadow test read back.
+inline gl::RenderOptions validationRenderOptions(gl::RenderOptions ro) {
+  ro.readStencil = true;
+  ro.readDepthMap = true;
+  ro.readVisibility = true;
+  return ro;
+}
+
+/// The frame as the validation sees it: the image, the stencil (shadow-volume methods), and the
+/// method's shadow test (visibility below one half = in shadow).
+inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowMethod method) {
+  RenderedFrame frame;
+  frame.width = result.width;
+  frame.height = result.height;
+  frame.rgba = result.rgba;
+  frame.hybrid = method == gl::ShadowMethod::Hybrid;
+  if (frame.hybrid) frame.stencil = result.stencil;
+  frame.shadowed.resize(result.visibility.size());
+  for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
+  return frame;
+}
+
+/// Every check of validateFrame on a frame rendered with validationRenderOptions(ro).
+inline FrameValidation validateRender(const Scene& scene, const gl::RenderOptions& ro, const gl::RenderResult& result,
+                                      const RenderedFrame& frame, const ValidationOptions& options) {
+  if (frame.hybrid && !result.depthMap) throw std::runtime_error("the renderer returned no depth map");
+  return validateFrame(scene, result.depthMap ? *result.depthMap : DepthMap{}, ro.volumeOptions, frame, options);
+}
+
+}  // namespace shadowvol

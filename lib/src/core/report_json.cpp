@@ -1,0 +1,56 @@
+#include "shadowvol/report_json.h"
+
+#include "shadowvol/light.h"
+
+namespace shadowvol {
+
+nlohmann::json describeScene(const Scene& s) {
+  // Positions in world units (stored + origin); directions need no origin.
+  auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+  auto w3 = [&](const glm::dvec3& v) { return v3(v + s.origin); };
+  nlohmann::json light = {{"type", s.light.type == LightType::Spot ? "spot" : "directional"},
+                          {"position", w3(s.light.position)},
+                          {"direction", v3(s.light.direction)},
+                          {"up", v3(lightUp(s.light))},
+                          {"near", s.light.nearPlane},
+                          {"far", s.light.farPlane}};
+  if (s.light.type == LightType::Spot) light["fov"] = s.light.fovYDegrees;
+  else light["extent"] = s.light.halfExtent;
+  const Bounds3 b = s.bounds();
+  return {{"source", s.source},
+          {"objects", s.objects.size()},
+          {"triangles", s.triangleCount()},
+          {"origin", v3(s.origin)},
+          {"bounds", {{"min", w3(b.min)}, {"max", w3(b.max)}}},
+          {"light", light},
+          {"camera",
+           {{"eye", w3(s.camera.eye)},
+            {"target", w3(s.camera.target)},
+            {"up", v3(s.camera.up)},
+            {"fov", s.camera.fovYDegrees},
+            {"width", s.camera.width},
+            {"height", s.camera.height},
+            {"near", s.camera.nearPlane},
+            {"far", s.camera.farPlane}}}};
+}
+
+nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
+  return {{"quads", s.quads},
+          {"droppedQuads", s.droppedQuads},
+          {"flippedQuads", s.flippedQuads},
+          {"flippedFraction", s.quads ? double(s.flippedQuads) / double(s.quads) : 0.0},
+          {"capTrianglesBefore", s.capTrianglesBefore},
+          {"capTrianglesAfter", s.capTrianglesAfter},
+          {"splitVertices", s.splitVertices},
+          {"boundaryEdges", s.boundaryEdges},
+          {"farBoundaryEdges", s.farBoundaryEdges},
+          {"refinedCells", s.refinedCells},
+          {"ambiguousCells", s.ambiguousCells},
+          {"chordPoints", s.chordPoints},
+          {"raysCast", s.raysCast},
+          {"bias", s.biasUsed},
+          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
+                  {"cap", s.msCap}, {"total", s.msTotal}}}};
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,83 @@
+#include "shadowvol/validate/validation_report.h"
+
+namespace shadowvol {
+namespace {
+
+nlohmann::json toJson(const ShadowError& e) {
+  return {{"pixels", e.pixels},
+          {"missedShadow", e.missed},
+          {"falseShadow", e.falseShadow},
+          {"missedFraction", e.missedFraction()},
+          {"falseFraction", e.falseFraction()},
+          {"errorFraction", e.errorFraction()}};
+}
+
+nlohmann::json toJson(const Agreement& a) {
+  return {{"pixels", a.pixels},
+          {"agree", a.agree},
+          {"ties", a.ties},
+          {"disagree", a.pixels - a.agree},
+          {"fraction", a.fraction()}};
+}
+
+nlohmann::json toJson(const MeshCheckReport& m, const std::string& notApplicable) {
+  return {{"valid", m.valid()},
+          {"vertices", m.vertices},
+          {"triangles", m.triangles},
+          {"closedManifold", m.closedManifold()},
+          {"outward", m.outward},
+          {"volume", m.volume},
+          {"boundaryEdges", m.boundaryEdges},
+          {"overusedEdges", m.overusedEdges},
+          {"nonManifoldVertices", m.nonManifoldVertices},
+          {"degenerateTriangles", m.degenerateTriangles},
+          {"nonFiniteVertices", m.nonFiniteVertices},
+          {"coincidentVertices", m.coincidentVertices},
+          {"selfIntersectingPairs",
+           m.selfIntersectingPairs ? nlohmann::json(*m.selfIntersectingPairs) : nlohmann::json("not checked")},
+          {"allowedTouchingPairs", m.allowedTouchingPairs},
+          {"notApplicable", notApplicable.empty() ? nlohmann::json() : nlohmann::json(notApplicable)},
+          {"summary", m.summary()}};
+}
+
+}  // namespace
+
+nlohmann::json describeValidation(const FrameValidation& v, const ValidationOptions& options, bool silhouetteMethod) {
+  nlohmann::json j;
+  j["pixels"] = {{"total", std::size_t(v.width) * std::size_t(v.height)},
+                 {"visible", v.visible},
+                 {"background", v.background},
+                 {"facingAway", v.facingAway},
+                 {"outsideLight", v.outsideLight},
+                 {"exactLit", v.exactLit},
+                 {"exactShadowed", v.exactShadowed}};
+  if (v.meshCheck) {
+    j["meshChecks"] = toJson(*v.meshCheck, v.meshChecksNotApplicable);
+    j["stencilVsCount"] = toJson(v.stencilVsCount);
+    j["eyeInsideVolume"] = v.eyeInsideVolume;
+    j["recountedPixels"] = v.recountedPixels;
+    j["zfailVsZpass"] = v.zfailVsZpass ? toJson(*v.zfailVsZpass) : nlohmann::json("not applicable: eye inside");
+    j["againstExact"] = {{"stencil", v.stencilError ? toJson(*v.stencilError) : nlohmann::json()},
+                         {"count", v.countError ? toJson(*v.countError) : nlohmann::json()},
+                         {"method", toJson(v.methodError)}};
+  } else {
+    const char* na = silhouetteMethod
+                         ? "not applicable: the silhouette volume is scored against exact only (it crosses itself "
+                           "by construction, so the depth-map volume's mesh checks do not apply)"
+                         : "not applicable: no shadow volume";
+    j["meshChecks"] = na;
+    j["stencilVsCount"] = na;
+    j["zfailVsZpass"] = na;
+    j["againstExact"] = {{"stencil", na}, {"count", na}, {"method", toJson(v.methodError)}};
+  }
+  j["requiredAgreement"] = kRequiredAgreement;
+  j["verdict"] = {{"consistent", v.consistent},
+                  {"accurate", v.accurate},
+                  {"maxError", options.maxError},
+                  {"maxMissedShare", options.maxMissedShare},
+                  {"failures", v.failures}};
+  j["passed"] = v.passed;
+  return j;
+}
+
+}  // namespace shadowvol
