@@ -1,6 +1,7 @@
 # ctest package_install: cmake --install the build tree into WORK/prefix, configure and build
 # tests/package against it as an outside project would, run the example and check its PLY.
-# Arguments: -DBUILD_DIR=<shadowvol build tree> -DSOURCE_DIR=<shadowvol source> -DWORK=<scratch>
+# Arguments: -DBUILD_DIR=<shadowvol build tree> -DSOURCE_DIR=<shadowvol source> -DWORK=<scratch>,
+# and with the Python module -DPYTHON=<its interpreter> -DPYTHON_DIR=<its install folder in the prefix>.
 file(REMOVE_RECURSE ${WORK})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -17,5 +18,14 @@ run(${WORK}/build/link_all)
 file(SIZE ${WORK}/volume.ply size)
 if(size LESS 1000)
   message(FATAL_ERROR "minimal_volume wrote ${size} bytes")
+endif()
+# The installed Python module, when the build has one: import it from the prefix and build a volume.
+if(PYTHON)
+  file(GLOB module ${WORK}/prefix/${PYTHON_DIR}/shadowvol*.so)
+  if(NOT module)
+    message(FATAL_ERROR "the Python module is not installed in ${WORK}/prefix/${PYTHON_DIR}")
+  endif()
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${WORK}/prefix/${PYTHON_DIR} ${PYTHON} -c
+      "import shadowvol as sv; V, F, s = sv.build_volume(sv.capture_depth(sv.default_scene(), 64, 64)); assert len(F) > 0")
 endif()
 message(STATUS "outside project built against ${WORK}/prefix; volume.ply ${size} bytes")

@@ -1,0 +1,64 @@
+// The Python module `shadowvol` (pybind11): scenes, depth capture, volume building, export and
+// validation, with the library's rules and messages. Library errors become Python exceptions with
+// the same message: InputError -> shadowvol.InputError (a ValueError), GlError ->
+// shadowvol.GlError (a RuntimeError), anything else -> RuntimeError.
+#include "py_common.h"
+
+#include "shadowvol/error.h"
+#include "shadowvol/version.h"
+#ifdef SHADOWVOL_WITH_GL
+#include "shadowvol/gl/gl_error.h"
+#endif
+
+namespace shadowvol::python {
+
+py::object toPython(const nlohmann::json& j) {
+  // Not cached in a static: its destructor would run after the interpreter has finalized.
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+py::array_t<double> matrixToNumpy(const glm::dmat4& m) {
+  py::array_t<double> a({4, 4});
+  auto r = a.mutable_unchecked<2>();
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) r(row, col) = m[col][row];
+  return a;
+}
+
+glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what) {
+  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+    throw InputError("python", what, std::to_string(a.ndim()) + "-dimensional array", "expected a 4 x 4 array");
+  glm::dmat4 m(1.0);
+  auto r = a.unchecked<2>();
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) m[col][row] = r(row, col);
+  return m;
+}
+
+CaptureMode captureModeArg(const std::string& text) {
+  CaptureMode mode;
+  if (!parseCaptureMode(text, mode)) throw InputError("python", "capture", text, "expected back, front or midpoint");
+  return mode;
+}
+
+}  // namespace shadowvol::python
+
+PYBIND11_MODULE(shadowvol, m) {
+  namespace sp = shadowvol::python;
+  m.doc() =
+      "shadowvol: explicit shadow-volume meshes from light depth maps. default_scene / load_scene -> "
+      "capture_depth -> build_volume -> export; validate renders a frame (EGL + OpenGL) and checks it by ray "
+      "casting.";
+  m.attr("__version__") = SHADOWVOL_VERSION;
+  pybind11::register_exception<shadowvol::InputError>(m, "InputError", PyExc_ValueError);
+#ifdef SHADOWVOL_WITH_GL
+  pybind11::register_exception<shadowvol::gl::GlError>(m, "GlError", PyExc_RuntimeError);
+  m.attr("has_gl") = true;
+#else
+  m.attr("has_gl") = false;
+#endif
+  sp::registerScene(m);
+  sp::registerDepth(m);
+  sp::registerVolume(m);
+  sp::registerValidate(m);
+}

@@ -1,0 +1,50 @@
+// Shared pieces of the Python bindings (python/src): names of enum values, numpy conversions, and
+// the registration function of each part of the module.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol::python {
+
+namespace py = pybind11;
+
+/// A scene as Python holds it: the scene and the warnings its loading produced.
+struct PyScene {
+  Scene scene;
+  std::vector<std::string> warnings;
+};
+
+/// A JSON value as the Python object json.loads would give (dict, list, str, int, float, bool, None).
+py::object toPython(const nlohmann::json& j);
+
+/// 4 x 4 numpy array, a[row, column] = m[column][row] (GLM stores columns).
+py::array_t<double> matrixToNumpy(const glm::dmat4& m);
+/// The inverse; throws InputError naming `what` unless `a` is a 4 x 4 array.
+glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what);
+
+/// The enum value named `text`; throws InputError naming the keyword argument and listing the choices.
+CaptureMode captureModeArg(const std::string& text);
+
+/// The builder's options from the keyword arguments of build_volume and validate (names as there);
+/// InputError names the argument.
+VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
+                                    std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
+                                    bool chordPoints);
+
+void registerScene(py::module_& m);
+void registerDepth(py::module_& m);
+void registerVolume(py::module_& m);
+void registerValidate(py::module_& m);  ///< validate() and render(); GL builds only
+
+}  // namespace shadowvol::python

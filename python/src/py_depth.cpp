@@ -1,0 +1,134 @@
+// Python: DepthMap (depths as a numpy array, light matrices), capture_depth(), load_depth(),
+// DepthMap.from_array() and DepthMap.save().
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "py_common.h"
+#include "shadowvol/depth_map_io.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/error.h"
+#ifdef SHADOWVOL_WITH_GL
+#include "shadowvol/gl/renderer.h"
+#endif
+
+namespace shadowvol::python {
+namespace {
+
+DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
+                      const std::string& platform) {
+  const CaptureMode mode = captureModeArg(capture);
+  if (width < 2 || height < 2 || width > 16384 || height > 16384)
+    throw InputError("python", "width, height", std::to_string(width) + " x " + std::to_string(height),
+                     "each must be between 2 and 16384");
+  py::gil_scoped_release release;
+  if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
+  if (device != "gpu") throw InputError("python", "device", device, "expected cpu or gpu");
+#ifdef SHADOWVOL_WITH_GL
+  gl::RendererOptions ro;
+  ro.context.platform = platform;
+  gl::Renderer renderer(ro);
+  renderer.setScene(s.scene);
+  return renderer.captureDepth(width, height, mode);
+#else
+  throw InputError("python", "device", device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+#endif
+}
+
+DepthMap fromArray(const py::array_t<float, py::array::forcecast>& depth, const py::object& lightView,
+                   const py::object& lightProjection, double nearPlane, double farPlane, const std::string& light,
+                   const std::string& capture, const std::array<double, 3>& origin) {
+  if (depth.ndim() != 2)
+    throw InputError("DepthMap.from_array", "depth", std::to_string(depth.ndim()) + "-dimensional array",
+                     "expected a 2-dimensional array (rows x columns, row 0 at the bottom)");
+  DepthMap map;
+  map.height = int(std::min<py::ssize_t>(depth.shape(0), 1 << 20));
+  map.width = int(std::min<py::ssize_t>(depth.shape(1), 1 << 20));
+  if (map.width > 16384 || map.height > 16384)
+    throw InputError("DepthMap.from_array", "depth", std::to_string(depth.shape(1)) + " x " + std::to_string(depth.shape(0)),
+                     "at most 16384 x 16384 texels");
+  if (light == "spot") map.lightType = LightType::Spot;
+  else if (light == "directional") map.lightType = LightType::Directional;
+  else throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");
+  map.capture = captureModeArg(capture);
+  map.lightView = matrixFromNumpy(lightView.cast<py::array_t<double, py::array::forcecast>>(), "light_view");
+  map.lightProjection =
+      matrixFromNumpy(lightProjection.cast<py::array_t<double, py::array::forcecast>>(), "light_projection");
+  map.nearPlane = nearPlane;
+  map.farPlane = farPlane;
+  map.origin = {origin[0], origin[1], origin[2]};
+  if (!(std::isfinite(map.origin.x) && std::isfinite(map.origin.y) && std::isfinite(map.origin.z)))
+    throw InputError("DepthMap.from_array", "origin", "", "expected 3 finite numbers");
+  map.depth.resize(std::size_t(map.width) * std::size_t(map.height));
+  auto r = depth.unchecked<2>();
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) map.depth[map.index(i, j)] = r(j, i);
+  checkDepthValues(map, "DepthMap.from_array");
+  checkDepthMapLight(map, "DepthMap.from_array");
+  return map;
+}
+
+/// The depths as a read-only H x W float32 view that keeps the DepthMap alive.
+py::array depthView(const py::object& self) {
+  const DepthMap& map = self.cast<const DepthMap&>();
+  py::array_t<float> a({py::ssize_t(map.height), py::ssize_t(map.width)},
+                       {py::ssize_t(map.width) * py::ssize_t(sizeof(float)), py::ssize_t(sizeof(float))},
+                       map.depth.data(), self);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+}  // namespace
+
+void registerDepth(py::module_& m) {
+  py::class_<DepthMap>(m, "DepthMap",
+                       "A light's depth map: light-view depths (world units; inf = the light saw nothing) and the "
+                       "light's matrices. Texel (i, j) is depth[j, i], row 0 at the bottom (OpenGL's order): use "
+                       "numpy.flipud for an image.")
+      .def_property_readonly("width", [](const DepthMap& d) { return d.width; })
+      .def_property_readonly("height", [](const DepthMap& d) { return d.height; })
+      .def_property_readonly("depth", &depthView, "read-only float32 array, shape (height, width)")
+      .def_property_readonly("light", [](const DepthMap& d) { return d.lightType == LightType::Spot ? "spot" : "directional"; })
+      .def_property_readonly("capture", [](const DepthMap& d) { return std::string(toString(d.capture)); })
+      .def_property_readonly("light_view", [](const DepthMap& d) { return matrixToNumpy(d.lightView); },
+                             "world -> light view, 4 x 4 (a[row, column])")
+      .def_property_readonly("light_projection", [](const DepthMap& d) { return matrixToNumpy(d.lightProjection); },
+                             "light view -> light clip, 4 x 4 (a[row, column])")
+      .def_property_readonly("near", [](const DepthMap& d) { return d.nearPlane; })
+      .def_property_readonly("far", [](const DepthMap& d) { return d.farPlane; })
+      .def_property_readonly("origin", [](const DepthMap& d) { return py::make_tuple(d.origin.x, d.origin.y, d.origin.z); },
+                             "world = the coordinates the matrices use + origin")
+      .def_property_readonly("hit_count", &DepthMap::hitCount, "texels where the light saw a surface")
+      .def_static("from_array", &fromArray, py::arg("depth"), py::arg("light_view"), py::arg("light_projection"),
+                  py::arg("near"), py::arg("far"), py::arg("light") = "spot", py::arg("capture") = "back",
+                  py::arg("origin") = std::array<double, 3>{0.0, 0.0, 0.0},
+                  "A depth map from a numpy array (rows x columns, row 0 at the bottom, inf = no hit) and the "
+                  "light's matrices, checked as a depth file's side file is (docs: rigid view, a projection of "
+                  "the light's kind mapping near and far to NDC z -1 and +1).")
+      .def(
+          "save",
+          [](const DepthMap& d, const std::filesystem::path& path) {
+            py::gil_scoped_release release;
+            writeDepthMap(d, path);
+          },
+          py::arg("path"), "Writes a PFM plus its JSON side file (path + '.json'), as `shadowvol depth` does.")
+      .def("__repr__", [](const DepthMap& d) {
+        return "<shadowvol.DepthMap " + std::to_string(d.width) + "x" + std::to_string(d.height) + " " +
+               (d.lightType == LightType::Spot ? "spot" : "directional") + ", " + toString(d.capture) + ", " +
+               std::to_string(d.hitCount()) + " texels hit>";
+      });
+
+  m.def("capture_depth", &captureDepth, py::arg("scene"), py::arg("width") = 256, py::arg("height") = 256,
+        py::arg("capture") = "back", py::arg("device") = "cpu", py::arg("platform") = "auto",
+        "The light's depth map of a scene: device='cpu' casts one Embree ray per texel centre, 'gpu' renders the "
+        "light pass through EGL + OpenGL and reads it back (same texels hit, depths within 1e-4 relative). "
+        "capture: back (first surface facing away from the light), front, or midpoint.");
+  m.def(
+      "load_depth",
+      [](const std::filesystem::path& path) {
+        py::gil_scoped_release release;
+        return readDepthMap(path);
+      },
+      py::arg("path"), "Reads a PFM depth map and its side file (as written by `shadowvol depth` or DepthMap.save).");
+}
+
+}  // namespace shadowvol::python

@@ -1,0 +1,67 @@
+// Python: Scene, default_scene(), load_scene(path).
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "py_common.h"
+#include "shadowvol/report_json.h"
+
+namespace shadowvol::python {
+namespace {
+
+/// All objects merged, world coordinates in double: (V float64 N x 3, F int32 M x 3).
+py::tuple sceneMesh(const PyScene& s) {
+  const TriangleMesh mesh = s.scene.merged();
+  py::array_t<double> v({py::ssize_t(mesh.positions.size()), py::ssize_t(3)});
+  py::array_t<std::int32_t> f({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
+  auto vr = v.mutable_unchecked<2>();
+  auto fr = f.mutable_unchecked<2>();
+  for (std::size_t k = 0; k < mesh.positions.size(); ++k)
+    for (int c = 0; c < 3; ++c) vr(k, c) = double(mesh.positions[k][c]) + s.scene.origin[c];
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
+    for (int c = 0; c < 3; ++c) fr(k, c) = std::int32_t(mesh.triangles[k][c]);
+  return py::make_tuple(v, f);
+}
+
+}  // namespace
+
+void registerScene(py::module_& m) {
+  py::class_<PyScene>(m, "Scene",
+                      "A scene: world-space triangle meshes, one light, one camera (README 'Scene files'). Positions "
+                      "are kept relative to `origin` (rebased when the scene lies far from the world origin).")
+      .def_property_readonly("source", [](const PyScene& s) { return s.scene.source; }, "file it was loaded from, or 'default'")
+      .def_property_readonly("triangle_count", [](const PyScene& s) { return s.scene.triangleCount(); })
+      .def_property_readonly("object_names",
+                             [](const PyScene& s) {
+                               std::vector<std::string> names;
+                               for (const auto& o : s.scene.objects) names.push_back(o.name);
+                               return names;
+                             })
+      .def_property_readonly("origin", [](const PyScene& s) { return py::make_tuple(s.scene.origin.x, s.scene.origin.y, s.scene.origin.z); })
+      .def_property_readonly("warnings", [](const PyScene& s) { return s.warnings; },
+                             "what loading noticed (a light inside a closed mesh, a moved far plane)")
+      .def("describe", [](const PyScene& s) { return toPython(describeScene(s.scene)); },
+           "The scene as `shadowvol scene --json` prints it: counts, bounds, light and camera (world units).")
+      .def("mesh", &sceneMesh,
+           "All objects merged: (V, F), V float64 N x 3 in world units, F int32 M x 3 counter-clockwise.")
+      .def("__repr__", [](const PyScene& s) {
+        return "<shadowvol.Scene '" + s.scene.source + "': " + std::to_string(s.scene.objects.size()) + " objects, " +
+               std::to_string(s.scene.triangleCount()) + " triangles>";
+      });
+
+  m.def("default_scene", [] { return PyScene{defaultScene(), {}}; },
+        "The built-in default scene: a sphere floating above a ground plane under a spot light.");
+  m.def(
+      "load_scene",
+      [](const std::filesystem::path& path) {
+        SceneLoadResult r;
+        {
+          py::gil_scoped_release release;
+          r = loadScene(path);
+        }
+        return PyScene{std::move(r.scene), std::move(r.warnings)};
+      },
+      py::arg("path"),
+      "Reads a JSON scene file (README 'Scene files'). Raises InputError naming the file, the field and the value.");
+}
+
+}  // namespace shadowvol::python

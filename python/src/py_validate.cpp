@@ -1,0 +1,198 @@
+// Python: render() and validate(): a frame through EGL + OpenGL, and its check by ray casting
+// (the same checks and report fields as `shadowvol validate`). GL builds only; without GL both
+// raise InputError.
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "py_common.h"
+#include "shadowvol/error.h"
+#ifdef SHADOWVOL_WITH_GL
+#include "shadowvol/embree/embree_depth_oracle.h"
+#include "shadowvol/gl/renderer.h"
+#include "shadowvol/report_json.h"
+#include "shadowvol/validate/gl_frame.h"
+#include "shadowvol/validate/validation_report.h"
+#endif
+
+namespace shadowvol::python {
+
+#ifdef SHADOWVOL_WITH_GL
+namespace {
+
+struct FrameArgs {
+  std::string method, volume, capture, triangulation, cap, platform;
+  int resolution = 512, refine = 0;
+  bool blur = false;
+  std::optional<std::pair<int, int>> size;
+};
+
+gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
+  gl::RenderOptions ro;
+  if (!gl::parseShadowMethod(a.method, ro.method))
+    throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette or none");
+  if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected gpu or explicit");
+  if (a.resolution < 2 || a.resolution > 16384)
+    throw InputError("python", "resolution", std::to_string(a.resolution), "must be between 2 and 16384");
+  ro.depthWidth = ro.depthHeight = a.resolution;
+  ro.capture = captureModeArg(a.capture);
+  ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
+  if (a.refine > 0 && ro.method == gl::ShadowMethod::Hybrid && ro.volume != gl::VolumeSource::Explicit)
+    throw InputError("python", "refine", std::to_string(a.refine), "refines the explicit volume only: volume='explicit'");
+  if (a.size) {
+    const auto [w, h] = *a.size;
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+      throw InputError("python", "size", std::to_string(w) + " x " + std::to_string(h), "each must be between 1 and 16384");
+    scene.camera.width = w;
+    scene.camera.height = h;
+  }
+  return ro;
+}
+
+/// The renderer of one call, with the scene's Embree rays when the options refine (the oracle must
+/// outlive the render and the validation, which rebuilds the explicit volume).
+struct FrameRenderer {
+  std::unique_ptr<EmbreeDepthOracle> oracle;
+  gl::Renderer renderer;
+
+  FrameRenderer(const Scene& scene, gl::RenderOptions& ro, const std::string& platform)
+      : renderer(rendererOptions(platform)) {
+    if (ro.volumeOptions.refineSteps > 0) {
+      oracle = std::make_unique<EmbreeDepthOracle>(scene);
+      ro.volumeOptions.depthOracle = oracle->oracle();
+    }
+    renderer.setScene(scene);
+  }
+  static gl::RendererOptions rendererOptions(const std::string& platform) {
+    gl::RendererOptions r;
+    r.context.platform = platform;
+    return r;
+  }
+};
+
+py::array_t<std::uint8_t> imageArray(const std::vector<std::uint8_t>& bytes, int w, int h, int channels) {
+  py::array_t<std::uint8_t> a(channels == 1 ? std::vector<py::ssize_t>{h, w} : std::vector<py::ssize_t>{h, w, channels});
+  std::copy(bytes.begin(), bytes.end(), a.mutable_data());
+  return a;
+}
+
+py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
+  Scene scene = s.scene;
+  gl::RenderOptions ro = renderOptions(a, scene);
+  gl::RenderResult result;
+  std::string device;
+  {
+    py::gil_scoped_release release;
+    FrameRenderer r(scene, ro, a.platform);
+    result = r.renderer.render(ro);
+    device = r.renderer.info().glRenderer;
+  }
+  py::dict d;
+  d["image"] = imageArray(result.rgba, result.width, result.height, 4);
+  if (!result.stencil.empty()) d["stencil"] = imageArray(result.stencil, result.width, result.height, 1);
+  py::dict passes;
+  for (const auto& p : result.passes) passes[py::str(p.name)] = p.ms;
+  d["passes_ms"] = passes;
+  d["total_ms"] = result.totalMs;
+  d["timing"] = toString(result.timing);
+  d["volume_triangles"] = result.volumeTriangles;
+  d["gl_renderer"] = device;
+  if (result.volumeStats) d["volume"] = toPython(describeVolumeStats(*result.volumeStats));
+  return d;
+}
+
+py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError, double maxMissed,
+                           bool selfIntersections, const std::optional<std::filesystem::path>& reportDir) {
+  Scene scene = s.scene;
+  gl::RenderOptions ro = validationRenderOptions(renderOptions(a, scene));
+  ValidationOptions vo;
+  vo.selfIntersections = selfIntersections;
+  if (!(maxError >= 0.0 && maxError <= 1.0)) throw InputError("python", "max_error", std::to_string(maxError), "must be in [0, 1]");
+  if (!(maxMissed >= 0.0 && maxMissed <= 1.0)) throw InputError("python", "max_missed", std::to_string(maxMissed), "must be in [0, 1]");
+  vo.maxError = maxError;
+  vo.maxMissedShare = maxMissed;
+  nlohmann::json j;
+  {
+    py::gil_scoped_release release;
+    FrameRenderer r(scene, ro, a.platform);
+    const gl::RenderResult result = r.renderer.render(ro);
+    const RenderedFrame frame = toRenderedFrame(result, ro.method);
+    const FrameValidation v = validateRender(scene, ro, result, frame, vo);
+    j = describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette);
+    j["scene"] = describeScene(scene);
+    j["glRenderer"] = r.renderer.info().glRenderer;
+    if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
+    if (reportDir) {
+      std::filesystem::create_directories(*reportDir);
+      writeValidationImages(*reportDir, v, frame);
+    }
+  }
+  return toPython(j).cast<py::dict>();
+}
+
+}  // namespace
+#endif
+
+void registerValidate(py::module_& m) {
+#ifdef SHADOWVOL_WITH_GL
+  auto frameArgs = [](std::string method, std::string volume, int resolution, std::string capture,
+                      std::string triangulation, bool blur, std::string cap, int refine,
+                      std::optional<std::pair<int, int>> size, std::string platform) {
+    FrameArgs a;
+    a.method = std::move(method);
+    a.volume = std::move(volume);
+    a.resolution = resolution;
+    a.capture = std::move(capture);
+    a.triangulation = std::move(triangulation);
+    a.blur = blur;
+    a.cap = std::move(cap);
+    a.refine = refine;
+    a.size = size;
+    a.platform = std::move(platform);
+    return a;
+  };
+  m.def(
+      "render",
+      [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
+                  std::string triangulation, bool blur, std::string cap, int refine,
+                  std::optional<std::pair<int, int>> size, std::string platform) {
+        return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform));
+      },
+      py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
+      py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
+      py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
+      py::arg("platform") = "auto",
+      "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
+      "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
+      "total_ms, timing, volume_triangles, gl_renderer, volume (explicit volume's build stats). size=(W, H).");
+  m.def(
+      "validate",
+      [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
+                  std::string triangulation, bool blur, std::string cap, int refine,
+                  std::optional<std::pair<int, int>> size, std::string platform, double maxError, double maxMissed,
+                  bool selfIntersections, std::optional<std::filesystem::path> reportDir) {
+        return validateFrameArgs(
+            s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform),
+            maxError, maxMissed, selfIntersections, reportDir);
+      },
+      py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
+      py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
+      py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
+      py::arg("platform") = "auto", py::arg("max_error") = kDefaultMaxError,
+      py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
+      py::arg("report_dir") = py::none(),
+      "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
+      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume). "
+      "report_dir: also write the PNGs there (exact, stencil, count, overlay, frame).");
+#else
+  m.def(
+      "validate", [](py::args, py::kwargs) -> py::dict {
+        throw InputError("python", "validate", "", "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+      });
+  m.def(
+      "render", [](py::args, py::kwargs) -> py::dict {
+        throw InputError("python", "render", "", "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+      });
+#endif
+}
+
+}  // namespace shadowvol::python

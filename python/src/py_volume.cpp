@@ -1,0 +1,124 @@
+// Python: build_volume(depth, ...) -> (V, F, stats) and export(V, F, path).
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "py_common.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/report_json.h"
+#include "shadowvol/volume_builder.h"
+
+namespace shadowvol::python {
+namespace {
+
+}  // namespace
+
+VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
+                                 std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
+                                 bool chordPoints) {
+  VolumeBuildOptions o;
+  if (!parseTriangulation(triangulation, o.triangulation))
+    throw InputError("python", "triangulation", triangulation, "expected perfect or fixed");
+  if (!parseFarCap(cap, o.cap)) throw InputError("python", "cap", cap, "expected exact or quad");
+  o.blur = blur;
+  o.blurOffset = blurOffset;
+  o.bias = bias;
+  o.flattenCap = flattenCap;
+  o.refineSteps = refine;
+  o.refineChords = chordPoints;
+  return o;
+}
+
+namespace {
+
+py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
+                            std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
+                            const PyScene* scene, bool chordPoints) {
+  VolumeBuildOptions o = volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints);
+  if (refine > 0 && !scene)
+    throw InputError("python", "refine", std::to_string(refine),
+                     "needs scene=: the refinement casts rays into the scene the depth map was captured from");
+  VolumeBuildResult r;
+  {
+    py::gil_scoped_release release;
+    std::unique_ptr<EmbreeDepthOracle> oracle;
+    if (refine > 0) {
+      oracle = std::make_unique<EmbreeDepthOracle>(scene->scene);
+      o.depthOracle = oracle->oracle();
+    }
+    r = buildVolume(depth, o);
+  }
+  if (r.mesh.vertexCount() > std::size_t(INT32_MAX))
+    throw InputError("python", "depth", std::to_string(r.mesh.vertexCount()) + " vertices",
+                     "more than int32 indices can address");
+  py::array_t<double> v({py::ssize_t(r.mesh.vertexCount()), py::ssize_t(3)});
+  py::array_t<std::int32_t> f({py::ssize_t(r.mesh.triangleCount()), py::ssize_t(3)});
+  auto vr = v.mutable_unchecked<2>();
+  auto fr = f.mutable_unchecked<2>();
+  for (std::size_t k = 0; k < r.mesh.vertexCount(); ++k)
+    for (int c = 0; c < 3; ++c) vr(k, c) = r.mesh.positions[k][c] + r.mesh.origin[c];
+  for (std::size_t k = 0; k < r.mesh.triangleCount(); ++k)
+    for (int c = 0; c < 3; ++c) fr(k, c) = std::int32_t(r.mesh.triangles[k][c]);
+  return py::make_tuple(v, f, toPython(describeVolumeStats(r.stats)));
+}
+
+/// V (N x 3, finite) and F (M x 3, indices in [0, N)) as a VolumeMesh; InputError names the array,
+/// the row and the value.
+VolumeMesh meshFromArrays(const py::array_t<double, py::array::forcecast>& v,
+                          const py::array_t<std::int64_t, py::array::forcecast>& f) {
+  if (v.ndim() != 2 || v.shape(1) != 3) throw InputError("export", "V", "", "expected an N x 3 array of positions");
+  if (f.ndim() != 2 || f.shape(1) != 3) throw InputError("export", "F", "", "expected an M x 3 array of vertex indices");
+  VolumeMesh mesh;
+  auto vr = v.unchecked<2>();
+  auto fr = f.unchecked<2>();
+  mesh.positions.resize(std::size_t(v.shape(0)));
+  for (py::ssize_t k = 0; k < v.shape(0); ++k) {
+    mesh.positions[std::size_t(k)] = {vr(k, 0), vr(k, 1), vr(k, 2)};
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(vr(k, c)))
+        throw InputError("export", "V[" + std::to_string(k) + "]", std::to_string(vr(k, c)), "positions must be finite");
+  }
+  mesh.triangles.resize(std::size_t(f.shape(0)));
+  for (py::ssize_t k = 0; k < f.shape(0); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const std::int64_t idx = fr(k, c);
+      if (idx < 0 || idx >= v.shape(0))
+        throw InputError("export", "F[" + std::to_string(k) + "]", std::to_string(idx),
+                         "index out of range (V has " + std::to_string(v.shape(0)) + " rows)");
+      mesh.triangles[std::size_t(k)][c] = std::uint32_t(idx);
+    }
+  return mesh;
+}
+
+}  // namespace
+
+void registerVolume(py::module_& m) {
+  m.def("build_volume", &buildVolumeArrays, py::arg("depth"), py::kw_only(), py::arg("triangulation") = "perfect",
+        py::arg("blur") = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
+        py::arg("flatten_cap") = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
+        py::arg("chord_points") = false,
+        "The shadow volume of a depth map: (V, F, stats) with V float64 N x 3 (world units), F int32 M x 3 "
+        "(counter-clockwise seen from outside) and stats a dict of counts and times (milliseconds). With the exact "
+        "cap (default) the mesh is closed, outward and welded (docs/volume.md). refine=K (1..16) places each wall "
+        "within 2^-(K+1) texel of the silhouette by K rays per boundary edge into `scene` (the scene the map was "
+        "captured from). bias=None: the default (0 for back capture).");
+  m.def(
+      "export",
+      [](const py::array_t<double, py::array::forcecast>& v, const py::array_t<std::int64_t, py::array::forcecast>& f,
+         const std::filesystem::path& path, bool doublePrecision) {
+        const VolumeMesh mesh = meshFromArrays(v, f);
+        py::gil_scoped_release release;
+        writeVolumeMesh(mesh, path, doublePrecision);
+      },
+      py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision") = false,
+      "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "
+      "atomically (a failure leaves no file). Coordinates are written as float32 unless double_precision=True "
+      "(PLY doubles, OBJ/OFF 17 digits; STL and glTF are float only).");
+}
+
+}  // namespace shadowvol::python

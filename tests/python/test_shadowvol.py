@@ -1,0 +1,190 @@
+"""Tests of the Python module `shadowvol` (python/src): run by CTest as `python_module` with
+PYTHONPATH=<build>/python, SV_SOURCE_DIR (the repository) and SV_SHADOWVOL_EXE (the CLI)."""
+
+import json
+import os
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import shadowvol as sv
+
+SOURCE_DIR = Path(os.environ.get("SV_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+SCENES = SOURCE_DIR / "data" / "scenes"
+CLI = os.environ.get("SV_SHADOWVOL_EXE")
+needs_gl = pytest.mark.skipif(not sv.has_gl, reason="built without GL")
+
+
+def directed_edges(F):
+    return Counter((int(a), int(b)) for t in F for a, b in ((t[0], t[1]), (t[1], t[2]), (t[2], t[0])))
+
+
+def assert_closed_oriented(V, F):
+    """Every directed edge once and its reverse once: closed, consistently oriented, no overused edge."""
+    assert V.dtype == np.float64 and V.ndim == 2 and V.shape[1] == 3
+    assert F.dtype == np.int32 and F.ndim == 2 and F.shape[1] == 3
+    assert np.isfinite(V).all()
+    assert F.min() >= 0 and F.max() < len(V)
+    edges = directed_edges(F)
+    assert all(n == 1 for n in edges.values())
+    assert all((b, a) in edges for a, b in edges)
+    # Outward: the signed volume is positive.
+    a, b, c = V[F[:, 0]], V[F[:, 1]], V[F[:, 2]]
+    assert np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0 > 0.0
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return sv.default_scene()
+
+
+@pytest.fixture(scope="module")
+def depth(scene):
+    return sv.capture_depth(scene, 96, 96)
+
+
+def test_scene_describes_itself(scene):
+    d = scene.describe()
+    assert d["source"] == "default" and d["light"]["type"] == "spot"
+    assert d["triangles"] == scene.triangle_count
+    V, F = scene.mesh()
+    assert len(F) == scene.triangle_count and np.isfinite(V).all()
+    assert (np.asarray(d["bounds"]["min"]) <= V.min(axis=0) + 1e-6).all()
+
+
+def test_load_scene_reads_shipped_scene():
+    s = sv.load_scene(SCENES / "bunny.json")
+    assert s.source.endswith("bunny.json") and s.triangle_count > 1000
+
+
+def test_capture_depth_gives_numpy_view(depth):
+    assert depth.width == 96 and depth.height == 96
+    a = depth.depth
+    assert a.shape == (96, 96) and a.dtype == np.float32 and not a.flags.writeable
+    hit = np.isfinite(a)
+    assert hit.sum() == depth.hit_count > 0
+    assert (a[hit] >= depth.near).all() and (a[hit] <= depth.far).all()
+    assert depth.light_view.shape == (4, 4) and depth.light_projection.shape == (4, 4)
+
+
+def test_build_volume_is_closed_and_matches_stats(depth):
+    V, F, stats = sv.build_volume(depth)
+    assert_closed_oriented(V, F)
+    assert stats["quads"] == 95 * 95 and stats["capTrianglesAfter"] > 0 and stats["ms"]["total"] >= 0
+
+
+def test_from_array_rebuilds_the_same_volume(depth):
+    copy = sv.DepthMap.from_array(np.array(depth.depth), depth.light_view, depth.light_projection, depth.near, depth.far,
+                                  light=depth.light, capture=depth.capture)
+    V0, F0, _ = sv.build_volume(depth)
+    V1, F1, _ = sv.build_volume(copy)
+    assert np.array_equal(V0, V1) and np.array_equal(F0, F1)
+    empty = sv.DepthMap.from_array(np.full((8, 8), np.inf), depth.light_view, depth.light_projection, depth.near,
+                                   depth.far)
+    V2, F2, _ = sv.build_volume(empty)
+    assert len(F2) == 0
+
+
+def test_refinement_casts_rays_and_stays_closed(scene, depth):
+    V, F, stats = sv.build_volume(depth, refine=4, scene=scene)
+    assert stats["boundaryEdges"] > 0 and stats["raysCast"] >= 4 * stats["boundaryEdges"]
+    assert_closed_oriented(V, F)
+
+
+def test_export_round_trips_through_obj(tmp_path, depth):
+    V, F, _ = sv.build_volume(depth)
+    out = tmp_path / "v.obj"
+    sv.export(V, F, out, double_precision=True)
+    rows = [line.split() for line in out.read_text().splitlines()]
+    Vr = np.array([[float(x) for x in r[1:4]] for r in rows if r and r[0] == "v"])
+    Fr = np.array([[int(x.split("/")[0]) - 1 for x in r[1:4]] for r in rows if r and r[0] == "f"])
+    assert np.array_equal(Vr, V) and np.array_equal(Fr, F)
+
+
+def test_depth_save_and_load(tmp_path, depth):
+    path = tmp_path / "d.pfm"
+    depth.save(path)
+    back = sv.load_depth(path)
+    assert np.array_equal(back.depth, depth.depth) and np.array_equal(back.light_view, depth.light_view)
+
+
+def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
+    assert issubclass(sv.InputError, ValueError)
+    bad = np.array(depth.depth)
+    bad[3, 5] = np.nan
+    with pytest.raises(sv.InputError, match=r"texel 5,3"):
+        sv.DepthMap.from_array(bad, depth.light_view, depth.light_projection, depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"/lightView"):
+        sv.DepthMap.from_array(depth.depth, 2 * np.eye(4), depth.light_projection, depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"/near"):
+        sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, -1.0, depth.far)
+    with pytest.raises(sv.InputError, match=r"capture = sideways"):
+        sv.capture_depth(sv.default_scene(), 8, 8, capture="sideways")
+    with pytest.raises(sv.InputError, match=r"refine"):
+        sv.build_volume(depth, refine=3)
+    V, F, _ = sv.build_volume(depth)
+    F = F.copy()
+    F[7, 1] = len(V)
+    with pytest.raises(sv.InputError, match=r"F\[7\]"):
+        sv.export(V, F, tmp_path / "bad.ply")
+    assert not (tmp_path / "bad.ply").exists()
+    with pytest.raises(sv.InputError, match=r"unsupported mesh format"):
+        sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
+
+
+def test_library_message_is_the_command_lines(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"objects": [{"type": "sphere", "radius": -1}]}))
+    with pytest.raises(sv.InputError) as err:
+        sv.load_scene(bad)
+    assert "/objects/0/radius" in str(err.value)
+    if CLI:
+        run = subprocess.run([CLI, "scene", "--scene", str(bad)], capture_output=True, text=True)
+        assert run.returncode == 1 and str(err.value) in run.stderr
+
+
+@needs_gl
+def test_gpu_capture_agrees_with_cpu(scene):
+    cpu = sv.capture_depth(scene, 64, 64, device="cpu").depth
+    gpu = sv.capture_depth(scene, 64, 64, device="gpu").depth
+    hit = np.isfinite(cpu)
+    assert np.array_equal(hit, np.isfinite(gpu))
+    assert (np.abs(gpu[hit] - cpu[hit]) <= 1e-4 * cpu[hit]).all()
+
+
+@needs_gl
+def test_validate_returns_the_report(tmp_path, scene):
+    report = sv.validate(scene, resolution=64, size=(96, 72), report_dir=tmp_path / "r")
+    assert report["passed"] is True and report["verdict"]["consistent"] is True
+    assert report["stencilVsCount"]["fraction"] >= 0.9999
+    assert report["pixels"]["total"] == 96 * 72 and report["meshChecks"]["closedManifold"] is True
+    assert (tmp_path / "r" / "overlay.png").is_file()
+
+
+@needs_gl
+def test_render_returns_image_and_stencil(scene):
+    frame = sv.render(scene, resolution=64, size=(40, 30))
+    assert frame["image"].shape == (30, 40, 4) and frame["image"].dtype == np.uint8
+    assert frame["stencil"].shape == (30, 40) and frame["stencil"].any()
+    assert "volume" in frame["passes_ms"]
+
+
+def test_example_runs(tmp_path):
+    example = SOURCE_DIR / "python" / "examples" / "volume_to_open3d.py"
+    run = subprocess.run([sys.executable, str(example), str(SCENES / "tree.json"), str(tmp_path / "v.ply")],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert "signed volume" in run.stdout and (tmp_path / "v.ply").stat().st_size > 1000
+
+
+def test_open3d_calls_the_double_precision_volume_watertight(tmp_path, depth):
+    """Optional (Debian's python3-open3d): Open3D reads the exported PLY as the same closed mesh."""
+    o3d = pytest.importorskip("open3d")
+    V, F, _ = sv.build_volume(depth)
+    sv.export(V, F, tmp_path / "v.ply", double_precision=True)
+    mesh = o3d.io.read_triangle_mesh(str(tmp_path / "v.ply"))
+    assert np.array_equal(np.asarray(mesh.vertices), V) and mesh.is_watertight()
