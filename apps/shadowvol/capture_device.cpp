@@ -1,6 +1,7 @@
 #include "capture_device.h"
 
 #include "cli_common.h"
+#include "cli_verbosity.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
 #ifdef SHADOWVOL_WITH_GL
@@ -20,13 +21,22 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
 }
 
 DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
-  if (o.device == "cpu") return captureDepthEmbree(scene, width, height, mode);
+  if (o.device == "cpu") {
+    DepthMap map = captureDepthEmbree(scene, width, height, mode);
+    verboseNote("depth captured on the CPU (Embree): %dx%d %s, %zu texels hit", width, height, toString(mode),
+                map.hitCount());
+    return map;
+  }
 #ifdef SHADOWVOL_WITH_GL
   gl::RendererOptions ro;
   ro.context.platform = o.platform;
   gl::Renderer renderer(ro);
+  verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
+              renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
   renderer.setScene(scene);
-  return renderer.captureDepth(width, height, mode);
+  DepthMap map = renderer.captureDepth(width, height, mode);
+  verboseNote("depth captured on the GPU: %dx%d %s, %zu texels hit", width, height, toString(mode), map.hitCount());
+  return map;
 #else
   throw InputError("command line", "--device", o.device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
 #endif

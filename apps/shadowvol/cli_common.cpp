@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "shadowvol/capture_warnings.h"
+#include "cli_verbosity.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol::cli {
@@ -75,9 +76,14 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
 }
 
 Scene loadSceneOrDefault(const std::string& path) {
-  if (path.empty()) return defaultScene();
-  SceneLoadResult r = loadScene(path);
+  SceneLoadResult r;
+  if (path.empty()) r.scene = defaultScene();
+  else r = loadScene(path);
   for (const auto& w : r.warnings) std::fprintf(stderr, "shadowvol: warning: %s\n", w.c_str());
+  const Scene& s = r.scene;
+  verboseNote("scene %s: %zu objects, %zu triangles; light near %.6g far %.6g; camera %dx%d near %.6g far %.6g",
+              s.source.c_str(), s.objects.size(), s.triangleCount(), s.light.nearPlane, s.light.farPlane,
+              s.camera.width, s.camera.height, s.camera.nearPlane, s.camera.farPlane);
   return std::move(r.scene);
 }
 

@@ -36,8 +36,22 @@ std::string unknown(const std::string& what, const std::string& name, const std:
 }  // namespace
 
 std::optional<std::string> misspeltName(const CLI::App& app, int argc, const char* const* argv) {
-  if (argc < 2 || argv[1][0] == '-') return std::nullopt;  // --help, --version: CLI11's
-  const std::string name = argv[1];
+  // The top level's own flags (--quiet, --verbose) may come first; --help and --version are CLI11's.
+  std::vector<std::string> options;
+  for (const CLI::Option* o : app.get_options()) {
+    for (const auto& n : o->get_lnames()) options.push_back("--" + n);
+    for (const auto& n : o->get_snames()) options.push_back("-" + n);
+  }
+  int first = 1;
+  while (first < argc && argv[first][0] == '-') {
+    const std::string arg = argv[first];
+    if (arg == "--help" || arg == "-h" || arg == "--version" ||
+        std::find(options.begin(), options.end(), arg) == options.end())
+      return std::nullopt;  // CLI11 answers (help, version, or its own "unknown option")
+    ++first;
+  }
+  if (first >= argc) return std::nullopt;
+  const std::string name = argv[first];
   const CLI::App* sub = nullptr;
   std::vector<std::string> subcommands;
   for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; })) {
@@ -45,10 +59,9 @@ std::optional<std::string> misspeltName(const CLI::App& app, int argc, const cha
     if (s->get_name() == name) sub = s;
   }
   if (!sub) return unknown("subcommand", name, subcommands);
-  std::vector<std::string> options;
   for (const CLI::Option* o : sub->get_options())
     for (const auto& n : o->get_lnames()) options.push_back("--" + n);
-  for (int k = 2; k < argc; ++k) {
+  for (int k = first + 1; k < argc; ++k) {
     const std::string_view arg = argv[k];
     if (arg == "--") break;  // what follows is positional
     if (arg.size() < 3 || arg.substr(0, 2) != "--") continue;

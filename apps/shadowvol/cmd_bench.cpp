@@ -7,6 +7,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "cli_verbosity.h"
 #include "render_options.h"
 #include "shadowvol/version.h"
 #include "shadowvol/bench/sweep.h"
@@ -167,10 +168,13 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       ropt.context.platform = o->platform;
       gl::Renderer renderer(ropt);
       info.glRenderer = renderer.info().glRenderer;
-      const bool tty = isatty(fileno(stderr));
+      verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
+                  renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
+      const bool tty = isatty(fileno(stderr)) && verbosity() == Verbosity::Normal;
       std::signal(SIGINT, onSigint);
       std::vector<std::string> notes;
       const auto rows = runSweep(renderer, so, gStop, [tty](const SweepProgress& p) {
+        if (verbosity() == Verbosity::Quiet) return;
         const double eta = p.done > p.skipped ? p.elapsedSeconds / double(p.done - p.skipped) * double(p.total - p.done) : 0.0;
         if (tty) {
           const int width = 30, filled = p.total ? int(width * p.done / p.total) : width;
@@ -178,7 +182,8 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
                        std::string(width - filled, '.').c_str(), p.done, p.total, eta, p.cell.c_str());
           if (p.done == p.total) std::fputc('\n', stderr);
         } else {
-          std::fprintf(stderr, "bench %zu/%zu %s\n", p.done, p.total, p.cell.c_str());
+          std::fprintf(stderr, "bench %zu/%zu  %.0f s elapsed, ETA %.0f s  %s\n", p.done, p.total, p.elapsedSeconds, eta,
+                       p.cell.c_str());
         }
       }, notes);
       std::signal(SIGINT, SIG_DFL);

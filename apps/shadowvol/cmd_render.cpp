@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 
+#include "cli_verbosity.h"
 #include "render_options.h"
 #include "shadowvol/version.h"
 #include "shadowvol/error.h"
@@ -62,6 +63,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
+      verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
+                  renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
       renderer.setScene(scene);
 
       std::map<std::string, std::vector<double>> times;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "cli_verbosity.h"
 #include "render_options.h"
 #include "shadowvol/version.h"
 #include "shadowvol/error.h"
@@ -62,6 +63,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro = validationRenderOptions(ro);
       gl::Renderer renderer(toRendererOptions(o->render));
+      verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
+                  renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
       renderer.setScene(scene);
       const gl::RenderResult result = renderer.render(ro);
       const RenderedFrame frame = toRenderedFrame(result, ro.method);

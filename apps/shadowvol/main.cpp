@@ -4,6 +4,7 @@
 
 #include "cli_common.h"
 #include "cli_suggest.h"
+#include "cli_verbosity.h"
 #include "shadowvol/error.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/version.h"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
       "4 runtime failure (no EGL display, Embree error), 130 bench interrupted (resume with the same command)."};
   app.set_version_flag("--version", "shadowvol " SHADOWVOL_VERSION);
   app.require_subcommand(1);
+  cli::addVerbosityOptions(app);
   cli::setCommandLine(argc, argv);
   cli::Runner run;
   cli::registerSceneCommand(app, run);
@@ -34,6 +36,7 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
+    cli::applyVerbosity(app);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? cli::kOk : cli::kUsage;

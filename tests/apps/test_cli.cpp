@@ -223,6 +223,46 @@ TEST(Cli, UpperCaseExtensionsAreAccepted) {
   EXPECT_TRUE(std::filesystem::exists(dir / "v.PLY"));
 }
 
+TEST(Cli, GltfOutputIsWritten) {
+  const auto dir = test::tempDir();
+  for (const char* name : {"v.glb", "v.GLTF"}) {
+    const CliResult r = runCli("build --resolution 16 --out " + (dir / name).string());
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_GT(std::filesystem::file_size(dir / name), 100u);
+  }
+  const CliResult bad = runCli("build --resolution 16 --out " + (dir / "v.fbx").string());
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_TRUE(contains(bad.out, ".gltf or .glb")) << bad.out;
+}
+
+// --quiet: nothing but the --json document (stderr is merged into out here, so warnings would
+// show: the default scene has none); --verbose: stage notes; both at once: usage error.
+TEST(Cli, QuietAndVerbose) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "v.ply").string();
+  for (const char* q : {"-q build", "build --quiet"}) {
+    const CliResult r = runCli(std::string(q) + " --resolution 16 --out " + out);
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(r.out, "") << q;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    std::filesystem::remove(out);
+  }
+  const CliResult json = runCli("build -q --json --resolution 16 --out " + out);
+  EXPECT_EQ(json.code, 0);
+  EXPECT_EQ(nlohmann::json::parse(json.out)["quads"], 15 * 15) << json.out;
+  const CliResult loud = runCli("build --verbose --resolution 16 --out " + out);
+  EXPECT_EQ(loud.code, 0);
+  EXPECT_TRUE(contains(loud.out, "s] scene default: 2 objects")) << loud.out;
+  EXPECT_TRUE(contains(loud.out, "s] depth captured on the CPU")) << loud.out;
+  EXPECT_TRUE(contains(loud.out, "wrote ")) << loud.out;
+  const CliResult both = runCli("-q -v build --out " + out);
+  EXPECT_EQ(both.code, 2);
+  EXPECT_TRUE(contains(both.out, "excludes")) << both.out;
+  const CliResult error = runCli("build -q --resolution 1 --out " + out);
+  EXPECT_EQ(error.code, 1);
+  EXPECT_TRUE(contains(error.out, "--resolution = 1")) << error.out;  // errors still reach stderr
+}
+
 TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "r.ply").string();
