@@ -1,5 +1,6 @@
 // shadowvol bench: the time-against-error sweep over scenes x methods x depth-map resolutions.
 // Writes DIR/results.csv cell by cell (resumable) and DIR/report.md with SVG plots.
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -35,9 +36,6 @@ std::string machineDescription() {
   return buf;
 }
 
-}  // namespace
-
-namespace {
 
 // One cell of results.csv as JSON (the same fields; times in ms, fractions of the pixels).
 nlohmann::json rowJson(const SweepRow& r) {
@@ -69,6 +67,16 @@ nlohmann::json rowJson(const SweepRow& r) {
           {"distMax", optional(r.distMax)}};
 }
 
+
+// --report-only --methods: the report and plots of these methods only (each must be in the results).
+std::vector<SweepRow> onlyMethods(std::vector<SweepRow> rows, const std::vector<std::string>& methods) {
+  for (const auto& m : methods)
+    if (std::none_of(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.method == m; }))
+      throw InputError("command line", "--methods", m, "no cell of this method in results.csv");
+  std::erase_if(rows, [&](const SweepRow& r) { return std::find(methods.begin(), methods.end(), r.method) == methods.end(); });
+  return rows;
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& app, Runner& run) {
@@ -93,7 +101,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       "command again to resume an interrupted sweep; Ctrl-C stops after the current cell) and DIR/report.md with "
       "SVG plots");
   cmd->add_option("--scenes", o->scenes, "Scene files (default: every data/scenes/*.json; 'default' = built-in scene)");
-  cmd->add_option("--methods", o->methods, "Method keys, separated by spaces or commas (default: all; see --list-methods)")
+  cmd->add_option("--methods", o->methods, "Method keys, separated by spaces or commas (default: all; see --list-methods); with --report-only: the methods the report and plots show")
       ->delimiter(',');
   cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N), separated by spaces or commas")
       ->delimiter(',')
@@ -126,7 +134,8 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       info.machine = machineDescription();
       info.command = commandLine();
       if (o->reportOnly) {
-        const auto rows = readSweepCsv(dir / "results.csv");
+        auto rows = readSweepCsv(dir / "results.csv");
+        if (!o->methods.empty()) rows = onlyMethods(std::move(rows), o->methods);
         info.timing = rows.empty() ? "" : rows.front().timing;
         info.glRenderer = "see results";
         for (const auto& p : writeSweepReport(rows, info, dir)) std::printf("wrote %s\n", p.string().c_str());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
@@ -389,6 +390,15 @@ TEST(CliGl, BenchListsTakeCommas) {
   EXPECT_EQ(j["cells"].size(), 4u);
   EXPECT_EQ(j["cells"][0]["scene"], "default");
   EXPECT_FALSE(j["files"].empty());
+  // --report-only --methods: the report of these methods only; a method without cells is named.
+  const CliResult only = runCli("bench -q --report-only --methods pcf3 --out " + (dir / "b").string());
+  ASSERT_EQ(only.code, 0) << only.out;
+  std::ifstream report(dir / "b" / "report.md");
+  const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(contains(md, "Cells: 2 ")) << md.substr(0, 600);
+  const CliResult none = runCli("bench --report-only --methods pcf5 --out " + (dir / "b").string());
+  EXPECT_EQ(none.code, 1);
+  EXPECT_TRUE(contains(none.out, "--methods = pcf5")) << none.out;
   // Without --out: a usage error like any missing required option (exit 2; it was 1).
   const CliResult u = runCli("bench --methods shadowmap");
   EXPECT_EQ(u.code, 2) << u.out;

@@ -144,6 +144,8 @@ TEST_F(SweepReportTest, WritesReportAndPlots) {
   }
   const std::string scenePlot = readText(dir_ / "plots" / "sweep-000500.svg");
   EXPECT_EQ(count(scenePlot, "<polyline class=\"front\""), 1u);
+  EXPECT_EQ(count(scenePlot, "<path class=\"whisker\""), 7u);  // min..max frame time of every point
+  EXPECT_EQ(count(readText(dir_ / "plots" / "polygon-sweep.svg"), "class=\"whisker\""), 0u);
   EXPECT_NE(scenePlot.find("zero error"), std::string::npos);    // the hybrid's 0 at 256 is clamped and said so
   EXPECT_NE(scenePlot.find(">1024</text>"), std::string::npos);  // points labelled by resolution
 

@@ -153,6 +153,7 @@ struct Series {
   int style = 0;                           ///< colour = style % 8, dash and marker = style / 8
   std::vector<std::array<double, 2>> pts;  ///< data coordinates, all positive and finite
   std::vector<std::string> labels;         ///< one per point, may be empty strings
+  std::vector<std::array<double, 2>> xRange;  ///< per point: whisker from x min to x max (empty: none)
 };
 
 struct PlotSpec {
@@ -236,8 +237,12 @@ void marker(std::ostringstream& o, int shape, double x, double y, const char* co
 std::string svgPlot(const PlotSpec& spec) {
   constexpr double W = 980, H = 640, X0 = 80, X1 = 700, Y0 = 50, Y1 = 560;
   std::vector<double> xs, ys;
-  for (const auto& s : spec.series)
+  for (const auto& s : spec.series) {
     for (const auto& p : s.pts) xs.push_back(p[0]), ys.push_back(p[1]);
+    for (const auto& r : s.xRange)
+      for (double x : r)
+        if (x > 0 && std::isfinite(x)) xs.push_back(x);
+  }
   for (const auto& p : spec.front) xs.push_back(p[0]), ys.push_back(p[1]);
   const LogAxis ax = LogAxis::fit(xs), ay = LogAxis::fit(ys);
   auto X = [&](double v) { return ax.map(v, X0, X1); };
@@ -322,6 +327,12 @@ std::string svgPlot(const PlotSpec& spec) {
       o << "\"><title>" << xmlEscape(s.name) << "</title></polyline>\n";
     }
     for (std::size_t i = 0; i < s.pts.size(); ++i) {
+      if (i < s.xRange.size() && s.xRange[i][1] > s.xRange[i][0]) {  // min..max whisker with end ticks
+        const double y = Y(s.pts[i][1]), a = X(s.xRange[i][0]), b = X(s.xRange[i][1]);
+        o << "<path class=\"whisker\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1\" d=\"M" << num1(a)
+          << "," << num1(y) << "H" << num1(b) << "M" << num1(a) << "," << num1(y - 3) << "V" << num1(y + 3) << "M"
+          << num1(b) << "," << num1(y - 3) << "V" << num1(y + 3) << "\"/>\n";
+      }
       marker(o, int(kind), X(s.pts[i][0]), Y(s.pts[i][1]), colour, s.pts.size() == 1 ? 4.5 : 3.0);
       if (i < s.labels.size() && !s.labels[i].empty())
         o << "<text x=\"" << num1(X(s.pts[i][0]) + 5) << "\" y=\"" << num1(Y(s.pts[i][1]) - 5)
@@ -450,7 +461,7 @@ std::string scenePlot(const Report& rep, const Group& g) {
   PlotSpec spec;
   spec.title = g.scene + " (" + sizeLabel(g.width, g.height) + ", " + std::to_string(g.triangles) +
                " triangles): error against frame time";
-  spec.xLabel = "frame time, median ms (log)";
+  spec.xLabel = "frame time, median ms (log; whiskers: min to max over the measured frames)";
   spec.yLabel = "misclassified fraction of compared pixels (log; zero drawn at " + fmt("%g", floor) + ")";
   if (anyZero) spec.zeroLine = floor;
   for (const std::string& m : methodsOf(g.rows, rep.methods)) {
@@ -462,6 +473,7 @@ std::string scenePlot(const Report& rep, const Group& g) {
       if (!r || !plottable(*r)) continue;
       s.pts.push_back({r->frame.median, yOf(r->error)});
       s.labels.push_back(res > 0 ? std::to_string(res) : "");
+      s.xRange.push_back({r->frame.min, r->frame.max});
     }
     if (!s.pts.empty()) spec.series.push_back(std::move(s));
   }
