@@ -13,7 +13,8 @@ if(SHADOWVOL_BUILD_GL)
 endif()
 foreach(t ${sv_exported})
   string(REPLACE "shadowvol_" "" short ${t})
-  set_target_properties(${t} PROPERTIES EXPORT_NAME ${short} POSITION_INDEPENDENT_CODE ON)
+  # INSTALL_RPATH: with BUILD_SHARED_LIBS each library finds its siblings beside itself.
+  set_target_properties(${t} PROPERTIES EXPORT_NAME ${short} POSITION_INDEPENDENT_CODE ON INSTALL_RPATH "$ORIGIN")
   add_library(shadowvol::${short} ALIAS ${t})
 endforeach()
 # Linked privately by every target; exported because static libraries carry their link interface.
@@ -29,6 +30,9 @@ install(FILES ${PROJECT_BINARY_DIR}/generated/shadowvol/version.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shadowvol)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/shadowvol)
 if(SHADOWVOL_BUILD_APPS)
+  # With BUILD_SHARED_LIBS the installed command finds the installed libraries relative to itself.
+  file(RELATIVE_PATH sv_bin_to_lib /p/${CMAKE_INSTALL_BINDIR} /p/${CMAKE_INSTALL_LIBDIR})
+  set_target_properties(shadowvol PROPERTIES INSTALL_RPATH "$ORIGIN/${sv_bin_to_lib}")
   install(TARGETS shadowvol RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
