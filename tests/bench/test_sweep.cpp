@@ -1,5 +1,6 @@
 // The sweep's machinery (issue 6): CSV columns and round trip, resume after an interruption, and
 // the error metric on hand-made masks with known answers. No timing is asserted.
+#include <algorithm>
 #include <fstream>
 #include <random>
 
@@ -190,6 +191,9 @@ TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   rows = runSweep(renderer, o, stop, [&](const SweepProgress& p) { last = p; }, notes);
   EXPECT_EQ(rows.size(), 5u);
   EXPECT_EQ(last.skipped, 4u);  // only the interrupted cell was measured again
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.rfind("resumed: 4 of 5 cells were already in ", 0) == 0;
+  })) << ::testing::PrintToString(notes);
   EXPECT_EQ(readSweepCsv(csv).size(), 5u);
   // Regression: a run killed while creating results.csv left it empty, and every later run failed
   // ("not a shadowvol sweep file"); an empty file now starts afresh.

@@ -223,7 +223,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     if (done.count(cellKey(row))) {
       ++progress.done;
       ++progress.skipped;
-      report(label);
+      report(label + " (resumed: already in results.csv)");
       continue;
     }
     if (loadedScene != c.scene) {
@@ -299,6 +299,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     ++progress.done;
     report(label);
   }
+  if (progress.skipped > 0)
+    notes.push_back("resumed: " + std::to_string(progress.skipped) + " of " + std::to_string(progress.total) +
+                    " cells were already in " + csv.string() + " and were not measured again");
   return rows;
 }
 
