@@ -187,8 +187,8 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
         const double eta = p.done > p.skipped ? p.elapsedSeconds / double(p.done - p.skipped) * double(p.total - p.done) : 0.0;
         if (tty) {
           const int width = 30, filled = p.total ? int(width * p.done / p.total) : width;
-          std::fprintf(stderr, "\r[%s%s] %zu/%zu  ETA %4.0f s  %-60.60s", std::string(filled, '#').c_str(),
-                       std::string(width - filled, '.').c_str(), p.done, p.total, eta, p.cell.c_str());
+          std::fprintf(stderr, "\r[%s%s] %zu/%zu  %4.0f s, ETA %4.0f s  %-60.60s", std::string(filled, '#').c_str(),
+                       std::string(width - filled, '.').c_str(), p.done, p.total, p.elapsedSeconds, eta, p.cell.c_str());
           if (p.done == p.total) std::fputc('\n', stderr);
         } else {
           std::fprintf(stderr, "bench %zu/%zu  %.0f s elapsed, ETA %.0f s  %s\n", p.done, p.total, p.elapsedSeconds, eta,

@@ -10,6 +10,7 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/report_json.h"
+#include "shadowvol/version.h"
 #include "shadowvol/validate/gl_frame.h"
 #include "shadowvol/validate/validation_report.h"
 #endif
@@ -120,6 +121,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     j = describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette);
     j["scene"] = describeScene(scene);
     j["glRenderer"] = r.renderer.info().glRenderer;
+    j["shadowvolVersion"] = SHADOWVOL_VERSION;
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
     if (reportDir) {
       std::filesystem::create_directories(*reportDir);

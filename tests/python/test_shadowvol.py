@@ -160,6 +160,7 @@ def test_gpu_capture_agrees_with_cpu(scene):
 def test_validate_returns_the_report(tmp_path, scene):
     report = sv.validate(scene, resolution=64, size=(96, 72), report_dir=tmp_path / "r")
     assert report["passed"] is True and report["verdict"]["consistent"] is True
+    assert report["shadowvolVersion"] == sv.__version__
     assert report["stencilVsCount"]["fraction"] >= 0.9999
     assert report["pixels"]["total"] == 96 * 72 and report["meshChecks"]["closedManifold"] is True
     assert (tmp_path / "r" / "overlay.png").is_file()
