@@ -22,6 +22,37 @@ void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
   addJsonOption(cmd, o.json);
 }
 
+void addLightFitOption(CLI::App& cmd, std::string& fit) {
+  cmd.add_option("--fit", fit,
+                 "Light frustum: scene (fitted to the whole scene) or view (narrowed to the receivers the camera "
+                 "sees: a spot light re-aims and narrows inside its cone, a directional light shrinks its window; "
+                 "more texels where they show, a volume that depends on the camera)")
+      ->check(CLI::IsMember({"scene", "view"}))
+      ->capture_default_str();
+}
+
+nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution) {
+  LightFit fit = LightFit::Scene;
+  parseLightFit(o.fit, fit);
+  nlohmann::json j = {{"fit", o.fit}};
+  if (fit == LightFit::View) {
+    const LightFitResult r = fitLightToView(scene, resolution);
+    j["changed"] = r.changed;
+    j["note"] = r.note;
+    j[scene.light.type == LightType::Spot ? "fovBefore" : "extentBefore"] = r.windowBefore;
+    verboseNote("%s", r.note.c_str());
+  }
+  const auto texel = receiverTexelSize(scene, resolution);
+  j["texelOnReceivers"] = texel ? nlohmann::json::array({texel->first, texel->second}) : nlohmann::json();
+  if (!o.json) {
+    std::printf("light (--fit %s)%s%s: texel on the receivers ", o.fit.c_str(), j.contains("note") ? ", " : "",
+                j.contains("note") ? j["note"].get<std::string>().c_str() : "");
+    if (texel) std::printf("%.3g to %.3g world units at %d x %d\n", texel->first, texel->second, resolution, resolution);
+    else std::printf("unknown (the camera sees none of the lit scene)\n");
+  }
+  return j;
+}
+
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_option("--triangulation", o.triangulation,
                  "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "

@@ -25,9 +25,18 @@ enum ExitCode { kOk = 0, kBadInput = 1, kUsage = 2, kValidationFailed = 3, kRunt
 struct SceneOptions {
   std::string scene;       ///< path; empty = the built-in default scene
   bool json = false;       ///< print one JSON document on stdout instead of text
+  std::string fit = "scene";  ///< --fit (subcommands with a depth map): scene | view
 };
 
 void addSceneOptions(CLI::App& cmd, SceneOptions& o);
+
+/// Adds --fit scene|view (the light fitted to the whole scene, or to what the camera sees).
+void addLightFitOption(CLI::App& cmd, std::string& fit);
+
+/// Applies --fit to the loaded scene (after the camera's size is final) for a map of
+/// `resolution` texels, and describes the light as used: the fit, what it changed and the texel
+/// size on the receivers (JSON for --json; the same as one line on stdout otherwise).
+nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution);
 
 /// Adds --platform (the EGL platform: auto, device, surfaceless, default); `when` prefixes the
 /// help ("With --device gpu, ") where the option does not always apply.

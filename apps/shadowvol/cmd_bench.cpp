@@ -83,6 +83,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   struct Options {
     std::vector<std::string> scenes;
     std::vector<std::string> methods;
+    std::vector<std::string> fits;
     std::vector<int> resolutions = {64, 128, 256, 512, 1024, 2048, 4096};
     std::string size = "640x480";
     int repeat = 5;
@@ -103,6 +104,11 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--scenes", o->scenes, "Scene files (default: every data/scenes/*.json; 'default' = built-in scene)");
   cmd->add_option("--methods", o->methods, "Method keys, separated by spaces or commas (default: all; see --list-methods); with --report-only: the methods the report and plots show")
       ->delimiter(',');
+  cmd->add_option("--fit", o->fits,
+                  "Light fits, each a set of cells, separated by spaces or commas: scene (default), view (the light "
+                  "fitted to each scene's camera for each resolution; results name the scene <scene>@view)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"scene", "view"}));
   cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N), separated by spaces or commas")
       ->delimiter(',')
       ->capture_default_str();
@@ -162,6 +168,14 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
         }
       }
       so.methods = o->methods;
+      if (!o->fits.empty()) {
+        so.fits.clear();
+        for (const auto& f : o->fits) {
+          LightFit fit;
+          parseLightFit(f, fit);
+          if (std::find(so.fits.begin(), so.fits.end(), fit) == so.fits.end()) so.fits.push_back(fit);
+        }
+      }
       so.resolutions = o->resolutions;
       Scene sizeScene;
       RenderCliOptions sizeOnly;

@@ -36,6 +36,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                "gpu) or read one, turn it "
                "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl, .gltf, .glb)");
   addSceneOptions(*cmd, o->scene);
+  addLightFitOption(*cmd, o->scene.fit);
   auto* depthOpt = cmd->add_option("--depth", o->depth,
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
                                    "capturing one from the scene");
@@ -84,6 +85,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         CaptureMode mode{};
         parseCaptureMode(o->capture, mode);
         scene = loadSceneOrDefault(o->scene.scene);
+        j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);
         j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
         const auto t0 = std::chrono::steady_clock::now();
         map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);

@@ -27,6 +27,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                                           "with --device gpu) and write it as a PFM with a JSON side file (matrices, "
                                           "near/far, capture mode)");
   addSceneOptions(*cmd, o->scene);
+  addLightFitOption(*cmd, o->scene.fit);
   cmd->add_option("--resolution", o->resolution, "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
       ->capture_default_str();
   cmd->add_option("--capture", o->capture,
@@ -45,7 +46,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
         throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
       CaptureMode mode{};
       parseCaptureMode(o->capture, mode);
-      const Scene scene = loadSceneOrDefault(o->scene.scene);
+      Scene scene = loadSceneOrDefault(o->scene.scene);
+      const nlohmann::json lightFit = applyLightFit(scene, o->scene, o->resolution);
       const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);
       const auto t0 = std::chrono::steady_clock::now();
       const DepthMap map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
@@ -59,6 +61,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
         }
       const std::size_t hits = map.hitCount();
       nlohmann::json j = {{"scene", describeScene(scene)},
+                          {"lightFit", lightFit},
                           {"resolution", o->resolution},
                           {"capture", o->capture},
                           {"device", o->device.device},

@@ -57,6 +57,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
       if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
@@ -102,6 +103,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       }
       nlohmann::json j = {
           {"scene", describeScene(scene)},
+          {"lightFit", lightFit},
           {"gl", describeContext(info)},
           {"method", o->render.method},
           {"volume", o->render.method == "hybrid" ? nlohmann::json(o->render.volume) : nlohmann::json()},

@@ -57,6 +57,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       checkOutputFolder("--report", o->reportDir);
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
       if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
@@ -98,6 +99,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
       }
       j["warnings"] = warnings;
+      j["lightFit"] = lightFit;
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
       if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};

@@ -23,6 +23,7 @@ std::pair<int, int> parseSize(const std::string& text) {
 
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   addSceneOptions(cmd, o.scene);
+  addLightFitOption(cmd, o.scene.fit);
   cmd.add_option("--method", o.method,
                  "hybrid (the shadow volume, z-fail stencil), shadowmap (hardware depth compare), pcf3 / pcf5 "
                  "(percentage-closer filtering over 3x3 / 5x5 texels), silhouette (classic object-space shadow "

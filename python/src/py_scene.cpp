@@ -41,6 +41,26 @@ void registerScene(py::module_& m) {
                              "what loading noticed (a light inside a closed mesh, a moved far plane)")
       .def("describe", [](const PyScene& s) { return toPython(describeScene(s.scene)); },
            "The scene as `shadowvol scene --json` prints it: counts, bounds, light and camera (world units).")
+      .def(
+          "fit_light_to_view",
+          [](PyScene& s, int resolution) {
+            const LightFitResult r = fitLightToView(s.scene, resolution);
+            py::dict d;
+            d["changed"] = r.changed;
+            d["window_before"] = r.windowBefore;
+            d["window_after"] = r.windowAfter;
+            d["note"] = r.note;
+            return d;
+          },
+          py::arg("resolution") = 256,
+          "Narrows the light's frustum to the receivers the camera sees (`--fit view`), keeping 2 texels of a "
+          "resolution x resolution map to spare; changes the scene in place. window_*: a spot light's opening "
+          "(degrees) or a directional light's half extent.")
+      .def(
+          "receiver_texel_size", [](const PyScene& s, int resolution) { return receiverTexelSize(s.scene, resolution); },
+          py::arg("resolution") = 256,
+          "(smallest, largest) light texel footprint on the receivers the camera sees, world units; None if it sees "
+          "none of the lit scene.")
       .def("mesh", &sceneMesh,
            "All objects merged: (V, F), V float64 N x 3 in world units, F int32 M x 3 counter-clockwise.")
       .def("__repr__", [](const PyScene& s) {

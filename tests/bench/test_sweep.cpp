@@ -156,6 +156,33 @@ TEST(ShadowErrorMetric, DistanceTransformMatchesBruteForce) {
     }
 }
 
+// Both light fits in one run: the view-fitted cells name their scene "<scene>@view"; a method
+// without a depth map is measured once.
+TEST(Sweep, BothLightFitsSideBySide) {
+  const auto dir = test::tempDir();
+  gl::Renderer renderer;
+  SweepOptions o;
+  o.scenes = {std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/tree-wide-ground.json"};
+  o.methods = {"shadowmap", "silhouette"};
+  o.resolutions = {64};
+  o.width = 64;
+  o.height = 48;
+  o.repeat = 1;
+  o.warmup = 0;
+  o.out = dir;
+  o.fits = {LightFit::Scene, LightFit::View};
+  std::atomic<bool> stop{false};
+  std::vector<std::string> notes;
+  const auto rows = runSweep(renderer, o, stop, nullptr, notes);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].scene, "tree-wide-ground");
+  EXPECT_EQ(rows[1].scene, "tree-wide-ground");
+  EXPECT_EQ(rows[1].method, "silhouette");
+  EXPECT_EQ(rows[2].scene, std::string("tree-wide-ground") + kViewFitSuffix);
+  EXPECT_EQ(rows[2].method, "shadowmap");
+  EXPECT_EQ(rows[0].pixels, rows[2].pixels);  // the same receivers are compared
+}
+
 TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;

@@ -56,6 +56,15 @@ def test_scene_describes_itself(scene):
     assert (np.asarray(d["bounds"]["min"]) <= V.min(axis=0) + 1e-6).all()
 
 
+def test_fit_light_to_view_narrows_a_wide_light():
+    s = sv.load_scene(SCENES / "tree-wide-ground.json")
+    before = s.receiver_texel_size(256)
+    r = s.fit_light_to_view(256)
+    assert r["changed"] and r["window_after"] < 0.25 * r["window_before"]
+    assert s.receiver_texel_size(256)[1] < 0.25 * before[1]
+    assert s.describe()["light"]["extent"] == pytest.approx(r["window_after"])
+
+
 def test_load_scene_reads_shipped_scene():
     s = sv.load_scene(SCENES / "bunny.json")
     assert s.source.endswith("bunny.json") and s.triangle_count > 1000

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,38 @@ Scene defaultScene();
 /// are fitted to a square map's frustum: a map wider than tall sees further in x, so a capture
 /// with W > H needs the light's near and far given. Returns one note per moved plane.
 std::vector<std::string> fitLightAndCamera(Scene& scene);
+
+/// How the light's frustum is fitted. Scene: to the whole scene as given (fitLightAndCamera, what
+/// loadScene does). View: narrowed to what the camera can see (fitLightToView).
+enum class LightFit { Scene, View };
+const char* toString(LightFit fit);
+bool parseLightFit(const std::string& text, LightFit& fit);  ///< "scene" or "view"
+
+/// What fitLightToView did; the window is the spot light's full opening angle (degrees) or the
+/// directional light's half extent (world units).
+struct LightFitResult {
+  bool changed = false;
+  double windowBefore = 0.0, windowAfter = 0.0;
+  bool reaimed = false;  ///< the light's direction (spot) or position (directional) moved
+  std::string note;      ///< one sentence for the log
+};
+
+/// Fits the light to the view: its frustum is narrowed to the receivers the camera can see, the
+/// part of the scene's bounds inside the camera's frustum and inside the light's (the casters
+/// that can shadow them lie between them and the light, so inside the same frustum). A spot
+/// light re-aims at their footprint in its image and narrows its opening angle; a directional
+/// light shifts and shrinks its square window; either stays inside the frustum it had (so no
+/// point is lit that was not), with 2 texels of a `mapResolution` map to spare each side for
+/// the volume's far-plane ring. Near and far are then fitted again, and long triangles split at
+/// the new eye plane (splitSceneAcrossEyePlanes). Unchanged when the camera sees none of the lit
+/// bounds, when they reach behind a spot light's eye plane, or when they fill the frustum already.
+LightFitResult fitLightToView(Scene& scene, int mapResolution);
+
+/// The light texel's footprint on the receivers the camera sees, for a map `mapResolution` texels
+/// wide: smallest and largest over the vertices of the camera-visible part of the bounds inside the
+/// light's frustum (world units: 2 tan(fov/2) d / N at light-view depth d; 2 halfExtent / N for a
+/// directional light). nullopt when the camera sees none of the lit bounds.
+std::optional<std::pair<double, double>> receiverTexelSize(const Scene& scene, int mapResolution);
 
 /// Writes the scene's triangles as PLY (binary), OBJ, OFF or STL, chosen by the extension:
 /// relative to scene.origin (recorded in the file's header comment), or with `worldCoordinates`

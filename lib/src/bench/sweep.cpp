@@ -1,12 +1,12 @@
 #include "shadowvol/bench/sweep.h"
 
 #include <algorithm>
-#include <tuple>
 #include <chrono>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <set>
+#include <tuple>
 #include <unistd.h>
 
 #include "shadowvol/bench/shadow_error.h"
@@ -185,16 +185,20 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   // The cells.
   struct Cell {
     std::size_t scene;
+    LightFit fit;
     const SweepMethod* method;
     int resolution;
   };
   std::vector<Cell> cells;
   for (std::size_t s = 0; s < o.scenes.size(); ++s)
-    for (const SweepMethod* m : methods) {
-      if (!m->usesResolution) cells.push_back({s, m, 0});
-      else
-        for (int r : resolutions) cells.push_back({s, m, r});
-    }
+    for (const LightFit fit : o.fits)
+      for (const SweepMethod* m : methods) {
+        if (!m->usesResolution) {
+          if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: the fit changes nothing
+        } else {
+          for (int r : resolutions) cells.push_back({s, fit, m, r});
+        }
+      }
   SweepProgress progress;
   progress.total = cells.size();
   const auto start = std::chrono::steady_clock::now();
@@ -204,7 +208,11 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     if (onProgress) onProgress(progress);
   };
 
-  std::size_t loadedScene = std::size_t(-1);
+  // The scene as loaded (per scene file) and as rendered (per scene, fit and, for the view fit,
+  // resolution: fitLightToView keeps two texels of the map to spare).
+  std::size_t baseIndex = std::size_t(-1);
+  Scene base;
+  std::tuple<std::size_t, LightFit, int> loaded{std::size_t(-1), LightFit::Scene, 0};
   Scene scene;
   std::unique_ptr<EmbreeDepthOracle> oracle;  // the loaded scene's, for refined methods
   std::string sceneName;
@@ -212,7 +220,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   for (const Cell& c : cells) {
     if (stop) break;
     // Names first (cheap), so resumed cells skip without loading anything.
-    const std::string name = o.scenes[c.scene].empty() ? "default" : o.scenes[c.scene].stem().string();
+    const std::string name = (o.scenes[c.scene].empty() ? "default" : o.scenes[c.scene].stem().string()) +
+                             (c.fit == LightFit::View ? kViewFitSuffix : "");
     SweepRow row;
     row.scene = name;
     row.method = c.method->key;
@@ -226,11 +235,17 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       report(label + " (resumed: already in results.csv)");
       continue;
     }
-    if (loadedScene != c.scene) {
-      scene = o.scenes[c.scene].empty() ? defaultScene() : loadScene(o.scenes[c.scene]).scene;
+    const std::tuple<std::size_t, LightFit, int> key{c.scene, c.fit, c.fit == LightFit::View ? c.resolution : 0};
+    if (loaded != key) {
+      if (baseIndex != c.scene) {
+        base = o.scenes[c.scene].empty() ? defaultScene() : loadScene(o.scenes[c.scene]).scene;
+        base.camera.width = o.width;
+        base.camera.height = o.height;
+        baseIndex = c.scene;
+      }
+      scene = base;
+      if (c.fit == LightFit::View) fitLightToView(scene, c.resolution);
       sceneName = name;
-      scene.camera.width = o.width;
-      scene.camera.height = o.height;
       const EmbreeDevice device;
       std::vector<const TriangleMesh*> meshes;
       for (const auto& obj : scene.objects) meshes.push_back(&obj.mesh);
@@ -238,7 +253,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       exact = exactShadows(rt, scene, castPrimaryRays(rt, scene.camera), shadowRayOffset(scene));
       renderer.setScene(scene);
       oracle.reset();
-      loadedScene = c.scene;
+      loaded = key;
     }
     report(label);
     gl::RenderOptions ro = c.method->options;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -42,27 +44,46 @@ std::vector<glm::dvec3> clip(const std::vector<glm::dvec3>& poly, const ViewFrus
 
 }  // namespace
 
-std::optional<std::pair<double, double>> depthRangeInFrustum(const Bounds3& b, const ViewFrustum& f) {
+ViewFrustum lightFrustum(const Light& l, double aspect) {
+  if (l.type == LightType::Directional) return {lightView(l), l.halfExtent * aspect, l.halfExtent, true};
+  const double t = std::tan(0.5 * l.fovYDegrees * std::numbers::pi / 180.0);
+  return {lightView(l), t * aspect, t, false};
+}
+
+ViewFrustum cameraFrustum(const Camera& c) {
+  const double t = std::tan(0.5 * c.fovYDegrees * std::numbers::pi / 180.0);
+  return {cameraView(c), t * double(c.width) / double(c.height), t, false};
+}
+
+std::vector<glm::dvec3> boxPartInFrustum(const Bounds3& b, const ViewFrustum& f) {
   std::array<glm::dvec3, 8> corner;
   for (int k = 0; k < 8; ++k) {
     const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
     corner[k] = glm::dvec3(f.view * glm::dvec4(c, 1.0));
   }
-  double lo = 1e300, hi = -1e300;
+  std::vector<glm::dvec3> points;
   for (const auto& face : kFaces) {
     std::vector<glm::dvec3> poly{corner[face[0]], corner[face[1]], corner[face[2]], corner[face[3]]};
     for (int k = 0; k < 4 && !poly.empty(); ++k) poly = clip(poly, f, k);
-    for (const glm::dvec3& p : poly) {
-      lo = std::min(lo, -p.z);
-      hi = std::max(hi, -p.z);
-    }
+    points.insert(points.end(), poly.begin(), poly.end());
   }
-  if (lo > hi) return std::nullopt;
+  if (points.empty()) return points;
   // The apex is the one vertex of box and pyramid that need not lie on a box face.
   const glm::dvec3 eye = glm::dvec3(glm::inverse(f.view) * glm::dvec4(0.0, 0.0, 0.0, 1.0));
   const bool apexInside = !f.orthographic && eye.x >= b.min.x && eye.x <= b.max.x && eye.y >= b.min.y &&
                           eye.y <= b.max.y && eye.z >= b.min.z && eye.z <= b.max.z;
-  if (apexInside) lo = std::min(lo, 0.0);
+  if (apexInside) points.push_back(glm::dvec3(0.0));
+  return points;
+}
+
+std::optional<std::pair<double, double>> depthRangeInFrustum(const Bounds3& b, const ViewFrustum& f) {
+  const std::vector<glm::dvec3> points = boxPartInFrustum(b, f);
+  if (points.empty()) return std::nullopt;
+  double lo = 1e300, hi = -1e300;
+  for (const glm::dvec3& p : points) {
+    lo = std::min(lo, -p.z);
+    hi = std::max(hi, -p.z);
+  }
   return std::pair{lo, hi};
 }
 

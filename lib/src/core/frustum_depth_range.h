@@ -7,9 +7,12 @@
 
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 
+#include "shadowvol/camera.h"
+#include "shadowvol/light.h"
 #include "shadowvol/triangle_mesh.h"
 
 namespace shadowvol::detail {
@@ -22,6 +25,16 @@ struct ViewFrustum {
   double tanX = 1.0, tanY = 1.0;
   bool orthographic = false;
 };
+
+/// The frustum of a light (square map: aspect 1) and of a camera (its image's aspect).
+ViewFrustum lightFrustum(const Light& light, double aspect = 1.0);
+ViewFrustum cameraFrustum(const Camera& camera);
+
+/// The vertices of box b intersected with the frustum, in view space: each box face clipped by
+/// the frustum's four side planes in double, plus the apex when it lies inside the box (every
+/// vertex of the intersection is among them, so their convex hull is the intersection). Empty
+/// when they do not meet.
+std::vector<glm::dvec3> boxPartInFrustum(const Bounds3& b, const ViewFrustum& f);
 
 /// Smallest and largest view depth (-z) over box b intersected with the frustum, computed exactly
 /// (each box face clipped by the frustum's four side planes, in double; the apex counts when it

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "frustum_depth_range.h"
+#include "scene_fit_planes.h"
 #include "scene_fit_range.h"
 #include "shadowvol/scene.h"
 
@@ -106,20 +107,13 @@ FittedRange seenRange(const Bounds3& b, const detail::ViewFrustum& f, const glm:
   return {lo, hi, 0.01 * radius, std::max(hi, 1e-3 * radius) + 0.01 * radius};
 }
 
-detail::ViewFrustum lightFrustum(const Light& l) {
-  if (l.type == LightType::Directional)
-    return {lightView(l), l.halfExtent * kFittedLightAspect, l.halfExtent, true};
-  const double t = std::tan(0.5 * l.fovYDegrees * std::numbers::pi / 180.0);
-  return {lightView(l), t * kFittedLightAspect, t, false};
-}
-
 // What the scene needs: from just before the near side of the part of the bounds the light sees
 // to just past its far side (FittedRange's margin each way). A given plane outside that range is
 // moved to it: it would capture nothing more, and only spend depth precision (README "Scene
 // files", Light, has the measurement).
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
-  const auto [lo, hi, margin, far] = seenRange(b, lightFrustum(l), l.position, l.direction, radius);
+  const auto [lo, hi, margin, far] = seenRange(b, detail::lightFrustum(l, kFittedLightAspect), l.position, l.direction, radius);
   if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
   if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
   // A directional light's view starts at the plane through its position: a fitted near never
@@ -137,8 +131,7 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
   Camera& c = scene.camera;
   const glm::dvec3 axis = glm::normalize(c.target - c.eye);
   const double aspect = double(c.width) / double(c.height);
-  const double t = std::tan(0.5 * c.fovYDegrees * std::numbers::pi / 180.0);
-  const auto [lo, hi, margin, far] = seenRange(b, {cameraView(c), t * aspect, t, false}, c.eye, axis, radius);
+  const auto [lo, hi, margin, far] = seenRange(b, detail::cameraFrustum(c), c.eye, axis, radius);
   if (c.farPlane > far) notes.push_back("/camera/far: " + planeChange(far, c.farPlane));
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
   const double near = perspectiveNear(lo - margin, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
@@ -150,6 +143,17 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
 }
 
 }  // namespace
+
+namespace detail {
+
+void refitLightPlanes(Scene& scene) {
+  const Bounds3 b = scene.bounds();
+  if (b.empty()) return;
+  std::vector<std::string> notes;  // the planes only move inwards here: nothing to report
+  fitLightPlanes(scene, b, std::max(b.radius(), 1e-6), notes);
+}
+
+}  // namespace detail
 
 std::vector<std::string> fitLightAndCamera(Scene& scene) {
   std::vector<std::string> notes;

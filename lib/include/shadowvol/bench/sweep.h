@@ -11,6 +11,7 @@
 
 #include "shadowvol/bench/sweep_results.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/scene.h"
 
 namespace shadowvol {
 
@@ -37,7 +38,14 @@ struct SweepOptions {
   int repeat = 5;                             ///< measured frames per cell (median, min, max)
   int warmup = 1;                             ///< frames rendered and discarded first
   std::filesystem::path out;                  ///< folder for results.csv (created)
+  /// How the light is fitted, each a set of cells: View fits each scene's light to its camera for
+  /// each resolution (fitLightToView) and names the scene "<scene>@view" in the results, so both
+  /// fits sit side by side in one results file (methods without a depth map: Scene only).
+  std::vector<LightFit> fits = {LightFit::Scene};
 };
+
+/// The suffix of a scene's name in the results when its light was fitted to the view.
+inline constexpr const char* kViewFitSuffix = "@view";
 
 /// Progress of the sweep, for a progress bar or plain lines.
 struct SweepProgress {
