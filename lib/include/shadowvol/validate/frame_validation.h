@@ -30,7 +30,8 @@ struct RenderedFrame {
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
-/// validate's default method and options (README "Validation").
+/// validate's default method and options at 512^2 (the two *-wide-ground scenes with --fit view,
+/// which they were made to show; README "Validation").
 inline constexpr double kDefaultMaxError = 0.05;        ///< 5 % of the pixels facing the light
 inline constexpr double kDefaultMaxMissedShare = 0.5;   ///< half the exact shadow's pixels
 inline constexpr std::size_t kMinShadowPixels = 100;    ///< below this the missed share is not judged
