@@ -237,13 +237,17 @@ TriangleMesh makePrimitive(ObjectReader& r, const std::string& t, std::size_t bu
   if (t == "cylinder") {
     const double radius = r.positive("radius", 0.5);
     const double height = r.positive("height", 1.0);
-    return makeCylinder(radius, height, r.integer("segments", 32, 3, 8192));
+    const int segments = r.integer("segments", 32, 3, 8192);
+    within("segments", 4.0 * segments);  // two per side quad, one per cap fan
+    return makeCylinder(radius, height, segments);
   }
   if (t == "tree") {
     const double trunkRadius = r.positive("trunkRadius", 0.08);
     const double trunkHeight = r.positive("trunkHeight", 2.0);
     const double crownRadius = r.positive("crownRadius", 0.8);
-    return makeTree(trunkRadius, trunkHeight, crownRadius, r.integer("detail", 3, 0, 8));
+    const int detail = r.integer("detail", 3, 0, 8);
+    within("detail", 4.0 * 16 + 20.0 * std::pow(4.0, detail));  // a 16-segment trunk and an ico-sphere crown
+    return makeTree(trunkRadius, trunkHeight, crownRadius, detail);
   }
   r.fail("type", json(t), "unknown object type (plane, sphere, hemisphere, box, cylinder, tree, mesh)");
 }
