@@ -109,9 +109,12 @@ void registerVolume(py::module_& m) {
         "captured from). bias=None: the default (0 for back capture).");
   m.def(
       "export",
-      [](const py::array_t<double, py::array::forcecast>& v, const py::array_t<std::int64_t, py::array::forcecast>& f,
-         const std::filesystem::path& path, bool doublePrecision) {
-        const VolumeMesh mesh = meshFromArrays(v, f);
+      [](const py::array_t<double, py::array::forcecast>& v, const py::array& f, const std::filesystem::path& path,
+         bool doublePrecision) {
+        // Indices must be integers: a float array would be truncated without a word.
+        if (f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
+          throw InputError("export", "F", std::string(py::str(f.dtype())), "expected an integer array of vertex indices");
+        const VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
         py::gil_scoped_release release;
         writeVolumeMesh(mesh, path, doublePrecision);
       },

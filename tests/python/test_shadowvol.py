@@ -141,6 +141,10 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
     with pytest.raises(sv.InputError, match=r"F\[7\]"):
         sv.export(V, F, tmp_path / "bad.ply")
     assert not (tmp_path / "bad.ply").exists()
+    with pytest.raises(sv.InputError, match=r"integer array"):
+        sv.export(V, F.astype(np.float64), tmp_path / "float-indices.ply")
+    with pytest.raises(sv.InputError, match=r"V\[0\]"):
+        sv.export(np.full_like(V, np.nan), F[:0], tmp_path / "nan.ply")
     with pytest.raises(sv.InputError, match=r"unsupported mesh format"):
         sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
 
