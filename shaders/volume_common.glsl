@@ -17,6 +17,7 @@ uniform vec4 projXY;            // light projection P00, P11, P30, P31 (m[col][r
 uniform vec2 projShear;         // light projection P20, P21
 uniform vec4 projZW;            // light projection P22, P32, P23, P33
 uniform int perfect;            // 1: per-quad diagonal rule (flipDiagonal), 0: fixed B-D
+uniform int drawCap;            // 1: emit the far cap (z-fail); 0: the sheet alone (z-pass, zpass.h)
 uniform int exactCap;           // 1: exact cap (all-far quads dropped), 0: the thesis's rectangle
 uniform float planarTolerance;  // kPlanarTolerance of triangulation.h
 

@@ -3,7 +3,8 @@
 // triangle strips out. No read-back.
 // exactCap = 1: the quad's two sheet triangles (fixed B-D: ABD, BCD; flipped A-C: ABC, ACD) and
 //   the same two triangles on the far plane with reversed winding (the quad's share of the exact
-//   far cap); a quad with all four corners on the far plane emits nothing.
+//   far cap; not with drawCap = 0, for z-pass); a quad with all four corners on the far plane
+//   emits nothing.
 // exactCap = 0 (the thesis): the two sheet triangles of every quad; drawRectangle = 1 (a draw of
 //   one point) emits the far-plane rectangle over the texel centres (0,0)..(W-1,H-1), facing away
 //   from the light.
@@ -47,7 +48,7 @@ void main() {
     emit(p[1]); emit(p[2]); emit(p[0]); emit(p[3]);
   }
   EndPrimitive();
-  if (exactCap == 0) return;
+  if (exactCap == 0 || drawCap == 0) return;
   if (!flip) {
     emit(f[0]); emit(f[3]); emit(f[1]); emit(f[2]);
   } else {

@@ -32,16 +32,19 @@ void main() {
     // A far sheet vertex and its cap copy must be bit-identical: reuse the sheet point.
     f[k] = d < farPlane ? lightViewPoint(t0 + kCornerOffset[k], farPlane) : p[k];
   }
-  uint v = atomicAdd(vertexCount, 12u);
-  if (v + 12u > uint(capacity)) return;
+  uint n = drawCap != 0 ? 12u : 6u;  // drawCap = 0 (z-pass): the sheet triangles alone
+  uint v = atomicAdd(vertexCount, n);
+  if (v + n > uint(capacity)) return;
   if (perfect == 0 || !flipDiagonal(p[0], p[1], p[2], p[3])) {
     put(v, p[0]); put(v + 1u, p[1]); put(v + 2u, p[3]);
     put(v + 3u, p[1]); put(v + 4u, p[2]); put(v + 5u, p[3]);
+    if (drawCap == 0) return;
     put(v + 6u, f[0]); put(v + 7u, f[3]); put(v + 8u, f[1]);
     put(v + 9u, f[1]); put(v + 10u, f[3]); put(v + 11u, f[2]);
   } else {
     put(v, p[0]); put(v + 1u, p[1]); put(v + 2u, p[2]);
     put(v + 3u, p[0]); put(v + 4u, p[2]); put(v + 5u, p[3]);
+    if (drawCap == 0) return;
     put(v + 6u, f[0]); put(v + 7u, f[2]); put(v + 8u, f[1]);
     put(v + 9u, f[0]); put(v + 10u, f[3]); put(v + 11u, f[2]);
   }

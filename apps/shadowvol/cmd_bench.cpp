@@ -56,6 +56,7 @@ nlohmann::json rowJson(const SweepRow& r) {
           {"volumeTriangles", r.volumeTriangles},
           {"volumeQuads", r.volumeQuads},
           {"volumeQuadsDrawn", r.volumeQuadsDrawn},
+          {"volumeCount", r.volumeCount.empty() ? nlohmann::json() : nlohmann::json(r.volumeCount)},
           {"pixels", r.pixels},
           {"error", r.error},
           {"leak", r.leak},

@@ -101,6 +101,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                           {"min", *std::min_element(v.begin(), v.end())},
                           {"max", *std::max_element(v.begin(), v.end())}});
       }
+      const bool stencilMethod = o->render.method == "hybrid" || o->render.method == "silhouette";
       nlohmann::json j = {
           {"scene", describeScene(scene)},
           {"lightFit", lightFit},
@@ -123,6 +124,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"volumeQuads", result.gpuVolumeQuads},
           {"volumeQuadsDrawn", result.gpuVolumeQuadsDrawn},
           {"volumeDraw", result.gpuVolumeQuads ? nlohmann::json(gl::toString(result.gpuVolumeDrawUsed)) : nlohmann::json()},
+          {"volumeCount", stencilMethod ? nlohmann::json(gl::toString(result.volumeCountUsed)) : nlohmann::json()},
+          {"zPassRefused", result.zPassRefused.empty() ? nlohmann::json() : nlohmann::json(result.zPassRefused)},
           {"stencilNonZeroPixels", result.stencil.empty() ? nlohmann::json() : nlohmann::json(shadowed)},
           {"receiversOnly", result.receiversOnly},
           {"warnings", warnings},
@@ -146,6 +149,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         if (result.gpuVolumeQuads > 0)
           std::printf(", %zu of %zu quads drawn (%s)", result.gpuVolumeQuadsDrawn, result.gpuVolumeQuads,
                       gl::toString(result.gpuVolumeDrawUsed));
+        if (stencilMethod)
+          std::printf(", %s%s%s", gl::toString(result.volumeCountUsed), result.zPassRefused.empty() ? "" : " (z-pass not safe: ",
+                      result.zPassRefused.empty() ? "" : (result.zPassRefused + ")").c_str());
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
           std::printf(", refined: %zu boundary edges, %zu rays", result.volumeStats->boundaryEdges,
                       result.volumeStats->raysCast);

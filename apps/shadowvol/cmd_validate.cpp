@@ -94,6 +94,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"selfIntersections", o->selfIntersections}};
       if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
       j.update(describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette));
+      if (frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
+        j["volumeCount"] = gl::toString(result.volumeCountUsed);
+        if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
+      }
       if (ro.method == gl::ShadowMethod::Silhouette) {
         j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
         j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
@@ -126,8 +130,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       result.volumeStats->raysCast, result.volumeStats->msRefine);
         if (v.meshCheck) {
           std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
-          std::printf("  stencil vs count: %.4f%% agree (%zu of %zu, %zu of them ties on the visible surface)\n",
-                      100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree, v.stencilVsCount.pixels,
+          std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",
+                      gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
+                      v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
                       v.stencilVsCount.ties);
           if (v.zfailVsZpass)
             std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());

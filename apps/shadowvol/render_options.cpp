@@ -42,6 +42,12 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "(docs/gpu.md 'Skipping the far quads')")
       ->check(CLI::IsMember({"auto", "kept-quads", "compute-mesh", "all-quads"}))
       ->capture_default_str();
+  cmd.add_option("--count", o.count,
+                 "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
+                 "near rectangle provably lies outside the volume, else z-fail), zfail (always, with the cap), zpass "
+                 "(refused where not provably safe); the same stencil where the light reaches (docs/gpu.md)")
+      ->check(CLI::IsMember({"auto", "zfail", "zpass"}))
+      ->capture_default_str();
   cmd.add_option("--resolution", o.resolution, "Light depth map size N (N x N texels)")->capture_default_str();
   cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
       ->check(CLI::IsMember({"back", "front", "midpoint"}))
@@ -73,6 +79,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
                      : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
                      : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
                                                    : gl::GpuVolumeDraw::Auto;
+  gl::parseVolumeCount(o.count, ro.volumeCount);
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
   ro.volumeOptions = toVolumeBuildOptions(o.shape);

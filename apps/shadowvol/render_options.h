@@ -16,6 +16,7 @@ struct RenderCliOptions {
   std::string method = "hybrid";
   std::string volume = "gpu";
   std::string gpuDraw = "auto";
+  std::string count = "auto";  ///< --count: auto | zfail | zpass
   int resolution = 512;
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap

@@ -121,6 +121,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     j = describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette);
     j["scene"] = describeScene(scene);
     j["glRenderer"] = r.renderer.info().glRenderer;
+    j["volumeCount"] = gl::toString(result.volumeCountUsed);
     j["shadowvolVersion"] = SHADOWVOL_VERSION;
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
     if (reportDir) {

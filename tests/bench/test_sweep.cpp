@@ -31,6 +31,7 @@ SweepRow sampleRow() {
   r.volumeTriangles = 123456;
   r.volumeQuads = 65025;
   r.volumeQuadsDrawn = 3252;
+  r.volumeCount = "z-pass";
   r.pixels = 1000;
   r.error = 0.0123;
   r.leak = 0.01;
@@ -64,22 +65,30 @@ TEST(SweepCsv, HeaderAndRowHaveTheSameColumnsAndRoundTrip) {
   EXPECT_FALSE(b.distMax.has_value());  // empty field = not applicable
   EXPECT_EQ(b.volumeQuads, 65025u);
   EXPECT_EQ(b.volumeQuadsDrawn, 3252u);
+  EXPECT_EQ(b.volumeCount, r.volumeCount);
   EXPECT_EQ(cellKey(b), cellKey(r));
 }
 
-// Results written before the volume_quads columns (docs/results/main) still read, with 0 quads.
-TEST(SweepCsv, ResultsWithoutTheQuadColumnsStillRead) {
+// Results of earlier versions still read: without the volume_quads columns (docs/results/main:
+// 0 quads) and without volume_count (empty).
+TEST(SweepCsv, ResultsOfEarlierVersionsStillRead) {
   const auto dir = test::tempDir();
   const auto csv = dir / "results.csv";
-  auto dropLastTwo = [](std::string line) {
-    for (int k = 0; k < 2; ++k) line.erase(line.rfind(','));
+  auto dropLast = [](std::string line, int n) {
+    for (int k = 0; k < n; ++k) line.erase(line.rfind(','));
     return line;
   };
-  test::writeText(csv, dropLastTwo(sweepCsvHeader()) + "\n" + dropLastTwo(toCsv(sampleRow())) + "\n");
-  const auto rows = readSweepCsv(csv);
-  ASSERT_EQ(rows.size(), 1u);
-  EXPECT_EQ(rows[0].volumeTriangles, 123456u);
-  EXPECT_EQ(rows[0].volumeQuads, 0u);
+  SweepRow sample = sampleRow();
+  sample.volumeCount = "z-pass";
+  for (int dropped : {1, 3}) {
+    SCOPED_TRACE(dropped);
+    test::writeText(csv, dropLast(sweepCsvHeader(), dropped) + "\n" + dropLast(toCsv(sample), dropped) + "\n");
+    const auto rows = readSweepCsv(csv);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].volumeTriangles, 123456u);
+    EXPECT_EQ(rows[0].volumeQuads, dropped == 1 ? 65025u : 0u);
+    EXPECT_EQ(rows[0].volumeCount, "");
+  }
   EXPECT_EQ(readSweepCsv(test::sourceDir() / "docs/results/main/results.csv").empty(), false);
 }
 

@@ -15,6 +15,8 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/scene.h"
@@ -120,6 +122,35 @@ inline double agreement(const std::vector<std::uint8_t>& a, const std::vector<st
   std::size_t same = 0;
   for (std::size_t k = 0; k < a.size(); ++k) same += a[k] == b[k];
   return double(same) / double(a.size());
+}
+
+/// The pixels (rows top first, the scene camera's size) whose visible point lies inside the
+/// light's frustum: where a z-pass stencil means what a z-fail one does (zpass.h); elsewhere
+/// (background, beyond the light) it counts faces the lighting ignores. Embree primary rays.
+inline std::vector<char> insideLightMask(const Scene& scene, double lightAspect = 1.0) {
+  const EmbreeDevice device;
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  const EmbreeScene rt(device, meshes);
+  const CameraHits hits = castPrimaryRays(rt, scene.camera);
+  const glm::dmat4 toClip = lightProjection(scene.light, lightAspect) * lightView(scene.light);
+  std::vector<char> mask(hits.depth.size(), 0);
+  for (std::size_t k = 0; k < mask.size(); ++k) {
+    if (hits.isBackground(k)) continue;
+    const glm::dvec4 c = toClip * glm::dvec4(hits.point[k], 1.0);
+    mask[k] = c.w > 0 && std::abs(c.x) <= c.w && std::abs(c.y) <= c.w && std::abs(c.z) <= c.w;
+  }
+  return mask;
+}
+
+/// agreement() over the pixels where mask is set.
+inline double agreementWhere(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b,
+                             const std::vector<char>& mask) {
+  if (a.size() != b.size() || a.size() != mask.size()) return 0.0;
+  std::size_t same = 0, n = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (mask[k]) n += 1, same += a[k] == b[k];
+  return n ? double(same) / double(n) : 0.0;
 }
 
 /// Calls visit(row, c) for every pixel of a w x h image (rows top first) whose class

@@ -119,9 +119,10 @@ TEST(GlSilhouette, PlateCameraInsideTheVolume) {
   runPlate(s, 1000, 1000, 0);
 }
 
-// The figure: over the pixels that face the light inside its frustum (those that `none` lights
-// with ambient 0; the dark side of the sphere is excluded, where the methods legitimately differ
-// and N.L = 0 anyway), the share where both shadow masks agree, hybrid at 256^2 and 1024^2.
+// The figure: over the pixels of geometry that face the light inside its frustum (those that
+// `none` lights with ambient 0, less the background, where no stencil method's count means
+// anything; the dark side of the sphere is excluded, where the methods legitimately differ and
+// N.L = 0 anyway), the share where both shadow masks agree, hybrid at 256^2 and 1024^2.
 void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receivers, double minAgree) {
   gl::Renderer& r = gltest::sharedRenderer();
   r.setScene(scene);
@@ -131,6 +132,10 @@ void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receive
   o.method = gl::ShadowMethod::None;
   o.ambient = 0.0;
   const gl::RenderResult lightFacing = r.render(o);
+  // Geometry, not background (the background's clear colour is not black): black with no light.
+  o.diffuse = 0.0;
+  const gl::RenderResult dark = r.render(o);
+  o.diffuse = 0.8;
   o.ambient = 0.2;
   o.method = gl::ShadowMethod::Silhouette;
   o.readVisibility = true;
@@ -140,7 +145,8 @@ void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receive
   std::vector<char> mask(sil.visibility.size());
   for (std::size_t k = 0; k < mask.size(); ++k) {
     const std::uint8_t* c = &lightFacing.rgba[4 * k];
-    mask[k] = c[0] > 0 || c[1] > 0 || c[2] > 0;
+    const std::uint8_t* g = &dark.rgba[4 * k];
+    mask[k] = (c[0] > 0 || c[1] > 0 || c[2] > 0) && g[0] == 0 && g[1] == 0 && g[2] == 0;
     facing += mask[k];
     silShadow += mask[k] && sil.visibility[k] == 0;
   }
@@ -163,15 +169,16 @@ void agreeWithHybrid(const Scene& scene, const std::vector<std::string>& receive
 }
 
 TEST(GlSilhouette, AgreesWithHybridOnTheDefaultScene) {
-  agreeWithHybrid(defaultScene(), {"ground"}, 0.999);  // measured 99.961 % (256^2), 99.996 % (1024^2)
+  agreeWithHybrid(defaultScene(), {"ground"}, 0.999);  // measured 99.942 % (256^2), 99.997 % (1024^2)
 }
 
 // Every object closed (the ground is a slab): the light caps cover most of the visible surfaces,
 // and none of them is shadowed by its own cap (silhouette never shadows where hybrid lights here);
 // the hybrid shadow is slightly larger (depth-map quantisation at the thin trunk and the bodies'
-// feet): measured 99.852 % (256^2) and 99.958 % (1024^2).
+// feet): measured 99.764 % (256^2) and 99.931 % (1024^2) of the 44,914 light-facing geometry
+// pixels (the background, which an earlier mask counted, is left out).
 TEST(GlSilhouette, AgreesWithHybridOnTheClutterScene) {
-  agreeWithHybrid(gltest::clutterScene(), {}, 0.998);
+  agreeWithHybrid(gltest::clutterScene(), {}, 0.997);
 }
 
 TEST(GlSilhouette, NonManifoldObjectIsRefusedByName) {

@@ -106,6 +106,14 @@ const std::vector<SweepMethod>& sweepMethods() {
       m.description = std::string("GPU volume, ") + what + "; perfect triangulation, back capture";
       v.push_back(m);
     }
+    // Every hybrid method counts with z-pass and no far cap where it is safe (gl::VolumeCount::Auto);
+    // this one always with z-fail and the cap, to measure what that saves.
+    SweepMethod zfail = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu);
+    zfail.key = "hybrid-perfect-zfail/gpu";
+    zfail.options.volumeCount = gl::VolumeCount::ZFail;
+    zfail.description = "GPU volume always counted with z-fail and its far cap (the others take z-pass without the cap "
+                        "where it is safe); perfect triangulation, back capture";
+    v.push_back(zfail);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     SweepMethod s;
     s.key = "silhouette";
@@ -166,7 +174,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     std::ifstream in(csv, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (text.compare(0, text.find('\n'), sweepCsvHeader()) != 0)
-      throw InputError(csv.string(), "header", "", "written by an earlier version (without the volume_quads columns): "
+      throw InputError(csv.string(), "header", "", "written by an earlier version (without the volume_quads or volume_count columns): "
                                                    "new rows cannot be appended; use another --out folder");
     if (!text.empty() && text.back() != '\n') {
       std::filesystem::resize_file(csv, text.rfind('\n') + 1);
@@ -296,6 +304,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     row.volumeTriangles = result.volumeTriangles;
     row.volumeQuads = result.gpuVolumeQuads;
     row.volumeQuadsDrawn = result.gpuVolumeQuadsDrawn;
+    const gl::ShadowMethod family = c.method->options.method;
+    if (family == gl::ShadowMethod::Hybrid || family == gl::ShadowMethod::Silhouette)
+      row.volumeCount = gl::toString(result.volumeCountUsed);
     row.pixels = m.pixels;
     row.error = m.pixels ? double(m.leak + m.acne) / double(m.pixels) : 0.0;
     row.leak = m.pixels ? double(m.leak) / double(m.pixels) : 0.0;

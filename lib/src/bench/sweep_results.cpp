@@ -31,17 +31,18 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
-// `withQuads` false: the columns of results written before the GPU volume reported its quads
-// (docs/results/main), still read.
-std::vector<std::string> columns(bool withQuads = true) {
+// The columns of each version of the file, all still read: 0 before the GPU volume reported its
+// quads (docs/results/main), 1 before the stencil count (z-pass or z-fail) was recorded, 2 now.
+std::vector<std::string> columns(int version = kSweepCsvVersion) {
   std::vector<std::string> c = {"scene", "triangles", "method", "family", "capture", "resolution", "width", "height",
                                 "timing", "frames", "frame_ms", "frame_ms_min", "frame_ms_max"};
   for (const auto& p : sweepPhases()) c.push_back(p + "_ms");
   for (const char* s : {"volume_triangles", "pixels", "error", "leak", "acne", "band_pixels", "band_error",
                         "band_leak", "band_acne", "dist_mean", "dist_p99", "dist_max"})
     c.push_back(s);
-  if (withQuads)
+  if (version >= 1)
     for (const char* s : {"volume_quads", "volume_quads_drawn"}) c.push_back(s);
+  if (version >= 2) c.push_back("volume_count");
   return c;
 }
 
@@ -95,6 +96,7 @@ std::string toCsv(const SweepRow& r) {
   f.push_back(r.distMax ? num(*r.distMax) : "");
   f.push_back(std::to_string(r.volumeQuads));
   f.push_back(std::to_string(r.volumeQuadsDrawn));
+  f.push_back(r.volumeCount);
   std::string line;
   for (std::size_t k = 0; k < f.size(); ++k) {
     for (char c : f[k])
@@ -104,9 +106,9 @@ std::string toCsv(const SweepRow& r) {
   return line;
 }
 
-SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber, bool withQuads) {
+SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber, int version) {
   const auto f = split(line);
-  const auto cols = columns(withQuads);
+  const auto cols = columns(version);
   const std::string where = source + " line " + std::to_string(lineNumber);
   if (f.size() != cols.size())
     throw InputError(where, "", std::to_string(f.size()) + " fields", "expected " + std::to_string(cols.size()));
@@ -167,10 +169,11 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
   r.distMean = maybe();
   r.distP99 = maybe();
   r.distMax = maybe();
-  if (withQuads) {
+  if (version >= 1) {
     r.volumeQuads = std::size_t(whole());
     r.volumeQuadsDrawn = std::size_t(whole());
   }
+  if (version >= 2) r.volumeCount = text();
   return r;
 }
 
@@ -182,7 +185,7 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
   const std::string text = ss.str();
   std::vector<SweepRow> rows;
   std::size_t pos = 0, lineNumber = 0;
-  bool withQuads = true;
+  int version = kSweepCsvVersion;
   while (pos < text.size()) {
     const std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) break;  // an interrupted last line
@@ -190,13 +193,15 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
     pos = end + 1;
     ++lineNumber;
     if (lineNumber == 1) {
-      withQuads = line == sweepCsvHeader();
-      if (!withQuads && line != headerOf(columns(false)))
+      version = -1;
+      for (int v = 0; v <= kSweepCsvVersion; ++v)
+        if (line == headerOf(columns(v))) version = v;
+      if (version < 0)
         throw InputError(path.string(), "header", line.substr(0, 60), "not a shadowvol sweep file of this version");
       continue;
     }
     if (line.empty()) continue;
-    rows.push_back(parseSweepRow(line, path.string(), lineNumber, withQuads));
+    rows.push_back(parseSweepRow(line, path.string(), lineNumber, version));
   }
   return rows;
 }

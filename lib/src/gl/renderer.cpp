@@ -20,6 +20,7 @@
 #include "shadowvol/gl/shader_program.h"
 #include "shadowvol/light.h"
 #include "shadowvol/silhouette_volume.h"
+#include "shadowvol/zpass.h"
 
 namespace shadowvol::gl {
 
@@ -80,6 +81,18 @@ const char* toString(GpuVolumeDraw d) {
     case GpuVolumeDraw::KeptQuads: return "kept-quads";
     default: return "all-quads";
   }
+}
+
+const char* toString(VolumeCount c) {
+  return c == VolumeCount::Auto ? "auto" : c == VolumeCount::ZPass ? "z-pass" : "z-fail";
+}
+
+bool parseVolumeCount(const std::string& text, VolumeCount& c) {
+  if (text == "auto") c = VolumeCount::Auto;
+  else if (text == "zfail") c = VolumeCount::ZFail;
+  else if (text == "zpass") c = VolumeCount::ZPass;
+  else return false;
+  return true;
 }
 
 const char* toString(TimingMethod t) {
@@ -228,6 +241,7 @@ struct Renderer::Impl {
   std::vector<Query> queryPool;
   Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
   bool volumeTrianglesPending = false;
+  bool zPassFrame = false;  // this frame's volume counted with z-pass: no far cap drawn
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
@@ -588,18 +602,28 @@ struct Renderer::Impl {
     }
   }
 
-  /// Volume state: z-fail, two-sided, wrap; colour and depth writes off; depth clamp on.
-  void beginVolume() {
+  /// Volume state: two-sided, wrap; colour and depth writes off. z-fail: back faces behind the
+  /// surface (failing the reversed-Z GREATER test) add one, front faces subtract one, with depth
+  /// clamp on so that the far cap is never clipped. z-pass: front faces in front of the surface
+  /// add one, back faces subtract one, clipped at the near plane as usual. A face exactly at the
+  /// surface's depth counts as behind in both, so where both are right they agree exactly.
+  void beginVolume(bool zPass) {
     SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
     SV_GL(glDepthMask(GL_FALSE));
     SV_GL(glDepthFunc(GL_GREATER));
-    SV_GL(glEnable(GL_DEPTH_CLAMP));
+    if (zPass) SV_GL(glDisable(GL_DEPTH_CLAMP));
+    else SV_GL(glEnable(GL_DEPTH_CLAMP));
     SV_GL(glDisable(GL_CULL_FACE));
     SV_GL(glEnable(GL_STENCIL_TEST));
     SV_GL(glStencilMask(0xFF));
     SV_GL(glStencilFunc(GL_ALWAYS, 0, 0xFF));
-    SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP));
-    SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP));
+    if (zPass) {
+      SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP));
+      SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP));
+    } else {
+      SV_GL(glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP));
+      SV_GL(glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP));
+    }
   }
 
   void endVolume() {
@@ -638,6 +662,7 @@ struct Renderer::Impl {
     p.set("projZW", depthParams(lp));
     p.set("perfect", vo.triangulation == Triangulation::Perfect ? 1 : 0);
     p.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
+    p.set("drawCap", zPassFrame ? 0 : 1);
     p.set("planarTolerance", float(kPlanarTolerance));
   }
 
@@ -677,7 +702,7 @@ struct Renderer::Impl {
       volumeGpuProgram.set("firstQuad", int(first));
       SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(std::min(kChunkQuads, quads - first))));
     }
-    if (vo.cap == FarCap::Quad) {
+    if (vo.cap == FarCap::Quad && !zPassFrame) {
       volumeGpuProgram.set("drawRectangle", 1);
       SV_GL(glDrawArrays(GL_POINTS, 0, 1));
     }
@@ -719,7 +744,7 @@ struct Renderer::Impl {
     SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0));
     SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
     if (std::int64_t(count) > meshCapacity) return false;
-    result.gpuVolumeQuadsDrawn = count / 12;
+    result.gpuVolumeQuadsDrawn = count / (zPassFrame ? 6 : 12);
     result.volumeTriangles = count / 3;
     volumeMeshDrawProgram.use();
     volumeMeshDrawProgram.set("lightViewToClip", toFloat(lightViewToClip));
@@ -870,6 +895,19 @@ struct Renderer::Impl {
                        "the GPU volume does not refine silhouettes yet: use the explicit volume (--volume explicit)");
   }
 
+  /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
+  bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
+    if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
+    Camera c = camera;
+    c.width = cam.w;
+    c.height = cam.h;
+    const ZPassSafety z = zPassSafety(light, double(o.depthWidth) / double(o.depthHeight), c, o.volumeOptions);
+    if (!z.safe && o.volumeCount == VolumeCount::ZPass)
+      throw InputError("render options", "volumeCount", "zpass", "z-pass is not safe for this camera: " + z.reason);
+    if (!z.safe) result.zPassRefused = z.reason;
+    return z.safe;
+  }
+
   RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
     context.makeCurrent();
     requireScene();
@@ -877,6 +915,8 @@ struct Renderer::Impl {
     validate(o, cam);
     volumeTrianglesPending = false;  // a frame that threw may have left it set
     RenderResult result;
+    zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
+    result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
     const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
     result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
     PassTimer timer(queryPool, gpuTimer);
@@ -905,7 +945,8 @@ struct Renderer::Impl {
       uploadVolume(built.mesh);
       glFinish();
       timer.cpu("upload", msSince(t0));
-      explicitTriangles = built.mesh.triangleCount();
+      // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
+      explicitTriangles = built.mesh.triangleCount() - (zPassFrame ? built.stats.capTrianglesAfter : 0);
     } else if (silhouette) {
       auto t0 = Clock::now();
       if (!occluders) {
@@ -959,7 +1000,7 @@ struct Renderer::Impl {
       }
       {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
-        beginVolume();
+        beginVolume(zPassFrame);
         if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, o.gpuVolumeDraw, result);
         else

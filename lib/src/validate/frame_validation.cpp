@@ -89,19 +89,22 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     }
     Agreement zz;
     ShadowError stencilErr, countErr;
+    v.stencilOverLitFrustumOnly = frame.zPass;
     for (std::size_t k = 0; k < n; ++k) {
       if (v.exact[k] == PixelClass::Background) continue;
       const int zfail = v.counts->zfail[k];
-      ++v.stencilVsCount.pixels;
-      if (std::uint8_t(zfail) == frame.stencil[k]) {
-        ++v.stencilVsCount.agree;
-      } else {
-        for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
-          if (std::uint8_t(c) == frame.stencil[k]) {
-            ++v.stencilVsCount.agree;
-            ++v.stencilVsCount.ties;
-            break;
-          }
+      if (!(frame.zPass && v.exact[k] == PixelClass::OutsideLight)) {
+        ++v.stencilVsCount.pixels;
+        if (std::uint8_t(zfail) == frame.stencil[k]) {
+          ++v.stencilVsCount.agree;
+        } else {
+          for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
+            if (std::uint8_t(c) == frame.stencil[k]) {
+              ++v.stencilVsCount.agree;
+              ++v.stencilVsCount.ties;
+              break;
+            }
+        }
       }
       ++zz.pixels;
       if (zfail == v.counts->zpass[k]) ++zz.agree;

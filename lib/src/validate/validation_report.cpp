@@ -54,6 +54,8 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
   if (v.meshCheck) {
     j["meshChecks"] = toJson(*v.meshCheck, v.meshChecksNotApplicable);
     j["stencilVsCount"] = toJson(v.stencilVsCount);
+    j["stencilVsCount"]["over"] = v.stencilOverLitFrustumOnly ? "visible pixels inside the light's frustum (z-pass)"
+                                                              : "visible pixels";
     j["eyeInsideVolume"] = v.eyeInsideVolume;
     j["recountedPixels"] = v.recountedPixels;
     j["zfailVsZpass"] = v.zfailVsZpass ? toJson(*v.zfailVsZpass) : nlohmann::json("not applicable: eye inside");

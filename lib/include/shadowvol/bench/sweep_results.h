@@ -35,6 +35,8 @@ struct SweepRow {
   std::size_t volumeTriangles = 0;  ///< hybrid and silhouette: triangles drawn for the volume
   std::size_t volumeQuads = 0;      ///< hybrid/gpu: quads of the depth map (0 otherwise)
   std::size_t volumeQuadsDrawn = 0; ///< hybrid/gpu: quads the geometry shader expanded
+  std::string volumeCount;          ///< stencil methods: "z-pass" or "z-fail" (gl::VolumeCount used);
+                                    ///< empty otherwise and in files of version < 2
   // Error against the exact shadows, over visible pixels facing the light inside its frustum.
   std::size_t pixels = 0;           ///< pixels compared
   double error = 0.0, leak = 0.0, acne = 0.0;           ///< fractions of `pixels`
@@ -55,10 +57,12 @@ std::string sweepCsvHeader();
 /// One CSV line (no newline).
 std::string toCsv(const SweepRow& row);
 /// Parses one CSV line; throws InputError naming `source`, the line number and the column on bad input.
-/// `withQuads` false reads the columns of results written before volume_quads and
-/// volume_quads_drawn were added (they stay 0).
+/// The version of the file this code writes: 2 added volume_count, 1 volume_quads and
+/// volume_quads_drawn. `version` < kSweepCsvVersion reads a file of an earlier version (the
+/// columns it lacks stay empty or 0); readSweepCsv picks it from the header.
+inline constexpr int kSweepCsvVersion = 2;
 SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber,
-                       bool withQuads = true);
+                       int version = kSweepCsvVersion);
 
 /// Reads results.csv. A last line without its newline (an interrupted write) is ignored.
 std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path);

@@ -58,6 +58,15 @@ enum class VolumeSource {
 const char* toString(VolumeSource v);
 bool parseVolumeSource(const std::string& text, VolumeSource& v);
 
+/// How the stencil counts the hybrid volume (docs/gpu.md "Z-pass where it is safe").
+enum class VolumeCount {
+  Auto,   ///< z-pass without the far cap where zPassSafety (zpass.h) says so, else z-fail
+  ZFail,  ///< z-fail with the far cap: right wherever the camera is (the depth clamp keeps the cap)
+  ZPass,  ///< z-pass without the far cap; an InputError naming the reason where it is not safe
+};
+const char* toString(VolumeCount c);  ///< "auto", "z-fail", "z-pass"
+bool parseVolumeCount(const std::string& text, VolumeCount& c);  ///< "auto", "zfail", "zpass"
+
 enum class TimingMethod {
   GpuTimer,   ///< GL_TIME_ELAPSED queries, one per pass (hardware drivers)
   WallClock,  ///< glFinish before and after each pass, steady_clock in between (no timer queries,
@@ -110,6 +119,9 @@ struct RenderOptions {
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
   /// quads"). All give the same stencil.
   GpuVolumeDraw gpuVolumeDraw = GpuVolumeDraw::Auto;
+  /// hybrid (gpu and explicit volumes): z-pass without the far cap where it is safe, or z-fail.
+  /// Silhouette volumes and renderWithVolume always use z-fail.
+  VolumeCount volumeCount = VolumeCount::Auto;
 };
 
 struct PassTime {
@@ -148,6 +160,8 @@ struct RenderResult {
   std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads whose triangles were drawn (all of
                                         ///< them with AllQuads)
   GpuVolumeDraw gpuVolumeDrawUsed = GpuVolumeDraw::Auto;  ///< hybrid/gpu: the way actually taken
+  VolumeCount volumeCountUsed = VolumeCount::ZFail;      ///< stencil methods: ZFail or ZPass
+  std::string zPassRefused;         ///< hybrid with Auto and z-fail used: why z-pass was not safe
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
   std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
                                                 ///< (its time, refinement rays included, is the

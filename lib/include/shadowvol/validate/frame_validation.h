@@ -27,6 +27,8 @@ struct RenderedFrame {
   std::vector<std::uint8_t> shadowed;   ///< the method's own shadow test: 1 = in shadow (for PCF:
                                         ///< visibility < 0.5); empty = derive from the stencil
   bool hybrid = true;                   ///< a shadow-volume method (stencil and volume apply)
+  bool zPass = false;                   ///< the stencil counted with z-pass and no far cap (zpass.h):
+                                        ///< compared with the counts only where the light reaches
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -77,8 +79,12 @@ struct FrameValidation {
   /// Pixels whose Embree counts contradicted the eye's side and were recounted in double
   /// (double_recount.h); counts holds the recounted values.
   std::size_t recountedPixels = 0;
+  bool stencilOverLitFrustumOnly = false;  ///< stencilVsCount left out the pixels outside the light (z-pass)
   Agreement stencilVsCount;                ///< over visible pixels: stencil == a z-fail count of the
-                                           ///< admissible range (ray_queries.h, ties), mod 256
+                                           ///< admissible range (ray_queries.h, ties), mod 256; for a
+                                           ///< z-pass frame over those inside the light's frustum
+                                           ///< (outside, a ray past the far plane may cross the cap
+                                           ///< z-pass leaves out, and the light reaches nothing)
   std::optional<Agreement> zfailVsZpass;   ///< over visible pixels, when the eye is outside the volume
   std::optional<ShadowError> stencilError; ///< stencil != 0 as a shadow test
   std::optional<ShadowError> countError;   ///< zfail != 0 as a shadow test

@@ -28,6 +28,7 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   frame.rgba = result.rgba;
   frame.hybrid = method == gl::ShadowMethod::Hybrid;
   if (frame.hybrid) frame.stencil = result.stencil;
+  frame.zPass = result.volumeCountUsed == gl::VolumeCount::ZPass;
   frame.shadowed.resize(result.visibility.size());
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;
