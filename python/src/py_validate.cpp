@@ -21,7 +21,7 @@ namespace shadowvol::python {
 namespace {
 
 struct FrameArgs {
-  std::string method, volume, capture, triangulation, cap, platform;
+  std::string method, volume, capture, triangulation, cap, platform, count = "auto";
   int resolution = 512, refine = 0;
   bool blur = false;
   std::optional<std::pair<int, int>> size;
@@ -35,6 +35,7 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   if (a.resolution < 2 || a.resolution > 16384)
     throw InputError("python", "resolution", std::to_string(a.resolution), "must be between 2 and 16384");
   ro.depthWidth = ro.depthHeight = a.resolution;
+  if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected auto, zfail or zpass");
   ro.capture = captureModeArg(a.capture);
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
   if (a.refine > 0 && ro.method == gl::ShadowMethod::Hybrid && ro.volume != gl::VolumeSource::Explicit)
@@ -96,6 +97,7 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   d["total_ms"] = result.totalMs;
   d["timing"] = toString(result.timing);
   d["volume_triangles"] = result.volumeTriangles;
+  d["volume_count"] = gl::toString(result.volumeCountUsed);
   d["gl_renderer"] = device;
   if (result.volumeStats) d["volume"] = toPython(describeVolumeStats(*result.volumeStats));
   return d;
@@ -139,7 +141,7 @@ void registerValidate(py::module_& m) {
 #ifdef SHADOWVOL_WITH_GL
   auto frameArgs = [](std::string method, std::string volume, int resolution, std::string capture,
                       std::string triangulation, bool blur, std::string cap, int refine,
-                      std::optional<std::pair<int, int>> size, std::string platform) {
+                      std::optional<std::pair<int, int>> size, std::string platform, std::string count) {
     FrameArgs a;
     a.method = std::move(method);
     a.volume = std::move(volume);
@@ -151,36 +153,39 @@ void registerValidate(py::module_& m) {
     a.refine = refine;
     a.size = size;
     a.platform = std::move(platform);
+    a.count = std::move(count);
     return a;
   };
   m.def(
       "render",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
-                  std::optional<std::pair<int, int>> size, std::string platform) {
-        return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform));
+                  std::optional<std::pair<int, int>> size, std::string platform, std::string count) {
+        return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
+                                        platform, count));
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
-      py::arg("platform") = "auto",
+      py::arg("platform") = "auto", py::arg("count") = "auto",
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
-      "total_ms, timing, volume_triangles, gl_renderer, volume (explicit volume's build stats). size=(W, H).");
+      "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail), gl_renderer, volume (explicit volume's "
+      "build stats). size=(W, H); count: auto, zfail or zpass (`--count`).");
   m.def(
       "validate",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
-                  std::optional<std::pair<int, int>> size, std::string platform, double maxError, double maxMissed,
-                  bool selfIntersections, std::optional<std::filesystem::path> reportDir) {
+                  std::optional<std::pair<int, int>> size, std::string platform, std::string count, double maxError,
+                  double maxMissed, bool selfIntersections, std::optional<std::filesystem::path> reportDir) {
         return validateFrameArgs(
-            s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform),
+            s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform, count),
             maxError, maxMissed, selfIntersections, reportDir);
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
-      py::arg("platform") = "auto", py::arg("max_error") = kDefaultMaxError,
+      py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("max_error") = kDefaultMaxError,
       py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
       py::arg("report_dir") = py::none(),
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "

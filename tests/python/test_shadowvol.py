@@ -185,6 +185,8 @@ def test_render_returns_image_and_stencil(scene):
     assert frame["image"].shape == (30, 40, 4) and frame["image"].dtype == np.uint8
     assert frame["stencil"].shape == (30, 40) and frame["stencil"].any()
     assert "volume" in frame["passes_ms"]
+    assert frame["volume_count"] == "z-pass"  # the default camera is beside the light's cone
+    assert sv.render(scene, resolution=64, size=(40, 30), count="zfail")["volume_count"] == "z-fail"
 
 
 def test_example_runs(tmp_path):
