@@ -66,8 +66,9 @@ TEST(GlZPass, SameFrameAsZFailWithoutTheCap) {
       EXPECT_EQ(zpass.gpuVolumeQuadsDrawn, zfail.gpuVolumeQuadsDrawn);
       EXPECT_EQ(2 * zpass.volumeTriangles, zfail.volumeTriangles);
     }
-    if (w.volume == gl::VolumeSource::Explicit)
+    if (w.volume == gl::VolumeSource::Explicit) {
       EXPECT_EQ(zpass.volumeTriangles + zpass.volumeStats->capTrianglesAfter, zfail.volumeTriangles);
+    }
   }
 }
 

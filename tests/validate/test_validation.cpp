@@ -213,7 +213,9 @@ TEST(Validation, DefaultOptionsMeetTheAccuracyVerdictOnEveryScene) {
     // The wide-ground scenes show what --fit view is for: fitted to the scene their caster covers
     // about a texel and casts next to no shadow, so they are validated with the light fitted to the view.
     Scene used = scene;
-    if (name.find("-wide-ground.json") != std::string::npos) ASSERT_TRUE(fitLightToView(used, 512).changed) << name;
+    if (name.find("-wide-ground.json") != std::string::npos) {
+      ASSERT_TRUE(fitLightToView(used, 512).changed) << name;
+    }
     const Validated r = renderAndValidate(used, ro);
     ++frames;
     EXPECT_TRUE(r.v.passed) << name << ": " << (r.v.failures.empty() ? "" : r.v.failures.front());
