@@ -146,7 +146,8 @@ struct RenderResult {
   ///     not evaluated there) and on the background (cleared to 255). Faces turned away from the
   ///     light get the test's answer like any other pixel.
   ///   hybrid, silhouette (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
-  ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful).
+  ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful),
+  ///     and so do pixels outside the light's frustum in a z-pass frame (volumeCountUsed).
   ///   none: 255 everywhere.
   std::vector<std::uint8_t> visibility;
   std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
