@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <unistd.h>
 
 #include "shadowvol/capture_warnings.h"
 #include "cli_verbosity.h"
@@ -125,18 +124,7 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
 }
 
 void checkResolution(const std::string& option, int resolution) {
-  if (resolution < 2)
-    throw InputError("command line", option, std::to_string(resolution), "the resolution must be at least 2");
-  if (resolution > kMaxResolution)
-    throw InputError("command line", option, std::to_string(resolution),
-                     "above the limit of " + std::to_string(kMaxResolution) + " texels a side");
-  const std::uint64_t need = depthMapBytes(resolution, resolution);
-  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-  const std::uint64_t physical = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
-  if (physical > 0 && need > physical / 2)
-    throw InputError("command line", option, std::to_string(resolution),
-                     "needs about " + std::to_string(need >> 20) + " MiB, more than half of this machine's " +
-                         std::to_string(physical >> 20) + " MiB");
+  checkDepthMapSize(resolution, resolution, "command line", option);
 }
 
 void checkOutputPath(const std::string& option, const std::string& path) {

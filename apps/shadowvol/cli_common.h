@@ -67,10 +67,9 @@ Scene loadSceneOrDefault(const std::string& path);
 std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture);
 
 /// Largest side accepted for a depth map (texels).
-inline constexpr int kMaxResolution = 16384;
+inline constexpr int kMaxResolution = kMaxDepthMapSide;
 
-/// Refuses a resolution that is not positive, above kMaxResolution, or whose buffers would not
-/// fit in this machine's memory, before anything is allocated. Throws InputError naming the option.
+/// checkDepthMapSize (depth_map.h) of an N x N map, naming the option.
 void checkResolution(const std::string& option, int resolution);
 
 /// Refuses an output path whose folder does not exist (before any work is done).

@@ -17,9 +17,7 @@ namespace {
 DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
                       const std::string& platform) {
   const CaptureMode mode = captureModeArg(capture);
-  if (width < 2 || height < 2 || width > 16384 || height > 16384)
-    throw InputError("python", "width, height", std::to_string(width) + " x " + std::to_string(height),
-                     "each must be between 2 and 16384");
+  checkDepthMapSize(width, height, "python", "width, height");
   py::gil_scoped_release release;
   if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
   if (device != "gpu") throw InputError("python", "device", device, "expected cpu or gpu");
@@ -43,9 +41,7 @@ DepthMap fromArray(const py::array_t<float, py::array::forcecast>& depth, const 
   DepthMap map;
   map.height = int(std::min<py::ssize_t>(depth.shape(0), 1 << 20));
   map.width = int(std::min<py::ssize_t>(depth.shape(1), 1 << 20));
-  if (map.width > 16384 || map.height > 16384)
-    throw InputError("DepthMap.from_array", "depth", std::to_string(depth.shape(1)) + " x " + std::to_string(depth.shape(0)),
-                     "at most 16384 x 16384 texels");
+  checkDepthMapSize(map.width, map.height, "DepthMap.from_array", "depth");
   if (light == "spot") map.lightType = LightType::Spot;
   else if (light == "directional") map.lightType = LightType::Directional;
   else throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");

@@ -32,14 +32,11 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   if (!gl::parseShadowMethod(a.method, ro.method))
     throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette or none");
   if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected gpu or explicit");
-  if (a.resolution < 2 || a.resolution > 16384)
-    throw InputError("python", "resolution", std::to_string(a.resolution), "must be between 2 and 16384");
+  checkDepthMapSize(a.resolution, a.resolution, "python", "resolution");
   ro.depthWidth = ro.depthHeight = a.resolution;
   if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected auto, zfail or zpass");
   ro.capture = captureModeArg(a.capture);
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
-  if (a.refine > 0 && ro.method == gl::ShadowMethod::Hybrid && ro.volume != gl::VolumeSource::Explicit)
-    throw InputError("python", "refine", std::to_string(a.refine), "refines the explicit volume only: volume='explicit'");
   if (a.size) {
     const auto [w, h] = *a.size;
     if (w < 1 || h < 1 || w > 16384 || h > 16384)

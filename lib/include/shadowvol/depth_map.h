@@ -102,4 +102,12 @@ DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode cap
 /// before allocating. Limits of the command line: see maxResolution in README.
 std::uint64_t depthMapBytes(int width, int height);
 
+/// Largest side of a depth map (texels).
+inline constexpr int kMaxDepthMapSide = 16384;
+
+/// Refuses, before anything is allocated, a W x H map with a side below 2 or above
+/// kMaxDepthMapSide, or whose buffers (depthMapBytes) need more than half of this machine's
+/// memory: InputError naming `source` and `field` with the value and the memory it would need.
+void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field);
+
 }  // namespace shadowvol

@@ -149,7 +149,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
   for (int r : o.resolutions) {
-    if (r < 2 || r > 16384) throw InputError("command line", "--resolutions", std::to_string(r), "must be in 2..16384");
+    if (r < 2 || r > kMaxDepthMapSide)
+      throw InputError("command line", "--resolutions", std::to_string(r), "must be in 2.." + std::to_string(kMaxDepthMapSide));
     const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies
     if (physical > 0 && need > physical / 2) {
       notes.push_back("resolution " + std::to_string(r) + " skipped: needs about " +

@@ -1,9 +1,12 @@
 #include "shadowvol/depth_map.h"
 
+#include <unistd.h>
+
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include "shadowvol/check.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol {
 
@@ -103,6 +106,20 @@ std::uint64_t depthMapBytes(int width, int height) {
   const std::uint64_t texels = std::uint64_t(width) * std::uint64_t(height);
   // depths (4 B) + volume vertices (3 doubles) + ~2 triangles per texel (2 x 3 x 4 B)
   return texels * (4 + 24 + 24);
+}
+
+void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field) {
+  const std::string value = width == height ? std::to_string(width) : std::to_string(width) + "x" + std::to_string(height);
+  if (width < 2 || height < 2) throw InputError(source, field, value, "the resolution must be at least 2");
+  if (width > kMaxDepthMapSide || height > kMaxDepthMapSide)
+    throw InputError(source, field, value, "above the limit of " + std::to_string(kMaxDepthMapSide) + " texels a side");
+  const std::uint64_t need = depthMapBytes(width, height);
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  const std::uint64_t physical = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
+  if (physical > 0 && need > physical / 2)
+    throw InputError(source, field, value,
+                     "needs about " + std::to_string(need >> 20) + " MiB, more than half of this machine's " +
+                         std::to_string(physical >> 20) + " MiB");
 }
 
 }  // namespace shadowvol
