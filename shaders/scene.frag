@@ -4,13 +4,13 @@
 // N: the flat face normal (from screen-space derivatives) turned toward the camera; L: toward the
 // light (spot: toward its apex; directional: against its direction). lit = 0 outside the light's
 // frustum (|x|, |y|, |z| <= w in light clip space), times the shadow-map visibility when
-// shadowTaps > 0. mode 0: ambient only; 1: the diffuse term only (hybrid: added where the stencil
-// is 0); 2: ambient + diffuse. writeVisibility (mode 2 only): also write the shadow test alone
-// (1 = lit, PCF fraction; 1 outside the frustum; not multiplied by N.L) to location 1, which the
-// renderer binds to an R8 attachment only when RenderOptions::readVisibility is set.
+// shadowTaps > 0. Location 0: that colour. Location 1 (writeVisibility): the shadow test alone
+// (1 = lit, PCF fraction; 1 outside the frustum; not multiplied by N.L), which the renderer binds
+// to an R8 attachment only when RenderOptions::readVisibility is set. Location 2: the ambient term
+// alone, albedo * ambient, which the stencil methods' camera pass keeps for the pixels their
+// stencil shadows (ambient_over.frag); the renderer binds it only in that pass.
 in vec3 worldPos;
 in vec3 color;
-uniform int mode;
 uniform vec3 cameraPosition;      // world
 uniform int lightIsSpot;
 uniform vec3 lightPosition;       // world, spot apex
@@ -29,6 +29,7 @@ uniform float texelFootprint;     // world size of a texel: spot at unit depth, 
 uniform int writeVisibility;      // 1: evaluate the shadow test everywhere in the frustum for visibilityOut
 layout(location = 0) out vec4 fragColor;
 layout(location = 1) out float visibilityOut;
+layout(location = 2) out vec4 ambientOut;
 
 // Visibility in [0, 1] from the shadow map. The stored quantity is light-view depth (-z), so the
 // slope that matters is the receiver's tilt against the light's view axis (not against the ray):
@@ -49,10 +50,7 @@ float shadowVisibility(vec4 lightClip, float cosTheta) {
 }
 
 void main() {
-  if (mode == 0) {
-    fragColor = vec4(color * ambient, 1.0);
-    return;
-  }
+  ambientOut = vec4(color * ambient, 1.0);
   vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
   if (dot(n, cameraPosition - worldPos) < 0.0) n = -n;
   vec3 l = lightIsSpot != 0 ? normalize(lightPosition - worldPos) : -lightDirection;
@@ -65,5 +63,5 @@ void main() {
   visibilityOut = test;
   if (ndl > 0.0) lit *= test;
   vec3 direct = color * diffuse * max(ndl, 0.0) * lit;
-  fragColor = vec4(mode == 1 ? direct : color * ambient + direct, 1.0);
+  fragColor = vec4(color * ambient + direct, 1.0);
 }

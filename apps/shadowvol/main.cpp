@@ -1,6 +1,9 @@
 // shadowvol: explicit shadow-volume meshes from light depth maps. One subcommand per job.
 #include <cstdio>
 #include <exception>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "cli_common.h"
 #include "cli_suggest.h"
@@ -12,6 +15,17 @@
 int main(int argc, char** argv) {
   using namespace shadowvol;
   removeTemporaryFilesOnSignal();  // a killed command leaves no .tmp file behind
+#if defined(__GLIBC__)
+  // Keep freed memory in the process: a frame allocates and frees megabytes (the depth map, the
+  // explicit or silhouette mesh, the images, llvmpipe's own buffers). glibc's defaults can hand
+  // them back to the kernel after each frame (heap trimming, or mmap for large blocks) to be
+  // faulted in again on the next: 124 ms instead of 46 a frame in one case (docs/gpu.md "Frame
+  // timing and the heap"). Setting either value turns glibc's adaptive threshold off, so both are
+  // set: blocks up to 32 MB (glibc's largest threshold) come from the heap, and the heap is trimmed
+  // only beyond 256 MB free. Costs only resident memory after a peak.
+  mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
+  mallopt(M_TRIM_THRESHOLD, 256 * 1024 * 1024);
+#endif
   CLI::App app{
       "shadowvol: turn a light's depth map into a closed shadow-volume mesh, render it with OpenGL "
       "(z-fail stencil) and check it by ray casting.\n"

@@ -232,7 +232,8 @@ struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
   ShaderLibrary shaders;
-  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, volumeProgram, volumeGpuProgram;
+  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
+  Program volumeGpuProgram;
   Program volumeKeepProgram, volumeGpuKeptProgram;  // GpuVolumeDraw::KeptQuads
   Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
   bool hasCompute = false;
@@ -278,7 +279,9 @@ struct Renderer::Impl {
   // Camera targets
   int camW = 0, camH = 0;
   Renderbuffer colorRb, depthStencilRb, visibilityRb;  // visibilityRb: R8, written only on request
-  Framebuffer cameraFbo;
+  Texture ambientImage;      // RGBA8: the camera pass's ambient term (stencil methods)
+  Framebuffer cameraFbo;     // colour, visibility, ambient image, depth + stencil
+  Framebuffer shadowOverFbo; // colour and depth + stencil only: the lighting pass samples ambientImage
 
   Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
     lightProgram = Program(shaders, "light.vert", "depth_only.frag");
@@ -286,6 +289,7 @@ struct Renderer::Impl {
     resolveProgram = Program(shaders, "fullscreen.vert", "resolve.frag");
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
     sceneProgram = Program(shaders, "scene.vert", "scene.frag");
+    ambientOverProgram = Program(shaders, "fullscreen.vert", "ambient_over.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
     volumeGpuProgram =
         Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
@@ -409,9 +413,19 @@ struct Renderer::Impl {
     SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorRb.id()));
     SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthStencilRb.id()));
     SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, visibilityRb.id()));
+    ambientImage = makeTexture2D(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, w, h);
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, ambientImage.id(), 0));
     SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
     SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
     checkFramebufferComplete("camera");
+    // The lighting pass reads ambientImage: a framebuffer without it, so no feedback loop in any
+    // GL version (the colour and depth-stencil renderbuffers are shared).
+    shadowOverFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, shadowOverFbo.id()));
+    SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorRb.id()));
+    SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthStencilRb.id()));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("camera lighting");
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
     camW = w;
     camH = h;
@@ -583,20 +597,28 @@ struct Renderer::Impl {
     sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
   }
 
-  /// Binds and clears the camera targets. withVisibility: the shade pass also writes the shadow
-  /// test into COLOR_ATTACHMENT1 (cleared to 1 = lit); otherwise only attachment 0 is drawn.
-  void beginCamera(const CameraSetup& cam, bool withVisibility = false) {
+  /// What the camera pass writes besides the colour (COLOR_ATTACHMENT0).
+  enum class CameraExtra { None, Visibility, Ambient };
+
+  /// Binds and clears the camera targets. Visibility: the shade pass also writes the shadow test
+  /// into COLOR_ATTACHMENT1 (cleared to 1 = lit). Ambient: the stencil methods' camera pass also
+  /// writes the ambient term into ambientImage (COLOR_ATTACHMENT2, cleared to the background, so
+  /// the lighting pass leaves the background as it is).
+  void beginCamera(const CameraSetup& cam, CameraExtra extra = CameraExtra::None) {
     ensureCameraTargets(cam.w, cam.h);
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
-    SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));
+    const GLfloat background[4] = {0.10f, 0.12f, 0.15f, 1.0f};
+    SV_GL(glClearColor(background[0], background[1], background[2], background[3]));
     SV_GL(glClearDepth(0.0));  // reversed Z: 0 is the far plane
     SV_GL(glClearStencil(0));
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    SV_GL(glDrawBuffers(withVisibility ? 2 : 1, both));
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
+                               extra == CameraExtra::Visibility ? GL_COLOR_ATTACHMENT1 : GLenum(GL_NONE),
+                               GL_COLOR_ATTACHMENT2};
+    SV_GL(glDrawBuffers(extra == CameraExtra::None ? 1 : extra == CameraExtra::Visibility ? 2 : 3, buffers));
     SV_GL(glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT));
-    if (withVisibility) {
+    if (extra == CameraExtra::Visibility) {
       const GLfloat lit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
       SV_GL(glClearBufferfv(GL_COLOR, 1, lit));
     }
@@ -631,20 +653,24 @@ struct Renderer::Impl {
     SV_GL(glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE));
   }
 
-  /// Diffuse light where stencil == 0, added onto the ambient image.
+  /// The ambient term over the lit colour where stencil != 0: one full-screen triangle instead of
+  /// drawing the scene again (docs/gpu.md "Passes of one frame").
   void lightingPass() {
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, shadowOverFbo.id()));
+    SV_GL(glDisable(GL_DEPTH_TEST));
     SV_GL(glEnable(GL_STENCIL_TEST));
-    SV_GL(glStencilFunc(GL_EQUAL, 0, 0xFF));
+    SV_GL(glStencilFunc(GL_NOTEQUAL, 0, 0xFF));
     SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(GL_GEQUAL));
-    SV_GL(glEnable(GL_BLEND));
-    SV_GL(glBlendFunc(GL_ONE, GL_ONE));
-    sceneProgram.use();
-    sceneProgram.set("mode", 1);
-    sceneProgram.set("shadowTaps", 0);
-    drawScene();
+    ambientOverProgram.use();
+    ambientOverProgram.set("ambientImage", 0);
+    bindTexture(0, ambientImage, fetchSampler);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+    bindTexture(0, Texture(), fetchSampler);
     resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
   }
 
   /// Uniforms of volume_common.glsl (both GPU-volume programs).
@@ -834,31 +860,30 @@ struct Renderer::Impl {
   /// (`visibility` == FromStencil), from COLOR_ATTACHMENT1 (FromAttachment), or all lit (AllLit).
   enum class VisibilitySource { NotRead, FromStencil, FromAttachment, AllLit };
 
-  static void flipRowsInto(const std::vector<std::uint8_t>& glRows, int w, int h, std::vector<std::uint8_t>& out) {
-    out.resize(glRows.size());
-    const std::size_t row = glRows.size() / std::size_t(h);
-    (void)w;
-    for (int y = 0; y < h; ++y)  // GL row 0 is the bottom; images start at the top
-      std::copy_n(glRows.data() + std::size_t(h - 1 - y) * row, row, out.data() + std::size_t(y) * row);
+  /// GL row 0 is the bottom; images start at the top. Flips `rows` rows of `rowBytes` in place.
+  static void flipRows(std::vector<std::uint8_t>& image, std::size_t rowBytes, int rows) {
+    for (int y = 0; y < rows / 2; ++y)
+      std::swap_ranges(image.begin() + std::ptrdiff_t(std::size_t(y) * rowBytes),
+                       image.begin() + std::ptrdiff_t(std::size_t(y + 1) * rowBytes),
+                       image.begin() + std::ptrdiff_t(std::size_t(rows - 1 - y) * rowBytes));
   }
 
+  // Read straight into the result's vectors and flipped in place: no image-sized temporaries per
+  // frame (freed heap tops are what glibc trims and faults back in on the next frame).
   void readImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
     const int w = cam.w, h = cam.h;
     r.width = w;
     r.height = h;
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
-    std::vector<std::uint8_t> buf(std::size_t(w) * std::size_t(h) * 4);
-    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
-    SV_GL(glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, buf.data()));
-    r.rgba.resize(buf.size());
-    const std::size_t row = std::size_t(w) * 4;
-    for (int y = 0; y < h; ++y)  // GL row 0 is the bottom; images start at the top
-      std::copy_n(buf.data() + std::size_t(h - 1 - y) * row, row, r.rgba.data() + std::size_t(y) * row);
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
+    r.rgba.resize(pixels * 4);
+    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+    SV_GL(glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, r.rgba.data()));
+    flipRows(r.rgba, std::size_t(w) * 4, h);
     if (stencil || visibility == VisibilitySource::FromStencil) {
-      std::vector<std::uint8_t> s(pixels), counts;
-      SV_GL(glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, s.data()));
-      flipRowsInto(s, w, h, counts);
+      std::vector<std::uint8_t> counts(pixels);
+      SV_GL(glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, counts.data()));
+      flipRows(counts, std::size_t(w), h);
       if (visibility == VisibilitySource::FromStencil) {
         r.visibility.resize(pixels);
         for (std::size_t k = 0; k < pixels; ++k) r.visibility[k] = counts[k] == 0 ? 255 : 0;
@@ -866,11 +891,11 @@ struct Renderer::Impl {
       if (stencil) r.stencil = std::move(counts);
     }
     if (visibility == VisibilitySource::FromAttachment) {
-      std::vector<std::uint8_t> v(pixels);
+      r.visibility.resize(pixels);
       SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT1));
-      SV_GL(glReadPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, v.data()));
+      SV_GL(glReadPixels(0, 0, w, h, GL_RED, GL_UNSIGNED_BYTE, r.visibility.data()));
       SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
-      flipRowsInto(v, w, h, r.visibility);
+      flipRows(r.visibility, std::size_t(w), h);
     } else if (visibility == VisibilitySource::AllLit) {
       r.visibility.assign(pixels, 255);
     }
@@ -989,14 +1014,15 @@ struct Renderer::Impl {
     if (stencilShadows) {
       {
         TimedPass t(timer, "camera");
-        beginCamera(cam);
+        beginCamera(cam, CameraExtra::Ambient);
         // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
         if (silhouette)
           setSceneUniforms(cam, o, 0, o.depthWidth, o.depthHeight);
         else
           setSceneUniforms(cam, o, 0, std::max(lightW, 2), std::max(lightH, 2));
-        sceneProgram.set("mode", 0);
+        sceneProgram.set("writeVisibility", 0);
         drawScene();
+        SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
       }
       {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
@@ -1017,10 +1043,9 @@ struct Renderer::Impl {
                        : o.method == ShadowMethod::Pcf3    ? 3
                        : o.method == ShadowMethod::Pcf5    ? 5
                                                            : 0;
-      beginCamera(cam, o.readVisibility && taps > 0);
+      beginCamera(cam, o.readVisibility && taps > 0 ? CameraExtra::Visibility : CameraExtra::None);
       const int mw = taps ? lightW : o.depthWidth, mh = taps ? lightH : o.depthHeight;
       setSceneUniforms(cam, o, taps, mw, mh);
-      sceneProgram.set("mode", 2);
       sceneProgram.set("writeVisibility", o.readVisibility && taps > 0 ? 1 : 0);
       if (taps) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
       drawScene();
