@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
+#include "shadowvol/depth_map.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/error.h"
 #include "shadowvol/primitives.h"
 
 namespace shadowvol {
@@ -131,6 +133,20 @@ TEST(Capture, IsDeterministic) {
     const DepthMap a = captureDepthEmbree(s, 64, 64, m), b = captureDepthEmbree(s, 64, 64, m);
     EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float))) << toString(m);
   }
+}
+
+// A library caller that skips checkDepthMapSize gets the same refusal, not an internal check.
+TEST(Capture, SizesTheMapCannotHaveAreAnInputError) {
+  const Scene s = sceneOf(makeLight(LightType::Spot), {makeIcoSphere(1.5, 2)});
+  for (const auto& [w, h] : {std::pair{0, 64}, {64, 1}, {-3, -3}, {kMaxDepthMapSide + 1, 2}}) {
+    try {
+      (void)captureDepthEmbree(s, w, h, CaptureMode::Back);
+      ADD_FAILURE() << w << "x" << h << " was captured";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("width x height"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(captureDepthEmbree(s, 2, 2, CaptureMode::Back).depth.size(), 4u);
 }
 
 TEST(Capture, NearAndFarClipLikeTheGpu) {

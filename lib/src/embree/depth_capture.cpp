@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/depth_map.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
 
@@ -73,6 +74,7 @@ float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, 
 }
 
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
+  checkDepthMapSize(width, height, "captureDepthEmbree", "width x height");
   DepthMap map = makeDepthMap(scene.light, width, height, mode);
   map.origin = scene.origin;
   std::vector<const TriangleMesh*> meshes;

@@ -16,7 +16,9 @@ namespace shadowvol {
 ///    from itself; the texel is kNoHit unless a back face lies behind it.
 ///  - Midpoint: the mean of the first and second surface hit (any facing). With only one surface
 ///    on the ray, the second is the far plane (as the GPU's cleared second layer).
-/// Parallel over rows (TBB) and deterministic: each texel is computed independently.
+/// Parallel over rows (TBB) and deterministic: each texel is computed independently. A size that
+/// checkDepthMapSize refuses (below 2 or above kMaxDepthMapSide a side, or more than half of the
+/// machine's memory) is an InputError naming it.
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode);
 
 }  // namespace shadowvol
