@@ -609,8 +609,7 @@ struct Renderer::Impl {
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
-    const GLfloat background[4] = {0.10f, 0.12f, 0.15f, 1.0f};
-    SV_GL(glClearColor(background[0], background[1], background[2], background[3]));
+    SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));  // every colour target, the ambient image too
     SV_GL(glClearDepth(0.0));  // reversed Z: 0 is the far plane
     SV_GL(glClearStencil(0));
     const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
