@@ -21,8 +21,8 @@ int main(int argc, char** argv) {
   // them back to the kernel after each frame (heap trimming, or mmap for large blocks) to be
   // faulted in again on the next: 124 ms instead of 46 a frame in one case (docs/gpu.md "Frame
   // timing and the heap"). Setting either value turns glibc's adaptive threshold off, so both are
-  // set: blocks up to 32 MB (glibc's largest threshold) come from the heap, and the heap is trimmed
-  // only beyond 256 MB free. Costs only resident memory after a peak.
+  // set: blocks up to 32 MB (glibc's largest threshold on 64-bit) come from the heap, and the heap
+  // is trimmed only beyond 256 MB free. Costs only resident memory after a peak.
   mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024);
   mallopt(M_TRIM_THRESHOLD, 256 * 1024 * 1024);
 #endif

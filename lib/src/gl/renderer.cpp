@@ -609,7 +609,7 @@ struct Renderer::Impl {
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
-    SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));  // every colour target, the ambient image too
+    SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));  // every enabled draw buffer, the ambient image too
     SV_GL(glClearDepth(0.0));  // reversed Z: 0 is the far plane
     SV_GL(glClearStencil(0));
     const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
@@ -867,8 +867,8 @@ struct Renderer::Impl {
                        image.begin() + std::ptrdiff_t(std::size_t(rows - 1 - y) * rowBytes));
   }
 
-  // Read straight into the result's vectors and flipped in place: no image-sized temporaries per
-  // frame (freed heap tops are what glibc trims and faults back in on the next frame).
+  // Read straight into the result's vectors and flipped in place, without the staging copies of
+  // the colour and visibility images (the stencil counts still go through one vector).
   void readImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
     const int w = cam.w, h = cam.h;
     r.width = w;

@@ -7,13 +7,15 @@
 //   resolve   (gpu volume, or midpoint shadow maps) the depth texture(s) -> light-view depth
 //             (R32F, world units) and, for midpoint, the mean's window depth for the shadow maps;
 //   blur      (gpu volume with blur) the 9-sample depth blur of volume_builder.h, R32F -> R32F;
-//   camera    depth + ambient of the scene from the camera;
+//   camera    depth, the lit colour and (stencil methods) the ambient term aside, the scene drawn
+//             once from the camera;
 //   volume    (hybrid) the shadow volume (gpu: a geometry shader expands one point per quad of the
 //             depth texture), two-sided stencil z-fail with depth clamp;
 //   silhouette (silhouette) the classic object-space volume (silhouette_volume.h, built on the CPU
 //             each frame: passes connectivity (first frame after setScene only), build, upload),
 //             drawn with the same stencil state as `volume`; no light pass;
-//   lighting  (hybrid, silhouette) diffuse light added where the stencil is 0;
+//   lighting  (hybrid, silhouette) one full-screen triangle puts the ambient term back where the
+//             stencil is not 0;
 //   shade     (shadowmap, pcf3, pcf5, none) ambient + diffuse x visibility in one pass.
 // Albedo: light grey for planes and objects named "ground", else a fixed palette in object order.
 // Lighting: colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit), N the flat face
