@@ -160,10 +160,10 @@ PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, 
   return {zfail, zpass, base + tieMin, base + tieMax};
 }
 
-TexelUnprojector::Ray primaryRay(const Camera& camera, int x, int row) {
-  const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
-  return pixelRay(u, x, row, camera.height);
-}
+PrimaryRays::PrimaryRays(const Camera& camera)
+    : unproject_(cameraView(camera), cameraProjection(camera), camera.width, camera.height), height_(camera.height) {}
+
+TexelUnprojector::Ray PrimaryRays::ray(int x, int row) const { return pixelRay(unproject_, x, row, height_); }
 
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits) {
   CrossingCounts out;

@@ -51,9 +51,10 @@ std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& ca
   const Tree tree(triangles.begin(), triangles.end());
   std::vector<Primitive::Id> hit;
   std::vector<VolumeCrossing> crossings;
+  const PrimaryRays rays(camera);
   for (std::size_t k : pixels) {
     const int x = int(k % std::size_t(hits.width)), row = int(k / std::size_t(hits.width));
-    const TexelUnprojector::Ray r = primaryRay(camera, x, row);
+    const TexelUnprojector::Ray r = rays.ray(x, row);
     const K::Ray_3 ray(K::Point_3(r.origin.x, r.origin.y, r.origin.z),
                        K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
     hit.clear();

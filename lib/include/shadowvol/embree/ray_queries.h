@@ -106,8 +106,17 @@ struct PixelCounts {
 /// band `band` (world units). Also used by the double-precision recount (validate).
 PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, double band);
 
-/// The primary ray of pixel (x, row), row 0 at the top (CameraHits' order): origin and a
-/// direction scaled so that the ray parameter is the camera view depth.
-TexelUnprojector::Ray primaryRay(const Camera& camera, int x, int row);
+/// The primary rays of a camera, the camera's inverse matrices computed once: ray(x, row) is the
+/// ray of pixel (x, row), row 0 at the top (CameraHits' order), its direction scaled so that the
+/// ray parameter is the camera view depth.
+class PrimaryRays {
+ public:
+  explicit PrimaryRays(const Camera& camera);
+  TexelUnprojector::Ray ray(int x, int row) const;
+
+ private:
+  TexelUnprojector unproject_;
+  int height_;
+};
 
 }  // namespace shadowvol
