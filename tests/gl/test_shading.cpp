@@ -101,34 +101,37 @@ TEST(GlShading, ShadowedGroundIsAmbientOnly) {
 }
 
 // The stencil methods shade in one scene pass (the lit colour, and the ambient term kept aside)
-// and put the ambient term back where the stencil is not 0: pixel for pixel the unshadowed frame
-// where the stencil is 0 (the sky too), and that frame's ambient term elsewhere.
+// and put the ambient term back where the stencil is not 0, inside the light frustum's rectangle
+// on the image: pixel for pixel the unshadowed frame where the stencil is 0 (the sky too), and
+// that frame's ambient term elsewhere. Spot lights seen from outside their frustum and a
+// directional light's box that reaches behind the camera (the whole image).
 TEST(GlShading, StencilMethodsAreTheUnshadowedFrameWhereLitAndAmbientWhereShadowed) {
-  const Scene scene = defaultScene();
   gl::Renderer& r = gltest::sharedRenderer();
-  r.setScene(scene);
-  gl::RenderOptions o;
-  o.imageWidth = 160;
-  o.imageHeight = 120;
-  o.depthWidth = o.depthHeight = 128;
-  o.method = gl::ShadowMethod::None;
-  const gl::RenderResult unshadowed = r.render(o);
-  gl::RenderOptions ambientOnly = o;
-  ambientOnly.diffuse = 0.0;
-  const gl::RenderResult ambient = r.render(ambientOnly);
-  for (const gl::ShadowMethod m : {gl::ShadowMethod::Hybrid, gl::ShadowMethod::Silhouette}) {
-    o.method = m;
-    const gl::RenderResult res = r.render(o);
-    ASSERT_EQ(res.stencil.size(), std::size_t(160 * 120));
-    std::size_t lit = 0, shadowed = 0, wrong = 0;
-    for (std::size_t k = 0; k < res.stencil.size(); ++k) {
-      const gl::RenderResult& want = res.stencil[k] == 0 ? unshadowed : ambient;
-      (res.stencil[k] == 0 ? lit : shadowed) += 1;
-      for (int c = 0; c < 4; ++c) wrong += res.rgba[k * 4 + c] != want.rgba[k * 4 + c];
+  for (const Scene& scene : {defaultScene(), gltest::clutterScene(), gltest::plateScene()}) {
+    r.setScene(scene);
+    gl::RenderOptions o;
+    o.imageWidth = 160;
+    o.imageHeight = 120;
+    o.depthWidth = o.depthHeight = 128;
+    o.method = gl::ShadowMethod::None;
+    const gl::RenderResult unshadowed = r.render(o);
+    gl::RenderOptions ambientOnly = o;
+    ambientOnly.diffuse = 0.0;
+    const gl::RenderResult ambient = r.render(ambientOnly);
+    for (const gl::ShadowMethod m : {gl::ShadowMethod::Hybrid, gl::ShadowMethod::Silhouette}) {
+      o.method = m;
+      const gl::RenderResult res = r.render(o);
+      ASSERT_EQ(res.stencil.size(), std::size_t(160 * 120));
+      std::size_t lit = 0, shadowed = 0, wrong = 0;
+      for (std::size_t k = 0; k < res.stencil.size(); ++k) {
+        const gl::RenderResult& want = res.stencil[k] == 0 ? unshadowed : ambient;
+        (res.stencil[k] == 0 ? lit : shadowed) += 1;
+        for (int c = 0; c < 4; ++c) wrong += res.rgba[k * 4 + c] != want.rgba[k * 4 + c];
+      }
+      EXPECT_EQ(wrong, 0u) << scene.source << ", " << toString(m);
+      EXPECT_GT(lit, 5000u) << scene.source << ", " << toString(m);
+      EXPECT_GT(shadowed, 300u) << scene.source << ", " << toString(m);
     }
-    EXPECT_EQ(wrong, 0u) << toString(m);
-    EXPECT_GT(lit, 5000u) << toString(m);
-    EXPECT_GT(shadowed, 300u) << toString(m);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -441,6 +442,7 @@ struct Renderer::Impl {
     SV_GL(glDisable(GL_STENCIL_TEST));
     SV_GL(glDisable(GL_DEPTH_CLAMP));
     SV_GL(glDisable(GL_CULL_FACE));
+    SV_GL(glDisable(GL_SCISSOR_TEST));
     SV_GL(glFrontFace(GL_CCW));
     SV_GL(glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE));
     SV_GL(glDepthMask(GL_TRUE));
@@ -652,10 +654,40 @@ struct Renderer::Impl {
     SV_GL(glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE));
   }
 
+  /// The image rectangle (x, y, width, height; GL window coordinates) that holds the light
+  /// frustum's projection, `aspect` the frustum's as in the camera pass; the whole image when a
+  /// corner lies on or behind the camera's eye plane. Outside the frustum lit = 0 (scene.frag), so
+  /// the lit colour there is the ambient term already.
+  std::array<GLint, 4> lightFrustumOnImage(const CameraSetup& cam, double aspect) const {
+    const std::array<GLint, 4> whole = {0, 0, cam.w, cam.h};
+    const glm::dmat4 lightClipToWorld = glm::inverse(lightProjection(light, aspect) * lightView(light));
+    const glm::dmat4 worldToClip = cam.proj * cam.view;
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec4 corner(k & 1 ? 1.0 : -1.0, k & 2 ? 1.0 : -1.0, k & 4 ? 1.0 : -1.0, 1.0);
+      const glm::dvec4 world = lightClipToWorld * corner;
+      const glm::dvec4 clip = worldToClip * (world / world.w);
+      if (!(clip.w > 0.0)) return whole;
+      const glm::dvec2 window = (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * glm::dvec2(cam.w, cam.h);
+      lo = glm::min(lo, window);
+      hi = glm::max(hi, window);
+    }
+    // One pixel of margin for rounding; clamped to the image.
+    const GLint x0 = GLint(std::clamp(std::floor(lo.x) - 1.0, 0.0, double(cam.w)));
+    const GLint y0 = GLint(std::clamp(std::floor(lo.y) - 1.0, 0.0, double(cam.h)));
+    const GLint x1 = GLint(std::clamp(std::ceil(hi.x) + 1.0, 0.0, double(cam.w)));
+    const GLint y1 = GLint(std::clamp(std::ceil(hi.y) + 1.0, 0.0, double(cam.h)));
+    return {x0, y0, x1 - x0, y1 - y0};
+  }
+
   /// The ambient term over the lit colour where stencil != 0: one full-screen triangle instead of
-  /// drawing the scene again (docs/gpu.md "Passes of one frame").
-  void lightingPass() {
+  /// drawing the scene again (docs/gpu.md "Passes of one frame"), scissored to the light
+  /// frustum's rectangle on the image (lightFrustumOnImage).
+  void lightingPass(const CameraSetup& cam, double frustumAspect) {
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, shadowOverFbo.id()));
+    const std::array<GLint, 4> r = lightFrustumOnImage(cam, frustumAspect);
+    SV_GL(glEnable(GL_SCISSOR_TEST));
+    SV_GL(glScissor(r[0], r[1], r[2], r[3]));
     SV_GL(glDisable(GL_DEPTH_TEST));
     SV_GL(glEnable(GL_STENCIL_TEST));
     SV_GL(glStencilFunc(GL_NOTEQUAL, 0, 0xFF));
@@ -1011,14 +1043,13 @@ struct Renderer::Impl {
     }
 
     if (stencilShadows) {
+      // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
+      const int frustumW = silhouette ? o.depthWidth : std::max(lightW, 2);
+      const int frustumH = silhouette ? o.depthHeight : std::max(lightH, 2);
       {
         TimedPass t(timer, "camera");
         beginCamera(cam, CameraExtra::Ambient);
-        // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
-        if (silhouette)
-          setSceneUniforms(cam, o, 0, o.depthWidth, o.depthHeight);
-        else
-          setSceneUniforms(cam, o, 0, std::max(lightW, 2), std::max(lightH, 2));
+        setSceneUniforms(cam, o, 0, frustumW, frustumH);
         sceneProgram.set("writeVisibility", 0);
         drawScene();
         SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
@@ -1034,7 +1065,7 @@ struct Renderer::Impl {
       }
       {
         TimedPass t(timer, "lighting");
-        lightingPass();
+        lightingPass(cam, double(frustumW) / double(frustumH));
       }
     } else {
       TimedPass t(timer, "shade");
