@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   // Keep freed memory in the process: a frame allocates and frees megabytes (the depth map, the
   // explicit or silhouette mesh, the images, llvmpipe's own buffers). glibc's defaults can hand
   // them back to the kernel after each frame (heap trimming, or mmap for large blocks) to be
-  // faulted in again on the next: 124 ms instead of 46 a frame in one case (docs/gpu.md "Frame
+  // faulted in again on the next: 124 ms instead of 47 a frame in one case (docs/gpu.md "Frame
   // timing and the heap"). Setting either value turns glibc's adaptive threshold off, so both are
   // set: blocks up to 32 MB (glibc's largest threshold on 64-bit) come from the heap, and the heap
   // is trimmed only beyond 256 MB free. Costs only resident memory after a peak.

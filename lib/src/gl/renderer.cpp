@@ -1050,7 +1050,6 @@ struct Renderer::Impl {
         TimedPass t(timer, "camera");
         beginCamera(cam, CameraExtra::Ambient);
         setSceneUniforms(cam, o, 0, frustumW, frustumH);
-        sceneProgram.set("writeVisibility", 0);
         drawScene();
         SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
       }
