@@ -1,7 +1,8 @@
 # ctest package_install: cmake --install the build tree into WORK/prefix, configure and build
 # tests/package against it as an outside project would, run the example and check its PLY.
 # Arguments: -DBUILD_DIR=<shadowvol build tree> -DSOURCE_DIR=<shadowvol source> -DWORK=<scratch>,
-# and with the Python module -DPYTHON=<its interpreter> -DPYTHON_DIR=<its install folder in the prefix>.
+# and with the Python module -DPYTHON=<its interpreter> -DPYTHON_DIR=<its install folder in the prefix>;
+# in a sanitizer build -DSANITIZE_FLAGS=<the -fsanitize flags the outside project must build with>.
 file(REMOVE_RECURSE ${WORK})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -10,8 +11,12 @@ function(run)
   endif()
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK}/prefix)
+set(sanitize)
+if(SANITIZE_FLAGS)
+  set(sanitize -DCMAKE_CXX_FLAGS=${SANITIZE_FLAGS} -DCMAKE_EXE_LINKER_FLAGS=${SANITIZE_FLAGS})
+endif()
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package -B ${WORK}/build -DCMAKE_BUILD_TYPE=Release
-    -DCMAKE_PREFIX_PATH=${WORK}/prefix -DSHADOWVOL_EXAMPLE_SOURCE=${SOURCE_DIR}/apps/minimal_volume.cpp)
+    -DCMAKE_PREFIX_PATH=${WORK}/prefix -DSHADOWVOL_EXAMPLE_SOURCE=${SOURCE_DIR}/apps/minimal_volume.cpp ${sanitize})
 run(${CMAKE_COMMAND} --build ${WORK}/build)
 run(${WORK}/build/minimal_volume ${WORK}/volume.ply)
 run(${WORK}/build/link_all)
