@@ -6,6 +6,7 @@
 #endif
 
 #include "cli_common.h"
+#include "cli_errors.h"
 #include "cli_suggest.h"
 #include "cli_verbosity.h"
 #include "shadowvol/error.h"
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
   try {
     return run();
   } catch (const InputError& e) {
-    std::fprintf(stderr, "shadowvol: error: %s\n", e.what());
+    std::fprintf(stderr, "shadowvol: error: %s\n", cli::asCommandLineError(e).what());
     return cli::kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", e.what());

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_errors.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/image_io.h"
 #include "test_util.h"
@@ -38,6 +39,27 @@ CliResult runCli(const std::string& args) {
 std::string scene(const char* name) { return (test::sourceDir() / "data/scenes" / name).string(); }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// The library names its own fields; the command line shows its flag for each one a flag sets.
+TEST(Cli, LibraryErrorsAreShownWithTheFlagThatSetsTheField) {
+  std::string help;  // every subcommand's options (render, validate, bench only in a GL build)
+  for (const char* sub : {"depth", "build", "render", "validate", "bench"}) {
+    const CliResult r = runCli(std::string(sub) + " --help");
+    if (r.code == 0) help += r.out;
+  }
+  ASSERT_TRUE(contains(help, "--resolution")) << help;
+  for (const cli::LibraryFieldFlag& f : cli::libraryFieldFlags()) {
+    const std::string flag(f.flag);
+    const bool listed = contains(help, "  " + flag + " ") || contains(help, "," + flag + " ");
+    const bool glOnly = flag != "--resolution" && flag != "--blur-offset" && flag != "--bias" && flag != "--refine";
+    if (glOnly && !contains(help, "--gpu-draw")) continue;  // a build without GL has no render options
+    EXPECT_TRUE(listed) << flag << " (for " << f.source << " " << f.field << ") is no option of shadowvol";
+    const InputError shown = cli::asCommandLineError(InputError(std::string(f.source), std::string(f.field), "7", "bad"));
+    EXPECT_EQ(std::string(shown.what()), "command line: " + flag + " = 7: bad");
+  }
+  const InputError fromFile("scene.json", "/light/fov", "200", "must be below 180");
+  EXPECT_EQ(std::string(cli::asCommandLineError(fromFile).what()), fromFile.what());
+}
 
 TEST(Cli, HelpAndUsage) {
   const CliResult help = runCli("--help");

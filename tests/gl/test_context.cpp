@@ -1,6 +1,7 @@
 // The EGL context, shader loading and error reporting.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -25,10 +26,24 @@ TEST(GlContext, ReportsPlatformAndDriver) {
               info.glRenderer.c_str(), info.glVersion.c_str());
 }
 
+/// Runs `f`, which must throw an InputError naming `source` and `field` (the library's own terms,
+/// never a command-line flag: the CLI maps them, apps/shadowvol/cli_errors.cpp).
+template <class F>
+void expectInputError(F&& f, const std::string& source, const std::string& field) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError for " << source << " " << field;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), source) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GlContext, UnknownPlatformIsAnInputError) {
   gl::RendererOptions o;
   o.context.platform = "wayland";
-  EXPECT_THROW(gl::Renderer{o}, InputError);
+  expectInputError([&] { gl::Renderer r{o}; }, "ContextOptions", "platform");
 }
 
 TEST(GlContext, EveryPlatformEitherWorksOrThrowsGlError) {
@@ -93,11 +108,20 @@ TEST(GlRenderer, RejectsBadSizesAndMissingScene) {
   }
   gl::Renderer& r = gltest::sharedRenderer();
   r.setScene(defaultScene());
-  EXPECT_THROW(r.captureDepth(1, 64, CaptureMode::Back), InputError);
-  EXPECT_THROW(r.captureDepth(64, 1 << 20, CaptureMode::Back), InputError);
+  expectInputError([&] { r.captureDepth(1, 64, CaptureMode::Back); }, "Renderer::captureDepth", "width x height");
+  expectInputError([&] { r.captureDepth(64, 1 << 20, CaptureMode::Back); }, "Renderer::captureDepth", "width x height");
   gl::RenderOptions o;
   o.imageWidth = -3;
-  EXPECT_THROW(r.render(o), InputError);
+  expectInputError([&] { r.render(o); }, "RenderOptions", "imageWidth x imageHeight");
+  o = {};
+  o.depthWidth = 1;
+  expectInputError([&] { r.render(o); }, "RenderOptions", "depthWidth x depthHeight");
+  o = {};
+  o.shadowBiasSlope = std::nan("");
+  expectInputError([&] { r.render(o); }, "RenderOptions", "shadowBiasSlope");
+  o = {};
+  o.volumeOptions.refineSteps = 2;  // the GPU volume does not refine
+  expectInputError([&] { r.render(o); }, "RenderOptions", "volumeOptions.refineSteps");
 }
 
 TEST(GlImageIo, PngRoundTripKeepsRowsTopFirst) {

@@ -218,7 +218,7 @@ std::string deviceDescription(EGLDeviceEXT device) {
 EglContext EglContext::create(const ContextOptions& options) {
   const std::string& p = options.platform;
   if (p != "auto" && p != "device" && p != "surfaceless" && p != "default")
-    throw InputError("command line", "--egl-platform", p, "expected auto, device, surfaceless or default");
+    throw InputError("ContextOptions", "platform", p, "expected auto, device, surfaceless or default");
   std::vector<std::string> attempts;
   State* state = nullptr;
   // eglGetPlatformDisplayEXT exists only with EGL_EXT_platform_base (epoxy would abort otherwise).

@@ -355,9 +355,9 @@ struct Renderer::Impl {
     if (!hasScene) throw InputError("renderer", "", "", "no scene: call setScene() before rendering");
   }
 
-  void checkSize(const char* field, int w, int h, int limit) const {
+  void checkSize(const char* source, const char* field, int w, int h, int limit) const {
     if (w < 2 || h < 2 || w > limit || h > limit)
-      throw InputError("command line", field, std::to_string(w) + "x" + std::to_string(h),
+      throw InputError(source, field, std::to_string(w) + "x" + std::to_string(h),
                        "must be between 2 and " + std::to_string(limit) + " per side on this OpenGL implementation");
   }
 
@@ -565,8 +565,9 @@ struct Renderer::Impl {
 
   CameraSetup cameraSetup(const RenderOptions& o) const {
     if (o.imageWidth < 0 || o.imageHeight < 0)
-      throw InputError("command line", "--size", std::to_string(o.imageWidth) + "x" + std::to_string(o.imageHeight),
-                       "must be positive (0 = the scene camera's size)");
+      throw InputError("RenderOptions", "imageWidth x imageHeight",
+                       std::to_string(o.imageWidth) + "x" + std::to_string(o.imageHeight),
+                       "must not be negative (0 = the scene camera's size)");
     Camera c = camera;
     if (o.imageWidth > 0) c.width = o.imageWidth;
     if (o.imageHeight > 0) c.height = o.imageHeight;
@@ -935,20 +936,25 @@ struct Renderer::Impl {
 
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
     requireScene();
-    checkSize("--resolution", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
+    checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
     if (cam.w < 1 || cam.h < 1 || cam.w > maxRenderbufferSize || cam.h > maxRenderbufferSize)
-      throw InputError("command line", "--size", std::to_string(cam.w) + "x" + std::to_string(cam.h),
+      throw InputError("RenderOptions", "imageWidth x imageHeight", std::to_string(cam.w) + "x" + std::to_string(cam.h),
                        "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
     if (!std::isfinite(o.ambient) || !std::isfinite(o.diffuse) || o.ambient < 0 || o.diffuse < 0)
-      throw InputError("command line", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
+      throw InputError("RenderOptions", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
                        "must be finite and >= 0");
-    if ((o.shadowBiasConstant && !std::isfinite(*o.shadowBiasConstant)) || !std::isfinite(o.shadowBiasSlope))
-      throw InputError("command line", "shadow bias", "", "must be finite");
-    if (!std::isfinite(o.volumeOptions.blurOffset) || (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias)))
-      throw InputError("command line", "--bias/--blur-offset", "", "must be finite");
+    if (o.shadowBiasConstant && !std::isfinite(*o.shadowBiasConstant))
+      throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant), "must be finite");
+    if (!std::isfinite(o.shadowBiasSlope))
+      throw InputError("RenderOptions", "shadowBiasSlope", std::to_string(o.shadowBiasSlope), "must be finite");
+    if (!std::isfinite(o.volumeOptions.blurOffset))
+      throw InputError("RenderOptions", "volumeOptions.blurOffset", std::to_string(o.volumeOptions.blurOffset),
+                       "must be finite");
+    if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
+      throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
     if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.volumeOptions.refineSteps > 0)
-      throw InputError("render options", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                       "the GPU volume does not refine silhouettes yet: use the explicit volume (--volume explicit)");
+      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                       "the GPU volume does not refine silhouettes yet: use the explicit volume (VolumeSource::Explicit)");
   }
 
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
@@ -959,7 +965,7 @@ struct Renderer::Impl {
     c.height = cam.h;
     const ZPassSafety z = zPassSafety(light, double(o.depthWidth) / double(o.depthHeight), c, o.volumeOptions);
     if (!z.safe && o.volumeCount == VolumeCount::ZPass)
-      throw InputError("render options", "volumeCount", "zpass", "z-pass is not safe for this camera: " + z.reason);
+      throw InputError("RenderOptions", "volumeCount", "zpass", "z-pass is not safe for this camera: " + z.reason);
     if (!z.safe) result.zPassRefused = z.reason;
     return z.safe;
   }
@@ -1166,7 +1172,7 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
-  s.checkSize("--resolution", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
+  s.checkSize("Renderer::captureDepth", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
   s.lightPass(width, height, mode);
   return s.readBack(mode);
 }

@@ -1,0 +1,34 @@
+#include "cli_errors.h"
+
+#include <array>
+#include <string_view>
+
+namespace shadowvol::cli {
+namespace {
+
+constexpr std::array kFlags{
+    LibraryFieldFlag{"RenderOptions", "imageWidth x imageHeight", "--size"},
+    LibraryFieldFlag{"RenderOptions", "depthWidth x depthHeight", "--resolution"},
+    LibraryFieldFlag{"Renderer::captureDepth", "width x height", "--resolution"},
+    LibraryFieldFlag{"RenderOptions", "shadowBiasConstant", "--shadow-bias"},
+    LibraryFieldFlag{"RenderOptions", "shadowBiasSlope", "--shadow-slope"},
+    LibraryFieldFlag{"RenderOptions", "volumeOptions.blurOffset", "--blur-offset"},
+    LibraryFieldFlag{"RenderOptions", "volumeOptions.bias", "--bias"},
+    LibraryFieldFlag{"RenderOptions", "volumeOptions.refineSteps", "--refine"},
+    LibraryFieldFlag{"RenderOptions", "volumeCount", "--count"},
+    LibraryFieldFlag{"RenderOptions", "gpuVolumeDraw", "--gpu-draw"},
+    LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
+};
+
+}  // namespace
+
+std::span<const LibraryFieldFlag> libraryFieldFlags() { return kFlags; }
+
+InputError asCommandLineError(const InputError& e) {
+  for (const LibraryFieldFlag& f : kFlags)
+    if (e.source() == f.source && e.field() == f.field)
+      return InputError("command line", std::string(f.flag), e.value(), e.problem());
+  return e;
+}
+
+}  // namespace shadowvol::cli
