@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "shadowvol/depth_map.h"
+#include "shadowvol/frame.h"
 #include "shadowvol/gl/egl_context.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/volume_builder.h"
@@ -40,139 +41,23 @@
 
 namespace shadowvol::gl {
 
-enum class ShadowMethod {
-  Hybrid,     ///< the shadow volume from the depth map, stencil z-fail (the project's method)
-  ShadowMap,  ///< plain shadow mapping, hardware depth compare, one nearest tap
-  Pcf3,       ///< percentage-closer filtering over 3 x 3 texels
-  Pcf5,       ///< percentage-closer filtering over 5 x 5 texels
-  None,       ///< no shadows (the frustum still limits the light)
-  Silhouette, ///< classic silhouette shadow volumes (silhouette_volume.h): closed 2-manifold objects
-              ///< cast, open sheets only receive (RenderResult::receiversOnly), anything else is an
-              ///< InputError naming the object; exact for the casters; stencil z-fail like hybrid
-};
-const char* toString(ShadowMethod m);
-bool parseShadowMethod(const std::string& text, ShadowMethod& m);
-
-enum class VolumeSource {
-  Gpu,       ///< drawn straight from the depth texture, no read-back (production default)
-  Explicit,  ///< depth read back, buildVolume() on the CPU, the mesh uploaded each frame
-};
-const char* toString(VolumeSource v);
-bool parseVolumeSource(const std::string& text, VolumeSource& v);
-
-/// How the stencil counts the hybrid volume (docs/gpu.md "Z-pass where it is safe").
-enum class VolumeCount {
-  Auto,   ///< z-pass without the far cap where zPassSafety (zpass.h) says so, else z-fail
-  ZFail,  ///< z-fail with the far cap: right wherever the camera is (the depth clamp keeps the cap)
-  ZPass,  ///< z-pass without the far cap; an InputError naming the reason where it is not safe
-};
-const char* toString(VolumeCount c);  ///< "auto", "z-fail", "z-pass"
-bool parseVolumeCount(const std::string& text, VolumeCount& c);  ///< "auto", "zfail", "zpass"
-
-enum class TimingMethod {
-  GpuTimer,   ///< GL_TIME_ELAPSED queries, one per pass (hardware drivers)
-  WallClock,  ///< glFinish before and after each pass, steady_clock in between (no timer queries,
-              ///< a software rasteriser such as llvmpipe, or RenderOptions::forceWallClock)
-};
-const char* toString(TimingMethod t);
+// The frame types (frame.h) under their old names in shadowvol::gl.
+using shadowvol::GpuVolumeDraw;
+using shadowvol::parseShadowMethod;
+using shadowvol::parseVolumeCount;
+using shadowvol::parseVolumeSource;
+using shadowvol::PassTime;
+using shadowvol::RenderOptions;
+using shadowvol::RenderResult;
+using shadowvol::ShadowMethod;
+using shadowvol::TimingMethod;
+using shadowvol::toString;
+using shadowvol::VolumeCount;
+using shadowvol::VolumeSource;
 
 struct RendererOptions {
   ContextOptions context;           ///< which EGL platform (auto = device, surfaceless, default)
   std::filesystem::path shaderDir;  ///< empty = $SHADOWVOL_SHADER_DIR if set, else embedded shaders
-};
-
-/// How the GPU volume is drawn. With the exact cap, quads whose four corners lie on the far plane
-/// contribute nothing and can be skipped; with the quad cap every quad's sheet is needed.
-enum class GpuVolumeDraw {
-  Auto,         ///< KeptQuads (the fastest measured on llvmpipe); AllQuads with the quad cap
-  ComputeMesh,  ///< a compute pass writes the kept quads' triangles into a buffer, drawn as a plain
-                ///< list (GL 4.3; falls back to KeptQuads past a 512 MiB mesh); InputError without 4.3
-  KeptQuads,    ///< a transform-feedback pass lists the kept quads, the geometry shader expands them (GL 3.3)
-  AllQuads,     ///< one point per quad through the geometry shader, none skipped (the first version)
-};
-const char* toString(GpuVolumeDraw d);
-
-struct RenderOptions {
-  ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
-  VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
-  int depthWidth = 256;                        ///< light depth map texels (> 1)
-  int depthHeight = 256;                       ///< light depth map texels (> 1)
-  CaptureMode capture = CaptureMode::Back;     ///< back faces: no self-shadow acne on lit faces
-  VolumeBuildOptions volumeOptions;            ///< hybrid: triangulation, blur, blurOffset, bias,
-                                               ///< cap (flattenCap and refinement (refineSteps,
-                                               ///< depthOracle) apply to explicit only; the GPU
-                                               ///< volume refuses refineSteps > 0)
-  int imageWidth = 0;                          ///< camera image pixels; 0 = scene camera's width
-  int imageHeight = 0;                         ///< camera image pixels; 0 = scene camera's height
-  double ambient = 0.2;                        ///< ambient factor of the albedo
-  double diffuse = 0.8;                        ///< diffuse factor of the albedo
-  std::optional<double> shadowBiasConstant;    ///< shadow maps: world units subtracted from the
-                                               ///< receiver's light-view depth before the compare;
-                                               ///< unset = defaultBias(light, W, H, capture), the
-                                               ///< volume's default (0 for back and midpoint)
-  double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
-                                               ///< units at the receiver) x tan(angle between the
-                                               ///< normal and the light axis), tan clamped to 10
-  bool readStencil = true;                     ///< hybrid, silhouette: read the stencil counts back
-  bool readDepthMap = false;                   ///< read the light depth back into the result
-  bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
-                                               ///< shadow test per pixel); off = no extra cost
-  bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
-  /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
-  /// quads"). All give the same stencil.
-  GpuVolumeDraw gpuVolumeDraw = GpuVolumeDraw::Auto;
-  /// hybrid (gpu and explicit volumes): z-pass without the far cap where it is safe, or z-fail.
-  /// Silhouette volumes and renderWithVolume always use z-fail.
-  VolumeCount volumeCount = VolumeCount::Auto;
-};
-
-struct PassTime {
-  std::string name;  ///< light, resolve, blur, readback, build, upload, camera, volume, lighting, shade;
-                     ///< silhouette: connectivity (first frame only), build, upload, camera,
-                     ///< silhouette, lighting
-  double ms = 0.0;   ///< GPU time (timer query) or wall clock, see RenderResult::timing; CPU
-                     ///< passes (readback, build, upload) are always wall clock
-};
-
-struct RenderResult {
-  int width = 0, height = 0;          ///< image pixels
-  std::vector<std::uint8_t> rgba;     ///< width * height * 4, RGBA8, rows top first
-  std::vector<std::uint8_t> stencil;  ///< width * height stencil counts (8-bit, wrapping),
-                                      ///< rows top first; empty unless hybrid or silhouette,
-                                      ///< and readStencil
-  /// The method's own shadow test per pixel when RenderOptions::readVisibility, else empty:
-  /// width * height bytes, rows top first, 255 = lit by the test, 0 = shadowed. Only the shadow
-  /// test: not multiplied by N.L nor by the light frustum.
-  ///   shadowmap, pcf3, pcf5: round(255 * fraction of the taps that pass), written by the shade
-  ///     pass into a second colour attachment (R8); 255 outside the light frustum (the test is
-  ///     not evaluated there) and on the background (cleared to 255). Faces turned away from the
-  ///     light get the test's answer like any other pixel.
-  ///   hybrid, silhouette (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
-  ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful),
-  ///     and so do pixels outside the light's frustum in a z-pass frame (volumeCountUsed).
-  ///   none: 255 everywhere.
-  std::vector<std::uint8_t> visibility;
-  std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
-  std::vector<PassTime> passes;       ///< in execution order
-  TimingMethod timing = TimingMethod::WallClock;
-  double totalMs = 0.0;             ///< sum of passes
-  std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
-                                    ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
-                                    ///< silhouette = the silhouette volume's
-  std::size_t gpuVolumeQuads = 0;       ///< hybrid/gpu: quads of the depth map, (W - 1) (H - 1)
-  std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads whose triangles were drawn (all of
-                                        ///< them with AllQuads)
-  GpuVolumeDraw gpuVolumeDrawUsed = GpuVolumeDraw::Auto;  ///< hybrid/gpu: the way actually taken
-  VolumeCount volumeCountUsed = VolumeCount::ZFail;      ///< stencil methods: ZFail or ZPass
-  std::string zPassRefused;         ///< hybrid with Auto and z-fail used: why z-pass was not safe
-  double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
-  std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
-                                                ///< (its time, refinement rays included, is the
-                                                ///< "build" pass)
-  std::vector<std::string> receiversOnly;  ///< silhouette: open objects (sheets such as a ground
-                                           ///< plane) that receive but cast no shadow, by name
-  std::vector<std::string> skippedCasters; ///< silhouette: closed objects entirely behind a spot
-                                           ///< light's apex plane (they cannot shadow its frustum)
 };
 
 /// Owns the context, programs, samplers and framebuffers; reuse it for many frames. Not thread

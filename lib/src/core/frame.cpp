@@ -1,0 +1,80 @@
+#include "shadowvol/frame.h"
+
+namespace shadowvol {
+
+const char* toString(ShadowMethod m) {
+  switch (m) {
+    case ShadowMethod::Hybrid:
+      return "hybrid";
+    case ShadowMethod::ShadowMap:
+      return "shadowmap";
+    case ShadowMethod::Pcf3:
+      return "pcf3";
+    case ShadowMethod::Pcf5:
+      return "pcf5";
+    case ShadowMethod::None:
+      return "none";
+    case ShadowMethod::Silhouette:
+      return "silhouette";
+  }
+  return "?";
+}
+
+bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
+  if (text == "hybrid")
+    m = ShadowMethod::Hybrid;
+  else if (text == "shadowmap")
+    m = ShadowMethod::ShadowMap;
+  else if (text == "pcf3")
+    m = ShadowMethod::Pcf3;
+  else if (text == "pcf5")
+    m = ShadowMethod::Pcf5;
+  else if (text == "none")
+    m = ShadowMethod::None;
+  else if (text == "silhouette")
+    m = ShadowMethod::Silhouette;
+  else
+    return false;
+  return true;
+}
+
+const char* toString(VolumeSource v) {
+  return v == VolumeSource::Gpu ? "gpu" : "explicit";
+}
+
+bool parseVolumeSource(const std::string& text, VolumeSource& v) {
+  if (text == "gpu")
+    v = VolumeSource::Gpu;
+  else if (text == "explicit")
+    v = VolumeSource::Explicit;
+  else
+    return false;
+  return true;
+}
+
+const char* toString(GpuVolumeDraw d) {
+  switch (d) {
+    case GpuVolumeDraw::Auto: return "auto";
+    case GpuVolumeDraw::ComputeMesh: return "compute-mesh";
+    case GpuVolumeDraw::KeptQuads: return "kept-quads";
+    default: return "all-quads";
+  }
+}
+
+const char* toString(VolumeCount c) {
+  return c == VolumeCount::Auto ? "auto" : c == VolumeCount::ZPass ? "z-pass" : "z-fail";
+}
+
+bool parseVolumeCount(const std::string& text, VolumeCount& c) {
+  if (text == "auto") c = VolumeCount::Auto;
+  else if (text == "zfail") c = VolumeCount::ZFail;
+  else if (text == "zpass") c = VolumeCount::ZPass;
+  else return false;
+  return true;
+}
+
+const char* toString(TimingMethod t) {
+  return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish";
+}
+
+}  // namespace shadowvol
