@@ -9,7 +9,7 @@ packages=(
   libembree-dev libtbb-dev
   libegl-dev libgl-dev libepoxy-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libstb-dev
+  libcli11-dev nlohmann-json3-dev libstb-dev libassimp-dev
   pybind11-dev python3-dev python3-numpy python3-pytest libtinygltf-dev
 )
 

@@ -1,5 +1,6 @@
-// Reading and writing triangle meshes (read: OBJ, OFF, PLY, STL; written: those and glTF 2.0) with
-// code of our own, plus the atomic-write helper every writer of this library uses.
+// Reading and writing triangle meshes (read: OBJ, OFF, PLY, STL with code of our own, any other
+// format through Assimp in a child process; written: those four and glTF 2.0 with code of our
+// own), plus the atomic-write helper every writer of this library uses.
 #pragma once
 
 #include <filesystem>
@@ -22,12 +23,16 @@ namespace shadowvol {
 /// "triangle 3", binary STL) and the value when the file is missing or malformed, declares more
 /// than it holds, has a non-finite coordinate (or one beyond float), a face with fewer than 3
 /// vertices or an index out of range (OBJ: 0, or counting back past the first vertex), or no
-/// triangles.
+/// triangles. Any other extension that Assimp imports (.gltf, .glb, .fbx, .dae, .3ds, ...) is
+/// read with Assimp in a child process (60 s, 4 GiB; mesh_readers/assimp_reader.h): every mesh of
+/// the file with its node transforms, triangulated, welded by position; a crash or time-out there
+/// is an InputError naming the file.
 TriangleMesh readTriangleMesh(const std::filesystem::path& path);
 
 /// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):
-/// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", any case), `source`
-/// names the input in error messages. Throws InputError as readTriangleMesh does.
+/// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", or one of Assimp's,
+/// any case), `source` names the input in error messages. Throws InputError as readTriangleMesh
+/// does. (A .gltf that refers to a separate .bin cannot be read from memory: read the file.)
 TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source);
 
 /// Where the stored coordinates of a mesh sit in the world (Scene::origin, DepthMap::origin).

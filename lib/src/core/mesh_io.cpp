@@ -9,6 +9,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "mesh_readers/assimp_reader.h"
 #include "mesh_readers/obj_reader.h"
 #include "mesh_readers/off_reader.h"
 #include "mesh_readers/ply_reader.h"
@@ -20,12 +21,16 @@
 namespace shadowvol {
 namespace {
 
-// The whole file: the readers walk it in memory, every loop bounded by its size.
-std::string fileBytes(const std::filesystem::path& path) {
+void checkRegularFile(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "", "", "mesh file not found");
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(path.string(), "", "", "not a regular file (a folder, device or pipe)");
+}
+
+// The whole file: the readers walk it in memory, every loop bounded by its size.
+std::string fileBytes(const std::filesystem::path& path) {
+  checkRegularFile(path);
   std::ifstream in(path, std::ios::binary);
   std::string bytes;
   if (in) {
@@ -49,9 +54,27 @@ std::string lowerText(std::string_view text) {
 
 std::string lowerExtension(const std::filesystem::path& p) { return lowerText(p.extension().string()); }
 
+bool isOwnFormat(const std::string& ext) { return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl"; }
+
 void checkReadableExtension(const std::string& ext, const std::string& source) {
-  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
-    throw InputError(source, "", ext, "unsupported mesh format (use .obj, .off, .ply or .stl)");
+  if (!isOwnFormat(ext) && !mesh_readers::isAssimpFormat(ext))
+    throw InputError(source, "", ext,
+                     "unsupported mesh format (use .obj, .off, .ply, .stl or a format Assimp reads: " +
+                         mesh_readers::assimpFormatList() + ")");
+}
+
+// Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
+// what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
+// silently dropped or shifted faces). The other formats go to Assimp, in a child process.
+TriangleMesh readChecked(std::string_view bytes, const std::string& ext, const std::string& source,
+                         const std::filesystem::path& path) {
+  TriangleMesh mesh = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
+                      : ext == ".off" ? mesh_readers::readOff(source, bytes)
+                      : ext == ".ply" ? mesh_readers::readPly(source, bytes)
+                      : ext == ".stl" ? mesh_readers::readStl(source, bytes)
+                                      : mesh_readers::readWithAssimp(source, path, bytes, ext);
+  if (mesh.triangles.empty()) throw InputError(source, "", "", "the mesh has no triangles");
+  return mesh;
 }
 
 }  // namespace
@@ -85,21 +108,15 @@ void writeAtomically(const std::filesystem::path& path,
 TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source) {
   const std::string ext = lowerText(format);
   checkReadableExtension(ext, source);
-  // Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
-  // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
-  // silently dropped or shifted faces).
-  TriangleMesh mesh = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
-                      : ext == ".off" ? mesh_readers::readOff(source, bytes)
-                      : ext == ".ply" ? mesh_readers::readPly(source, bytes)
-                                      : mesh_readers::readStl(source, bytes);
-  if (mesh.triangles.empty()) throw InputError(source, "", "", "the mesh has no triangles");
-  return mesh;
+  return readChecked(bytes, ext, source, {});
 }
 
 TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   checkReadableExtension(ext, path.string());  // before touching the file
-  return parseTriangleMesh(fileBytes(path), ext, path.string());
+  if (isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path);
+  checkRegularFile(path);
+  return readChecked({}, ext, path.string(), path);  // Assimp opens it (and its .bin, textures)
 }
 
 namespace {

@@ -3,8 +3,8 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
 
+#include "mesh_readers/corner_welder.h"
 #include "mesh_readers/number_text.h"
 #include "mesh_readers/text_lines.h"
 #include "shadowvol/error.h"
@@ -19,36 +19,6 @@ namespace shadowvol::mesh_readers {
 namespace {
 
 constexpr std::size_t kBinaryHeader = 84, kBinaryTriangle = 50;
-
-// Welds corners at identical positions into one vertex, keyed by their bits (-0 counts as 0).
-class CornerWelder {
- public:
-  explicit CornerWelder(TriangleMesh& mesh) : mesh_(mesh) {}
-  std::uint32_t vertex(const glm::vec3& p) {
-    const glm::vec3 q = p + glm::vec3(0.0f);  // -0 + 0 = +0
-    Key key;
-    std::memcpy(key.bits, &q, sizeof key.bits);
-    const auto [it, added] = index_.try_emplace(key, std::uint32_t(mesh_.positions.size()));
-    if (added) mesh_.positions.push_back(q);
-    return it->second;
-  }
-
- private:
-  struct Key {
-    std::uint32_t bits[3];
-    bool operator==(const Key& o) const { return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2]; }
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      std::uint64_t h = k.bits[0];
-      h = h * 0x9E3779B97F4A7C15ull ^ k.bits[1];
-      h = h * 0x9E3779B97F4A7C15ull ^ k.bits[2];
-      return std::size_t(h ^ (h >> 29));
-    }
-  };
-  TriangleMesh& mesh_;
-  std::unordered_map<Key, std::uint32_t, Hash> index_;
-};
 
 TriangleMesh readBinary(const std::string& source, std::string_view bytes, std::uint32_t count) {
   static_assert(std::endian::native == std::endian::little, "the STL reader assumes a little-endian host");

@@ -1,0 +1,141 @@
+#include "mesh_readers/assimp_reader.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "mesh_readers/corner_welder.h"
+#include "mesh_readers/isolated_call.h"
+#include "shadowvol/error.h"
+
+namespace shadowvol::mesh_readers {
+namespace {
+
+bool isOwnFormat(const std::string& e) { return e == ".obj" || e == ".off" || e == ".ply" || e == ".stl"; }
+
+// Positions only: everything else is removed before the other steps run, so that welding and
+// triangulation see no normals, colours or texture coordinates.
+constexpr unsigned kRemovedComponents = aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                        aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                        aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
+                                        aiComponent_MATERIALS;
+constexpr unsigned kSteps = aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                            aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+
+// The scene's triangles, welded (CornerWelder), in world units as the file's nodes place them.
+TriangleMesh collect(const aiScene& scene, const std::string& source) {
+  TriangleMesh mesh;
+  CornerWelder weld(mesh);
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& am = *scene.mMeshes[m];
+    for (unsigned v = 0; v < am.mNumVertices; ++v) {
+      const aiVector3D& p = am.mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw InputError(source, "mesh " + std::to_string(m) + " vertex " + std::to_string(v),
+                         std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z),
+                         "position is not finite");
+    }
+    for (unsigned f = 0; f < am.mNumFaces; ++f) {
+      const aiFace& face = am.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // SortByPType removed points and lines; none are left
+      std::array<std::uint32_t, 3> t{};
+      for (int c = 0; c < 3; ++c) {
+        const unsigned k = face.mIndices[c];
+        if (k >= am.mNumVertices)
+          throw InputError(source, "mesh " + std::to_string(m) + " face " + std::to_string(f), std::to_string(k),
+                           "vertex index out of range");
+        const aiVector3D& p = am.mVertices[k];
+        t[c] = weld.vertex(glm::vec3(p.x, p.y, p.z));
+      }
+      mesh.triangles.push_back(t);
+    }
+  }
+  return mesh;
+}
+
+// The mesh as bytes for the pipe: counts, then the positions and triangles as stored.
+std::string serialize(const TriangleMesh& mesh) {
+  const std::uint64_t counts[2] = {mesh.positions.size(), mesh.triangles.size()};
+  std::string out(sizeof counts + counts[0] * sizeof(glm::vec3) + counts[1] * 3 * sizeof(std::uint32_t), '\0');
+  char* p = out.data();
+  std::memcpy(p, counts, sizeof counts);
+  p += sizeof counts;
+  std::memcpy(p, mesh.positions.data(), counts[0] * sizeof(glm::vec3));
+  p += counts[0] * sizeof(glm::vec3);
+  std::memcpy(p, mesh.triangles.data(), counts[1] * 3 * sizeof(std::uint32_t));
+  return out;
+}
+
+// The child's bytes back into a mesh, checked as if they came from a file.
+TriangleMesh deserialize(const std::string& bytes, const std::string& source) {
+  std::uint64_t counts[2];
+  const auto bad = [&] { return InputError(source, "", "", "the Assimp reader handed back a malformed mesh"); };
+  if (bytes.size() < sizeof counts) throw bad();
+  std::memcpy(counts, bytes.data(), sizeof counts);
+  if (counts[0] > bytes.size() / sizeof(glm::vec3) || counts[1] > bytes.size() / 12 ||
+      bytes.size() != sizeof counts + counts[0] * sizeof(glm::vec3) + counts[1] * 12)
+    throw bad();
+  TriangleMesh mesh;
+  mesh.positions.resize(counts[0]);
+  mesh.triangles.resize(counts[1]);
+  const char* p = bytes.data() + sizeof counts;
+  std::memcpy(mesh.positions.data(), p, counts[0] * sizeof(glm::vec3));
+  std::memcpy(mesh.triangles.data(), p + counts[0] * sizeof(glm::vec3), counts[1] * 12);
+  for (const auto& t : mesh.triangles)
+    for (std::uint32_t k : t)
+      if (k >= counts[0]) throw bad();
+  return mesh;
+}
+
+}  // namespace
+
+bool isAssimpFormat(const std::string& lowerExtension) {
+  if (isOwnFormat(lowerExtension) || lowerExtension.size() < 2 || lowerExtension[0] != '.') return false;
+  return Assimp::Importer().IsExtensionSupported(lowerExtension);
+}
+
+std::string assimpFormatList() {
+  std::string list;  // "*.3ds;*.obj;..."
+  Assimp::Importer().GetExtensionList(list);
+  std::string out;
+  std::size_t at = 0;
+  while (at < list.size()) {
+    std::size_t end = list.find(';', at);
+    if (end == std::string::npos) end = list.size();
+    std::string e = list.substr(at, end - at);
+    if (e.rfind("*", 0) == 0) e.erase(0, 1);
+    if (!e.empty() && !isOwnFormat(e)) out += (out.empty() ? "" : ", ") + e;
+    at = end + 1;
+  }
+  return out;
+}
+
+TriangleMesh readWithAssimp(const std::string& source, const std::filesystem::path& path, std::string_view bytes,
+                            const std::string& lowerExtension) {
+  const IsolatedResult r = runIsolated([&] {
+    Assimp::Importer importer;
+    importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, int(kRemovedComponents));
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    const std::string hint = lowerExtension.substr(1);
+    const aiScene* scene = path.empty()
+                               ? importer.ReadFileFromMemory(bytes.data(), bytes.size(), kSteps, hint.c_str())
+                               : importer.ReadFile(path.string(), kSteps);
+    if (!scene) throw InputError(source, "", "", std::string("Assimp cannot read it: ") + importer.GetErrorString());
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+      throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
+    return serialize(collect(*scene, source));
+  });
+  if (!r.ok) {
+    // The child's InputError arrives as its message, which names the source already.
+    if (r.output.rfind(source, 0) == 0) throw InputError(source, "", "", r.output.substr(source.size() + 2));
+    throw InputError(source, "", "", "the Assimp reader " + r.output);
+  }
+  return deserialize(r.output, source);
+}
+
+}  // namespace shadowvol::mesh_readers

@@ -1,0 +1,144 @@
+// Mesh formats read through Assimp (glTF, FBX, COLLADA, ...) and the child process that isolates
+// it: the same triangles as written, refusals instead of crashes, limits that hold.
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mesh_readers/isolated_call.h"
+#include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/primitives.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+using mesh_readers::IsolationLimits;
+using mesh_readers::runIsolated;
+
+TEST(IsolatedCall, HandsBackTheBytesOrTheExceptionMessage) {
+  const auto ok = runIsolated([] { return std::string("abc\0def", 7); });
+  EXPECT_TRUE(ok.ok);
+  EXPECT_EQ(ok.output, std::string("abc\0def", 7));
+  const auto big = runIsolated([] { return std::string(3 << 20, 'x'); });  // more than a pipe holds
+  EXPECT_TRUE(big.ok);
+  EXPECT_EQ(big.output.size(), std::size_t(3 << 20));
+  const auto failed = runIsolated([]() -> std::string { throw InputError("f.glb", "", "", "bad header"); });
+  EXPECT_FALSE(failed.ok);
+  EXPECT_EQ(failed.output, "f.glb: bad header");
+}
+
+TEST(IsolatedCall, ACrashEndsTheChildNotTheCaller) {
+  const auto r = runIsolated([]() -> std::string {
+    std::raise(SIGSEGV);
+    return "unreachable";
+  });
+  const auto aborted = runIsolated([]() -> std::string { std::abort(); });
+  EXPECT_FALSE(r.ok);
+  EXPECT_FALSE(aborted.ok);
+#if defined(__SANITIZE_ADDRESS__)  // ASan reports the fault and exits with 1 instead
+  EXPECT_NE(r.output.find("ended without a result (exit 1)"), std::string::npos) << r.output;
+#else
+  EXPECT_NE(r.output.find("crashed (signal 11"), std::string::npos) << r.output;
+  EXPECT_NE(aborted.output.find("crashed (signal 6"), std::string::npos) << aborted.output;
+#endif
+}
+
+TEST(IsolatedCall, AnEndlessLoopIsStoppedAtTheTimeLimit) {
+  IsolationLimits limits;
+  limits.seconds = 1;
+  const auto r = runIsolated(
+      []() -> std::string {
+        volatile unsigned long n = 0;
+        for (;;) n = n + 1;
+      },
+      limits);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.output.find("took more than 1 s"), std::string::npos) << r.output;
+}
+
+TEST(IsolatedCall, OutputBeyondTheLimitIsRefused) {
+  IsolationLimits limits;
+  limits.outputBytes = 1 << 20;
+  const auto r = runIsolated([] { return std::string(4 << 20, 'x'); }, limits);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.output.find("more than 1 MiB"), std::string::npos) << r.output;
+}
+
+#if !defined(__SANITIZE_ADDRESS__)
+TEST(IsolatedCall, AllocationBeyondTheMemoryLimitIsRefused) {
+  IsolationLimits limits;
+  limits.addressSpace = 256ull << 20;
+  const auto r = runIsolated(
+      [] {
+        std::vector<std::string> hog;
+        for (int k = 0; k < 64; ++k) hog.emplace_back(64 << 20, 'x');  // 4 GiB in all
+        return std::string("kept ") + std::to_string(hog.size());
+      },
+      limits);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.output.find("ran out of memory"), std::string::npos) << r.output;
+}
+#endif
+
+// Written by our glTF writer, read back by Assimp: an independent reader, the same mesh.
+TEST(AssimpReader, GltfAndGlbReadBackAsWritten) {
+  const TriangleMesh box = makeBox(2, 1, 4);
+  for (const char* name : {"box.glb", "box.gltf"}) {
+    const auto path = test::tempDir() / name;
+    writeTriangleMesh(box, path);
+    const TriangleMesh back = readTriangleMesh(path);
+    ASSERT_EQ(back.triangles.size(), box.triangles.size()) << name;
+    ASSERT_EQ(back.positions.size(), box.positions.size()) << name;  // welded to the 8 corners
+    for (std::size_t t = 0; t < box.triangles.size(); ++t)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(back.positions[back.triangles[t][c]], box.positions[box.triangles[t][c]]) << name << " triangle " << t;
+  }
+}
+
+TEST(AssimpReader, BrokenFilesAreRefusedNamingTheFile) {
+  const TriangleMesh box = makeBox(1, 1, 1);
+  const auto good = test::tempDir() / "whole.glb";
+  writeTriangleMesh(box, good);
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  std::vector<std::pair<std::string, std::string>> bad = {
+      {"empty.glb", ""}, {"noise.fbx", std::string(4000, '\x7f')}, {"noise.dae", "<COLLADA><library_geometries>"},
+      {"noise.3ds", std::string("\x4d\x4d\xff\xff\xff\x7f", 6) + std::string(100, '\0')}};
+  for (std::size_t cut : {std::size_t(12), std::size_t(20), bytes.size() / 2, bytes.size() - 4})
+    bad.push_back({"cut" + std::to_string(cut) + ".glb", bytes.substr(0, cut)});
+  for (const auto& [name, content] : bad) {
+    const auto path = test::tempDir() / name;
+    test::writeText(path, content);
+    try {
+      readTriangleMesh(path);
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), path.string()) << e.what();
+    }
+  }
+}
+
+TEST(AssimpReader, UnknownExtensionsNameTheFormatsThatAreRead) {
+  const auto path = test::tempDir() / "mesh.notamesh";
+  test::writeText(path, "solid x\n");
+  try {
+    readTriangleMesh(path);
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find(".obj, .off, .ply, .stl"), std::string::npos) << m;
+    EXPECT_NE(m.find(".fbx"), std::string::npos) << m;
+    EXPECT_NE(m.find(".glb"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace shadowvol
