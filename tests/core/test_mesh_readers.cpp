@@ -250,6 +250,19 @@ TEST(MeshReaders, PlyTruncatedBodyIsRefusedNotReadAsEmpty) {
           {"vertex 1 (line 11) = \"zero\"", "not a number"});
 }
 
+// As OFF refuses data after its declared faces (found by a hostile-input probe: PLY read it).
+TEST(MeshReaders, PlyDataAfterTheDeclaredElementsIsRefused) {
+  const std::string ascii = "ply\nformat ascii 1.0\n" + kPlyXyz + kPlyFace + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(readBack("ok.ply", ascii + "\n  \n").triangles.size(), 1u);  // blank lines are no data
+  refusal("twice.ply", ascii + "3 0 1 2\n", {"after the last element (line 14) = \"3\"", "data after the elements"});
+  std::string binary = "ply\nformat binary_little_endian 1.0\n" + kPlyXyz + kPlyFace + "end_header\n";
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(binary, v);
+  put(binary, std::uint8_t(3));
+  for (std::int32_t k : {0, 1, 2}) put(binary, k);
+  EXPECT_EQ(readBack("ok-bin.ply", binary + "\n").triangles.size(), 1u);  // a trailing newline is padding
+  refusal("garbage.ply", binary + "garbage", {"after the last element = 7 bytes", "data after the elements"});
+}
+
 TEST(MeshReaders, PlyNanVertexIsRefusedNamingIt) {
   std::string bin = "ply\nformat binary_little_endian 1.0\n" + kPlyXyz + kPlyFace + "end_header\n";
   for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, std::numeric_limits<float>::infinity(), 0.f}) put(bin, v);

@@ -64,6 +64,18 @@ std::string_view PlyBodyCursor::nextToken() {
   }
 }
 
+std::string PlyBodyCursor::dataLeft() {
+  if (ascii_) {
+    const std::string_view token = nextToken();
+    return token.empty() ? std::string() : "\"" + std::string(token) + "\"";
+  }
+  for (std::size_t k = pos_; k < bytes_.size(); ++k) {
+    const char c = bytes_[k];
+    if (c != '\n' && c != '\r' && c != ' ' && c != '\0') return std::to_string(bytes_.size() - pos_) + " bytes";
+  }
+  return {};
+}
+
 std::optional<double> PlyBodyCursor::read(PlyType t) {
   if (ascii_) {
     const std::string_view token = nextToken();

@@ -25,6 +25,11 @@ class PlyBodyCursor {
   /// An upper bound on the values of type t still in the body (bytes / size, or bytes / 2 in ASCII).
   std::uint64_t valuesLeft(PlyType t) const;
 
+  /// After the last element: the data left in the body, or an empty string when there is none
+  /// (ASCII: no token left; binary: no byte left but whitespace or NUL padding). Describes it for
+  /// a message: the token (ASCII) or the byte count (binary).
+  std::string dataLeft();
+
   /// True when the last failed read found the end of the body (rather than a malformed token).
   bool ended() const { return ended_; }
 

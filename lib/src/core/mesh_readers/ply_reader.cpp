@@ -126,6 +126,10 @@ TriangleMesh readPly(const std::string& source, std::string_view bytes) {
     if (e.properties.empty()) continue;  // rows without data: nothing to read, however many
     readElement(source, e, layout, body, mesh);
   }
+  const std::string left = body.dataLeft();
+  if (!left.empty())
+    throw InputError(source, "after the last element" + body.where(), left,
+                     "data after the elements the header declares");
   return mesh;
 }
 
