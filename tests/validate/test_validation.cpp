@@ -250,6 +250,30 @@ TEST(Validation, EmptyVolumeOverAShadowFailsTheAccuracyVerdict) {
   EXPECT_TRUE(validateFrame(scene, empty, {}, frame, loose).passed);
 }
 
+// Regression (a hostile-input probe: a mesh vertex at 1e18 stretched the light's fit until no
+// visible pixel faced the light, and the frame PASSED on 0 pixels): a camera that sees nothing
+// lit fails, naming why, however loose the limits.
+TEST(Validation, AFrameWithNoPixelFacingTheLightDoesNotPass) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 160;
+  scene.camera.height = 120;
+  scene.camera.target = scene.camera.eye + (scene.camera.eye - scene.camera.target);  // look away
+  fitLightAndCamera(scene);
+  DepthMap empty = makeDepthMap(scene.light, 32, 32, CaptureMode::Back);
+  RenderedFrame frame;
+  frame.width = scene.camera.width;
+  frame.height = scene.camera.height;
+  frame.stencil.assign(std::size_t(frame.width) * frame.height, 0);
+  ValidationOptions loose;
+  loose.maxError = loose.maxMissedShare = 1.0;
+  const FrameValidation v = validateFrame(scene, empty, {}, frame, loose);
+  EXPECT_EQ(v.methodError.pixels, 0u);
+  EXPECT_FALSE(v.accurate);
+  EXPECT_FALSE(v.passed);
+  ASSERT_FALSE(v.failures.empty());
+  EXPECT_NE(v.failures.front().find("checks nothing"), std::string::npos) << v.failures.front();
+}
+
 // Regression (far from the origin: agreement fell to 89 %, the exact reference showed acne, and a
 // scene of scale 1e-2 at 1e5 came out empty and passed): moved to 1e6 from the origin, or scaled
 // by 1e-2 and moved to 1e5, the default layout keeps its exact shadow (pixel count within 2 %) and

@@ -130,6 +130,9 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   // The accuracy verdict: the method's own test against the exact shadows.
   const ShadowError& e = v.methodError;
   std::vector<std::string> inaccurate;
+  if (e.pixels == 0)  // a verdict on no pixel would pass whatever the method does
+    inaccurate.push_back("no visible pixel faces the light inside its frustum, so the frame checks nothing "
+                         "(are the light, the camera and the objects where they were meant to be?)");
   if (e.errorFraction() > options.maxError)
     inaccurate.push_back("the method misclassifies " + percent(e.errorFraction()) + " of the pixels facing the light, "
                          "above the allowed " + percent(options.maxError) + " (--max-error)");

@@ -94,7 +94,8 @@ struct FrameValidation {
   /// apply (its far rectangle coincides with the far-plane sheet by design): closed, finite and
   /// non-degenerate are required, and meshChecksNotApplicable says why.
   bool consistent = true;
-  /// The accuracy verdict: methodError within ValidationOptions::maxError and maxMissedShare.
+  /// The accuracy verdict: methodError within ValidationOptions::maxError and maxMissedShare, over
+  /// at least one pixel (a frame with no visible pixel facing the light checks nothing: not accurate).
   bool accurate = true;
   std::vector<std::string> failures;       ///< one sentence per failed criterion (empty when passed)
   std::string meshChecksNotApplicable;     ///< the checks left out, and why (empty: all apply)
