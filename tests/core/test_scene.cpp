@@ -354,6 +354,22 @@ TEST(SceneParser, FarFromTheOriginIsRebasedInDouble) {
   EXPECT_NEAR(far.camera.farPlane, near.camera.farPlane, 1e-9);
 }
 
+// Regression (a hostile-input probe: an elephant at 1e6 beside a ground of side 3e6 centred at the
+// world origin kept origin 0, float rounded the elephant to 1/16 unit, and 30 % of its shadow was
+// missed): what the camera looks at becomes the origin when the bounds' rule leaves it more than
+// 1e3 view distances away, so the detail there is stored small.
+TEST(SceneParser, DetailFarFromTheCentreOfAHugeSceneIsRebasedWhereTheCameraLooks) {
+  const Scene s = parse(R"({"objects": [{"type": "plane", "name": "ground", "size": 3e6},
+      {"type": "sphere", "radius": 0.5, "transform": {"translate": [1e6, 0.5, 0]}}],
+    "light": {"type": "spot", "position": [1000001.5, 3, 1], "target": [1e6, 0, 0]},
+    "camera": {"eye": [1e6, 1.5, 3], "target": [1e6, 0.2, 0]}})").scene;
+  EXPECT_LT(glm::length(s.origin - glm::dvec3(1e6, 0.2, 0)), 1e-9);
+  for (const auto& p : s.objects[1].mesh.positions) ASSERT_LT(glm::length(glm::dvec3(p)), 2.0);
+  EXPECT_LT(glm::length(s.camera.eye - glm::dvec3(0, 1.3, 3)), 1e-9);
+  // A scene whose camera looks at its centre keeps the bounds' rule (origin 0 here).
+  EXPECT_EQ(parse(test::movedDefaultScene(glm::dvec3(0.0))).scene.origin, glm::dvec3(0.0));
+}
+
 // Regression (aborts on Embree's ray.valid() and light.cpp's internal check): numbers beyond
 // +-1e12 and fields of view below 0.01 degrees are refused, the field named.
 TEST(SceneParser, OutOfRangeNumbersAreRefusedNotAborted) {

@@ -29,7 +29,9 @@ struct Scene {
   /// Local origin, world units, double: every position in this struct (objects, light, camera,
   /// bounds) is relative to it, world = stored + origin. loadScene picks the centre of the
   /// objects' bounds when that centre lies further from the world origin than the bounds' radius
-  /// (a scene placed far away), else 0. Geometry is transformed and rebased in double before it is
+  /// (a scene placed far away), else 0; but the camera's target (clamped into the bounds) when
+  /// that lies more than 1e3 view distances from the first choice (detail beside a huge ground).
+  /// Geometry is transformed and rebased in double before it is
   /// stored as float, so a scene at 1e6 keeps the precision it has at the origin (README "Far from
   /// the origin").
   glm::dvec3 origin{0.0};

@@ -319,10 +319,19 @@ json parseJson(const std::string& text, const std::string& source) {
 
 // Scene::origin's rule: the bounds' centre when it lies further from the world origin than the
 // bounds' radius, else 0 (then stored coordinates are at most about twice the scene's extent, and
-// float keeps what it would keep for the scene centred).
-glm::dvec3 chooseOrigin(const Bounds3& b) {
-  if (b.empty() || glm::length(b.center()) <= b.radius()) return glm::dvec3(0.0);
-  return b.center();
+// float keeps what it would keep for the scene centred). But where what the camera looks at (its
+// target, moved into the bounds) lies more than kDetailRange view distances from that origin,
+// float would round it by more than about a tenth of a pixel (an elephant at 1e6 beside a ground
+// of side 3e6): then that point is the origin, and the far parts of the scene take the rounding.
+constexpr double kDetailRange = 1e3;
+
+glm::dvec3 chooseOrigin(const Bounds3& b, const Camera& camera) {
+  if (b.empty()) return glm::dvec3(0.0);
+  const glm::dvec3 byBounds = glm::length(b.center()) <= b.radius() ? glm::dvec3(0.0) : b.center();
+  const glm::dvec3 seen = glm::clamp(camera.target, b.min, b.max);
+  const double view = glm::length(camera.target - camera.eye);
+  if (view > 0.0 && glm::length(seen - byBounds) > kDetailRange * view) return seen;
+  return byBounds;
 }
 
 // Picks the scene's origin and stores every position relative to it: the objects' (double -> float
@@ -331,7 +340,7 @@ void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std
   Bounds3 b;
   for (const auto& w : world)
     for (const auto& p : w) b.extend(p);
-  scene.origin = chooseOrigin(b);
+  scene.origin = chooseOrigin(b, scene.camera);
   for (std::size_t k = 0; k < world.size(); ++k) {
     auto& positions = scene.objects[k].mesh.positions;
     for (std::size_t i = 0; i < world[k].size(); ++i) {
