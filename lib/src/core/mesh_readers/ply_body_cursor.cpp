@@ -67,7 +67,7 @@ std::string_view PlyBodyCursor::nextToken() {
 std::string PlyBodyCursor::dataLeft() {
   if (ascii_) {
     const std::string_view token = nextToken();
-    return token.empty() ? std::string() : "\"" + std::string(token) + "\"";
+    return token.empty() ? std::string() : quoted(token);
   }
   for (std::size_t k = pos_; k < bytes_.size(); ++k) {
     const char c = bytes_[k];
