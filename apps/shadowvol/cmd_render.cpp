@@ -1,6 +1,7 @@
 // shadowvol render: the GPU production path (headless EGL + OpenGL): light pass, camera pass,
 // shadows by the chosen method; writes the image (PNG) and the stencil counts.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,13 @@ namespace {
 std::filesystem::path stencilCountsPath(const std::filesystem::path& picture) {
   std::filesystem::path p = picture;
   return p.replace_filename(picture.stem().string() + "-counts" + picture.extension().string());
+}
+
+// The images are PNG: another extension would hold PNG bytes under a misleading name.
+void checkPngPath(const char* option, const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png") throw InputError("command line", option, path, "must end in .png (the images are PNG)");
 }
 
 }  // namespace
@@ -50,8 +58,15 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
     checkRenderOptionConflicts(o->render);
     run = [o] {
       checkOutputPath("--out", o->out);
+      checkPngPath("--out", o->out);
       if (!o->stencil.empty()) {
         checkOutputPath("--stencil", o->stencil);
+        checkPngPath("--stencil", o->stencil);
+        const std::filesystem::path out = std::filesystem::weakly_canonical(o->out);
+        if (out == std::filesystem::weakly_canonical(o->stencil) ||
+            out == std::filesystem::weakly_canonical(stencilCountsPath(o->stencil)))
+          throw InputError("command line", "--stencil", o->stencil,
+                           "would overwrite the image (--out " + o->out + "): name another file");
         if (o->render.method != "hybrid" && o->render.method != "silhouette")
           throw InputError("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
       }

@@ -325,6 +325,22 @@ namespace {
 
 bool hasGl() { return contains(runCli("--help").out, "render"); }
 
+// Regression (a hostile-input probe): render wrote PNG bytes to x.jpg, and --stencil naming the
+// image's own path overwrote it; both are refused before any work, nothing written.
+TEST(CliGl, RenderRefusesNonPngAndAStencilOverTheImage) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string jpg = (dir / "x.jpg").string(), png = (dir / "x.png").string();
+  const CliResult j = runCli("render --resolution 16 --size 16x12 --out " + jpg);
+  EXPECT_EQ(j.code, 1) << j.out;
+  EXPECT_TRUE(contains(j.out, "--out = " + jpg + ": must end in .png")) << j.out;
+  const CliResult same = runCli("render --resolution 16 --size 16x12 --out " + png + " --stencil " + png);
+  EXPECT_EQ(same.code, 1) << same.out;
+  EXPECT_TRUE(contains(same.out, "would overwrite the image")) << same.out;
+  EXPECT_FALSE(std::filesystem::exists(jpg));
+  EXPECT_FALSE(std::filesystem::exists(png));
+}
+
 TEST(CliGl, RenderWritesImageStencilAndTimes) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();

@@ -370,6 +370,19 @@ TEST(SceneParser, DetailFarFromTheCentreOfAHugeSceneIsRebasedWhereTheCameraLooks
   EXPECT_EQ(parse(test::movedDefaultScene(glm::dvec3(0.0))).scene.origin, glm::dvec3(0.0));
 }
 
+// Regression (a hostile-input probe): a key given twice kept its last value silently, and a light
+// `up` of [0, 0, 0] was taken for "not given"; both are refused, the key or field named.
+TEST(SceneParser, DuplicateKeysAndAZeroLightUpAreRefused) {
+  expectError(R"({"objects":[{"type":"sphere"}],"objects":[{"type":"box"}],"light":{"type":"directional",
+      "direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})", "", "\"objects\": a key given twice");
+  expectError(withLight(R"({"type":"spot","position":[1,3,1],"position":[2,3,1],"target":[0,0,0]})"), "",
+              "\"position\"");
+  // The same key in two different objects is fine.
+  EXPECT_EQ(parse(withObject(R"({"type":"box","name":"a"}, {"type":"box","name":"b"})")).scene.objects.size(), 2u);
+  expectError(withLight(R"({"type":"directional","direction":[0,-1,0],"up":[0,0,0]})"), "/light/up", "zero");
+  expectError(withLight(R"({"type":"spot","position":[1,3,1],"target":[0,0,0],"up":[0,0,0]})"), "/light/up", "zero");
+}
+
 // Regression (aborts on Embree's ray.valid() and light.cpp's internal check): numbers beyond
 // +-1e12 and fields of view below 0.01 degrees are refused, the field named.
 TEST(SceneParser, OutOfRangeNumbersAreRefusedNotAborted) {

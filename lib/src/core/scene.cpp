@@ -296,9 +296,20 @@ std::string lineColumn(const std::string& text, std::size_t byte) {
 // kMaxJsonDepth (deeper documents would overflow the stack when printed).
 json parseJson(const std::string& text, const std::string& source) {
   constexpr int kMaxJsonDepth = 64;
-  const json::parser_callback_t limitDepth = [&](int depth, json::parse_event_t, json&) {
+  std::vector<std::set<std::string>> keys;  // of each object being parsed, innermost last
+  const json::parser_callback_t limitDepth = [&](int depth, json::parse_event_t event, json& parsed) {
     if (depth > kMaxJsonDepth)
       throw InputError(source, "", "", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    // A key given twice would silently keep the last value: refused, as unknown keys are.
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == json::parse_event_t::key && !keys.empty() && parsed.is_string() &&
+        !keys.back().insert(parsed.get<std::string>()).second) {
+      std::string quoted = "\"";  // built with += (GCC 12 warns falsely on "..." + std::string)
+      quoted += parsed.get<std::string>();
+      quoted += '"';
+      throw InputError(source, "", quoted, "a key given twice in one JSON object");
+    }
     return true;
   };
   try {
@@ -380,7 +391,8 @@ Light readLight(const json& v, const std::string& source) {
     if (glm::length(light.direction) < 1e-12) r.fail("direction", r.raw("direction"), "the direction is zero");
   }
   light.direction = glm::normalize(light.direction);
-  light.up = r.vec3("up", glm::dvec3(0.0));
+  light.up = r.vec3("up", glm::dvec3(0.0));  // 0 = chosen from the direction (lightUp)
+  if (r.has("up") && glm::length(light.up) < 1e-12) r.fail("up", r.raw("up"), "the up vector is zero");
   if (glm::length(light.up) > 0.0 && glm::length(glm::cross(glm::normalize(light.up), light.direction)) < 1e-6)
     r.fail("up", json::array({light.up.x, light.up.y, light.up.z}), "up is parallel to the light direction");
 
