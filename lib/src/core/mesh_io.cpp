@@ -12,6 +12,7 @@
 #include "mesh_readers/assimp_reader.h"
 #include "mesh_readers/obj_reader.h"
 #include "mesh_readers/off_reader.h"
+#include "mesh_readers/own_formats.h"
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
 #include "mesh_writers/gltf_writer.h"
@@ -54,10 +55,8 @@ std::string lowerText(std::string_view text) {
 
 std::string lowerExtension(const std::filesystem::path& p) { return lowerText(p.extension().string()); }
 
-bool isOwnFormat(const std::string& ext) { return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl"; }
-
 void checkReadableExtension(const std::string& ext, const std::string& source) {
-  if (!isOwnFormat(ext) && !mesh_readers::isAssimpFormat(ext))
+  if (!mesh_readers::isOwnFormat(ext) && !mesh_readers::isAssimpFormat(ext))
     throw InputError(source, "", ext,
                      "unsupported mesh format (use .obj, .off, .ply, .stl or a format Assimp reads: " +
                          mesh_readers::assimpFormatList() + ")");
@@ -114,7 +113,7 @@ TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, 
 TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   checkReadableExtension(ext, path.string());  // before touching the file
-  if (isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path);
+  if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path);
   checkRegularFile(path);
   return readChecked({}, ext, path.string(), path);  // Assimp opens it (and its .bin, textures)
 }

@@ -11,12 +11,11 @@
 
 #include "mesh_readers/corner_welder.h"
 #include "mesh_readers/isolated_call.h"
+#include "mesh_readers/own_formats.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol::mesh_readers {
 namespace {
-
-bool isOwnFormat(const std::string& e) { return e == ".obj" || e == ".off" || e == ".ply" || e == ".stl"; }
 
 // Positions only: everything else is removed before the other steps run, so that welding and
 // triangulation see no normals, colours or texture coordinates.
