@@ -1,6 +1,7 @@
 // shadowvol: explicit shadow-volume meshes from light depth maps. One subcommand per job.
 #include <cstdio>
 #include <exception>
+#include <new>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -61,6 +62,11 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", cli::asCommandLineError(e).what());
     return cli::kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "shadowvol: error: out of memory: this command needs more memory than the process may use (the "
+                 "machine's memory or a ulimit); a smaller --resolution or --size needs less. No output was written.\n");
+    return cli::kRuntimeFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", e.what());
     return cli::kRuntimeFailure;

@@ -145,6 +145,29 @@ TEST(Cli, BadSceneNamesFileFieldAndValueAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir / "d.png"));
 }
 
+TEST(Cli, OutOfMemoryIsSaidPlainlyAndWritesNothing) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit allows";
+#else
+  // A front map of 8192^2 and its volume need more than 700 MB of address space: the run once
+  // ended with a bare "std::bad_alloc".
+  const auto out = (test::tempDir() / "oom.ply").string();
+  const std::string cmd = "bash -c 'ulimit -v 700000; exec " + std::string(SV_SHADOWVOL_EXE) +
+                          " build --resolution 8192 --capture front --out " + out + "' 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string text;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), p)) text += buf.data();
+  const int status = pclose(p);
+  ASSERT_TRUE(WIFEXITED(status)) << text;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << text;
+  EXPECT_TRUE(contains(text, "out of memory")) << text;
+  EXPECT_FALSE(contains(text, "bad_alloc")) << text;
+  EXPECT_FALSE(std::filesystem::exists(out));
+#endif
+}
+
 TEST(Cli, MissingOutputFolderIsRefused) {
   const CliResult r = runCli("depth --resolution 8 --out /nonexistent-folder/d.pfm");
   EXPECT_EQ(r.code, 1);

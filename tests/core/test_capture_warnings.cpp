@@ -56,5 +56,18 @@ TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatch
   EXPECT_TRUE(captureWarnings(s, 64, 64, CaptureMode::Front).empty());  // texels 0.125 apart: caught
 }
 
+TEST(CaptureWarnings, ObjectSeenEdgeOnSuggestsNoImpossibleMapSize) {
+  // A plate 1e-6 thick standing along the light's rays, between two texel columns: no map size up
+  // to the largest catches it (the warning once suggested maps of billions of texels).
+  const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);
+  const glm::dvec3 mid = 0.5 * (probe.worldPoint(7, 7, 1.0) + probe.worldPoint(8, 8, 1.0));
+  TriangleMesh plate = makeBox(1e-6, 1.0, 2.0);
+  for (auto& p : plate.positions) p += glm::vec3(float(mid.x), 2.0f, float(mid.z));
+  const auto w = captureWarnings(sceneWith({SceneObject{"plate", "box", plate}}), 16, 16, CaptureMode::Front);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("no map up to 16384 x 16384 would catch it"), std::string::npos) << w[0];
+  EXPECT_EQ(w[0].find("or more would catch it"), std::string::npos) << w[0];
+}
+
 }  // namespace
 }  // namespace shadowvol

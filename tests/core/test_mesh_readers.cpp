@@ -180,6 +180,9 @@ TEST(MeshReaders, OffFaceIndexOutOfRangeIsRefusedNotDropped) {
 TEST(MeshReaders, OffFaceOfTwoVerticesIsRefusedNotDropped) {
   refusal("bad.off", "OFF\n3 2 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n2 0 1\n3 0 1 2\n",
           {"line 6 = \"2 0 1\"", "a face needs at least 3 vertices, this one has 2"});
+  // The last face too (the header's size check once called it truncated).
+  refusal("last.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+          {"line 6 = \"2 0 1\"", "a face needs at least 3 vertices, this one has 2"});
   refusal("few.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n",
           {"line 6 = \"4 0 1 2\"", "declares 4 vertices but lists 3"});
 }
@@ -188,8 +191,8 @@ TEST(MeshReaders, OffEndingEarlyOrWithExtraDataIsRefused) {
   refusal("short.off", "OFF\n4 2 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n1.0 1.0 0.0\n3 0 1 2\n",
           {"line 7 (end of file)", "ends after 1 of the 2 faces"});
   // Too short for its counts however short its lines: refused from the header alone.
-  refusal("shorter.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n",
-          {"line 2 = \"4 2 0\"", "need at least 39 bytes after the header; 32 bytes follow"});
+  refusal("shorter.off", "OFF\n4 20 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n",
+          {"line 2 = \"4 20 0\"", "need at least 63 bytes after the header; 32 bytes follow"});
   refusal("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
           {"line 7 = \"3 0 1 2\"", "data after the 1 faces the header declares"});
   refusal("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", {"line 4 = \"1 nan 0\"", "non-finite"});

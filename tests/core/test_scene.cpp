@@ -222,6 +222,11 @@ TEST(SceneParser, BadObjects) {
   expectError(withObject(R"({"type":"box","size":[1,0,1]})"), "/objects/0/size");
   expectError(withObject(R"({"type":"box","transform":{"matrix":[0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]}})"),
               "/objects/0/transform/matrix");
+  // Projective and w-less matrices: the bottom row must be 0 0 0 1 (it was once ignored).
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,0]}})"),
+              "/objects/0/transform/matrix", "bottom row must be 0 0 0 1");
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0.5,0,1]}})"),
+              "/objects/0/transform/matrix", "bottom row must be 0 0 0 1");
   expectError(R"({"objects":[],"light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})",
               "/objects");
 }

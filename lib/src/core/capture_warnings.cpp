@@ -77,11 +77,19 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
     if (coversX && coversY) continue;
     const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
     const double need = std::ceil(std::max(width, height) / span);
-    char buf[320];
+    char remedy[160];
+    if (need <= kMaxDepthMapSide)
+      std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
+    else  // an object seen edge-on, or far smaller than the light's window
+      std::snprintf(remedy, sizeof remedy,
+                    "no map up to %d x %d would catch it: the light sees it edge-on or it is far smaller than the "
+                    "light's frustum",
+                    kMaxDepthMapSide, kMaxDepthMapSide);
+    char buf[480];
     std::snprintf(buf, sizeof buf,
                   "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre: it "
-                  "casts no shadow at this resolution (a map of about %.0f x %.0f or more would catch it)",
-                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, need, need);
+                  "casts no shadow at this resolution (%s)",
+                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, remedy);
     out.push_back(buf);
   }
   return out;

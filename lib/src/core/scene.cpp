@@ -161,6 +161,10 @@ glm::dmat4 readTransform(ObjectReader& parent) {
       if (std::abs(v[k].get<double>()) > kMaxMagnitude) r.fail("matrix", v, kMagnitudeProblem);
       m[k % 4][k / 4] = v[k].get<double>();  // row-major in the file, column-major in GLM
     }
+    // Meshes take affine transforms only: a projective bottom row would divide by w per vertex
+    // (and a zero w row makes every point infinite).
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+      r.fail("matrix", v, "the bottom row must be 0 0 0 1 (an affine transform; elements 13-16 of the row-major list)");
     if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-12) r.fail("matrix", v, "the matrix is singular");
   } else {
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0));

@@ -55,9 +55,17 @@ Query makeQuery() {
 
 void checkFramebufferComplete(const char* what) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  if (status == GL_FRAMEBUFFER_COMPLETE) return;
+  GLenum error = GL_NO_ERROR, latest;  // errors of the storage calls before this check (a few flags at most)
+  for (int k = 0; k < 16 && (latest = glGetError()) != GL_NO_ERROR; ++k)
+    if (error != GL_OUT_OF_MEMORY) error = latest;
+  if (status == GL_FRAMEBUFFER_COMPLETE && error == GL_NO_ERROR) return;
   std::ostringstream s;
-  s << "the " << what << " framebuffer is incomplete (status 0x" << std::hex << status << ")";
+  if (error == GL_OUT_OF_MEMORY)
+    s << "out of memory: the GL driver could not allocate the " << what
+      << " framebuffer's storage (GL_OUT_OF_MEMORY); a smaller size needs less";
+  else
+    s << "the " << what << " framebuffer is incomplete (status 0x" << std::hex << status << ", GL error 0x" << error
+      << "; a size the driver cannot allocate does this)";
   throw GlError(s.str());
 }
 

@@ -1,5 +1,6 @@
 #include "mesh_readers/off_reader.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -65,9 +66,10 @@ Counts readHeader(const std::string& source, LineReader& lines) {
   if (!v || !f || *v < 0 || *f < 0) at.fail("expected the vertex and face counts \"V F [E]\"");
   constexpr std::int64_t kMaxIndex = std::numeric_limits<std::uint32_t>::max();
   if (*v > kMaxIndex || *f > kMaxIndex) at.fail("more vertices or faces than 32-bit indices can address");
-  // The shortest vertex line is "0 0 0\n" (6 bytes), the shortest face "3 0 0 0\n" (8); the last
-  // line may lack its newline. Refusing here keeps a hostile count from reserving memory.
-  const std::uint64_t needed = 6 * std::uint64_t(*v) + 8 * std::uint64_t(*f);
+  // The shortest vertex line is "0 0 0\n" (6 bytes), the shortest face line "0\n" (2: too few
+  // vertices, but the face loop says so at its line); the last line may lack its newline. Refusing
+  // here keeps a hostile count from reserving memory.
+  const std::uint64_t needed = 6 * std::uint64_t(*v) + 2 * std::uint64_t(*f);
   if (needed > lines.bytesLeft() + 1)
     at.fail("the header declares " + std::to_string(*v) + " vertices and " + std::to_string(*f) +
             " faces, which need at least " + std::to_string(needed - 1) + " bytes after the header; " +
@@ -101,7 +103,7 @@ TriangleMesh readOff(const std::string& source, std::string_view text) {
   const Counts counts = readHeader(source, lines);
   TriangleMesh mesh;
   mesh.positions.reserve(counts.vertices);
-  mesh.triangles.reserve(counts.faces);
+  mesh.triangles.reserve(std::min<std::uint64_t>(counts.faces, lines.bytesLeft() / 8));  // a triangle's line: 8+ bytes
   for (std::uint64_t k = 0; k < counts.vertices; ++k) {
     const auto line = nextDataLine(lines);
     if (!line)
