@@ -34,18 +34,11 @@
 #include "shadowvol/far_cap.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/volume_mesh.h"
+#include "volume/cell_triangulator.h"
 #include "volume/sheet_depths.h"
 #include "volume/sheet_vertices.h"
 
 namespace shadowvol::volume {
-
-/// A vertex of the mirrored (unflattened) cap: the far-plane point under a texel, a boundary
-/// edge's crossing or a chord point.
-struct CapPoint {
-  enum class Kind : std::uint8_t { Texel, Edge, Chord };
-  std::uint32_t index = 0;  ///< texel index (j * W + i), boundary-edge index or chord-point index
-  Kind kind = Kind::Texel;
-};
 
 /// The refined quads, in quad order, with the centre points of the ambiguous ones (3 or 4
 /// boundary edges; texel coordinates).
