@@ -153,16 +153,19 @@ BENCHMARK(BM_BuildVolume)
     ->UseRealTime();
 
 // Silhouette refinement: a reused builder, perfect triangulation, exact cap, K = refine steps (0 =
-// off, the same build as BM_BuildVolume's reused one; kRecommendedRefineSteps, the sweep's). The analytic oracle costs far less than
+// off, the same build as BM_BuildVolume's reused one; kRecommendedRefineSteps, the sweep's), and
+// the sub-grid (grid = refineSubdivisions, 1 = off). The analytic oracle costs far less than
 // Embree's rays, so rays_ms is reported apart: what refinement adds to the build itself is
 // build_ms - rays_ms - the K = 0 build_ms.
 void BM_RefineVolume(benchmark::State& state) {
   const int res = int(state.range(0));
   const bool back = state.range(1) != 0;
   const int steps = int(state.range(2));
+  const int grid = int(state.range(3));
   const DepthMap& map = benchMap(res, back);
   VolumeBuildOptions options;
   options.refineSteps = steps;
+  options.refineSubdivisions = grid;
   options.depthOracle = benchOracle();
   VolumeBuilder builder;
   VolumeBuildResult result;
@@ -183,12 +186,19 @@ void BM_RefineVolume(benchmark::State& state) {
   state.counters["edges"] = double(result.stats.boundaryEdges);
   state.counters["rays"] = double(result.stats.raysCast);
   state.counters["tris"] = double(result.mesh.triangleCount());
-  state.SetLabel(std::string(back ? "back" : "front") + " refine " + std::to_string(steps));
+  state.SetLabel(std::string(back ? "back" : "front") + " refine " + std::to_string(steps) + " grid " +
+                 std::to_string(grid));
 }
 
 BENCHMARK(BM_RefineVolume)
-    ->ArgNames({"res", "back", "refine"})
-    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {0, kRecommendedRefineSteps}})
+    ->ArgNames({"res", "back", "refine", "grid"})
+    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {0, kRecommendedRefineSteps}, {1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+// The sub-grid (refineSubdivisions) at the sweep's steps.
+BENCHMARK(BM_RefineVolume)
+    ->ArgNames({"res", "back", "refine", "grid"})
+    ->ArgsProduct({{128, 256, 512, 1024}, {1, 0}, {kRecommendedRefineSteps}, {2, kRecommendedRefineSubdivisions}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

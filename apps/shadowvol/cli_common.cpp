@@ -73,6 +73,12 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                "With --refine: bend the wall of each quad with two boundary edges at one more crossing inside it (K "
                "more rays per such quad), so it follows curved outlines: less error on real meshes, more rays, cap "
                "vertices and wall triangles (README 'Silhouette refinement')");
+  cmd.add_option("--refine-grid", o.refineGrid,
+                 "With --refine: cut each quad with a boundary edge into S x S sub-cells (S = 2, 4 or 8; 1 = off), "
+                 "sample the depth at their corners and refine each sub-cell, so the wall follows an outline that "
+                 "bends inside a texel; about (S + 1)^2 more rays per such quad (docs/volume.md 'Sub-grid')")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->capture_default_str();
   return cmd
       .add_option("--refine", o.refine,
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
@@ -94,9 +100,15 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
     throw InputError("command line", "--refine", std::to_string(o.refine),
                      "needs --cap exact (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
   if (o.chordPoints && o.refine == 0) throw InputError("command line", "--chord-points", "", "needs --refine");
+  if (o.refineGrid > 1 && o.refine == 0)
+    throw InputError("command line", "--refine-grid", std::to_string(o.refineGrid), "needs --refine");
+  if (o.refineGrid > 1 && o.chordPoints)
+    throw InputError("command line", "--refine-grid", std::to_string(o.refineGrid),
+                     "not with --chord-points: they are alternatives (the sub-grid bends the wall in every sub-cell)");
   VolumeBuildOptions v;
   v.refineSteps = o.refine;
   v.refineChords = o.chordPoints;
+  v.refineSubdivisions = o.refineGrid;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;

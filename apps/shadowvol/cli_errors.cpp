@@ -18,6 +18,9 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"RenderOptions", "volumeCount", "--count"},
     LibraryFieldFlag{"RenderOptions", "gpuVolumeDraw", "--gpu-draw"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
+    LibraryFieldFlag{"volume options", "refine steps", "--refine"},
+    LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},
+    LibraryFieldFlag{"volume options", "refine chords", "--chord-points"},
 };
 
 }  // namespace

@@ -72,6 +72,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                          "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");
       VolumeBuildOptions options = toVolumeBuildOptions(o->volume);
       options.flattenCap = !o->noFlatten;
+      if (options.refineSubdivisions > 1 && !options.flattenCap)
+        throw InputError("command line", "--no-flatten", "",
+                         "not with --refine-grid: the sub-grid needs the flattened cap");
 
       nlohmann::json j;
       DepthMap map;
@@ -113,6 +116,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"cap", o->volume.cap},
                 {"flattenCap", options.flattenCap},
                 {"refine", options.refineSteps},
+                {"refineGrid", options.refineSubdivisions},
                 {"origin", {map.origin.x, map.origin.y, map.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
@@ -133,6 +137,11 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
+        if (options.refineSubdivisions > 1)
+          std::printf("  sub-grid %dx%d: %zu samples, %zu boundary sub-edges, %zu sub-cells decided by a centre ray, "
+                      "%zu sheet triangles split\n",
+                      options.refineSubdivisions, options.refineSubdivisions, s.subgridSamples, s.subgridBoundaryEdges,
+                      s.ambiguousCells, s.subgridSplitTriangles);
         if (options.refineSteps > 0)
           std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far plane), %zu refined quads (%zu "
                       "decided by a centre ray, %zu chord points), %zu rays\n",

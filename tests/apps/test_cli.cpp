@@ -51,7 +51,8 @@ TEST(Cli, LibraryErrorsAreShownWithTheFlagThatSetsTheField) {
   for (const cli::LibraryFieldFlag& f : cli::libraryFieldFlags()) {
     const std::string flag(f.flag);
     const bool listed = contains(help, "  " + flag + " ") || contains(help, "," + flag + " ");
-    const bool glOnly = flag != "--resolution" && flag != "--blur-offset" && flag != "--bias" && flag != "--refine";
+    const bool glOnly = flag != "--resolution" && flag != "--blur-offset" && flag != "--bias" && flag != "--refine" &&
+                        flag != "--refine-grid" && flag != "--chord-points";
     if (glOnly && !contains(help, "--gpu-draw")) continue;  // a build without GL has no render options
     EXPECT_TRUE(listed) << flag << " (for " << f.source << " " << f.field << ") is no option of shadowvol";
     const InputError shown = cli::asCommandLineError(InputError(std::string(f.source), std::string(f.field), "7", "bad"));
@@ -338,6 +339,32 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
   EXPECT_EQ(quad.code, 1) << quad.out;
   EXPECT_TRUE(contains(quad.out, "--refine")) << quad.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
+}
+
+TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "g.ply").string();
+  const CliResult r =
+      runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --scene " + scene("plate.json") + " --out " + out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["refineGrid"], 4);
+  EXPECT_EQ(j["boundaryEdges"], 64);
+  EXPECT_EQ(j["refinedCells"], 64);  // the plate's outline: 16 quads a side
+  EXPECT_GT(j["subgridSamples"].get<int>(), 64 * 9);  // at least the 3 x 3 inside each refined quad
+  EXPECT_EQ(j["subgridBoundaryEdges"], 64 * 4);        // a straight outline crosses 4 sub-edges per quad
+  EXPECT_TRUE(std::filesystem::exists(out));
+  const CliResult text =
+      runCli("build --resolution 64 --refine 6 --refine-grid 2 --scene " + scene("plate.json") + " --out " + out);
+  EXPECT_TRUE(contains(text.out, "sub-grid 2x2")) << text.out;
+  const std::string bad = (dir / "bad.ply").string();
+  for (const char* args : {"--refine-grid 4", "--refine 3 --refine-grid 4 --chord-points", "--refine 3 --refine-grid 4 --no-flatten"}) {
+    const CliResult e = runCli(std::string("build --resolution 16 ") + args + " --out " + bad);
+    EXPECT_EQ(e.code, 1) << args << ": " << e.out;
+    EXPECT_TRUE(contains(e.out, "--refine-grid") || contains(e.out, "--no-flatten")) << e.out;
+  }
+  EXPECT_EQ(runCli("build --resolution 16 --refine 3 --refine-grid 3 --out " + bad).code, 2);  // not 1, 2, 4, 8
+  EXPECT_FALSE(std::filesystem::exists(bad));
 }
 
 }  // namespace

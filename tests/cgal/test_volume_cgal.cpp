@@ -133,8 +133,9 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
 }
 
 // Refinement (refineSteps 3, the scene's Embree rays) on every shipped scene, two sizes, every
-// capture and every option combination it allows (the exact cap, flattened or not): valid closed
-// volumes without coincident vertices (refinement needs no pinch splits).
+// capture and every option combination it allows (the exact cap, flattened or not; the sub-grid
+// with the flattened one): valid closed volumes without coincident vertices (refinement needs no
+// pinch splits).
 TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
   const auto files = sceneFiles();
   std::size_t builds = 0, refined = 0;
@@ -162,11 +163,22 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           EXPECT_EQ(r.stats.splitVertices, 0u) << what;
           if (c.cap == 0) flatVolume = rep.volume;
           else EXPECT_NEAR(rep.volume, flatVolume, 1e-9 * (1 + flatVolume)) << what;  // same region, other cap
+          if (c.cap != 0) continue;
+          // The sub-grid (flattened cap only): 4 x 4 at 32^2, 2 x 2 at 64^2.
+          o.refineChords = false;
+          o.refineSubdivisions = res == 32 ? 4 : 2;
+          const auto g = buildVolume(map, o);
+          const MeshCheckReport gr = checkMesh(g.mesh);
+          ++builds;
+          ASSERT_TRUE(gr.valid()) << what << " grid " << o.refineSubdivisions << ": " << gr.summary();
+          EXPECT_EQ(gr.coincidentVertices, 0u) << what << " grid " << o.refineSubdivisions;
+          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells) << what;  // the same quads, cut finer
+          EXPECT_GE(g.stats.raysCast, g.stats.subgridSamples) << what;
         }
       }
   }
-  EXPECT_EQ(builds, files.size() * 2 * 3 * 8);
-  EXPECT_GT(refined, builds * 9 / 10);
+  EXPECT_EQ(builds, files.size() * 2 * 3 * (8 + 4));
+  EXPECT_GT(refined, files.size() * 2 * 3 * 8 * 9 / 10);
 }
 
 // Random hit levels under a random oracle (hits on other levels, misses, anything): refined
@@ -205,17 +217,24 @@ TEST(VolumeCgal, RefinedVolumesOfRandomMapsAndRaysAreValid) {
           o.refineSteps = 1 + trial % 5;
           o.refineChords = trial % 2 == 0;
           o.depthOracle = oracle;
-          const auto r = buildVolume(map, o);
-          MeshCheckOptions co;
-          co.selfIntersections = true;
-          co.allowedTouch = onFarPlane(map);
-          const MeshCheckReport rep = checkMesh(r.mesh, co);
-          EXPECT_TRUE(rep.valid()) << "trial " << trial << " " << w << "x" << h << " " << toString(tri) << " blur "
-                                   << blur << " flat " << flat << ": " << rep.summary();
-          ++builds;
+          // The sub-grid too, on every fourth trial (2 or 4 per texel side; flattened cap, no chord
+          // points): its meshes are larger, and the self-intersection check grows with them.
+          for (int grid : {1, 2 << (trial / 4 % 2)}) {
+            if (grid > 1 && (!flat || trial % 4 > 1)) continue;
+            o.refineSubdivisions = grid;
+            if (grid > 1) o.refineChords = false;
+            const auto r = buildVolume(map, o);
+            MeshCheckOptions co;
+            co.selfIntersections = true;
+            co.allowedTouch = onFarPlane(map);
+            const MeshCheckReport rep = checkMesh(r.mesh, co);
+            EXPECT_TRUE(rep.valid()) << "trial " << trial << " " << w << "x" << h << " " << toString(tri) << " blur "
+                                     << blur << " flat " << flat << " grid " << grid << ": " << rep.summary();
+            ++builds;
+          }
         }
   }
-  EXPECT_EQ(builds, 40u * 8u);
+  EXPECT_EQ(builds, 40u * 8u + 20u * 4u);
 }
 
 TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
@@ -228,10 +247,12 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
         const DepthMap map = captureDepthEmbree(scene, res, res, mode);
         for (const Combo& c : allCombos()) {
           if (c.cap == 2) continue;  // the quad cap coincides with the far sheet by design
-          for (int steps : {0, 4, -4}) {  // -4: 4 steps with chord points
+          for (int steps : {0, 4, -4, 40}) {  // -4: 4 steps with chord points; 40: 4 steps on a 4 x 4 sub-grid
+            if (steps == 40 && c.cap != 0) continue;  // the sub-grid needs the flattened cap
             VolumeBuildOptions vo = c.options();
-            vo.refineSteps = std::abs(steps);
+            vo.refineSteps = steps == 40 ? 4 : std::abs(steps);
             vo.refineChords = steps < 0;
+            vo.refineSubdivisions = steps == 40 ? 4 : 1;
             vo.depthOracle = oracle.oracle();
             const auto r = buildVolume(map, vo);
             MeshCheckOptions o;
@@ -247,7 +268,7 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
         }
       }
   }
-  EXPECT_EQ(checked, 5u * 2 * 2 * 8 * 3);
+  EXPECT_EQ(checked, 5u * 2 * 2 * (8 * 3 + 4));
   RecordProperty("far_plane_touching_pairs", int(touching));
 }
 

@@ -32,6 +32,7 @@
 // scratch and the result's storage from one build to the next.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,6 +73,13 @@ struct VolumeBuildOptions {
                                 ///< quad), so it follows a curved outline. Off by default: about 15 %
                                 ///< less error on real meshes for about 10 % more frame time at 256^2
                                 ///< (README "Silhouette refinement")
+  int refineSubdivisions = 1;   ///< refinement only: the sub-grid. S > 1 (2, 4 or 8) cuts every quad with a
+                                ///< boundary edge into S x S sub-cells, samples the depth at their
+                                ///< corners with the oracle and refines each sub-cell as a quad, with
+                                ///< max(1, refineSteps - log2 S) rays per boundary sub-edge (the same
+                                ///< 2^-(K+1) texel); the contour then follows an outline that bends
+                                ///< inside a texel. 1 = off. Not with refineChords, needs flattenCap
+                                ///< (docs/volume.md, "Sub-grid")
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -81,6 +89,15 @@ inline constexpr int kMaxRefineSteps = 16;
 /// The refineSteps chosen from measurements (README "Silhouette refinement": the error against K
 /// on 15 scenes); what the sweep's refined methods and the builder benchmark use.
 inline constexpr int kRecommendedRefineSteps = 6;
+
+/// The refineSubdivisions chosen from measurements (README "Silhouette refinement", "Sub-grid").
+inline constexpr int kRecommendedRefineSubdivisions = 4;
+
+/// Largest VolumeBuildOptions::refineSubdivisions.
+inline constexpr int kMaxRefineSubdivisions = 8;
+/// Most lattice nodes a sub-grid may hold (refined quads x (S + 1)^2; about 100 bytes each while
+/// it is built): a larger one is refused before it is built.
+inline constexpr std::uint64_t kMaxSubgridNodes = std::uint64_t(1) << 25;
 
 /// Counts and times of one build (times in milliseconds, wall clock).
 struct VolumeBuildStats {
@@ -98,7 +115,12 @@ struct VolumeBuildStats {
                                       ///< by one more ray at the quad's centre
   std::size_t chordPoints = 0;        ///< refinement: crossings inside quads with two boundary edges
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
-                                      ///< edge and per chord point, plus one per ambiguous cell)
+                                      ///< edge and per chord point, plus one per ambiguous cell; with the
+                                      ///< sub-grid its samples, steps per boundary sub-edge and centres)
+  std::size_t subgridSamples = 0;     ///< sub-grid: lattice nodes sampled by the oracle
+  std::size_t subgridBoundaryEdges = 0; ///< sub-grid: boundary sub-edges (each with a wall)
+  std::size_t subgridFarBoundaryEdges = 0; ///< of which one end is on the far plane
+  std::size_t subgridSplitTriangles = 0; ///< sub-grid: unrefined sheet triangles split at its side nodes
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)

@@ -49,6 +49,20 @@ SweepMethod refined(CaptureMode capture) {
   return m;
 }
 
+// The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
+// boundary edge), same steps.
+SweepMethod refinedGrid(CaptureMode capture) {
+  SweepMethod m = refined(capture);
+  m.key = std::string("hybrid-refined-grid") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/explicit";
+  m.options.volumeOptions.refineSubdivisions = kSweepRefineSubdivisions;
+  m.description = "explicit volume with sub-texel silhouette refinement on a " + std::to_string(kSweepRefineSubdivisions) +
+                  "x" + std::to_string(kSweepRefineSubdivisions) + " sub-grid of each quad with a boundary edge (" +
+                  std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + toString(capture) + " capture" +
+                  (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
 SweepMethod shadowMap(const std::string& key, gl::ShadowMethod method, CaptureMode capture, const std::string& what) {
   SweepMethod m;
   m.key = key;
@@ -115,6 +129,7 @@ const std::vector<SweepMethod>& sweepMethods() {
                         "where it is safe); perfect triangulation, back capture";
     v.push_back(zfail);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     SweepMethod s;
     s.key = "silhouette";
     s.family = "silhouette";

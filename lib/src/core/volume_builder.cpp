@@ -1,6 +1,7 @@
 #include "shadowvol/volume_builder.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -22,6 +23,7 @@
 #include "volume/sheet_depths.h"
 #include "volume/sheet_emit.h"
 #include "volume/sheet_vertices.h"
+#include "volume/subgrid_cells.h"
 
 namespace shadowvol {
 
@@ -88,6 +90,19 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
+  const int s = options.refineSubdivisions;
+  if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
+    throw InputError("volume options", "refine subdivisions", std::to_string(s),
+                     "must be 1 (off), 2, 4 or 8");
+  if (s > 1 && options.refineSteps == 0)
+    throw InputError("volume options", "refine subdivisions", std::to_string(s),
+                     "the sub-grid is part of refinement: it needs refine steps of at least 1");
+  if (s > 1 && options.refineChords)
+    throw InputError("volume options", "refine chords", "true",
+                     "chord points and the sub-grid are alternatives: the sub-grid bends the wall at every sub-cell");
+  if (s > 1 && !options.flattenCap)
+    throw InputError("volume options", "flatten cap", "false",
+                     "the sub-grid needs the flattened cap (the mirrored cap does not follow its sub-cells)");
   if (options.refineSteps > 0 && options.cap != FarCap::Exact)
     throw InputError("volume options", "cap", toString(options.cap),
                      "refinement needs the exact cap: the quad cap keeps the far-plane sheet whose quads "
@@ -117,6 +132,44 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   stats.chordPoints = chords.segments.size();
   stats.raysCast += budget.rays;
   stats.msRays += budget.ms;
+}
+
+// The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from crossingBase
+// on, with its counts in `stats`. Refuses a lattice too large to hold before building it.
+volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volume::TexelUse& use,
+                                  const volume::SheetVertices& vertices, const volume::SheetDepths& sheet,
+                                  const BoundaryEdges& edges, const VolumeBuildOptions& options,
+                                  std::uint32_t crossingBase, VolumeBuildStats& stats) {
+  const int s = options.refineSubdivisions;
+  const std::uint64_t nodes = std::uint64_t(quads.quads.size()) * std::uint64_t((s + 1) * (s + 1));
+  if (nodes > kMaxSubgridNodes)
+    throw InputError("volume options", "refine subdivisions", std::to_string(s),
+                     "the sub-grid of the " + std::to_string(quads.quads.size()) + " quads with a boundary edge would "
+                     "hold up to " + std::to_string(nodes) + " nodes, more than " + std::to_string(kMaxSubgridNodes) +
+                     ": use fewer subdivisions or a smaller map");
+  volume::SubgridOptions o;
+  o.subdivisions = s;
+  o.steps = std::max(1, options.refineSteps - std::countr_zero(unsigned(s)));
+  o.blur = options.blur;
+  o.perfect = options.triangulation == Triangulation::Perfect;
+  o.exact = options.cap == FarCap::Exact;
+  volume::SubgridCells sub =
+      volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, crossingBase);
+  // Vertex indices stay below kNone: the sheet, the sub-grid's and one centroid per split side at most.
+  const std::uint64_t total = std::uint64_t(crossingBase) + sub.positions.size() + sub.splits.size();
+  if (total >= std::uint64_t(volume::kNone))
+    throw InputError("volume options", "refine subdivisions", std::to_string(s),
+                     "the volume would have " + std::to_string(total) + " vertices, more than 32-bit indices address");
+  stats.boundaryEdges = edges.edges.size();
+  stats.farBoundaryEdges =
+      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+  stats.ambiguousCells = sub.ambiguousCells;
+  stats.subgridSamples = sub.samples;
+  stats.subgridBoundaryEdges = sub.boundaryEdges;
+  stats.subgridFarBoundaryEdges = sub.farBoundaryEdges;
+  stats.raysCast = sub.raysCast;
+  stats.msRays = sub.msRays;
+  return sub;
 }
 
 }  // namespace
@@ -176,6 +229,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.quads = std::size_t(w - 1) * (h - 1);
   const bool exact = options.cap == FarCap::Exact;
   const bool refine = options.refineSteps > 0;
+  const bool subgrid = refine && options.refineSubdivisions > 1;
   const bool perfect = options.triangulation == Triangulation::Perfect;
 
   // 1. Sheet depths: materialised for the blur (computed per row where needed otherwise).
@@ -214,7 +268,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // 2r. Refinement: the crossings (the oracle's rays).
   Refinement refinement;
   ChordPoints chords;
-  if (refine) {
+  if (refine && !subgrid) {
     const auto tr = Clock::now();
     castRefinementRays(sheet, edges, refinedQuads, blurred, options, refinement, chords, stats);
     msRefine += msSince(tr);
@@ -233,7 +287,14 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const auto chordBase = std::uint32_t(crossingBase + 2 * edges.edges.size());
   const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;
   double msEdges = 0.0;
-  if (refine) {
+  SubgridCells sub;
+  if (subgrid) {
+    const auto tc = Clock::now();
+    sub = subgridCells(refinedQuads, use, vertices, sheet, edges, options, crossingBase, stats);
+    cells.triangles = std::move(sub.triangles);
+    boundary.edges = std::move(sub.capEdges);
+    msRefine += msSince(tc);
+  } else if (refine) {
     const auto tc = Clock::now();
     cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, chordPoints, perfect, exact,
                                     crossingBase, chordBase);
@@ -263,7 +324,10 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   VolumeMesh& mesh = result.mesh;
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
   const std::uint64_t triangles = sheetTriangles + cells.triangles.size();
-  sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size() + 2 * chords.segments.size());
+  if (subgrid)
+    sizeBuffer(mesh.positions, vertices.count() + sub.positions.size(), vertices.count() + sub.positions.size() + sub.splits.size());
+  else
+    sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size() + 2 * chords.segments.size());
   sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(scratch_->quadTri, stats.quads);
   try {
@@ -274,8 +338,15 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   }
   if (refine) {
     const auto tc = Clock::now();
-    emitCrossingVertices(map, edges, refinement, chordPoints, crossingBase, chordBase, mesh);
+    if (subgrid)
+      std::copy(sub.positions.begin(), sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(crossingBase));
+    else
+      emitCrossingVertices(map, edges, refinement, chordPoints, crossingBase, chordBase, mesh);
     std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
+    if (subgrid) {  // one centroid vertex per split triangle
+      splitSheetTriangles(sub.splits, scratch_->quadTri, mesh);
+      stats.subgridSplitTriangles = mesh.positions.size() - (vertices.count() + sub.positions.size());
+    }
     msRefine += msSince(tc);
   } else {
     emitPinchCopies(grid, boundary, scratch_->quadTri, mesh);

@@ -26,6 +26,8 @@ struct SweepMethod {
 
 /// Refinement steps of the sweep's hybrid-refined methods.
 inline constexpr int kSweepRefineSteps = kRecommendedRefineSteps;
+/// Sub-grid of the sweep's hybrid-refined-grid methods.
+inline constexpr int kSweepRefineSubdivisions = kRecommendedRefineSubdivisions;
 
 /// Every method the sweep knows, in report order.
 const std::vector<SweepMethod>& sweepMethods();
