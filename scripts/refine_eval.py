@@ -4,8 +4,8 @@
 method and prints a Markdown table of the misclassified fraction of pixels facing the light (%),
 with the stencil-vs-count agreement of every volume.
 
-Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6] [--chord-points]
-           [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
+Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6]
+           [--chord-points | --refine-grid S] [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
 
 Results go to DIR/results.jsonl (default out/refine-eval) as they come; a rerun with the same DIR
 skips what is there. Stdlib only.
@@ -17,9 +17,10 @@ import subprocess
 import sys
 
 
-def methods(k, chords=False):
+def methods(k, chords=False, grid=1):
     """Column key -> validate options."""
-    ref = ["--volume", "explicit", "--refine", str(k)] + (["--chord-points"] if chords else [])
+    ref = (["--volume", "explicit", "--refine", str(k)] + (["--chord-points"] if chords else []) +
+           (["--refine-grid", str(grid)] if grid > 1 else []))
     return {
         "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"],
         "hybrid 256": ["--volume", "explicit", "--resolution", "256"],
@@ -50,6 +51,7 @@ def main():
     ap.add_argument("--refine", type=int, default=6, help="refinement steps K (default 6, the sweep's)")
     ap.add_argument("--out", default="out/refine-eval")
     ap.add_argument("--chord-points", action="store_true", help="refined methods with --chord-points")
+    ap.add_argument("--refine-grid", type=int, default=1, help="refined methods on an S x S sub-grid (2, 4, 8)")
     ap.add_argument("--methods", help="comma-separated columns (default: all): " + ", ".join(methods(6)))
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args()
@@ -60,7 +62,7 @@ def main():
         for line in open(path):
             rec = json.loads(line)
             done[(rec["scene"], rec["method"])] = rec
-    cols = methods(a.refine, a.chord_points)
+    cols = methods(a.refine, a.chord_points, a.refine_grid)
     if a.methods:
         keys = [k.strip() for k in a.methods.split(",")]
         unknown = [k for k in keys if k not in cols]
@@ -73,7 +75,7 @@ def main():
             for key, opts in cols.items():
                 if (name, key) in done:
                     continue
-                rec = {"scene": name, "method": key, "refine": a.refine}
+                rec = {"scene": name, "method": key, "refine": a.refine, "refineGrid": a.refine_grid}
                 rec.update(run(a.exe, scene, opts, os.path.join(a.out, "report")))
                 out.write(json.dumps(rec) + "\n")
                 out.flush()
