@@ -102,6 +102,9 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
     V, F, stats = sv.build_volume(depth, refine=4, scene=scene)
     assert stats["boundaryEdges"] > 0 and stats["raysCast"] >= 4 * stats["boundaryEdges"]
     assert_closed_oriented(V, F)
+    Vg, Fg, grid = sv.build_volume(depth, refine=4, refine_grid=4, scene=scene)
+    assert grid["subgridSamples"] > 0 and grid["subgridBoundaryEdges"] > stats["boundaryEdges"]
+    assert_closed_oriented(Vg, Fg)
 
 
 def test_export_round_trips_through_obj(tmp_path, depth):
