@@ -107,9 +107,12 @@ def refinement(rows, scenes):
     if not any(k[1] == ref for k in rows):
         return
     print("\n### Silhouette refinement: misclassified % (frame ms)\n")
-    print("| scene | refined 128 | refined 256 | refined-front 128 | refined-midpoint 128 | hybrid-perfect/explicit 256 "
-          "| shadowmap 2048 | smallest shadow map at least as good as refined 128 | silhouette |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    grid = "hybrid-refined-grid/explicit"
+    print("| scene | refined 128 | refined 256 | refined-front 128 | refined-midpoint 128 | refined-grid 128 "
+          "| refined-grid 256 | refined-grid-front 128 | hybrid-perfect/explicit 256 "
+          "| shadowmap 2048 | smallest shadow map at least as good as refined 128 | as good as refined-grid 128 "
+          "| silhouette |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     cell = lambda r: f"{err(r):.4f} ({ms(r):.1f})" if r else "-"
     for s in scenes:
         g = lambda m, n: rows.get((s, m, n))
@@ -117,16 +120,19 @@ def refinement(rows, scenes):
         if not r128:
             continue
         sms = sorted(n for (sc, m, n) in rows if sc == s and m == "shadowmap")
-        match = next((n for n in sms if err(rows[(s, "shadowmap", n)]) <= err(r128)), None)
+        first = lambda r: next((n for n in sms if r and err(rows[(s, "shadowmap", n)]) <= err(r)), None)
+        match, gmatch = first(r128), first(g(grid, 128))
         print(f"| {s} | {cell(r128)} | {cell(g(ref, 256))} | {cell(g('hybrid-refined-front/explicit', 128))} | "
-              f"{cell(g('hybrid-refined-midpoint/explicit', 128))} | {cell(g('hybrid-perfect/explicit', 256))} | "
+              f"{cell(g('hybrid-refined-midpoint/explicit', 128))} | {cell(g(grid, 128))} | {cell(g(grid, 256))} | "
+              f"{cell(g('hybrid-refined-grid-front/explicit', 128))} | {cell(g('hybrid-perfect/explicit', 256))} | "
               f"{cell(g('shadowmap', 2048))} | {match if match else 'none up to ' + str(max(sms))} | "
+              f"{gmatch if gmatch else ('none up to ' + str(max(sms)) if g(grid, 128) else '-')} | "
               f"{cell(g('silhouette', 0))} |")
 
     print("\n### Silhouette refinement on the Pareto front (frame ms against error, every method and resolution)\n")
     print("| scene | refined cells on the front | front, fastest first |")
     print("|---|---|---|")
-    on = 0
+    on = onGrid = onAny = onVariant = 0
     for s in scenes:
         keys = [k for k in rows if k[0] == s]
         pts = [(ms(rows[k]), err(rows[k])) for k in keys]
@@ -134,9 +140,12 @@ def refinement(rows, scenes):
         label = lambda k: k[1] + (f" {k[2]}" if k[2] else "")
         refined = [label(keys[i]) for i in front if keys[i][1].startswith("hybrid-refined")]
         on += any(keys[i][1] == ref for i in front)
+        onGrid += any(keys[i][1] == grid for i in front)
+        onAny += any(keys[i][1] in (ref, grid) for i in front)
+        onVariant += any(keys[i][1].startswith("hybrid-refined") for i in front)
         print(f"| {s} | {', '.join(refined) if refined else 'none'} | "
               + ", ".join(f"{label(keys[i])} ({pts[i][0]:.1f} ms, {pts[i][1]:.4f} %)" for i in front) + " |")
-    print(f"\n{ref} is on the front of {on} of {len(scenes)} scenes.")
+    print(f"\n{ref} is on the front of {on} of {len(scenes)} scenes, {grid} of {onGrid}, one of the two of {onAny}, a refined method of any capture of {onVariant}.")
 
 
 if __name__ == "__main__":

@@ -76,7 +76,7 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_option("--refine-grid", o.refineGrid,
                  "With --refine: cut each quad with a boundary edge into S x S sub-cells (S = 2, 4 or 8; 1 = off), "
                  "sample the depth at their corners and refine each sub-cell, so the wall follows an outline that "
-                 "bends inside a texel; about (S + 1)^2 more rays per such quad (docs/volume.md 'Sub-grid')")
+                 "bends inside a texel; about S^2 more rays and triangles in each such quad (docs/volume.md 'Sub-grid')")
       ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
   return cmd

@@ -142,7 +142,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       "%zu sheet triangles split\n",
                       options.refineSubdivisions, options.refineSubdivisions, s.subgridSamples, s.subgridBoundaryEdges,
                       s.ambiguousCells, s.subgridSplitTriangles);
-        if (options.refineSteps > 0)
+        if (options.refineSubdivisions > 1)
+          std::printf("  refinement (%d steps, %d per boundary sub-edge): %zu boundary edges (%zu to the far plane) "
+                      "choose %zu refined quads, %zu rays\n",
+                      options.refineSteps, refineSubEdgeSteps(options.refineSteps, options.refineSubdivisions),
+                      s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.raysCast);
+        else if (options.refineSteps > 0)
           std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far plane), %zu refined quads (%zu "
                       "decided by a centre ray, %zu chord points), %zu rays\n",
                       options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.ambiguousCells,

@@ -4,7 +4,6 @@
 // split without T-junctions), the rays it casts, and determinism. The CGAL checks (validity,
 // self-intersections) are in tests/cgal, the stencil agreement in tests/validate.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -87,7 +86,7 @@ TEST(SubGrid, SphereWallsOnItsSilhouetteCircleWithinTheSubEdgeStep) {
     o.depthOracle = s.oracle();
     const VolumeBuildResult v = buildVolume(map, o);
     ASSERT_TRUE(closedOrientedManifold(v.mesh)) << grid;
-    const int fineSteps = 6 - std::countr_zero(unsigned(grid));
+    const int fineSteps = refineSubEdgeSteps(6, grid);
     const double bound = std::ldexp(texel / grid, -(fineSteps + 1)) + 1e-9;
     std::size_t onFar = 0;
     double worst = 0.0;

@@ -18,6 +18,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   std::vector<RunKind> runs = {RunKind::Explicit};
   if (c.gpu && !c.refused) runs.push_back(RunKind::Gpu);
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
+  if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
   runs.push_back(RunKind::Build);
   return runs;
 }
@@ -40,6 +41,8 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, cons
       r.argv.push_back("--capture");
       r.argv.push_back("front");
     }
+    if (kind == RunKind::Refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
+      for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
   }
   r.process = runProcess(r.argv, dir / "stdout.txt", dir / "stderr.txt", s.timeoutSeconds);
   r.stdoutJson = parseJson(r.process.stdoutText);
@@ -70,6 +73,8 @@ const char* runName(RunKind k) {
       return "gpu";
     case RunKind::Front:
       return "front";
+    case RunKind::Refined:
+      return "refined";
     case RunKind::Build:
       return "build";
   }

@@ -205,11 +205,15 @@ std::vector<StressConfig> generateConfigs() {
   addDegenerate(all);
   addLightInside(all);
   addRefused(all);
-  // Every third legal configuration of each category is also validated with front capture.
+  // Every third legal configuration of each category is also validated with front capture, and
+  // every third from the second on with refinement on the sub-grid.
   std::map<std::string, int> index;
   std::set<std::string> names;
   for (StressConfig& c : all) {
-    if (!c.refused) c.front = index[c.category]++ % 3 == 0;
+    if (!c.refused) {
+      c.front = index[c.category] % 3 == 0;
+      c.refined = index[c.category]++ % 3 == 1;
+    }
     if (c.refused) c.gpu = false;
     if (!names.insert(c.name).second) throw std::logic_error("duplicate stress config name " + c.name);
   }
@@ -231,9 +235,10 @@ std::vector<StressConfig> selectConfigs(std::vector<StressConfig> all, bool quic
       const auto it = byName.find(*all[k].twin);
       if (it == byName.end()) throw std::logic_error(all[k].name + ": no twin named " + *all[k].twin);
       StressConfig& twin = all[it->second];
-      if (chosen[it->second] && (twin.front || !all[k].front)) continue;
+      if (chosen[it->second] && (twin.front || !all[k].front) && (twin.refined || !all[k].refined)) continue;
       chosen[it->second] = true;
       twin.front = twin.front || all[k].front;
+      twin.refined = twin.refined || all[k].refined;
       changed = true;
     }
   }

@@ -32,6 +32,8 @@
 // scratch and the result's storage from one build to the next.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -93,6 +95,12 @@ inline constexpr int kRecommendedRefineSteps = 6;
 /// The refineSubdivisions chosen from measurements (README "Silhouette refinement", "Sub-grid").
 inline constexpr int kRecommendedRefineSubdivisions = 4;
 
+/// Bisection rays per boundary sub-edge of the sub-grid: max(1, K - log2 S), which keeps the walls
+/// within 2^-(K+1) texel of the outline (a sub-edge is 1/S texel long).
+inline int refineSubEdgeSteps(int refineSteps, int subdivisions) {
+  return std::max(1, refineSteps - std::countr_zero(unsigned(subdivisions)));
+}
+
 /// Largest VolumeBuildOptions::refineSubdivisions.
 inline constexpr int kMaxRefineSubdivisions = 8;
 /// Most lattice nodes a sub-grid may hold (refined quads x (S + 1)^2; about 100 bytes each while
@@ -108,10 +116,12 @@ struct VolumeBuildStats {
   std::size_t capTrianglesBefore = 0; ///< cap triangles without flattening (= kept sheet triangles)
   std::size_t capTrianglesAfter = 0;  ///< cap triangles in the result
   std::size_t splitVertices = 0;      ///< extra vertex copies at pinches and cuts (see above)
-  std::size_t boundaryEdges = 0;      ///< refinement: grid edges across a discontinuity (split by a wall)
+  std::size_t boundaryEdges = 0;      ///< refinement: grid edges across a discontinuity (split by a wall;
+                                      ///< with the sub-grid they choose the quads it cuts, and its
+                                      ///< boundary sub-edges get the walls)
   std::size_t farBoundaryEdges = 0;   ///< of which one end is on the far plane (the other end hit)
   std::size_t refinedCells = 0;       ///< refinement: quads with a boundary edge (triangulated with walls)
-  std::size_t ambiguousCells = 0;     ///< refinement: refined quads with 3 or 4 boundary edges, decided
+  std::size_t ambiguousCells = 0;     ///< refinement: refined quads (sub-cells with the sub-grid) with 3 or 4 boundary edges, decided
                                       ///< by one more ray at the quad's centre
   std::size_t chordPoints = 0;        ///< refinement: crossings inside quads with two boundary edges
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary

@@ -1,7 +1,6 @@
 #include "shadowvol/volume_builder.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -149,7 +148,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
                      ": use fewer subdivisions or a smaller map");
   volume::SubgridOptions o;
   o.subdivisions = s;
-  o.steps = std::max(1, options.refineSteps - std::countr_zero(unsigned(s)));
+  o.steps = refineSubEdgeSteps(options.refineSteps, s);
   o.blur = options.blur;
   o.perfect = options.triangulation == Triangulation::Perfect;
   o.exact = options.cap == FarCap::Exact;
@@ -356,7 +355,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
 
   // 6. The far cap.
   t0 = Clock::now();
-  stats.capTrianglesBefore = sheetTriangles + cells.footprint.size();
+  stats.capTrianglesBefore = sheetTriangles + (subgrid ? sub.footprintTriangles : cells.footprint.size());
   if (flatCap) {
     capTask.wait();
     appendFlatCap(cap, mesh);

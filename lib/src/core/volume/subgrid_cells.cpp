@@ -20,7 +20,8 @@ namespace {
 struct Node {
   glm::dvec2 texel{0.0};
   glm::dvec3 lv{0.0};       // light-view point (the diagonal rule)
-  double depth = 0.0;       // sheet depth (the far plane when far)
+  double depth = 0.0;       // sheet depth (the far plane when far): where its vertex goes
+  double rule = 0.0;        // the depth the discontinuity rule reads: without the blur's averaging
   std::uint32_t id = kNone; // vertex; kNone when far
   bool far = false;
   bool virt = false;        // on a side towards an unrefined quad (no ray)
@@ -150,6 +151,7 @@ class SubgridBuilder {
       const int i = qi + a / s_, j = qj + b / s_;
       n.depth = sheet_.at(i, j);
       n.far = n.depth == farPlane_;
+      n.rule = unblurred(i, j, n.depth);
       n.id = n.far ? kNone : texelVertex(i, j);
       SV_CHECK(n.far == (n.id == kNone));  // refinement: the used texels are the non-far ones
       return n;
@@ -165,13 +167,26 @@ class SubgridBuilder {
     }
     // A virtual node: on side k, at fraction f from corner k to corner k + 1.
     const double f = (k == 0 ? a : k == 1 ? b : k == 2 ? s_ - a : s_ - b) / double(s_);
-    const double d0 = sheet_.at(qi + kCornerDi[k], qj + kCornerDj[k]);
-    const double d1 = sheet_.at(qi + kCornerDi[(k + 1) % 4], qj + kCornerDj[(k + 1) % 4]);
+    const int i0 = qi + kCornerDi[k], j0 = qj + kCornerDj[k];
+    const int i1 = qi + kCornerDi[(k + 1) % 4], j1 = qj + kCornerDj[(k + 1) % 4];
+    const double d0 = sheet_.at(i0, j0), d1 = sheet_.at(i1, j1);
     SV_CHECK_EQ(d0 == farPlane_, d1 == farPlane_);  // a continuous side (see the header comment)
     n.virt = true;
     n.far = d0 == farPlane_;
-    n.depth = n.far ? farPlane_ : depthAlongEdge(d0, d1, f, map_.lightProjection[2][3] != 0.0);
+    const bool perspective = map_.lightProjection[2][3] != 0.0;
+    n.depth = n.far ? farPlane_ : depthAlongEdge(d0, d1, f, perspective);
+    n.rule = n.far ? farPlane_ : depthAlongEdge(unblurred(i0, j0, d0), unblurred(i1, j1, d1), f, perspective);
     return n;
+  }
+
+  // A texel's depth for the discontinuity rule: its own sample's sheet depth (SheetDepthRule::
+  // ofSample, as boundary_edges.h decides on), not the blur's average of its neighbours; its final
+  // sheet depth where the blur alone keeps it short of the far plane.
+  double unblurred(int i, int j, double sheetDepth) const {
+    if (!o_.blur || sheetDepth == farPlane_) return sheetDepth;
+    const double u = SheetDepthRule::ring(i, j, map_.width, map_.height) ? farPlane_
+                                                                        : sheet_.rule().ofSample(map_.at(i, j), true);
+    return u != farPlane_ ? u : sheetDepth;
   }
 
   // One oracle batch for every node inside a refined quad or between two of them.
@@ -191,7 +206,7 @@ class SubgridBuilder {
     }
     for (std::size_t k = 0; k < which.size(); ++k) {
       Node& n = nodes_[which[k]];
-      n.depth = sheet_.rule().ofSample(depth[k], o_.blur);
+      n.depth = n.rule = sheet_.rule().ofSample(depth[k], o_.blur);
       n.far = n.depth == farPlane_;
     }
     out_.samples = which.size();
@@ -240,7 +255,7 @@ class SubgridBuilder {
   double stepTo(const Node& at, std::int64_t fi, std::int64_t fj) const {
     const std::uint32_t k = nodeAt(fi, fj);
     if (k == kNone || nodes_[k].far) return -1.0;
-    return std::abs(nodes_[k].depth - at.depth);
+    return std::abs(nodes_[k].rule - at.rule);
   }
 
   // boundary_edges.h's rules on the lattice, with the texel footprint divided by S.
@@ -261,7 +276,7 @@ class SubgridBuilder {
         if (p.far) continue;
         const std::int64_t di = e.axis == 0, dj = e.axis == 1;
         const double gP = stepTo(p, p.fi - di, p.fj - dj), gQ = stepTo(q, q.fi + di, q.fj + dj);
-        if (discontinuous(p.depth, q.depth, gP, gQ, fine)) e.boundary = e.surface = true, e.nearAtP = p.depth < q.depth;
+        if (discontinuous(p.rule, q.rule, gP, gQ, fine)) e.boundary = e.surface = true, e.nearAtP = p.rule < q.rule;
       }
     });
   }
@@ -314,8 +329,9 @@ class SubgridBuilder {
       BisectionSegment g;
       g.nearPoint = nearN.texel, g.farPoint = farN.texel;
       g.surface = e.surface;
-      g.nearDepth = g.nearFallback = nearN.depth;
-      g.farDepth = e.surface ? farN.depth : farPlane_;
+      // The rule's depths, as refineBoundaryEdges takes (a hit end's is short of the far plane).
+      g.nearDepth = g.nearFallback = nearN.rule;
+      g.farDepth = e.surface ? farN.rule : farPlane_;
       segments.push_back(g);
       out_.farBoundaryEdges += e.surface ? 0 : 1;
     }
@@ -357,13 +373,6 @@ class SubgridBuilder {
     });
   }
 
-  CellVertex cornerVertex(std::uint32_t node) const {
-    const Node& n = nodes_[node];
-    CellVertex v;
-    v.id = n.id, v.far = n.far, v.texel = n.texel, v.lv = n.lv, v.depth = n.depth;
-    return v;
-  }
-
   // The sub-cells' triangles, in blocks of quads in parallel, joined in quad order.
   void triangulate() {
     constexpr std::size_t kBlock = 32;
@@ -371,24 +380,27 @@ class SubgridBuilder {
     const std::size_t blocks = (quadCount() + kBlock - 1) / kBlock;
     std::vector<std::vector<Tri>> triangles(blocks);
     std::vector<std::vector<CapEdge>> capEdges(blocks);
+    std::vector<std::size_t> footprint(blocks, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       std::vector<LocalTri> tris;
       for (std::size_t block = r.begin(); block != r.end(); ++block) {
         const std::size_t end = std::min(quadCount(), (block + 1) * kBlock) * cellsPerQuad;
         for (std::size_t k = block * kBlock * cellsPerQuad; k < end; ++k) {
-          triangulateCell(k, tris, triangles[block], capEdges[block]);
+          footprint[block] += triangulateCell(k, tris, triangles[block], capEdges[block]);
         }
       }
     });
     for (std::size_t block = 0; block < blocks; ++block) {
       out_.triangles.insert(out_.triangles.end(), triangles[block].begin(), triangles[block].end());
       out_.capEdges.insert(out_.capEdges.end(), capEdges[block].begin(), capEdges[block].end());
+      out_.footprintTriangles += footprint[block];
     }
   }
 
-  // One sub-cell's kept triangles and cap edges (its local triangles point into this frame).
-  void triangulateCell(std::size_t k, std::vector<LocalTri>& tris, std::vector<Tri>& triangles,
-                       std::vector<CapEdge>& capEdges) const {
+  // One sub-cell's kept triangles and cap edges (its local triangles point into this frame); returns
+  // how many of the kept ones are not walls.
+  std::size_t triangulateCell(std::size_t k, std::vector<LocalTri>& tris, std::vector<Tri>& triangles,
+                              std::vector<CapEdge>& capEdges) const {
     const SubCell& c = cells_[k];
     CellVertex corners[4], a[4], b[4];
     std::uint8_t sides = 0;
@@ -414,6 +426,9 @@ class SubgridBuilder {
       CellTriangulator(o_.perfect, tris).run(corners, a, b, sides, centreDepth, farPlane_);
     }
     keepCellTriangles(tris, o_.exact, triangles, capEdges, nullptr);
+    return std::size_t(std::count_if(tris.begin(), tris.end(), [&](const LocalTri& t) {
+      return t.footprint && !(o_.exact && t.v[0]->far && t.v[1]->far && t.v[2]->far);
+    }));
   }
 
   // A sub-cell without a boundary side: all far (dropped by the exact cap) or all hit, two

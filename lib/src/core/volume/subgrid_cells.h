@@ -13,12 +13,14 @@
 //     sheet-depth rule (SheetDepthRule::ofSample, the blur offset added with blur);
 //   on a side whose other quad is not refined ("virtual" nodes): no ray. That side is continuous
 //     (a hit-far or discontinuous side is a boundary edge, whose quads are both refined), so its
-//     corners are both far (the nodes are far, and no triangle keeps them) or both hit on one
-//     surface: the nodes then lie on the sheet triangle's edge between the corners (the depth
+//     corners are both far (the nodes are far, and no triangle keeps them) or both hit (one
+//     surface, or a jump whose surface edges were removed against a fold): the nodes then lie on the sheet triangle's edge between the corners (the depth
 //     interpolated as the projection does: linearly for a directional light, its inverse linearly
 //     for a spot light), and that triangle of the unrefined quad is split at them
 //     (splitSheetTriangles), so the mesh has no T-junction and the sheet keeps its shape.
 // A sub-edge along such a side (between its virtual nodes and corners) is never a boundary edge.
+// As in boundary_edges.h, the rule reads depths without the blur's averaging (a corner's own
+// sample, a virtual node's interpolation of those); the blurred depths only place vertices.
 // The discontinuity rule's steps beyond a sub-edge's ends are those to the next lattice nodes,
 // virtual ones included: a straight interpolation is flatter than a round object's rim, so a few
 // sub-edges just inside a rim are split as surface edges (harmless, as boundary_edges.h says). Folds are prevented as for the
@@ -66,6 +68,7 @@ struct SubgridCells {
   std::size_t boundaryEdges = 0;         ///< boundary sub-edges (bisected)
   std::size_t farBoundaryEdges = 0;      ///< of which one end is far
   std::size_t ambiguousCells = 0;        ///< sub-cells with 3 or 4 boundary sides
+  std::size_t footprintTriangles = 0;    ///< kept triangles that are not walls
   std::size_t raysCast = 0;              ///< oracle queries: samples, bisection, centres
   double msRays = 0.0;                   ///< time inside the oracle (ms)
 };
