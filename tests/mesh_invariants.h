@@ -1,6 +1,7 @@
 // A combinatorial check of closed volumes shared by the test folders (no CGAL needed).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -53,6 +54,15 @@ inline ::testing::AssertionResult closedOrientedManifold(const VolumeMesh& mesh)
   }
   if (!mesh.triangles.empty() && !(volume > 0.0))
     return ::testing::AssertionFailure() << "signed volume " << volume << " not positive";
+  return ::testing::AssertionSuccess();
+}
+
+/// The two meshes are identical (positions to the bit, triangles in order).
+inline ::testing::AssertionResult sameMesh(const VolumeMesh& a, const VolumeMesh& b) {
+  if (!std::equal(a.positions.begin(), a.positions.end(), b.positions.begin(), b.positions.end()))
+    return ::testing::AssertionFailure() << "positions differ";
+  if (!std::equal(a.triangles.begin(), a.triangles.end(), b.triangles.begin(), b.triangles.end()))
+    return ::testing::AssertionFailure() << "triangles differ";
   return ::testing::AssertionSuccess();
 }
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include "shadowvol/light.h"
@@ -60,6 +61,19 @@ inline Light directionalDown(double farPlane = 12.0) {
   light.halfExtent = 4.0;
   light.nearPlane = 0.5;
   light.farPlane = farPlane;
+  return light;
+}
+
+/// The spot light of the refinement tests: 50 degrees, from (0.6, 7, 0.4), tilted a little, near 1,
+/// far 9.
+inline Light refinementSpot() {
+  Light light;
+  light.type = LightType::Spot;
+  light.position = {0.6, 7.0, 0.4};
+  light.direction = glm::normalize(glm::dvec3(-0.1, -1.0, -0.05));
+  light.fovYDegrees = 50.0;
+  light.nearPlane = 1.0;
+  light.farPlane = 9.0;
   return light;
 }
 

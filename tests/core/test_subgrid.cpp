@@ -22,16 +22,7 @@ namespace {
 using test::AnalyticScene;
 using test::closedOrientedManifold;
 
-Light spot() {
-  Light light;
-  light.type = LightType::Spot;
-  light.position = {0.6, 7.0, 0.4};
-  light.direction = glm::normalize(glm::dvec3(-0.1, -1.0, -0.05));
-  light.fovYDegrees = 50.0;
-  light.nearPlane = 1.0;
-  light.farPlane = 9.0;
-  return light;
-}
+Light spot() { return test::refinementSpot(); }
 
 AnalyticScene sphereOverGround(bool ground) {
   AnalyticScene s;
@@ -154,10 +145,7 @@ TEST(SubGrid, DeterministicForAnyThreadCount) {
   }
   const VolumeBuildResult many = buildVolume(map, o);
   ASSERT_GT(one.stats.subgridBoundaryEdges, 100u);
-  EXPECT_TRUE(std::equal(one.mesh.positions.begin(), one.mesh.positions.end(), many.mesh.positions.begin(),
-                         many.mesh.positions.end()));
-  EXPECT_TRUE(std::equal(one.mesh.triangles.begin(), one.mesh.triangles.end(), many.mesh.triangles.begin(),
-                         many.mesh.triangles.end()));
+  EXPECT_TRUE(test::sameMesh(one.mesh, many.mesh));
 }
 
 }  // namespace
