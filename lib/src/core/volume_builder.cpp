@@ -108,6 +108,13 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
                      "refinement replaces by walls");
 }
 
+// The texel grid's boundary edges, and those of them with one end on the far plane, into `stats`.
+void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
+  stats.boundaryEdges = edges.edges.size();
+  stats.farBoundaryEdges =
+      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+}
+
 // Refinement's rays: the boundary edges' crossings (and the ambiguous quads' centre depths), then,
 // with refineChords, the chord points of the quads with two boundary edges; their counts go to
 // `stats`.
@@ -117,9 +124,7 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   const DepthMap& map = sheet.map();
   refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
                                    options.refineSteps, quads.centres);
-  stats.boundaryEdges = edges.edges.size();
-  stats.farBoundaryEdges =
-      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+  countBoundaryEdges(edges, stats);
   stats.ambiguousCells = quads.centres.size();
   stats.raysCast = refinement.raysCast;
   stats.msRays = refinement.msRays;
@@ -159,9 +164,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   if (total >= std::uint64_t(volume::kNone))
     throw InputError("volume options", "refine subdivisions", std::to_string(s),
                      "the volume would have " + std::to_string(total) + " vertices, more than 32-bit indices address");
-  stats.boundaryEdges = edges.edges.size();
-  stats.farBoundaryEdges =
-      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+  countBoundaryEdges(edges, stats);
   stats.ambiguousCells = sub.ambiguousCells;
   stats.subgridSamples = sub.samples;
   stats.subgridBoundaryEdges = sub.boundaryEdges;
