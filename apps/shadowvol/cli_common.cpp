@@ -79,6 +79,9 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                  "bends inside a texel; about S^2 more rays and triangles in each such quad (docs/volume.md 'Sub-grid')")
       ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
+  cmd.add_flag("--refine-grid-everywhere", o.refineGridEverywhere,
+               "With --refine-grid: cut every quad with a boundary edge, also those whose straight wall already lies "
+               "on the sub-grid's samples (which the default leaves plain); for comparison, more triangles");
   return cmd
       .add_option("--refine", o.refine,
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
@@ -105,10 +108,13 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   if (o.refineGrid > 1 && o.chordPoints)
     throw InputError("command line", "--refine-grid", std::to_string(o.refineGrid),
                      "not with --chord-points: they are alternatives (the sub-grid bends the wall in every sub-cell)");
+  if (o.refineGridEverywhere && o.refineGrid == 1)
+    throw InputError("command line", "--refine-grid-everywhere", "", "needs --refine-grid 2, 4 or 8");
   VolumeBuildOptions v;
   v.refineSteps = o.refine;
   v.refineChords = o.chordPoints;
   v.refineSubdivisions = o.refineGrid;
+  v.refineGridEverywhere = o.refineGridEverywhere;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;

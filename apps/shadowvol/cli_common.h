@@ -53,6 +53,7 @@ struct VolumeCliOptions {
   int refine = 0;  ///< --refine K: silhouette refinement steps (0 = off)
   bool chordPoints = false;  ///< --chord-points: refinement with chord points (refineChords)
   int refineGrid = 1;        ///< --refine-grid S: the sub-grid (refineSubdivisions; 1 = off)
+  bool refineGridEverywhere = false;  ///< --refine-grid-everywhere (refineGridEverywhere)
 };
 /// Adds the options; returns --refine's option (for excludes).
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);

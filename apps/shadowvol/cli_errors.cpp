@@ -21,6 +21,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},
     LibraryFieldFlag{"volume options", "refine chords", "--chord-points"},
+    LibraryFieldFlag{"volume options", "refine grid everywhere", "--refine-grid-everywhere"},
 };
 
 }  // namespace

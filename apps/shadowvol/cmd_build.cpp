@@ -117,6 +117,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"flattenCap", options.flattenCap},
                 {"refine", options.refineSteps},
                 {"refineGrid", options.refineSubdivisions},
+                {"refineGridEverywhere", options.refineGridEverywhere},
                 {"origin", {map.origin.x, map.origin.y, map.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
@@ -138,9 +139,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
         if (options.refineSubdivisions > 1)
-          std::printf("  sub-grid %dx%d: %zu samples, %zu boundary sub-edges, %zu sub-cells decided by a centre ray, "
-                      "%zu sheet triangles split\n",
-                      options.refineSubdivisions, options.refineSubdivisions, s.subgridSamples, s.subgridBoundaryEdges,
+          std::printf("  sub-grid %dx%d on %zu of the %zu refined quads%s: %zu samples, %zu bisected boundary "
+                      "sub-edges, %zu sub-cells decided by a centre ray, %zu triangles split\n",
+                      options.refineSubdivisions, options.refineSubdivisions, s.subgridQuads, s.refinedCells,
+                      options.refineGridEverywhere ? " (everywhere)" : "", s.subgridSamples, s.subgridBoundaryEdges,
                       s.ambiguousCells, s.subgridSplitTriangles);
         if (options.refineSubdivisions > 1)
           std::printf("  refinement (%d steps, %d per boundary sub-edge): %zu boundary edges (%zu to the far plane) "

@@ -40,7 +40,7 @@ CaptureMode captureModeArg(const std::string& text);
 /// InputError names the argument.
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                     std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                                    bool chordPoints, int refineGrid = 1);
+                                    bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false);
 
 void registerScene(py::module_& m);
 void registerDepth(py::module_& m);

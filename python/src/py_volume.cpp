@@ -20,7 +20,7 @@ namespace {
 
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                  std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                                 bool chordPoints, int refineGrid) {
+                                 bool chordPoints, int refineGrid, bool refineGridEverywhere) {
   VolumeBuildOptions o;
   if (!parseTriangulation(triangulation, o.triangulation))
     throw InputError("python", "triangulation", triangulation, "expected perfect or fixed");
@@ -32,6 +32,7 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
   o.refineSteps = refine;
   o.refineChords = chordPoints;
   o.refineSubdivisions = refineGrid;
+  o.refineGridEverywhere = refineGridEverywhere;
   return o;
 }
 
@@ -39,9 +40,9 @@ namespace {
 
 py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
                             std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                            const PyScene* scene, bool chordPoints, int refineGrid) {
-  VolumeBuildOptions o =
-      volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints, refineGrid);
+                            const PyScene* scene, bool chordPoints, int refineGrid, bool refineGridEverywhere) {
+  VolumeBuildOptions o = volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints,
+                                          refineGrid, refineGridEverywhere);
   if (refine > 0 && !scene)
     throw InputError("python", "refine", std::to_string(refine),
                      "needs scene=: the refinement casts rays into the scene the depth map was captured from");
@@ -103,12 +104,13 @@ void registerVolume(py::module_& m) {
   m.def("build_volume", &buildVolumeArrays, py::arg("depth"), py::kw_only(), py::arg("triangulation") = "perfect",
         py::arg("blur") = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
         py::arg("flatten_cap") = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
-        py::arg("chord_points") = false, py::arg("refine_grid") = 1,
+        py::arg("chord_points") = false, py::arg("refine_grid") = 1, py::arg("refine_grid_everywhere") = false,
         "The shadow volume of a depth map: (V, F, stats) with V float64 N x 3 (world units), F int32 M x 3 "
         "(counter-clockwise seen from outside) and stats a dict of counts and times (milliseconds). With the exact "
         "cap (default) the mesh is closed, outward and welded (docs/volume.md). refine=K (1..16) places each wall "
         "within 2^-(K+1) texel of the silhouette by K rays per boundary edge into `scene` (the scene the map was "
-        "captured from); refine_grid=S (2, 4, 8) refines each quad with a boundary edge on an S x S sub-grid "
+        "captured from); refine_grid=S (2, 4, 8) refines the quads with a boundary edge whose straight wall misses "
+        "the sub-grid's samples on an S x S sub-grid, every such quad with refine_grid_everywhere=True "
         "(docs/volume.md, \"Sub-grid\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",

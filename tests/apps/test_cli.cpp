@@ -352,13 +352,24 @@ TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   EXPECT_EQ(j["boundaryEdges"], 64);
   EXPECT_EQ(j["refinedCells"], 64);  // the plate's outline: 16 quads a side
   EXPECT_GT(j["subgridSamples"].get<int>(), 64 * 9);  // at least the 3 x 3 inside each refined quad
-  EXPECT_EQ(j["subgridBoundaryEdges"], 64 * 4);        // a straight outline crosses 4 sub-edges per quad
+  // Adaptive: the straight sides stay plain, the 4 corners (where the outline turns) are cut; 3
+  // bisected sub-edges each (the fourth crossing is a plain neighbour's).
+  EXPECT_EQ(j["subgridQuads"], 4);
+  EXPECT_EQ(j["subgridBoundaryEdges"], 4 * 3);
+  EXPECT_FALSE(j["refineGridEverywhere"].get<bool>());
   EXPECT_TRUE(std::filesystem::exists(out));
+  const CliResult all = runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --refine-grid-everywhere --scene " +
+                               scene("plate.json") + " --out " + out);
+  ASSERT_EQ(all.code, 0) << all.out;
+  const auto ja = nlohmann::json::parse(all.out);
+  EXPECT_EQ(ja["subgridQuads"], 64);
+  EXPECT_EQ(ja["subgridBoundaryEdges"], 64 * 4);  // a straight outline crosses 4 sub-edges per quad
   const CliResult text =
       runCli("build --resolution 64 --refine 6 --refine-grid 2 --scene " + scene("plate.json") + " --out " + out);
   EXPECT_TRUE(contains(text.out, "sub-grid 2x2")) << text.out;
   const std::string bad = (dir / "bad.ply").string();
-  for (const char* args : {"--refine-grid 4", "--refine 3 --refine-grid 4 --chord-points", "--refine 3 --refine-grid 4 --no-flatten"}) {
+  for (const char* args : {"--refine-grid 4", "--refine 3 --refine-grid 4 --chord-points", "--refine 3 --refine-grid 4 --no-flatten",
+                           "--refine 3 --refine-grid-everywhere"}) {
     const CliResult e = runCli(std::string("build --resolution 16 ") + args + " --out " + bad);
     EXPECT_EQ(e.code, 1) << args << ": " << e.out;
     EXPECT_TRUE(contains(e.out, "--refine-grid") || contains(e.out, "--no-flatten")) << e.out;

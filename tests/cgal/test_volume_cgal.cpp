@@ -164,9 +164,10 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           if (c.cap == 0) flatVolume = rep.volume;
           else EXPECT_NEAR(rep.volume, flatVolume, 1e-9 * (1 + flatVolume)) << what;  // same region, other cap
           if (c.cap != 0) continue;
-          // The sub-grid (flattened cap only): 4 x 4 at 32^2, 2 x 2 at 64^2.
+          // The sub-grid (flattened cap only): adaptive 4 x 4 at 32^2, 2 x 2 on every refined quad at 64^2.
           o.refineChords = false;
           o.refineSubdivisions = res == 32 ? 4 : 2;
+          o.refineGridEverywhere = res == 64;
           const auto g = buildVolume(map, o);
           const MeshCheckReport gr = checkMesh(g.mesh);
           ++builds;
@@ -217,11 +218,13 @@ TEST(VolumeCgal, RefinedVolumesOfRandomMapsAndRaysAreValid) {
           o.refineSteps = 1 + trial % 5;
           o.refineChords = trial % 2 == 0;
           o.depthOracle = oracle;
-          // The sub-grid too, on every fourth trial (2 or 4 per texel side; flattened cap, no chord
-          // points): its meshes are larger, and the self-intersection check grows with them.
+          // The sub-grid too, on every fourth trial (2 or 4 per texel side, adaptive or everywhere;
+          // flattened cap, no chord points): its meshes are larger, and the self-intersection check
+          // grows with them.
           for (int grid : {1, 2 << (trial / 4 % 2)}) {
             if (grid > 1 && (!flat || trial % 4 > 1)) continue;
             o.refineSubdivisions = grid;
+            o.refineGridEverywhere = grid > 1 && trial / 8 % 2 == 1;
             if (grid > 1) o.refineChords = false;
             const auto r = buildVolume(map, o);
             MeshCheckOptions co;

@@ -5,6 +5,7 @@
 // self-intersections) are in tests/cgal, the stencil agreement in tests/validate.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -50,9 +51,12 @@ TEST(SubGrid, OptionsAreChecked) {
   o.flattenCap = true;
   o.refineSteps = 0;
   EXPECT_THROW(buildVolume(map, o), InputError);  // part of refinement
-  // 1 is the plain refined volume.
   o.refineSteps = 3;
   o.refineSubdivisions = 1;
+  o.refineGridEverywhere = true;
+  EXPECT_THROW(buildVolume(map, o), InputError);  // says where the sub-grid goes: needs one
+  o.refineGridEverywhere = false;
+  // 1 is the plain refined volume.
   const VolumeBuildResult a = buildVolume(map, o);
   VolumeBuildOptions plain = o;
   const VolumeBuildResult b = buildVolume(map, plain);
@@ -61,37 +65,87 @@ TEST(SubGrid, OptionsAreChecked) {
 }
 
 // With back capture and no ground the far edges' walls stand on the rim: their far vertices lie on
-// the far plane, within the sub-edge's bisection step (2^-(k+1) of texel / S, k = K - log2 S) of
-// the circle. (A few sub-edges on the sphere's back near the rim are split as surface edges; see
-// subgrid_cells.h.)
+// the far plane, within the sub-edge's bisection step (2^-(k+1) of texel / S, k = K - log2 S; the
+// plain quads' 2^-(K+1) texel is the same) of the circle. (A few sub-edges on the sphere's back near
+// the rim are split as surface edges; see subgrid_cells.h.) On the smooth rim the adaptive
+// sub-grid leaves most quads plain.
 TEST(SubGrid, SphereWallsOnItsSilhouetteCircleWithinTheSubEdgeStep) {
   const AnalyticScene s = sphereOverGround(false);
   const Light light = test::directionalDown(6.0);
   const int n = 32;
   const double texel = 2.0 * light.halfExtent / n;
   const DepthMap map = s.depthMap(light, n, n, CaptureMode::Back);
-  for (int grid : {2, 4, 8}) {
-    VolumeBuildOptions o;
-    o.refineSteps = 6;
-    o.refineSubdivisions = grid;
-    o.depthOracle = s.oracle();
-    const VolumeBuildResult v = buildVolume(map, o);
-    ASSERT_TRUE(closedOrientedManifold(v.mesh)) << grid;
-    const int fineSteps = refineSubEdgeSteps(6, grid);
-    const double bound = std::ldexp(texel / grid, -(fineSteps + 1)) + 1e-9;
-    std::size_t onFar = 0;
-    double worst = 0.0;
-    for (const auto& p : v.mesh.positions) {
-      if (std::abs(map.viewDepthOf(p) - map.farPlane) > 1e-9 * map.farPlane) continue;
-      ++onFar;
-      worst = std::max(worst, std::abs(std::hypot(p.x - 0.3, p.z + 0.2) - 1.3));
+  for (bool everywhere : {false, true})
+    for (int grid : {2, 4, 8}) {
+      const std::string what = std::string(everywhere ? "everywhere" : "adaptive") + " grid " + std::to_string(grid);
+      VolumeBuildOptions o;
+      o.refineSteps = 6;
+      o.refineSubdivisions = grid;
+      o.refineGridEverywhere = everywhere;
+      o.depthOracle = s.oracle();
+      const VolumeBuildResult v = buildVolume(map, o);
+      ASSERT_TRUE(closedOrientedManifold(v.mesh)) << what;
+      const int fineSteps = refineSubEdgeSteps(6, grid);
+      const double bound = std::ldexp(texel / grid, -(fineSteps + 1)) + 1e-9;
+      std::size_t onFar = 0;
+      double worst = 0.0;
+      for (const auto& p : v.mesh.positions) {
+        if (std::abs(map.viewDepthOf(p) - map.farPlane) > 1e-9 * map.farPlane) continue;
+        ++onFar;
+        worst = std::max(worst, std::abs(std::hypot(p.x - 0.3, p.z + 0.2) - 1.3));
+      }
+      EXPECT_LE(worst, bound) << what;
+      const std::size_t sampling = v.stats.subgridSamples + std::size_t(fineSteps) * v.stats.subgridBoundaryEdges +
+                                   v.stats.ambiguousCells;
+      if (everywhere) {
+        EXPECT_EQ(v.stats.subgridQuads, v.stats.refinedCells) << what;
+        EXPECT_EQ(onFar, v.stats.subgridFarBoundaryEdges) << what;  // no far texel or virtual node is used
+        EXPECT_GT(v.stats.subgridFarBoundaryEdges, v.stats.boundaryEdges * std::size_t(grid) / 2) << what;
+        EXPECT_EQ(v.stats.raysCast, sampling) << what;
+      } else {
+        EXPECT_LT(v.stats.subgridQuads, v.stats.refinedCells / 2) << what;
+        // The far vertices: the bisected sub-edges' and the plain far crossings that are used.
+        EXPECT_GE(onFar, v.stats.subgridFarBoundaryEdges + 1) << what;
+        EXPECT_LE(onFar, v.stats.subgridFarBoundaryEdges + v.stats.farBoundaryEdges) << what;
+        EXPECT_EQ(v.stats.raysCast, sampling + 6 * v.stats.boundaryEdges) << what;  // the plain crossings first
+      }
     }
-    EXPECT_LE(worst, bound) << "grid " << grid;
-    EXPECT_EQ(onFar, v.stats.subgridFarBoundaryEdges) << "grid " << grid;  // no far texel or virtual node is used
-    EXPECT_GT(v.stats.subgridFarBoundaryEdges, v.stats.boundaryEdges * std::size_t(grid) / 2) << "grid " << grid;
-    EXPECT_EQ(v.stats.raysCast,
-              v.stats.subgridSamples + std::size_t(fineSteps) * v.stats.subgridBoundaryEdges + v.stats.ambiguousCells);
-  }
+}
+
+// An arm thinner than half a texel that reaches from a plate's straight edge into the far side of
+// the edge's quads, covering no texel centre: the plain refined wall runs straight along the plate
+// and cuts the arm off; the adaptive sub-grid finds the arm's samples off that wall's surface, cuts
+// that quad (and leaves the straight edge's others plain), and its walls go round the arm.
+TEST(SubGrid, AdaptiveSubGridFindsAnArmThinnerThanATexel) {
+  // Texel centres (n = 32 over [-4, 4]) at +-(k + 0.5) * 0.25: the plate's edge x = 1.7 lies 0.3
+  // texel past the centre 1.625, the arm x in [1.7, 1.86] stops short of the next one (1.875), z in
+  // [-0.05, 0.05] lies between the centres +-0.125, over the lattice nodes z = 0 (S = 4: x = 1.75,
+  // 1.8125 on the arm).
+  AnalyticScene s;
+  s.boxes.push_back({{0.0, 1.5, 0.0}, {1.7, 0.05, 1.1}, 0.0});
+  s.boxes.push_back({{1.78, 1.5, 0.0}, {0.08, 0.05, 0.05}, 0.0});
+  const Light light = test::directionalDown(6.0);
+  const DepthMap map = s.depthMap(light, 32, 32, CaptureMode::Back);
+  auto farthestWall = [&](const VolumeBuildResult& v) {
+    double x = -1e300;
+    for (const auto& p : v.mesh.positions)
+      if (std::abs(map.viewDepthOf(p) - map.farPlane) <= 1e-9 * map.farPlane && std::abs(p.z) < 0.2) x = std::max(x, p.x);
+    return x;
+  };
+  VolumeBuildOptions o;
+  o.refineSteps = 6;
+  o.depthOracle = s.oracle();
+  const VolumeBuildResult plain = buildVolume(map, o);
+  o.refineSubdivisions = 4;
+  const VolumeBuildResult grid = buildVolume(map, o);
+  ASSERT_TRUE(closedOrientedManifold(plain.mesh));
+  ASSERT_TRUE(closedOrientedManifold(grid.mesh));
+  const double step = std::ldexp(0.25, -7) + 1e-9;  // 2^-(K+1) texel
+  EXPECT_LE(farthestWall(plain), 1.7 + step);         // the straight wall along the plate
+  EXPECT_GE(farthestWall(grid), 1.8125 - 1e-9);        // past the arm's last lattice node
+  EXPECT_LE(farthestWall(grid), 1.86 + step);
+  EXPECT_GE(grid.stats.subgridQuads, 1u);
+  EXPECT_LT(grid.stats.subgridQuads, grid.stats.refinedCells / 2);
 }
 
 // Every option the sub-grid takes, on a sphere and a box over the ground and plates, spot and
@@ -110,8 +164,10 @@ TEST(SubGrid, EveryOptionGivesAClosedOrientedManifold) {
         const DepthMap map = s->depthMap(light, 24, 24, mode);
         for (Triangulation tri : {Triangulation::Fixed, Triangulation::Perfect})
           for (bool blur : {false, true})
-            for (int grid : {2, 4, 8}) {
+            for (int grid : {2, 4, 8})
+              for (bool everywhere : {false, true}) {
               VolumeBuildOptions o;
+              o.refineGridEverywhere = everywhere;
               o.triangulation = tri;
               o.blur = blur;
               o.blurOffset = blur ? 0.01 : 0.0;
@@ -120,14 +176,14 @@ TEST(SubGrid, EveryOptionGivesAClosedOrientedManifold) {
               o.depthOracle = s->oracle();
               if (mode == CaptureMode::Front) o.bias = 0.0;  // keep the ground off the far plane
               const VolumeBuildResult v = buildVolume(map, o);
-              ASSERT_TRUE(closedOrientedManifold(v.mesh))
-                  << toString(mode) << " " << toString(tri) << " blur " << blur << " grid " << grid;
+              ASSERT_TRUE(closedOrientedManifold(v.mesh)) << toString(mode) << " " << toString(tri) << " blur " << blur
+                                                          << " grid " << grid << " everywhere " << everywhere;
               for (const auto& p : v.mesh.positions) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
               ++builds;
               split += v.stats.subgridSplitTriangles;
             }
       }
-  EXPECT_EQ(builds, 2u * 2u * 3u * 12u);
+  EXPECT_EQ(builds, 2u * 2u * 3u * 24u);
   EXPECT_GT(split, builds);  // front capture over the ground: refined quads border unrefined ones
 }
 
@@ -144,7 +200,8 @@ TEST(SubGrid, DeterministicForAnyThreadCount) {
     one = buildVolume(map, o);
   }
   const VolumeBuildResult many = buildVolume(map, o);
-  ASSERT_GT(one.stats.subgridBoundaryEdges, 100u);
+  ASSERT_GT(one.stats.subgridQuads, 5u);
+  ASSERT_LT(one.stats.subgridQuads, one.stats.refinedCells);
   EXPECT_TRUE(test::sameMesh(one.mesh, many.mesh));
 }
 

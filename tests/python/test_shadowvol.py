@@ -103,8 +103,12 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
     assert stats["boundaryEdges"] > 0 and stats["raysCast"] >= 4 * stats["boundaryEdges"]
     assert_closed_oriented(V, F)
     Vg, Fg, grid = sv.build_volume(depth, refine=4, refine_grid=4, scene=scene)
-    assert grid["subgridSamples"] > 0 and grid["subgridBoundaryEdges"] > stats["boundaryEdges"]
+    assert grid["subgridSamples"] > 0 and 0 < grid["subgridQuads"] <= grid["refinedCells"]
     assert_closed_oriented(Vg, Fg)
+    Va, Fa, every = sv.build_volume(depth, refine=4, refine_grid=4, refine_grid_everywhere=True, scene=scene)
+    assert every["subgridQuads"] == every["refinedCells"]
+    assert every["subgridBoundaryEdges"] > stats["boundaryEdges"]
+    assert_closed_oriented(Va, Fa)
 
 
 def test_export_round_trips_through_obj(tmp_path, depth):

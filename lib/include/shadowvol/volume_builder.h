@@ -81,7 +81,12 @@ struct VolumeBuildOptions {
                                 ///< max(1, refineSteps - log2 S) rays per boundary sub-edge (the same
                                 ///< 2^-(K+1) texel); the contour then follows an outline that bends
                                 ///< inside a texel. 1 = off. Not with refineChords, needs flattenCap
-                                ///< (docs/volume.md, "Sub-grid")
+                                ///< (docs/volume.md, "Sub-grid"). Adaptive: a quad whose plain
+                                ///< refinement (two boundary edges, a straight wall) already lies on
+                                ///< the lattice's samples stays plain
+  bool refineGridEverywhere = false; ///< sub-grid only: cut every quad with a boundary edge, not only
+                                ///< those whose plain refinement misses the lattice's samples (for
+                                ///< comparison; more triangles, the same shadow where both agree)
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -127,10 +132,11 @@ struct VolumeBuildStats {
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
                                       ///< edge and per chord point, plus one per ambiguous cell; with the
                                       ///< sub-grid its samples, steps per boundary sub-edge and centres)
+  std::size_t subgridQuads = 0;       ///< sub-grid: refined quads cut into sub-cells (the others stay plain)
   std::size_t subgridSamples = 0;     ///< sub-grid: lattice nodes sampled by the oracle
   std::size_t subgridBoundaryEdges = 0; ///< sub-grid: boundary sub-edges (each with a wall)
   std::size_t subgridFarBoundaryEdges = 0; ///< of which one end is on the far plane
-  std::size_t subgridSplitTriangles = 0; ///< sub-grid: unrefined sheet triangles split at its side nodes
+  std::size_t subgridSplitTriangles = 0; ///< sub-grid: triangles of unrefined and plain refined quads split at its side nodes
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)

@@ -47,6 +47,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"refinedCells", s.refinedCells},
           {"ambiguousCells", s.ambiguousCells},
           {"chordPoints", s.chordPoints},
+          {"subgridQuads", s.subgridQuads},
           {"subgridSamples", s.subgridSamples},
           {"subgridBoundaryEdges", s.subgridBoundaryEdges},
           {"subgridFarBoundaryEdges", s.subgridFarBoundaryEdges},

@@ -23,6 +23,7 @@
 #include "volume/sheet_emit.h"
 #include "volume/sheet_vertices.h"
 #include "volume/subgrid_cells.h"
+#include "volume/unused_vertices.h"
 
 namespace shadowvol {
 
@@ -99,6 +100,9 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (s > 1 && options.refineChords)
     throw InputError("volume options", "refine chords", "true",
                      "chord points and the sub-grid are alternatives: the sub-grid bends the wall at every sub-cell");
+  if (s == 1 && options.refineGridEverywhere)
+    throw InputError("volume options", "refine grid everywhere", "true",
+                     "it chooses where the sub-grid goes: it needs refine subdivisions of 2, 4 or 8");
   if (s > 1 && !options.flattenCap)
     throw InputError("volume options", "flatten cap", "false",
                      "the sub-grid needs the flattened cap (the mirrored cap does not follow its sub-cells)");
@@ -115,17 +119,18 @@ void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
       std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
 }
 
-// Refinement's rays: the boundary edges' crossings (and the ambiguous quads' centre depths), then,
-// with refineChords, the chord points of the quads with two boundary edges; their counts go to
-// `stats`.
+// Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
+// centre depths), then, with refineChords, the chord points of the quads with two boundary edges;
+// their counts go to `stats`.
 void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& edges, const volume::RefinedQuads& quads,
-                        std::span<const double> blurred, const VolumeBuildOptions& options, Refinement& refinement,
-                        volume::ChordPoints& chords, VolumeBuildStats& stats) {
+                        bool centres, std::span<const double> blurred, const VolumeBuildOptions& options,
+                        Refinement& refinement, volume::ChordPoints& chords, VolumeBuildStats& stats) {
   const DepthMap& map = sheet.map();
   refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                   options.refineSteps, quads.centres);
+                                   options.refineSteps, centres ? std::span<const glm::dvec2>(quads.centres)
+                                                                : std::span<const glm::dvec2>());
   countBoundaryEdges(edges, stats);
-  stats.ambiguousCells = quads.centres.size();
+  stats.ambiguousCells = centres ? quads.centres.size() : 0;
   stats.raysCast = refinement.raysCast;
   stats.msRays = refinement.msRays;
   if (!options.refineChords) return;
@@ -138,12 +143,14 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   stats.msRays += budget.ms;
 }
 
-// The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from crossingBase
-// on, with its counts in `stats`. Refuses a lattice too large to hold before building it.
+// The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from firstVertex
+// on, with its counts in `stats` (added to the plain refinement's, when `plain` is given: the
+// adaptive sub-grid). Refuses a lattice too large to hold before building it.
 volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volume::TexelUse& use,
                                   const volume::SheetVertices& vertices, const volume::SheetDepths& sheet,
                                   const BoundaryEdges& edges, const VolumeBuildOptions& options,
-                                  std::uint32_t crossingBase, VolumeBuildStats& stats) {
+                                  std::uint32_t firstVertex, const volume::PlainRefinement* plain,
+                                  VolumeBuildStats& stats) {
   const int s = options.refineSubdivisions;
   const std::uint64_t nodes = std::uint64_t(quads.quads.size()) * std::uint64_t((s + 1) * (s + 1));
   if (nodes > kMaxSubgridNodes)
@@ -158,20 +165,33 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   o.perfect = options.triangulation == Triangulation::Perfect;
   o.exact = options.cap == FarCap::Exact;
   volume::SubgridCells sub =
-      volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, crossingBase);
+      volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, firstVertex, plain);
   // Vertex indices stay below kNone: the sheet, the sub-grid's and one centroid per split side at most.
-  const std::uint64_t total = std::uint64_t(crossingBase) + sub.positions.size() + sub.splits.size();
+  const std::uint64_t total =
+      std::uint64_t(firstVertex) + sub.positions.size() + sub.splits.size() + sub.plainSplits.size();
   if (total >= std::uint64_t(volume::kNone))
     throw InputError("volume options", "refine subdivisions", std::to_string(s),
                      "the volume would have " + std::to_string(total) + " vertices, more than 32-bit indices address");
   countBoundaryEdges(edges, stats);
   stats.ambiguousCells = sub.ambiguousCells;
+  stats.subgridQuads = sub.griddedQuads;
   stats.subgridSamples = sub.samples;
   stats.subgridBoundaryEdges = sub.boundaryEdges;
   stats.subgridFarBoundaryEdges = sub.farBoundaryEdges;
-  stats.raysCast = sub.raysCast;
-  stats.msRays = sub.msRays;
+  stats.raysCast += sub.raysCast;
+  stats.msRays += sub.msRays;
   return sub;
+}
+
+// The refined quads that the adaptive sub-grid left plain (gridded[q] == 0), in quad order.
+volume::RefinedQuads plainQuadsOf(const volume::RefinedQuads& quads, const std::vector<std::uint8_t>& gridded) {
+  volume::RefinedQuads plain;
+  for (std::size_t q = 0; q < quads.quads.size(); ++q) {
+    if (gridded[q]) continue;
+    plain.quads.push_back(quads.quads[q]);
+    plain.sides.push_back(quads.sides[q]);
+  }
+  return plain;  // two boundary sides each: no centres
 }
 
 }  // namespace
@@ -232,6 +252,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const bool exact = options.cap == FarCap::Exact;
   const bool refine = options.refineSteps > 0;
   const bool subgrid = refine && options.refineSubdivisions > 1;
+  const bool adaptive = subgrid && !options.refineGridEverywhere;  // plain refinement where it fits
   const bool perfect = options.triangulation == Triangulation::Perfect;
 
   // 1. Sheet depths: materialised for the blur (computed per row where needed otherwise).
@@ -270,9 +291,9 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // 2r. Refinement: the crossings (the oracle's rays).
   Refinement refinement;
   ChordPoints chords;
-  if (refine && !subgrid) {
+  if (refine && (!subgrid || adaptive)) {
     const auto tr = Clock::now();
-    castRefinementRays(sheet, edges, refinedQuads, blurred, options, refinement, chords, stats);
+    castRefinementRays(sheet, edges, refinedQuads, !subgrid, blurred, options, refinement, chords, stats);
     msRefine += msSince(tr);
   }
   t0 = Clock::now();
@@ -290,11 +311,21 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;
   double msEdges = 0.0;
   SubgridCells sub;
+  RefinedQuads plainQuads;  // the adaptive sub-grid's plain quads
+  const auto subgridBase = adaptive ? chordBase : crossingBase;  // after the plain crossings, if any
   if (subgrid) {
     const auto tc = Clock::now();
-    sub = subgridCells(refinedQuads, use, vertices, sheet, edges, options, crossingBase, stats);
-    cells.triangles = std::move(sub.triangles);
-    boundary.edges = std::move(sub.capEdges);
+    const PlainRefinement plain{edges, refinement, crossingBase};
+    sub = subgridCells(refinedQuads, use, vertices, sheet, edges, options, subgridBase, adaptive ? &plain : nullptr,
+                       stats);
+    if (adaptive) {
+      plainQuads = plainQuadsOf(refinedQuads, sub.gridded);
+      cells = triangulateRefinedCells(plainQuads, use, vertices, sheet, edges, refinement, nullptr, perfect, exact,
+                                      crossingBase, chordBase);
+      boundary.edges = std::move(cells.capEdges);
+    }
+    cells.triangles.insert(cells.triangles.end(), sub.triangles.begin(), sub.triangles.end());
+    boundary.edges.insert(boundary.edges.end(), sub.capEdges.begin(), sub.capEdges.end());
     msRefine += msSince(tc);
   } else if (refine) {
     const auto tc = Clock::now();
@@ -327,7 +358,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
   const std::uint64_t triangles = sheetTriangles + cells.triangles.size();
   if (subgrid)
-    sizeBuffer(mesh.positions, vertices.count() + sub.positions.size(), vertices.count() + sub.positions.size() + sub.splits.size());
+    sizeBuffer(mesh.positions, subgridBase + sub.positions.size(),
+               subgridBase + sub.positions.size() + sub.splits.size() + sub.plainSplits.size());
   else
     sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size() + 2 * chords.segments.size());
   sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
@@ -341,13 +373,20 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   if (refine) {
     const auto tc = Clock::now();
     if (subgrid)
-      std::copy(sub.positions.begin(), sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(crossingBase));
-    else
+      std::copy(sub.positions.begin(), sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(subgridBase));
+    if (!subgrid || adaptive)
       emitCrossingVertices(map, edges, refinement, chordPoints, crossingBase, chordBase, mesh);
     std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
     if (subgrid) {  // one centroid vertex per split triangle
-      splitSheetTriangles(sub.splits, scratch_->quadTri, mesh);
-      stats.subgridSplitTriangles = mesh.positions.size() - (vertices.count() + sub.positions.size());
+      const volume::Scratch<std::uint32_t>& quadTri = scratch_->quadTri;
+      splitQuadTriangles(sub.splits, [&](std::uint32_t quad) { return QuadSlots{quadTri[quad], 2}; }, mesh);
+      splitQuadTriangles(sub.plainSplits, [&](std::uint32_t quad) {
+        const auto p = std::size_t(std::lower_bound(plainQuads.quads.begin(), plainQuads.quads.end(), quad) -
+                                   plainQuads.quads.begin());
+        SV_CHECK(p < plainQuads.quads.size() && plainQuads.quads[p] == quad);
+        return QuadSlots{sheetTriangles + cells.firstTriangle[p], cells.firstTriangle[p + 1] - cells.firstTriangle[p]};
+      }, mesh);
+      stats.subgridSplitTriangles = mesh.positions.size() - (subgridBase + sub.positions.size());
     }
     msRefine += msSince(tc);
   } else {
@@ -358,7 +397,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
 
   // 6. The far cap.
   t0 = Clock::now();
-  stats.capTrianglesBefore = sheetTriangles + (subgrid ? sub.footprintTriangles : cells.footprint.size());
+  stats.capTrianglesBefore = sheetTriangles + cells.footprint.size() + sub.footprintTriangles;
   if (flatCap) {
     capTask.wait();
     appendFlatCap(cap, mesh);
@@ -369,6 +408,11 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
                                                 refine ? &footprint : nullptr, mesh);
   }
   stats.msCap = msSince(t0) + msEdges + msCapTask;  // the cap's own work, partly run during the sheet
+  if (adaptive) {  // the plain crossings of edges between two gridded quads
+    const auto tc = Clock::now();
+    dropUnusedVertices(mesh, crossingBase);
+    stats.msRefine += msSince(tc);
+  }
   stats.msTotal = msSince(tStart);
 }
 

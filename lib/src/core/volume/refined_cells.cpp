@@ -49,17 +49,21 @@ RefinedQuads findRefinedQuads(const BoundaryEdges& boundary, int width, int heig
 
 namespace {
 
-// The loop of one refined quad: its corners A B C D, and for each boundary side k its crossing's
-// vertices on corner k's side (a[k]) and corner k + 1's side (b[k]).
-struct Cell {
-  CellVertex corners[4], a[4], b[4];
-};
+// The boundary sides of a quad, in order; returns their number.
+int splitSides(std::uint8_t sides, int* split) {
+  int n = 0;
+  for (int k = 0; k < 4; ++k)
+    if (sides >> k & 1) split[n++] = k;
+  return n;
+}
 
-// Fills the cell of quad (qi, qj) whose boundary sides are `sides`. Vertex ids come from idx[0]
-// and idx[1] (the vertex numbers of texel rows qj and qj + 1) when given.
+double cross2(const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; }
+
+}  // namespace
+
 void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, const BoundaryEdges& boundary,
                   const Refinement& refinement, const TexelUnprojector& unproject, const std::uint32_t* const* idx,
-                  std::uint32_t crossingBase, Cell& cell) {
+                  std::uint32_t crossingBase, RefinedCell& cell) {
   const int w = sheet.map().width;
   const double farPlane = sheet.rule().farPlane;
   for (int k = 0; k < 4; ++k) {
@@ -93,17 +97,6 @@ void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, 
   }
 }
 
-// The boundary sides of a quad, in order; returns their number.
-int splitSides(std::uint8_t sides, int* split) {
-  int n = 0;
-  for (int k = 0; k < 4; ++k)
-    if (sides >> k & 1) split[n++] = k;
-  return n;
-}
-
-double cross2(const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; }
-
-}  // namespace
 
 ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet, const BoundaryEdges& boundary,
                             const Refinement& refinement) {
@@ -116,7 +109,7 @@ ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet,
     int split[4];
     if (splitSides(quads.sides[q], split) != 2) continue;
     const int qi = int(quads.quads[q] % std::uint32_t(qw)), qj = int(quads.quads[q] / std::uint32_t(qw));
-    Cell cell;
+    RefinedCell cell;
     assembleCell(qi, qj, quads.sides[q], sheet, boundary, refinement, unproject, nullptr, 0, cell);
     const int s0 = split[0], s1 = split[1];
     const glm::dvec2 x = cell.a[s0].texel, y = cell.a[s1].texel, mid = 0.5 * (x + y);
@@ -170,6 +163,7 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
     std::vector<Tri> triangles;
     std::vector<CapEdge> capEdges;
     std::vector<std::array<CapPoint, 3>> footprint;
+    std::vector<std::uint32_t> perQuad;  // kept triangles of each of the row's quads
   };
   std::vector<RowOut> rows(qh);
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 4), [&](const tbb::blocked_range<int>& range) {
@@ -186,7 +180,7 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
       RowOut& out = rows[qj];
       for (std::size_t q = rowStart[qj]; q < rowStart[qj + 1]; ++q) {
         const int qi = int(quads.quads[q] % std::uint32_t(qw));
-        Cell cell;
+        RefinedCell cell;
         assembleCell(qi, qj, quads.sides[q], sheet, boundary, refinement, unproject, rowsIdx, crossingBase, cell);
         const bool ambiguous = std::popcount(unsigned(quads.sides[q])) >= 3;
         const double centre = ambiguous ? refinement.centreDepths[centreOf[q]] : farPlane;
@@ -206,12 +200,17 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
         CellTriangulator(perfect, tris)
             .run(cell.corners, cell.a, cell.b, quads.sides[q], centre, farPlane, k != ChordPoints::kNone ? &mNear : nullptr,
                  k != ChordPoints::kNone ? &mFar : nullptr);
+        const std::size_t before = out.triangles.size();
         keepCellTriangles(tris, exact, out.triangles, out.capEdges, &out.footprint);
+        out.perQuad.push_back(std::uint32_t(out.triangles.size() - before));
       }
     }
   });
   RefinedCells result;
+  result.firstTriangle.reserve(quads.quads.size() + 1);
+  result.firstTriangle.push_back(0);
   for (RowOut& row : rows) {
+    for (std::uint32_t n : row.perQuad) result.firstTriangle.push_back(result.firstTriangle.back() + n);
     result.triangles.insert(result.triangles.end(), row.triangles.begin(), row.triangles.end());
     result.capEdges.insert(result.capEdges.end(), row.capEdges.begin(), row.capEdges.end());
     result.footprint.insert(result.footprint.end(), row.footprint.begin(), row.footprint.end());

@@ -35,6 +35,7 @@
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/volume_mesh.h"
 #include "volume/cell_triangulator.h"
+#include "volume/grid_unprojector.h"
 #include "volume/sheet_depths.h"
 #include "volume/sheet_vertices.h"
 
@@ -51,10 +52,23 @@ RefinedQuads findRefinedQuads(const BoundaryEdges& edges, int width, int height)
 
 struct RefinedCells {
   std::vector<Tri> triangles;                     ///< kept triangles, in quad order
+  std::vector<std::uint32_t> firstTriangle;       ///< per quad: its first triangle; one more entry at the end
   std::vector<CapEdge> capEdges;                  ///< the far cap's boundary edges, in quad order
   std::vector<std::array<CapPoint, 3>> footprint; ///< triangles that are not walls (counter-clockwise
                                                   ///< in texel space): what the mirrored cap mirrors
 };
+
+/// The loop of one refined quad: its corners A B C D, and for each boundary side k its crossing's
+/// vertices on corner k's side (a[k]) and corner k + 1's side (b[k]).
+struct RefinedCell {
+  CellVertex corners[4], a[4], b[4];
+};
+
+/// Fills the cell of quad (qi, qj) whose boundary sides are `sides`. Vertex ids come from idx[0]
+/// and idx[1] (the vertex numbers of texel rows qj and qj + 1) when given, else they are kNone.
+void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, const BoundaryEdges& boundary,
+                  const Refinement& refinement, const TexelUnprojector& unproject, const std::uint32_t* const* idx,
+                  std::uint32_t crossingBase, RefinedCell& cell);
 
 /// The vertex indices of crossing (or chord point) e: base + 2 e (near vertex), base + 2 e + 1 (far).
 inline std::uint32_t nearVertex(std::uint32_t base, std::size_t e) { return base + 2u * std::uint32_t(e); }

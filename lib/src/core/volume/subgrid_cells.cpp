@@ -1,6 +1,7 @@
 #include "volume/subgrid_cells.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 
@@ -35,6 +36,14 @@ struct FineEdge {
   std::uint8_t axis = 0;
   bool boundary = false, surface = false, nearAtP = false;
   std::uint32_t crossing = kNone;  // index among the boundary sub-edges
+  std::uint32_t preset = kNone;    // a plain quad's crossing on it: index into presets_
+};
+
+// A sub-edge on a side towards a plain refined quad that holds that side's crossing (adaptive).
+struct PresetCrossing {
+  std::uint32_t edge = 0;      // the FineEdge
+  std::size_t plainEdge = 0;   // the texel grid's boundary edge
+  bool nearAtP = false;        // the FineEdge's p end is on the near side
 };
 
 // A sub-cell: its corner nodes A B C D and its side edges 0..3 (A->B, B->C, C->D, D->A).
@@ -54,16 +63,25 @@ double depthAlongEdge(double d0, double d1, double f, bool perspective) {
 class SubgridBuilder {
  public:
   SubgridBuilder(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices, const SheetDepths& sheet,
-                 const DepthOracle& oracle, const SubgridOptions& options, std::uint32_t firstVertex)
+                 const DepthOracle& oracle, const SubgridOptions& options, std::uint32_t firstVertex,
+                 const PlainRefinement* plain)
       : quads_(quads), use_(use), vertices_(vertices), sheet_(sheet), map_(sheet.map()), oracle_(oracle),
         o_(options), s_(options.subdivisions), n1_(options.subdivisions + 1), farPlane_(sheet.rule().farPlane),
-        unproject_(sheet.map()), firstVertex_(firstVertex), rowIds_(std::size_t(sheet.map().height)) {}
+        perspective_(sheet.map().lightProjection[2][3] != 0.0), unproject_(sheet.map()), firstVertex_(firstVertex),
+        plain_(plain), rowIds_(std::size_t(sheet.map().height)) {}
 
   SubgridCells run() {
     collectNodes();
     sampleNodes();
+    out_.gridded.assign(quadCount(), 1);
+    if (plain_) {
+      chooseGriddedQuads();
+      presetPlainSides();
+    }
+    out_.griddedQuads = std::size_t(std::count(out_.gridded.begin(), out_.gridded.end(), 1));
     collectEdgesAndCells();
     classifyEdges();
+    applyPresets();
     keepSubCellsUnfolded();
     numberNodeVertices();
     bisect();
@@ -86,9 +104,16 @@ class SubgridBuilder {
   // The index in quads_ of quad (qi, qj), or kNone when it is not refined (or off the grid).
   std::uint32_t refinedIndex(int qi, int qj) const {
     if (qi < 0 || qj < 0 || qi >= qw() || qj >= map_.height - 1) return kNone;
+    if (!(use_.grid().at(qi, qj) & kRefined)) return kNone;  // the quad codes know, without a search
     const std::uint32_t quad = std::uint32_t(qj) * std::uint32_t(qw()) + std::uint32_t(qi);
     const auto it = std::lower_bound(quads_.quads.begin(), quads_.quads.end(), quad);
     return (it != quads_.quads.end() && *it == quad) ? std::uint32_t(it - quads_.quads.begin()) : kNone;
+  }
+
+  // The index of quad (qi, qj) when it is on the sub-grid, else kNone.
+  std::uint32_t griddedIndex(int qi, int qj) const {
+    const std::uint32_t g = refinedIndex(qi, qj);
+    return (g != kNone && out_.gridded[g]) ? g : kNone;
   }
 
   // The lattice node at (fi, fj) (S per texel), or kNone where no refined quad holds it.
@@ -165,18 +190,21 @@ class SubgridBuilder {
       n.sampled = true;
       return n;
     }
-    // A virtual node: on side k, at fraction f from corner k to corner k + 1.
-    const double f = (k == 0 ? a : k == 1 ? b : k == 2 ? s_ - a : s_ - b) / double(s_);
+    setOnContinuousSide(qi, qj, k, (k == 0 ? a : k == 1 ? b : k == 2 ? s_ - a : s_ - b) / double(s_), n);
+    return n;
+  }
+
+  // Makes n a virtual node on continuous side k of quad (qi, qj), at fraction f from corner k to
+  // corner k + 1: on the sheet triangle's edge between them.
+  void setOnContinuousSide(int qi, int qj, int k, double f, Node& n) const {
     const int i0 = qi + kCornerDi[k], j0 = qj + kCornerDj[k];
     const int i1 = qi + kCornerDi[(k + 1) % 4], j1 = qj + kCornerDj[(k + 1) % 4];
     const double d0 = sheet_.at(i0, j0), d1 = sheet_.at(i1, j1);
     SV_CHECK_EQ(d0 == farPlane_, d1 == farPlane_);  // a continuous side (see the header comment)
-    n.virt = true;
+    n.virt = true, n.sampled = false;
     n.far = d0 == farPlane_;
-    const bool perspective = map_.lightProjection[2][3] != 0.0;
-    n.depth = n.far ? farPlane_ : depthAlongEdge(d0, d1, f, perspective);
-    n.rule = n.far ? farPlane_ : depthAlongEdge(unblurred(i0, j0, d0), unblurred(i1, j1, d1), f, perspective);
-    return n;
+    n.depth = n.far ? farPlane_ : depthAlongEdge(d0, d1, f, perspective_);
+    n.rule = n.far ? farPlane_ : depthAlongEdge(unblurred(i0, j0, d0), unblurred(i1, j1, d1), f, perspective_);
   }
 
   // A texel's depth for the discontinuity rule: its own sample's sheet depth (SheetDepthRule::
@@ -224,15 +252,206 @@ class SubgridBuilder {
     return std::uint32_t(edges_.size() - 1);
   }
 
-  // The sub-edges (a side's shared with a refined quad of lower index are that quad's) and sub-cells.
+  // Side k's node m (0 at corner k, S at corner k + 1): (m, 0), (S, m), (S - m, S), (0, S - m).
+  std::uint32_t sideNode(std::size_t g, int k, int m) const {
+    return k == 0 ? node(g, m, 0) : k == 1 ? node(g, s_, m) : k == 2 ? node(g, s_ - m, s_) : node(g, 0, s_ - m);
+  }
+  // Side k's sub-edge between its nodes m and m + 1 (its p end is node m on sides 0 and 1).
+  std::uint32_t sideSubEdge(std::size_t g, int k, int m) {
+    return k == 0 ? hEdge(g, m, 0) : k == 1 ? vEdge(g, s_, m) : k == 2 ? hEdge(g, s_ - m - 1, s_) : vEdge(g, 0, s_ - m - 1);
+  }
+  int quadI(std::size_t g) const { return int(quads_.quads[g] % std::uint32_t(qw())); }
+  int quadJ(std::size_t g) const { return int(quads_.quads[g] / std::uint32_t(qw())); }
+
+  // The plain crossing on boundary side k of quad g: its boundary edge, its fraction along the side
+  // from corner k, whether corner k is on the near side, and the side's sub-edge that holds it.
+  struct SideCrossing {
+    std::size_t edge = 0;
+    double f = 0.5;
+    bool cornerNear = false;
+    int sub = 0;
+  };
+  SideCrossing sideCrossing(std::size_t g, int k) const {
+    const int qi = quadI(g), qj = quadJ(g);
+    const SideEdge side = sideEdge(qi, qj, k);
+    const std::size_t e = plain_->edges.find(side.i, side.j, side.axis);
+    SV_CHECK_LT(e, plain_->edges.edges.size());
+    const BoundaryEdge& edge = plain_->edges.edges[e];
+    const glm::dvec2 t = Crossing::texel(edge, plain_->refinement.crossings[e].s);
+    const double f = k == 0 ? t.x - qi : k == 1 ? t.y - qj : k == 2 ? qi + 1 - t.x : qj + 1 - t.y;
+    return {e, f, side.forward == edge.nearAtP, std::clamp(int(std::floor(f * s_)), 0, s_ - 1)};
+  }
+
+  // The adaptive choice: quad g stays plain when it has two boundary sides, neither crossing lies on
+  // a lattice node, and every node the oracle sampled on its sides and inside it lies on the surface
+  // of its plain triangulation (onPlainSurface); a node that does not puts every quad holding it on
+  // the sub-grid, so that a side between a plain and a gridded quad agrees with the plain one.
+  void chooseGriddedQuads() {
+    const TexelFootprint footprint = TexelFootprint::of(map_);
+    std::vector<std::vector<std::uint32_t>> offSurface(quadCount());
+    std::vector<std::uint8_t> forced(quadCount(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, quadCount(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      RefinedCell cell;
+      std::vector<LocalTri> tris;
+      for (std::size_t g = r.begin(); g != r.end(); ++g) {
+        const std::uint8_t sides = quads_.sides[g];
+        if (std::popcount(unsigned(sides)) != 2 || crossingOnNode(g)) {
+          forced[g] = 1;
+          continue;
+        }
+        assembleCell(quadI(g), quadJ(g), sides, sheet_, plain_->edges, plain_->refinement, unproject_, nullptr, 0, cell);
+        tris.clear();
+        CellTriangulator(o_.perfect, tris).run(cell.corners, cell.a, cell.b, sides, farPlane_, farPlane_);
+        for (int b = 0; b <= s_; ++b)
+          for (int a = 0; a <= s_; ++a) {
+            const std::uint32_t k = node(g, a, b);
+            if (nodes_[k].sampled && !onPlainSurface(tris, nodes_[k], footprint)) offSurface[g].push_back(k);
+          }
+      }
+    });
+    std::vector<std::uint8_t> off(nodes_.size(), 0);
+    for (const std::vector<std::uint32_t>& list : offSurface)
+      for (std::uint32_t k : list) off[k] = 1;
+    for (std::size_t g = 0; g < quadCount(); ++g) {
+      bool any = forced[g] != 0;
+      for (std::size_t k = 0; k < n1_ * n1_ && !any; ++k) any = off[quadNodes_[g * n1_ * n1_ + k]] != 0;
+      out_.gridded[g] = any ? 1 : 0;
+    }
+    keepPresetSurfaceCornersApart();
+  }
+
+  // Whether a crossing on one of quad g's boundary sides lies on a lattice node (possible when K <
+  // log2 S), where the side's nodes could not be put on one side of it.
+  bool crossingOnNode(std::size_t g) const {
+    for (int k = 0; k < 4; ++k) {
+      if (!(quads_.sides[g] >> k & 1)) continue;
+      const double x = sideCrossing(g, k).f * s_;
+      if (std::abs(x - std::round(x)) < 1e-9) return true;
+    }
+    return false;
+  }
+
+  // A gridded quad's sub-cell at a corner between two boundary sides towards plain quads could hold
+  // two preset surface crossings whose wall would fold (keepSubCellsUnfolded cannot make preset
+  // sub-edges continuous): the plain quads across such sides go on the sub-grid too, until none is left.
+  void keepPresetSurfaceCornersApart() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (std::size_t g = 0; g < quadCount(); ++g) {
+        if (!out_.gridded[g]) continue;
+        for (int k = 0; k < 4; ++k) {
+          const int k2 = (k + 1) % 4;
+          const std::uint32_t h = plainNeighbour(g, k), h2 = plainNeighbour(g, k2);
+          if (h == kNone || h2 == kNone || !surfaceSide(g, k) || !surfaceSide(g, k2)) continue;
+          out_.gridded[h] = out_.gridded[h2] = 1;
+          changed = true;
+        }
+      }
+    }
+  }
+
+  // The plain refined quad across side k of quad g, or kNone.
+  std::uint32_t plainNeighbour(std::size_t g, int k) const {
+    const std::uint32_t h = refinedIndex(quadI(g) + kSideDqi[k], quadJ(g) + kSideDqj[k]);
+    return (h != kNone && !out_.gridded[h]) ? h : kNone;
+  }
+  bool surfaceSide(std::size_t g, int k) const {
+    if (!(quads_.sides[g] >> k & 1)) return false;
+    return plain_->edges.edges[sideCrossing(g, k).edge].surface;
+  }
+
+  // Whether node n lies on the surface of a plain quad's triangles `tris`: far where a footprint
+  // triangle holding it is far, else within kPlainQuadFootprints footprints of its depth there.
+  bool onPlainSurface(const std::vector<LocalTri>& tris, const Node& n, const TexelFootprint& footprint) const {
+    auto cross2 = [](const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; };
+    for (const LocalTri& t : tris) {
+      if (!t.footprint) continue;
+      const glm::dvec2 p0 = t.v[0]->texel, e1 = t.v[1]->texel - p0, e2 = t.v[2]->texel - p0;
+      const double area = cross2(e1, e2);
+      if (area == 0.0) continue;
+      const double l1 = cross2(n.texel - p0, e2) / area, l2 = cross2(e1, n.texel - p0) / area, l0 = 1.0 - l1 - l2;
+      constexpr double kInside = -1e-9;
+      if (l0 < kInside || l1 < kInside || l2 < kInside) continue;
+      const int farCount = int(t.v[0]->far) + int(t.v[1]->far) + int(t.v[2]->far);
+      if (farCount == 3 && n.far) return true;
+      if (farCount != 0 || n.far) continue;
+      const double d0 = t.v[0]->depth, d1 = t.v[1]->depth, d2 = t.v[2]->depth;
+      const double depth = perspective_ ? 1.0 / (l0 / d0 + l1 / d1 + l2 / d2) : l0 * d0 + l1 * d1 + l2 * d2;
+      if (std::abs(n.depth - depth) <= kPlainQuadFootprints * footprint.at(std::min(depth, n.depth))) return true;
+    }
+    return false;
+  }
+
+  // The nodes of every side between a gridded quad and a plain refined one are put on the plain
+  // quad's boundary (no ray), and the sub-edge holding a boundary side's crossing takes that
+  // crossing (applyPresets), so that both quads share every vertex of the side.
+  void presetPlainSides() {
+    for (std::size_t g = 0; g < quadCount(); ++g) {
+      if (!out_.gridded[g]) continue;
+      const int qi = quadI(g), qj = quadJ(g);
+      for (int k = 0; k < 4; ++k) {
+        if (plainNeighbour(g, k) == kNone) continue;
+        const bool boundary = quads_.sides[g] >> k & 1;
+        SideCrossing x;
+        if (boundary) {
+          x = sideCrossing(g, k);
+          pending_.push_back({std::uint32_t(g), std::uint8_t(k), x});
+        }
+        for (int m = 1; m < s_; ++m) {
+          Node& n = nodes_[sideNode(g, k, m)];
+          if (boundary) setOnBoundarySide(qi, qj, k, double(m) / s_, x, n);
+          else setOnContinuousSide(qi, qj, k, double(m) / s_, n);
+          n.lv = unproject_.lightViewPoint(n.texel.x, n.texel.y, n.depth);
+        }
+      }
+    }
+  }
+
+  // Makes n a virtual node on boundary side k of quad (qi, qj), at fraction f from corner k, on the
+  // plain quad's boundary: between the corner and the crossing's vertex on its side.
+  void setOnBoundarySide(int qi, int qj, int k, double f, const SideCrossing& x, Node& n) const {
+    const Crossing& c = plain_->refinement.crossings[x.edge];
+    const bool surface = plain_->edges.edges[x.edge].surface;
+    const bool before = f < x.f;  // on corner k's side of the crossing
+    const int corner = before ? k : (k + 1) % 4;
+    const bool nearSide = before == x.cornerNear;
+    n.virt = true, n.sampled = false;
+    if (!nearSide && !surface) {
+      n.far = true, n.depth = n.rule = farPlane_;
+      return;
+    }
+    const int i = qi + kCornerDi[corner], j = qj + kCornerDj[corner];
+    const double dc = sheet_.at(i, j), rc = unblurred(i, j, dc), dx = nearSide ? c.nearDepth : c.farDepth;
+    SV_CHECK(dc != farPlane_);  // the near side's corner is hit, and so is a surface edge's far one
+    const double t = before ? f / x.f : (f - x.f) / (1.0 - x.f);
+    n.far = false;
+    n.depth = before ? depthAlongEdge(dc, dx, t, perspective_) : depthAlongEdge(dx, dc, t, perspective_);
+    n.rule = before ? depthAlongEdge(rc, dx, t, perspective_) : depthAlongEdge(dx, rc, t, perspective_);
+  }
+
+  // The sub-edges that hold a plain quad's crossing: boundary edges with that crossing.
+  void applyPresets() {
+    for (const Pending& p : pending_) {
+      const std::uint32_t id = sideSubEdge(p.g, p.k, p.x.sub);
+      FineEdge& e = edges_[id];
+      e.boundary = true;
+      e.surface = plain_->edges.edges[p.x.edge].surface;
+      e.nearAtP = (p.k < 2) == p.x.cornerNear;
+      e.preset = std::uint32_t(presets_.size());
+      presets_.push_back({id, p.x.edge, e.nearAtP});
+    }
+  }
+
+  // The sub-edges (a side's shared with a gridded quad of lower index are that quad's) and sub-cells.
   void collectEdgesAndCells() {
     hEdges_.assign(quadCount() * n1_ * s_, kNone);
     vEdges_.assign(quadCount() * n1_ * s_, kNone);
     edges_.reserve(quadCount() * 2 * n1_ * s_);
     cells_.reserve(quadCount() * std::size_t(s_) * std::size_t(s_));
     for (std::size_t g = 0; g < quadCount(); ++g) {
-      const int qi = int(quads_.quads[g] % std::uint32_t(qw())), qj = int(quads_.quads[g] / std::uint32_t(qw()));
-      const std::uint32_t left = refinedIndex(qi - 1, qj), down = refinedIndex(qi, qj - 1);
+      if (!out_.gridded[g]) continue;
+      const int qi = quadI(g), qj = quadJ(g);
+      const std::uint32_t left = griddedIndex(qi - 1, qj), down = griddedIndex(qi, qj - 1);
       for (int b = 0; b <= s_; ++b)
         for (int a = 0; a < s_; ++a)
           hEdge(g, a, b) = (b == 0 && down != kNone) ? hEdge(down, a, s_) : newEdge(node(g, a, b), node(g, a + 1, b), 0);
@@ -294,18 +513,26 @@ class SubgridBuilder {
         if (n != 2 || !edges_[c.edge[split[0]]].surface || !edges_[c.edge[split[1]]].surface) continue;
         auto nearAtStart = [&](int k) { return k < 2 ? edges_[c.edge[k]].nearAtP : !edges_[c.edge[k]].nearAtP; };
         if (nearAtStart(split[0]) != nearAtStart(split[1])) continue;
-        edges_[c.edge[split[0]]].boundary = edges_[c.edge[split[1]]].boundary = false;
-        changed = true;
+        for (int m = 0; m < 2; ++m) {  // a plain quad's crossing stays (keepPresetSurfaceCornersApart)
+          FineEdge& e = edges_[c.edge[split[m]]];
+          if (e.preset != kNone) continue;
+          e.boundary = false;
+          changed = true;
+        }
       }
     }
   }
 
+  // A vertex for every hit node of a gridded quad that has none (the corners keep their sheet vertex).
   void numberNodeVertices() {
+    std::vector<std::uint8_t> used(nodes_.size(), 0);
+    for (const SubCell& c : cells_)
+      for (std::uint32_t k : c.node) used[k] = 1;
     std::uint32_t next = firstVertex_;
     std::vector<std::uint32_t> numbered;
     for (std::uint32_t k = 0; k < nodes_.size(); ++k) {
       Node& n = nodes_[k];
-      if (n.far || n.id != kNone) continue;
+      if (!used[k] || n.far || n.id != kNone) continue;
       n.id = next++;
       numbered.push_back(k);
     }
@@ -323,7 +550,7 @@ class SubgridBuilder {
   void bisect() {
     std::vector<BisectionSegment> segments;
     for (FineEdge& e : edges_) {
-      if (!e.boundary) continue;
+      if (!e.boundary || e.preset != kNone) continue;
       e.crossing = std::uint32_t(segments.size());
       const Node &nearN = nodes_[e.nearAtP ? e.p : e.q], &farN = nodes_[e.nearAtP ? e.q : e.p];
       BisectionSegment g;
@@ -356,7 +583,7 @@ class SubgridBuilder {
     // The crossings' two vertices: texel point, light-view points, world positions.
     const std::size_t base = out_.positions.size();
     out_.positions.resize(base + 2 * segments.size());
-    crossingVertices_.resize(2 * segments.size());
+    crossingVertices_.resize(2 * (segments.size() + presets_.size()));
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
         const glm::dvec2 t = segments[k].nearPoint + crossings_[k].s * (segments[k].farPoint - segments[k].nearPoint);
@@ -371,20 +598,41 @@ class SubgridBuilder {
         }
       }
     });
+    presetCrossingVertices(segments.size());
+  }
+
+  // The plain crossings' two vertices (their own, from the plain numbering), after the `bisected`.
+  void presetCrossingVertices(std::size_t bisected) {
+    for (std::size_t p = 0; p < presets_.size(); ++p) {
+      const std::size_t pe = presets_[p].plainEdge;
+      edges_[presets_[p].edge].crossing = std::uint32_t(bisected + p);
+      const BoundaryEdge& edge = plain_->edges.edges[pe];
+      const Crossing& c = plain_->refinement.crossings[pe];
+      const glm::dvec2 t = Crossing::texel(edge, c.s);
+      for (int side = 0; side < 2; ++side) {
+        CellVertex& v = crossingVertices_[2 * (bisected + p) + std::size_t(side)];
+        v.texel = t;
+        v.depth = side == 0 ? c.nearDepth : c.farDepth;
+        v.id = side == 0 ? nearVertex(plain_->crossingBase, pe) : farVertex(plain_->crossingBase, pe);
+        v.far = side == 1 && !edge.surface;
+        v.lv = unproject_.lightViewPoint(t.x, t.y, v.depth);
+      }
+    }
   }
 
   // The sub-cells' triangles, in blocks of quads in parallel, joined in quad order.
   void triangulate() {
     constexpr std::size_t kBlock = 32;
     const std::size_t cellsPerQuad = std::size_t(s_) * std::size_t(s_);
-    const std::size_t blocks = (quadCount() + kBlock - 1) / kBlock;
+    const std::size_t gridded = cells_.size() / cellsPerQuad;
+    const std::size_t blocks = (gridded + kBlock - 1) / kBlock;
     std::vector<std::vector<Tri>> triangles(blocks);
     std::vector<std::vector<CapEdge>> capEdges(blocks);
     std::vector<std::size_t> footprint(blocks, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       std::vector<LocalTri> tris;
       for (std::size_t block = r.begin(); block != r.end(); ++block) {
-        const std::size_t end = std::min(quadCount(), (block + 1) * kBlock) * cellsPerQuad;
+        const std::size_t end = std::min(gridded, (block + 1) * kBlock) * cellsPerQuad;
         for (std::size_t k = block * kBlock * cellsPerQuad; k < end; ++k) {
           footprint[block] += triangulateCell(k, tris, triangles[block], capEdges[block]);
         }
@@ -444,13 +692,18 @@ class SubgridBuilder {
     }
   }
 
-  // The sides with virtual nodes on hit corners: what splitSheetTriangles splits.
+  // The sides with virtual nodes on hit corners: what splitQuadTriangles splits.
   void collectSplits() {
     for (std::size_t g = 0; g < quadCount(); ++g) {
-      const int qi = int(quads_.quads[g] % std::uint32_t(qw())), qj = int(quads_.quads[g] / std::uint32_t(qw()));
+      if (!out_.gridded[g]) continue;
+      const int qi = quadI(g), qj = quadJ(g);
       for (int k = 0; k < 4; ++k) {
         const int ni = qi + kSideDqi[k], nj = qj + kSideDqj[k];
-        if (use_.grid().at(ni, nj) & kRefined) continue;
+        if (use_.grid().at(ni, nj) & kRefined) {
+          if (plainNeighbour(g, k) != kNone)
+            collectPlainSplits(g, k, std::uint32_t(nj) * std::uint32_t(qw()) + std::uint32_t(ni));
+          continue;
+        }
         // Side k's nodes from corner k to corner k + 1: (m, 0), (S, m), (S - m, S), (0, S - m).
         auto sideNode = [&](int m) -> const Node& {
           const int a = k == 0 ? m : k == 1 ? s_ : k == 2 ? s_ - m : 0;
@@ -466,8 +719,27 @@ class SubgridBuilder {
         out_.splits.push_back(std::move(split));
       }
     }
-    std::stable_sort(out_.splits.begin(), out_.splits.end(),
-                     [](const SideSplit& x, const SideSplit& y) { return x.quad < y.quad; });
+    auto byQuad = [](const SideSplit& x, const SideSplit& y) { return x.quad < y.quad; };
+    std::stable_sort(out_.splits.begin(), out_.splits.end(), byQuad);
+    std::stable_sort(out_.plainSplits.begin(), out_.plainSplits.end(), byQuad);
+  }
+
+  // The split sides of plain quad `quad` across side k of gridded quad g: the whole side when it is
+  // continuous, else corner to crossing and crossing to corner; far pieces have no vertex to split.
+  void collectPlainSplits(std::size_t g, int k, std::uint32_t quad) {
+    auto piece = [&](std::uint32_t from, std::uint32_t to, int m0, int m1) {
+      if (m0 > m1 || nodes_[sideNode(g, k, m0)].far) return;
+      SideSplit split;
+      split.quad = quad, split.from = from, split.to = to;
+      for (int m = m0; m <= m1; ++m) split.points.push_back(nodes_[sideNode(g, k, m)].id);
+      out_.plainSplits.push_back(std::move(split));
+    };
+    const std::uint32_t c0 = nodes_[sideNode(g, k, 0)].id, c1 = nodes_[sideNode(g, k, s_)].id;
+    if (!(quads_.sides[g] >> k & 1)) return piece(c0, c1, 1, s_ - 1);
+    const SideCrossing x = sideCrossing(g, k);
+    const std::uint32_t nearId = nearVertex(plain_->crossingBase, x.edge), farId = farVertex(plain_->crossingBase, x.edge);
+    piece(c0, x.cornerNear ? nearId : farId, 1, x.sub);
+    piece(x.cornerNear ? farId : nearId, c1, x.sub + 1, s_ - 1);
   }
 
   const RefinedQuads& quads_;
@@ -480,8 +752,10 @@ class SubgridBuilder {
   const int s_;
   const std::size_t n1_;  // S + 1
   const double farPlane_;
+  const bool perspective_;  // a spot light: 1 / depth is linear in texel space
   const TexelUnprojector unproject_;
   const std::uint32_t firstVertex_;
+  const PlainRefinement* plain_;  // the adaptive choice's plain refinement, or null
   std::uint32_t crossingBase_ = 0;
   std::vector<std::vector<std::uint32_t>> rowIds_;
   std::vector<std::uint8_t> used_;
@@ -494,6 +768,13 @@ class SubgridBuilder {
   std::vector<CellVertex> crossingVertices_;  // per boundary sub-edge: near, far
   std::vector<double> centreDepths_;
   std::vector<Crossing> crossings_;
+  struct Pending {  // a preset found before the sub-edges exist
+    std::uint32_t g;
+    std::uint8_t k;
+    SideCrossing x;
+  };
+  std::vector<Pending> pending_;
+  std::vector<PresetCrossing> presets_;
   SubgridCells out_;
 };
 
@@ -501,21 +782,22 @@ class SubgridBuilder {
 
 SubgridCells buildSubgridCells(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices,
                                const SheetDepths& sheet, const DepthOracle& oracle, const SubgridOptions& options,
-                               std::uint32_t firstVertex) {
+                               std::uint32_t firstVertex, const PlainRefinement* plain) {
   SV_CHECK_GE(options.subdivisions, 2);
   SV_CHECK_GE(options.steps, 1);
-  return SubgridBuilder(quads, use, vertices, sheet, oracle, options, firstVertex).run();
+  return SubgridBuilder(quads, use, vertices, sheet, oracle, options, firstVertex, plain).run();
 }
 
-void splitSheetTriangles(const std::vector<SideSplit>& splits, const Scratch<std::uint32_t>& quadTri,
-                         VolumeMesh& mesh) {
+void splitQuadTriangles(const std::vector<SideSplit>& splits, const std::function<QuadSlots(std::uint32_t)>& slotsOf,
+                        VolumeMesh& mesh) {
   std::vector<std::uint32_t> polygon;
   for (std::size_t g = 0; g < splits.size();) {
     std::size_t end = g;
     while (end < splits.size() && splits[end].quad == splits[g].quad) ++end;
     std::size_t applied = 0;
-    for (std::uint32_t t = 0; t < 2; ++t) {  // an unrefined quad next to a refined one keeps both triangles
-      const std::size_t slot = quadTri[splits[g].quad] + t;
+    const QuadSlots slots = slotsOf(splits[g].quad);
+    for (std::size_t t = 0; t < slots.count; ++t) {
+      const std::size_t slot = slots.first + t;
       const Tri tri = mesh.triangles[slot];
       polygon.clear();
       for (int m = 0; m < 3; ++m) {

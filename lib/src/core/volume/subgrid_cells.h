@@ -26,9 +26,30 @@
 // sub-edges just inside a rim are split as surface edges (harmless, as boundary_edges.h says). Folds are prevented as for the
 // texel grid (boundary_edges.h, keepWallsUnfolded), per sub-cell. Bisection takes `steps` rays per
 // boundary sub-edge, and ambiguous sub-cells (3 or 4 boundary sides) one ray at their centre.
+//
+// Adaptive (the default; `plain` given): most refined quads along a smooth outline gain nothing
+// from the sub-grid but its triangles. The lattice is laid and sampled over every refined quad as
+// above, and a quad stays plain (refined_cells.h: one straight wall between its two crossings)
+// when it has exactly two boundary sides, neither crossing lies on a lattice node, and every
+// sampled node on its sides and inside it lies on its plain triangulation's surface: far where that
+// is far, else within kPlainQuadFootprints texel footprints of its depth (perspective-correct
+// interpolation in the footprint triangle holding the node). Two footprints is the discontinuity
+// rule's floor (boundary_edges.h, kJumpFootprints): a smooth rim's curvature moves the depth by
+// less than that within a texel, a fold or a receiver seen past an outline by more (on the default
+// scene at 256^2 one footprint grids 68 % of the refined quads, two 15 %). A node
+// off the surface puts every quad holding it on the sub-grid, so on a side between a plain and a
+// gridded quad every sample agreed with the plain quad; its nodes are then put on the plain quad's
+// boundary without a ray (between a corner and the crossing's vertex on its side, interpolated as
+// the projection does), its sub-edge holding the crossing takes the plain crossing and its
+// vertices, and the plain quad's triangle on each piece of the side is split at the nodes
+// (splitQuadTriangles), as an unrefined neighbour's is. keepSubCellsUnfolded never clears such a
+// preset sub-edge; where a gridded quad has two surface boundary sides towards plain quads (whose
+// presets could meet in its corner sub-cell) both plain quads go on the sub-grid. The plain
+// crossings of edges between two gridded quads are not used (dropUnusedVertices).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -43,6 +64,19 @@
 
 namespace shadowvol::volume {
 
+/// How far a sampled lattice node's depth may lie from the plain refined quad's surface there for
+/// the adaptive sub-grid to keep that quad plain, in texel footprints (TexelFootprint) at that depth
+/// (the header comment says why 2).
+inline constexpr double kPlainQuadFootprints = 2.0;
+
+/// The plain refinement of the same quads, for the adaptive sub-grid: the texel grid's boundary
+/// edges and their crossings (vertices numbered from crossingBase, as refined_cells.h numbers them).
+struct PlainRefinement {
+  const BoundaryEdges& edges;
+  const Refinement& refinement;
+  std::uint32_t crossingBase = 0;
+};
+
 struct SubgridOptions {
   int subdivisions = 4;  ///< S, a power of two >= 2
   int steps = 4;         ///< bisection rays per boundary sub-edge
@@ -54,7 +88,7 @@ struct SubgridOptions {
 /// One side of an unrefined quad that carries virtual nodes: its corner vertices and the nodes'
 /// vertices from `from` to `to`.
 struct SideSplit {
-  std::uint32_t quad = 0;  ///< the unrefined quad's index qj * (W - 1) + qi
+  std::uint32_t quad = 0;  ///< the unrefined (or plain refined) quad's index qj * (W - 1) + qi
   std::uint32_t from = 0, to = 0;
   std::vector<std::uint32_t> points;
 };
@@ -64,6 +98,9 @@ struct SubgridCells {
   std::vector<CapEdge> capEdges;         ///< the far cap's boundary edges
   std::vector<glm::dvec3> positions;     ///< world positions of the vertices from firstVertex on
   std::vector<SideSplit> splits;         ///< in order of the unrefined quad, then of discovery
+  std::vector<SideSplit> plainSplits;    ///< the same for sides of plain refined quads (adaptive)
+  std::vector<std::uint8_t> gridded;     ///< per quad of `quads`: 1 when it is on the sub-grid
+  std::size_t griddedQuads = 0;          ///< quads on the sub-grid
   std::size_t samples = 0;               ///< lattice nodes sampled by the oracle
   std::size_t boundaryEdges = 0;         ///< boundary sub-edges (bisected)
   std::size_t farBoundaryEdges = 0;      ///< of which one end is far
@@ -73,17 +110,24 @@ struct SubgridCells {
   double msRays = 0.0;                   ///< time inside the oracle (ms)
 };
 
-/// Refines every quad of `quads` on the sub-grid (see the header comment). The new vertices are
-/// numbered from `firstVertex` (their positions in the result); the hit corners keep their sheet
-/// vertex (`use`, `vertices`).
+/// Refines the quads of `quads` on the sub-grid (see the header comment): every one when `plain` is
+/// null, else the adaptive choice (see the header comment), the others left to refined_cells.h. The
+/// new vertices are numbered from `firstVertex` (their positions in the result); the hit corners
+/// keep their sheet vertex (`use`, `vertices`), the plain crossings theirs.
 SubgridCells buildSubgridCells(const RefinedQuads& quads, const TexelUse& use, const SheetVertices& vertices,
                                const SheetDepths& sheet, const DepthOracle& oracle, const SubgridOptions& options,
-                               std::uint32_t firstVertex);
+                               std::uint32_t firstVertex, const PlainRefinement* plain = nullptr);
 
-/// After the sheet is emitted: each sheet triangle with a side in `splits` becomes a fan from a new
-/// vertex at its centroid over its corners and the side's points, in the triangle's own plane and
-/// winding (the first triangle of the fan takes its place, the others are appended).
-void splitSheetTriangles(const std::vector<SideSplit>& splits, const Scratch<std::uint32_t>& quadTri,
-                         VolumeMesh& mesh);
+/// The mesh triangles of one quad: `count` from `first`.
+struct QuadSlots {
+  std::size_t first = 0, count = 0;
+};
+
+/// After the sheet is emitted: each triangle of a split's quad (slotsOf(quad)) with a side in
+/// `splits` becomes a fan from a new vertex at its centroid over its corners and the side's points,
+/// in the triangle's own plane and winding (the first triangle of the fan takes its place, the
+/// others are appended).
+void splitQuadTriangles(const std::vector<SideSplit>& splits, const std::function<QuadSlots(std::uint32_t)>& slotsOf,
+                        VolumeMesh& mesh);
 
 }  // namespace shadowvol::volume
