@@ -69,5 +69,30 @@ TEST(CaptureWarnings, ObjectSeenEdgeOnSuggestsNoImpossibleMapSize) {
   EXPECT_EQ(w[0].find("or more would catch it"), std::string::npos) << w[0];
 }
 
+// Vertices nearer to the light than its near plane are clipped: said by object, with how many. The
+// light looks down from y = 5 with near 0.5; a box at y = 4.6 reaches into that slab, one at y = 2
+// does not. A spot light with a near plane pushed out (as an outlier vertex far away pushes a
+// fitted one) clips the whole object in its cone, and none behind its apex is counted.
+TEST(CaptureWarnings, ObjectsNearerThanTheNearPlaneAreNamed) {
+  TriangleMesh high = makeBox(0.5, 0.5, 0.5), low = makeBox(0.5, 0.5, 0.5);
+  for (auto& p : high.positions) p += glm::vec3(0.0f, 4.6f, 0.0f);
+  for (auto& p : low.positions) p += glm::vec3(0.0f, 2.0f, 0.0f);
+  const Scene s = sceneWith({SceneObject{"high", "box", high}, SceneObject{"low", "box", low}});
+  const auto w = captureWarnings(s, 32, 32, CaptureMode::Back);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("4 of the 8 vertices of object \"high\""), std::string::npos) << w[0];  // its top face
+  EXPECT_NE(w[0].find("near plane (0.5"), std::string::npos) << w[0];
+  Scene spot = sceneWith({SceneObject{"low", "box", low}});
+  spot.light.type = LightType::Spot;
+  spot.light.fovYDegrees = 60.0;
+  spot.light.nearPlane = 10.0;
+  spot.light.farPlane = 100.0;
+  const auto ws = captureWarnings(spot, 32, 32, CaptureMode::Back);
+  ASSERT_EQ(ws.size(), 1u);
+  EXPECT_NE(ws[0].find("8 of the 8 vertices of object \"low\""), std::string::npos) << ws[0];
+  spot.light.nearPlane = 0.5;
+  EXPECT_TRUE(captureWarnings(spot, 32, 32, CaptureMode::Back).empty());
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -17,7 +17,10 @@ namespace shadowvol {
 ///  - an object that covers no texel centre (its light-view bounds lie between two neighbouring
 ///    texel centres along an axis): it casts no shadow at this resolution; the message gives the
 ///    smallest N x N map whose texel spacing is below its extent. Objects wholly or partly behind a
-///    spot light's apex plane are not judged.
+///    spot light's apex plane are not judged;
+///  - an object with vertices inside the light's window but nearer than its near plane (a given
+///    near too far out, or fitted planes stretched by an outlier vertex far away): the near plane
+///    clips them, so they cast no shadow.
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture);
 
 }  // namespace shadowvol

@@ -39,6 +39,21 @@ bool closed(const TriangleMesh& m) {
   return closedBy(m, id);
 }
 
+// The vertices of `mesh` that lie inside the light's window (texel coordinates in the map, in front of
+// a spot light's apex plane) but nearer to the light than its near plane, which clips them.
+std::size_t nearClipped(const DepthMap& probe, const glm::dmat4& toClip, const TriangleMesh& mesh) {
+  std::size_t count = 0;
+  for (const auto& p : mesh.positions) {
+    const glm::dvec4 c = toClip * glm::dvec4(glm::dvec3(p), 1.0);
+    if (!(c.w > 0.0)) continue;
+    const glm::dvec2 t = probe.texelOf(glm::dvec3(p));
+    if (!(t.x >= -0.5 && t.y >= -0.5 && t.x <= probe.width - 0.5 && t.y <= probe.height - 0.5)) continue;
+    const double depth = probe.viewDepthOf(glm::dvec3(p));
+    if (depth >= 0.0 && depth < probe.nearPlane) ++count;
+  }
+  return count;
+}
+
 }  // namespace
 
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture) {
@@ -58,6 +73,15 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
   const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
   for (const auto& o : scene.objects) {
     if (o.mesh.positions.empty()) continue;
+    if (const std::size_t clipped = nearClipped(probe, toClip, o.mesh)) {
+      char buf[480];
+      std::snprintf(buf, sizeof buf,
+                    "%zu of the %zu vertices of object \"%s\" lie nearer to the light than its near plane (%.6g "
+                    "world units): the light does not see them, so what they occlude is lit (give /light/near, or "
+                    "check the scene for an outlier vertex that stretches the fitted planes)",
+                    clipped, o.mesh.positions.size(), o.name.c_str(), probe.nearPlane);
+      out.push_back(buf);
+    }
     glm::dvec2 lo(1e300), hi(-1e300);
     bool judged = true;
     for (const auto& p : o.mesh.positions) {
