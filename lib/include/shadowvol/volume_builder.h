@@ -129,6 +129,7 @@ struct VolumeBuildStats {
   std::size_t ambiguousCells = 0;     ///< refinement: refined quads (sub-cells with the sub-grid) with 3 or 4 boundary edges, decided
                                       ///< by one more ray at the quad's centre
   std::size_t chordPoints = 0;        ///< refinement: crossings inside quads with two boundary edges
+                                      ///< (with the adaptive sub-grid: cast to choose, not vertices)
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
                                       ///< edge and per chord point, plus one per ambiguous cell; with the
                                       ///< sub-grid its samples, steps per boundary sub-edge and centres)

@@ -123,8 +123,9 @@ void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
 // centre depths), then, with refineChords, the chord points of the quads with two boundary edges;
 // their counts go to `stats`.
 void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& edges, const volume::RefinedQuads& quads,
-                        bool centres, std::span<const double> blurred, const VolumeBuildOptions& options,
-                        Refinement& refinement, volume::ChordPoints& chords, VolumeBuildStats& stats) {
+                        bool centres, bool chordTest, std::span<const double> blurred,
+                        const VolumeBuildOptions& options, Refinement& refinement, volume::ChordPoints& chords,
+                        VolumeBuildStats& stats) {
   const DepthMap& map = sheet.map();
   refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
                                    options.refineSteps, centres ? std::span<const glm::dvec2>(quads.centres)
@@ -133,12 +134,12 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   stats.ambiguousCells = centres ? quads.centres.size() : 0;
   stats.raysCast = refinement.raysCast;
   stats.msRays = refinement.msRays;
-  if (!options.refineChords) return;
+  if (!options.refineChords && !chordTest) return;
   chords = volume::planChordPoints(quads, sheet, edges, refinement);
   RayBudget budget;
   chords.crossings =
       bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget);
-  stats.chordPoints = chords.segments.size();
+  stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
   stats.raysCast += budget.rays;
   stats.msRays += budget.ms;
 }
@@ -293,7 +294,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   ChordPoints chords;
   if (refine && (!subgrid || adaptive)) {
     const auto tr = Clock::now();
-    castRefinementRays(sheet, edges, refinedQuads, !subgrid, blurred, options, refinement, chords, stats);
+    castRefinementRays(sheet, edges, refinedQuads, !subgrid, adaptive, blurred, options, refinement, chords, stats);
     msRefine += msSince(tr);
   }
   t0 = Clock::now();
@@ -308,14 +309,14 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   RefinedCells cells;
   const auto crossingBase = std::uint32_t(vertices.count());
   const auto chordBase = std::uint32_t(crossingBase + 2 * edges.edges.size());
-  const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;
+  const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;  // as vertices
   double msEdges = 0.0;
   SubgridCells sub;
   RefinedQuads plainQuads;  // the adaptive sub-grid's plain quads
   const auto subgridBase = adaptive ? chordBase : crossingBase;  // after the plain crossings, if any
   if (subgrid) {
     const auto tc = Clock::now();
-    const PlainRefinement plain{edges, refinement, crossingBase};
+    const PlainRefinement plain{edges, refinement, crossingBase, &chords, options.refineSteps};
     sub = subgridCells(refinedQuads, use, vertices, sheet, edges, options, subgridBase, adaptive ? &plain : nullptr,
                        stats);
     if (adaptive) {

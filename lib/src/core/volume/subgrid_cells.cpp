@@ -300,6 +300,10 @@ class SubgridBuilder {
           continue;
         }
         assembleCell(quadI(g), quadJ(g), sides, sheet_, plain_->edges, plain_->refinement, unproject_, nullptr, 0, cell);
+        if (chordBends(g, cell)) {
+          forced[g] = 1;
+          continue;
+        }
         tris.clear();
         CellTriangulator(o_.perfect, tris).run(cell.corners, cell.a, cell.b, sides, farPlane_, farPlane_);
         for (int b = 0; b <= s_; ++b)
@@ -318,6 +322,26 @@ class SubgridBuilder {
       out_.gridded[g] = any ? 1 : 0;
     }
     keepPresetSurfaceCornersApart();
+  }
+
+  // Whether the outline bends away from quad g's straight wall: its chord point (where the outline
+  // crosses the wall's perpendicular bisector) lies off it by more than kChordBendErrors times its
+  // own bisection error.
+  bool chordBends(std::size_t g, const RefinedCell& cell) const {
+    if (!plain_->chords) return false;
+    const std::size_t k = plain_->chords->ofQuad[g];
+    if (k == ChordPoints::kNone) return false;
+    int split[2], n = 0;
+    for (int side = 0; side < 4 && n < 2; ++side)
+      if (quads_.sides[g] >> side & 1) split[n++] = side;
+    const glm::dvec2 x = cell.a[split[0]].texel, y = cell.a[split[1]].texel, m = plain_->chords->texel(k);
+    const glm::dvec2 d = y - x;
+    const double length = std::hypot(d.x, d.y);
+    if (length == 0.0) return false;
+    const double off = std::abs(d.x * (m - x).y - d.y * (m - x).x) / length;
+    const BisectionSegment& segment = plain_->chords->segments[k];
+    const double error = glm::length(segment.farPoint - segment.nearPoint) * std::ldexp(1.0, -(plain_->steps + 1));
+    return off > kChordBendErrors * error;
   }
 
   // Whether a crossing on one of quad g's boundary sides lies on a lattice node (possible when K <

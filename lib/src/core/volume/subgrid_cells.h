@@ -30,13 +30,18 @@
 // Adaptive (the default; `plain` given): most refined quads along a smooth outline gain nothing
 // from the sub-grid but its triangles. The lattice is laid and sampled over every refined quad as
 // above, and a quad stays plain (refined_cells.h: one straight wall between its two crossings)
-// when it has exactly two boundary sides, neither crossing lies on a lattice node, and every
-// sampled node on its sides and inside it lies on its plain triangulation's surface: far where that
-// is far, else within kPlainQuadFootprints texel footprints of its depth (perspective-correct
-// interpolation in the footprint triangle holding the node). Two footprints is the discontinuity
+// when it has exactly two boundary sides, neither crossing lies on a lattice node, the outline does
+// not bend away from the straight wall (its chord point, refined_cells.h's point where the outline
+// crosses the wall's perpendicular bisector, found with K more rays, lies within kChordBendErrors
+// of its own bisection errors of the wall: a curved outline's sagitta, which the lattice's samples
+// alone miss when it falls between them), and every sampled node on its sides and inside it lies
+// on its plain triangulation's surface: far where that is far, else within kPlainQuadFootprints
+// texel footprints of its depth (perspective-correct interpolation in the footprint triangle
+// holding the node). Two footprints is the discontinuity
 // rule's floor (boundary_edges.h, kJumpFootprints): a smooth rim's curvature moves the depth by
 // less than that within a texel, a fold or a receiver seen past an outline by more (on the default
-// scene at 256^2 one footprint grids 68 % of the refined quads, two 15 %). A node
+// scene at 256^2, without the chord test, one footprint grids 68 % of the refined quads, two 15 %;
+// the depth test barely moves the error, the chord test does: README "Sub-grid"). A node
 // off the surface puts every quad holding it on the sub-grid, so on a side between a plain and a
 // gridded quad every sample agreed with the plain quad; its nodes are then put on the plain quad's
 // boundary without a ray (between a corner and the crossing's vertex on its side, interpolated as
@@ -69,12 +74,19 @@ namespace shadowvol::volume {
 /// (the header comment says why 2).
 inline constexpr double kPlainQuadFootprints = 2.0;
 
+/// How far the outline may bend away from a plain quad's straight wall at its middle for the
+/// adaptive sub-grid to keep that quad plain, in bisection errors of the chord point that measures
+/// it (its segment's length x 2^-(K+1); see the header comment).
+inline constexpr double kChordBendErrors = 2.0;
+
 /// The plain refinement of the same quads, for the adaptive sub-grid: the texel grid's boundary
 /// edges and their crossings (vertices numbered from crossingBase, as refined_cells.h numbers them).
 struct PlainRefinement {
   const BoundaryEdges& edges;
   const Refinement& refinement;
   std::uint32_t crossingBase = 0;
+  const ChordPoints* chords = nullptr;  ///< one per quad with two boundary edges (planChordPoints), bisected
+  int steps = 1;                        ///< K: the rays per crossing and per chord point
 };
 
 struct SubgridOptions {
