@@ -120,8 +120,9 @@ void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
 }
 
 // Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
-// centre depths), then, with refineChords, the chord points of the quads with two boundary edges;
-// their counts go to `stats`.
+// centre depths), then, with refineChords or `chordTest` (the adaptive sub-grid's choice, which
+// only measures with them), the chord points of the quads with two boundary edges; their counts go
+// to `stats`.
 void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& edges, const volume::RefinedQuads& quads,
                         bool centres, bool chordTest, std::span<const double> blurred,
                         const VolumeBuildOptions& options, Refinement& refinement, volume::ChordPoints& chords,
