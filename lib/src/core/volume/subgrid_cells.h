@@ -33,7 +33,7 @@
 // when it has exactly two boundary sides, neither crossing lies on a lattice node, the outline does
 // not bend away from the straight wall (its chord point, refined_cells.h's point where the outline
 // crosses the wall's perpendicular bisector, found with K more rays, lies within kChordBendErrors
-// of its own bisection errors of the wall: a curved outline's sagitta, which the lattice's samples
+// times its own bisection error of the wall: a curved outline's sagitta, which the lattice's samples
 // alone miss when it falls between them), and every sampled node on its sides and inside it lies
 // on its plain triangulation's surface: far where that is far, else within kPlainQuadFootprints
 // texel footprints of its depth (perspective-correct interpolation in the footprint triangle
@@ -41,7 +41,7 @@
 // rule's floor (boundary_edges.h, kJumpFootprints): a smooth rim's curvature moves the depth by
 // less than that within a texel, a fold or a receiver seen past an outline by more (on the default
 // scene at 256^2, without the chord test, one footprint grids 68 % of the refined quads, two 15 %;
-// the depth test barely moves the error, the chord test does: README "Sub-grid"). A node
+// the depth tolerance moves the error much less than the chord test does: README "Sub-grid"). A node
 // off the surface puts every quad holding it on the sub-grid, so on a side between a plain and a
 // gridded quad every sample agreed with the plain quad; its nodes are then put on the plain quad's
 // boundary without a ray (between a corner and the crossing's vertex on its side, interpolated as
