@@ -83,7 +83,7 @@ struct VolumeBuildOptions {
                                 ///< inside a texel. 1 = off. Not with refineChords, needs flattenCap
                                 ///< (docs/volume.md, "Sub-grid"). Adaptive: a quad whose plain
                                 ///< refinement (two boundary edges, a straight wall) already lies on
-                                ///< the lattice's samples stays plain
+                                ///< the lattice's samples and its own chord point stays plain
   bool refineGridEverywhere = false; ///< sub-grid only: cut every quad with a boundary edge, not only
                                 ///< those whose plain refinement misses the lattice's samples (for
                                 ///< comparison; more triangles, the same shadow where both agree)

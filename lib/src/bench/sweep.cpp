@@ -57,7 +57,7 @@ SweepMethod refinedGrid(CaptureMode capture) {
           "/explicit";
   m.options.volumeOptions.refineSubdivisions = kSweepRefineSubdivisions;
   m.description = "explicit volume with sub-texel silhouette refinement on a " + std::to_string(kSweepRefineSubdivisions) +
-                  "x" + std::to_string(kSweepRefineSubdivisions) + " sub-grid of each quad with a boundary edge (" +
+                  "x" + std::to_string(kSweepRefineSubdivisions) + " adaptive sub-grid in the quads with a boundary edge (" +
                   std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + toString(capture) + " capture" +
                   (capture == CaptureMode::Front ? " (default bias)" : "");
   return m;

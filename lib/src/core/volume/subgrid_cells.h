@@ -1,5 +1,6 @@
 // Stage 4s of the volume builder (the sub-grid, VolumeBuildOptions::refineSubdivisions = S > 1):
-// every refined quad (a quad with a boundary edge, refined_cells.h) is cut into S x S sub-cells,
+// the refined quads (quads with a boundary edge, refined_cells.h; every one, or the adaptive choice
+// below) are cut into S x S sub-cells,
 // the depth is sampled at their corners with the depth oracle, and each sub-cell is refined as a
 // refined quad is (boundary sub-edges by the discontinuity rule with the texel footprint divided by
 // S, bisection along them, cell_triangulator.h), so the contour follows an outline that bends or
