@@ -26,6 +26,9 @@ struct CapPoint {
   Kind kind = Kind::Texel;
 };
 
+// The z component of u x v (texel space).
+inline double cross2(const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; }
+
 // One vertex of a refined quad's loop.
 struct CellVertex {
   std::uint32_t id = kNone;

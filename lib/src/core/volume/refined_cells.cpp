@@ -57,8 +57,6 @@ int splitSides(std::uint8_t sides, int* split) {
   return n;
 }
 
-double cross2(const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; }
-
 }  // namespace
 
 void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, const BoundaryEdges& boundary,

@@ -148,7 +148,7 @@ class SubgridBuilder {
     quadNodes_.assign(quadCount() * n1_ * n1_, kNone);
     nodes_.reserve(quadCount() * std::size_t(s_) * std::size_t(s_) + quadCount() * 2);
     for (std::size_t g = 0; g < quadCount(); ++g) {
-      const int qi = int(quads_.quads[g] % std::uint32_t(qw())), qj = int(quads_.quads[g] / std::uint32_t(qw()));
+      const int qi = quadI(g), qj = quadJ(g);
       const std::uint32_t left = refinedIndex(qi - 1, qj), down = refinedIndex(qi, qj - 1);
       const std::uint32_t downLeft = refinedIndex(qi - 1, qj - 1), downRight = refinedIndex(qi + 1, qj - 1);
       for (int b = 0; b <= s_; ++b)
@@ -338,7 +338,7 @@ class SubgridBuilder {
     const glm::dvec2 d = y - x;
     const double length = std::hypot(d.x, d.y);
     if (length == 0.0) return false;
-    const double off = std::abs(d.x * (m - x).y - d.y * (m - x).x) / length;
+    const double off = std::abs(cross2(d, m - x)) / length;
     const BisectionSegment& segment = plain_->chords->segments[k];
     const double error = glm::length(segment.farPoint - segment.nearPoint) * std::ldexp(1.0, -(plain_->steps + 1));
     return off > kChordBendErrors * error;
@@ -387,7 +387,6 @@ class SubgridBuilder {
   // Whether node n lies on the surface of a plain quad's triangles `tris`: far where a footprint
   // triangle holding it is far, else within kPlainQuadFootprints footprints of its depth there.
   bool onPlainSurface(const std::vector<LocalTri>& tris, const Node& n, const TexelFootprint& footprint) const {
-    auto cross2 = [](const glm::dvec2& u, const glm::dvec2& v) { return u.x * v.y - u.y * v.x; };
     for (const LocalTri& t : tris) {
       if (!t.footprint) continue;
       const glm::dvec2 p0 = t.v[0]->texel, e1 = t.v[1]->texel - p0, e2 = t.v[2]->texel - p0;
