@@ -41,7 +41,8 @@
 // holding the node). Two footprints is the discontinuity
 // rule's floor (boundary_edges.h, kJumpFootprints): a smooth rim's curvature moves the depth by
 // less than that within a texel, a fold or a receiver seen past an outline by more (on the default
-// scene at 256^2, without the chord test, one footprint grids 68 % of the refined quads, two 15 %;
+// scene at 256^2, without the chord test, one footprint grids 68 % of the refined quads, two 15 %,
+// measured as README "Sub-grid" says;
 // the depth tolerance moves the error much less than the chord test does: README "Sub-grid"). A node
 // off the surface puts every quad holding it on the sub-grid, so on a side between a plain and a
 // gridded quad every sample agreed with the plain quad; its nodes are then put on the plain quad's
