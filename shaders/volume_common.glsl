@@ -1,5 +1,6 @@
-// Shared by volume_gpu.geom, volume_keep.geom and volume_mesh.comp (each program's sources are
-// version_330.glsl or version_430.glsl, then this file, then the stage's body): the sheet vertex
+// Shared by the GPU volume's stages (volume_gpu.geom, volume_keep.geom, volume_mesh.comp,
+// volume_index.frag, volume_index.vert; each program's sources are version_330.glsl or
+// version_430.glsl, light_window_depth.glsl, this file, then the stage's body): the sheet vertex
 // of a texel, the quads the exact cap drops and the diagonal rule, mirroring buildVolume.
 //
 // Quad q = (i, j), i in [0, W-2], j in [0, H-2], corners (triangulation.h):
@@ -7,7 +8,10 @@
 // Sheet vertex of texel t, as steps 1-4 of buildVolume (volume_builder.h): texels of the
 // outermost ring and texels without a hit (depth >= farSnap) sit exactly on the far plane; others
 // at clamp(depth + bias, near, far), snapped to the far plane when that is >= farSnap.
-uniform sampler2D lightDepth;   // R32F light-view depth (world units), >= farSnap = no hit
+uniform sampler2D lightDepth;   // R32F light-view depth (world units), >= farSnap = no hit; or,
+                                // with windowDepthInput, the light pass's first layer itself
+uniform int windowDepthInput;   // 1: lightDepth holds reversed-Z window depth, converted here as
+                                // the resolve pass does (back and front capture without blur)
 uniform ivec2 size;             // W, H texels
 uniform float farPlane;         // light-view distance of the far plane
 uniform float nearPlane;        // light-view distance of the near plane
@@ -28,6 +32,7 @@ bool onRing(ivec2 t) { return t.x == 0 || t.y == 0 || t.x == size.x - 1 || t.y =
 float sheetDepth(ivec2 t) {
   if (onRing(t)) return farPlane;
   float d = texelFetch(lightDepth, t, 0).r;
+  if (windowDepthInput != 0) d = capturedDepth(d, farPlane);
   if (!(d < farSnap)) return farPlane;
   d = clamp(d + bias, nearPlane, farPlane);
   return d < farSnap ? d : farPlane;

@@ -36,11 +36,14 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->check(CLI::IsMember({"gpu", "explicit"}))
       ->capture_default_str();
   cmd.add_option("--gpu-draw", o.gpuDraw,
-                 "hybrid with --volume gpu and the exact cap: auto (= kept-quads), kept-quads (a transform-feedback "
-                 "pass skips the quads all on the far plane, GL 3.3), compute-mesh (a compute pass builds the kept "
-                 "quads' triangles, GL 4.3), all-quads (every quad through the geometry shader); same stencil "
-                 "(docs/gpu.md 'Skipping the far quads')")
-      ->check(CLI::IsMember({"auto", "kept-quads", "compute-mesh", "all-quads"}))
+                 "hybrid with --volume gpu and the exact cap: auto (= indexed with GL 4.3, else kept-quads), indexed "
+                 "(the light pass marks the texels it covers, a fragment pass lists the triangles of the quads not "
+                 "all on the far plane as texel indices, a vertex shader places each texel's vertex; GL 4.3), "
+                 "kept-quads (a transform-feedback pass skips the quads all on the far plane, the geometry shader "
+                 "expands the others; GL 3.3), compute-mesh (a compute pass builds the kept quads' triangles, GL "
+                 "4.3), all-quads (every quad through the geometry shader); same stencil (docs/gpu.md 'Skipping the "
+                 "far quads')")
+      ->check(CLI::IsMember({"auto", "indexed", "kept-quads", "compute-mesh", "all-quads"}))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
@@ -75,7 +78,8 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
   gl::parseVolumeSource(o.volume, ro.volume);
-  ro.gpuVolumeDraw = o.gpuDraw == "kept-quads"     ? gl::GpuVolumeDraw::KeptQuads
+  ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed
+                     : o.gpuDraw == "kept-quads"   ? gl::GpuVolumeDraw::KeptQuads
                      : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
                      : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
                                                    : gl::GpuVolumeDraw::Auto;

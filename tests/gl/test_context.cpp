@@ -60,14 +60,15 @@ TEST(GlContext, EveryPlatformEitherWorksOrThrowsGlError) {
 }
 
 TEST(GlShaders, EmbeddedSourcesArePresent) {
-  for (const char* name : {"light.vert", "version_330.glsl", "version_430.glsl", "scene.frag", "blur.frag", "resolve.frag"}) {
+  for (const char* name : {"light.vert", "version_330.glsl", "version_430.glsl", "scene.frag", "blur.frag", "light_mark.frag"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
     EXPECT_NE(text->find("#version"), std::string::npos) << name;
   }
   // volume_common.glsl and the stage bodies after it carry no #version of their own (a
   // version_*.glsl file comes first).
-  for (const char* name : {"volume_common.glsl", "volume_gpu.geom", "volume_keep.geom", "volume_mesh.comp"}) {
+  for (const char* name : {"resolve.frag", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom", "volume_keep.geom",
+                           "volume_mesh.comp", "volume_index.frag", "volume_index.vert"}) {
     auto text = gl::embeddedShader(name);
     ASSERT_TRUE(text.has_value()) << name;
     EXPECT_EQ(text->find("#version"), std::string::npos) << name;

@@ -40,7 +40,10 @@ TEST(GlZPass, SameFrameAsZFailWithoutTheCap) {
                            {"explicit", gl::VolumeSource::Explicit, gl::GpuVolumeDraw::Auto, FarCap::Exact, 0},
                            {"explicit refined", gl::VolumeSource::Explicit, gl::GpuVolumeDraw::Auto, FarCap::Exact, 6},
                            {"explicit quad cap", gl::VolumeSource::Explicit, gl::GpuVolumeDraw::Auto, FarCap::Quad, 0}};
-  if (compute) ways.push_back({"compute mesh", gl::VolumeSource::Gpu, gl::GpuVolumeDraw::ComputeMesh, FarCap::Exact, 0});
+  if (compute) {
+    ways.push_back({"compute mesh", gl::VolumeSource::Gpu, gl::GpuVolumeDraw::ComputeMesh, FarCap::Exact, 0});
+    ways.push_back({"indexed", gl::VolumeSource::Gpu, gl::GpuVolumeDraw::Indexed, FarCap::Exact, 0});
+  }
   for (const Way& w : ways) {
     SCOPED_TRACE(w.name);
     gl::RenderOptions o;

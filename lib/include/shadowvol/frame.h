@@ -54,7 +54,11 @@ const char* toString(TimingMethod t);
 /// How the GPU volume is drawn. With the exact cap, quads whose four corners lie on the far plane
 /// contribute nothing and can be skipped; with the quad cap every quad's sheet is needed.
 enum class GpuVolumeDraw {
-  Auto,         ///< KeptQuads (the fastest measured on llvmpipe); AllQuads with the quad cap
+  Auto,         ///< Indexed with GL 4.3 (the fastest measured on llvmpipe), else KeptQuads;
+                ///< AllQuads with the quad cap
+  Indexed,      ///< the light pass marks the texels it covers, a fragment pass lists the kept
+                ///< quads' triangles as texel indices, a vertex shader places each texel's vertex
+                ///< (GL 4.3; falls back to KeptQuads past 512 MiB of indices); InputError without 4.3
   ComputeMesh,  ///< a compute pass writes the kept quads' triangles into a buffer, drawn as a plain
                 ///< list (GL 4.3; falls back to KeptQuads past a 512 MiB mesh); InputError without 4.3
   KeptQuads,    ///< a transform-feedback pass lists the kept quads, the geometry shader expands them (GL 3.3)

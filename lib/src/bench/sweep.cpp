@@ -107,11 +107,15 @@ const std::vector<SweepMethod>& sweepMethods() {
     // default bias) and between the first two (midpoint).
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Front));
     v.push_back(hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, CaptureMode::Midpoint));
-    // The GPU volume's other ways of drawing (gl::GpuVolumeDraw; the default skips the quads all
-    // on the far plane with a transform-feedback pass): every quad through the geometry shader,
-    // and the kept quads' triangles built by a compute pass (GL 4.3).
+    // The GPU volume's other ways of drawing (gl::GpuVolumeDraw; the default, GL 4.3, lists the
+    // kept quads' triangles as texel indices in a fragment pass): the kept quads listed by a
+    // transform-feedback pass and expanded by the geometry shader (the GL 3.3 way), every quad
+    // through the geometry shader, and the kept quads' triangles built by a compute pass.
     for (auto [how, name, what] :
-         {std::tuple{gl::GpuVolumeDraw::AllQuads, "allquads", "every quad of the map through the geometry shader, none skipped"},
+         {std::tuple{gl::GpuVolumeDraw::KeptQuads, "keptquads",
+                     "a transform-feedback pass lists the quads not all on the far plane, the geometry shader expands "
+                     "them (GL 3.3)"},
+          std::tuple{gl::GpuVolumeDraw::AllQuads, "allquads", "every quad of the map through the geometry shader, none skipped"},
           std::tuple{gl::GpuVolumeDraw::ComputeMesh, "computemesh",
                      "a compute pass writes the triangles of the quads not all on the far plane into a buffer (GL 4.3)"}}) {
       SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu);

@@ -55,6 +55,7 @@ bool parseVolumeSource(const std::string& text, VolumeSource& v) {
 const char* toString(GpuVolumeDraw d) {
   switch (d) {
     case GpuVolumeDraw::Auto: return "auto";
+    case GpuVolumeDraw::Indexed: return "indexed";
     case GpuVolumeDraw::ComputeMesh: return "compute-mesh";
     case GpuVolumeDraw::KeptQuads: return "kept-quads";
     default: return "all-quads";

@@ -162,6 +162,7 @@ struct Renderer::Impl {
   Program volumeGpuProgram;
   Program volumeKeepProgram, volumeGpuKeptProgram;  // GpuVolumeDraw::KeptQuads
   Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
+  Program volumeIndexProgram, volumeIndexedProgram; // GpuVolumeDraw::Indexed (GL 4.3 only)
   bool hasCompute = false;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
@@ -169,6 +170,7 @@ struct Renderer::Impl {
   Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
   bool volumeTrianglesPending = false;
   bool zPassFrame = false;  // this frame's volume counted with z-pass: no far cap drawn
+  bool volumeReadsWindowDepth = false;  // this frame's GPU volume reads the light pass's depth itself
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
@@ -197,6 +199,18 @@ struct Renderer::Impl {
   Buffer meshBuffer, meshCount;
   std::int64_t meshCapacity = 0;  // vertices the buffer holds
 
+  // Indexed GPU volume: the kept quads' triangles as texel indices (volume_index.frag), their
+  // count, and a framebuffer without attachments for the listing pass
+  VertexArray indexVao;
+  Buffer indexBuffer, indexCount;
+  std::int64_t indexCapacity = 0;  // indices the buffer holds
+  Framebuffer listFbo;
+  Program lightMarkProgram;       // the light pass that also writes the occupancy bits
+  Texture occupancy;              // R32UI, one bit per texel, a word per 8 x 4 texels (light_mark.frag)
+  Framebuffer occupancyFbo;       // to clear it
+  int occupancyW = 0, occupancyH = 0;
+  bool occupancyValid = false;    // this frame's light pass wrote the occupancy bits
+
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
   Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
@@ -212,17 +226,17 @@ struct Renderer::Impl {
   Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
     lightProgram = Program(shaders, "light.vert", "depth_only.frag");
     peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
-    resolveProgram = Program(shaders, "fullscreen.vert", "resolve.frag");
+    resolveProgram = Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
     sceneProgram = Program(shaders, "scene.vert", "scene.frag");
     ambientOverProgram = Program(shaders, "fullscreen.vert", "ambient_over.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
     volumeGpuProgram =
-        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
     volumeKeepProgram =
-        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
+        Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
     volumeGpuKeptProgram =
-        Program(shaders, {"volume_gpu_kept.vert"}, {"version_330.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+        Program(shaders, {"volume_gpu_kept.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
     const ContextInfo& ci = context.info();
     // Every pass draws in reversed Z through glClipControl: core in 4.5, an extension before.
     if (!(ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 5)) && !epoxy_has_gl_extension("GL_ARB_clip_control"))
@@ -230,8 +244,13 @@ struct Renderer::Impl {
                     ci.glVersion + " on " + ci.glRenderer);
     hasCompute = ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 3);
     if (hasCompute) {
-      volumeMeshProgram = Program::compute(shaders, {"version_430.glsl", "volume_common.glsl", "volume_mesh.comp"});
+      volumeMeshProgram = Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_mesh.comp"});
       volumeMeshDrawProgram = Program(shaders, "volume_mesh.vert", "depth_only.frag");
+      volumeIndexProgram =
+          Program(shaders, {"fullscreen.vert"}, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.frag"});
+      volumeIndexedProgram =
+          Program(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.vert"}, {"depth_only.frag"});
+      lightMarkProgram = Program(shaders, "light.vert", "light_mark.frag");
     }
 
     fetchSampler = makeSampler();
@@ -262,6 +281,10 @@ struct Renderer::Impl {
     meshVao = makeVertexArray();
     meshBuffer = makeBuffer();
     meshCount = makeBuffer();
+    indexVao = makeVertexArray();
+    indexBuffer = makeBuffer();
+    indexCount = makeBuffer();
+    listFbo = makeFramebuffer();
     SV_GL(glBindVertexArray(volumeVao.id()));
     SV_GL(glBindBuffer(GL_ARRAY_BUFFER, volumeVbo.id()));
     SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, volumeEbo.id()));
@@ -383,8 +406,11 @@ struct Renderer::Impl {
   }
 
   /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to 0.
-  void lightPass(int w, int h, CaptureMode mode) {
+  /// The light's depth layer(s); with markOccupancy (the indexed GPU volume, GL 4.3) the first
+  /// layer's fragments also set their bits in `occupancy` (light_mark.frag).
+  void lightPass(int w, int h, CaptureMode mode, bool markOccupancy) {
     ensureLightTargets(w, h);
+    if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
     resetState();
     const glm::dmat4 worldToLightClip = reversedZ(lightProjection(light, double(w) / double(h))) * lightView(light);
     SV_GL(glViewport(0, 0, w, h));
@@ -395,9 +421,16 @@ struct Renderer::Impl {
       SV_GL(glEnable(GL_CULL_FACE));
       SV_GL(glCullFace(GL_FRONT));
     }
-    lightProgram.use();
-    lightProgram.set("worldToLightClip", toFloat(worldToLightClip));
+    const Program& first = markOccupancy ? lightMarkProgram : lightProgram;
+    first.use();
+    first.set("worldToLightClip", toFloat(worldToLightClip));
+    if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
     drawScene();
+    if (markOccupancy) {
+      SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
+      SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
+    }
+    occupancyValid = markOccupancy;
     SV_GL(glDisable(GL_CULL_FACE));
     if (mode == CaptureMode::Midpoint) {
       SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer1Fbo.id()));
@@ -409,6 +442,24 @@ struct Renderer::Impl {
       drawScene();
       bindTexture(0, Texture(), fetchSampler);
     }
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  /// Occupancy of a bw x bh block grid, all bits cleared.
+  void clearOccupancy(int bw, int bh) {
+    if (bw != occupancyW || bh != occupancyH) {
+      occupancy = makeTexture2D(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, bw, bh);
+      occupancyFbo = makeFramebuffer();
+      SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, occupancyFbo.id()));
+      SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, occupancy.id(), 0));
+      SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+      checkFramebufferComplete("light occupancy");
+      occupancyW = bw;
+      occupancyH = bh;
+    }
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, occupancyFbo.id()));
+    const GLuint zero[4] = {0, 0, 0, 0};
+    SV_GL(glClearBufferuiv(GL_COLOR, 0, zero));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
@@ -647,6 +698,20 @@ struct Renderer::Impl {
     p.set("exactCap", vo.cap == FarCap::Exact ? 1 : 0);
     p.set("drawCap", zPassFrame ? 0 : 1);
     p.set("planarTolerance", float(kPlanarTolerance));
+    p.set("windowDepthInput", volumeReadsWindowDepth ? 1 : 0);
+    p.set("depthParams", depthParams(reversedZ(lp)));
+  }
+
+  /// The way the GPU volume will be drawn (before the fallbacks for sizes, drawGpuVolume):
+  /// Auto is Indexed where GL 4.3 is there, else KeptQuads (the fastest measured on llvmpipe,
+  /// docs/gpu.md); nothing is skipped with the quad cap.
+  GpuVolumeDraw chooseGpuVolumeDraw(GpuVolumeDraw how, const VolumeBuildOptions& vo) const {
+    if (vo.cap != FarCap::Exact) return GpuVolumeDraw::AllQuads;
+    if (how == GpuVolumeDraw::Auto) return hasCompute ? GpuVolumeDraw::Indexed : GpuVolumeDraw::KeptQuads;
+    if ((how == GpuVolumeDraw::ComputeMesh || how == GpuVolumeDraw::Indexed) && !hasCompute)
+      throw InputError("RenderOptions", "gpuVolumeDraw", toString(how),
+                       "needs GL 4.3 (shader storage buffers); this context is " + context.info().glVersion);
+    return how;
   }
 
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
@@ -655,20 +720,20 @@ struct Renderer::Impl {
     const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
     result.gpuVolumeQuads = std::size_t(quads);
     result.gpuVolumeQuadsDrawn = std::size_t(quads);
-    // Skipping needs the exact cap (with the thesis's rectangle every quad's sheet is part of the
-    // closed volume). KeptQuads needs 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
+    // KeptQuads needs 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
     constexpr std::int64_t kMaxKeptQuads = std::int64_t(1) << 26;
-    if (vo.cap != FarCap::Exact) how = GpuVolumeDraw::AllQuads;
-    // Auto is KeptQuads: measured on llvmpipe, the compute mesh took longer (docs/gpu.md).
-    if (how == GpuVolumeDraw::Auto) how = GpuVolumeDraw::KeptQuads;
-    if (how == GpuVolumeDraw::ComputeMesh && !hasCompute)
-      throw InputError("RenderOptions", "gpuVolumeDraw", "compute-mesh", "needs GL 4.3 compute shaders; this context is " + context.info().glVersion);
+    how = chooseGpuVolumeDraw(how, vo);
+    if (how == GpuVolumeDraw::Indexed && drawIndexedGpuVolume(cam, lightViewToClip, vo, bias, depth, quads, result)) {
+      result.gpuVolumeDrawUsed = how;
+      return;
+    }
     if (how == GpuVolumeDraw::ComputeMesh && quads <= kMaxKeptQuads &&
         drawComputedGpuVolume(lightViewToClip, vo, bias, depth, quads, result)) {
       result.gpuVolumeDrawUsed = how;
       return;
     }
-    if (how == GpuVolumeDraw::ComputeMesh) how = GpuVolumeDraw::KeptQuads;  // its mesh would not fit
+    // Indexed or ComputeMesh whose list would not fit
+    if (how == GpuVolumeDraw::Indexed || how == GpuVolumeDraw::ComputeMesh) how = GpuVolumeDraw::KeptQuads;
     if (how == GpuVolumeDraw::KeptQuads && quads > kMaxKeptQuads) how = GpuVolumeDraw::AllQuads;
     result.gpuVolumeDrawUsed = how;
     if (how == GpuVolumeDraw::KeptQuads)
@@ -735,6 +800,72 @@ struct Renderer::Impl {
     SV_GL(glDrawArrays(GL_TRIANGLES, 0, GLsizei(count)));
     SV_GL(glBindVertexArray(0));
     return true;
+  }
+
+  /// The GPU volume as an indexed triangle list: volume_index.frag (one fragment per block of
+  /// quads, a framebuffer without attachments) appends the kept quads' triangles as texel indices,
+  /// volume_index.vert places each texel's vertex. The buffer grows to what the frame needs (the
+  /// count is read back after the pass; a frame that overflows it runs the pass again) up to
+  /// kMaxIndexBytes; false when the list would be larger (the caller falls back to KeptQuads).
+  bool drawIndexedGpuVolume(const CameraSetup& cam, const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo,
+                            double bias, const Texture& depth, std::int64_t quads, RenderResult& result) {
+    constexpr std::int64_t kMaxIndexBytes = std::int64_t(1) << 29;  // 512 MiB
+    constexpr int kBlockX = 8, kBlockY = 4;                        // volume_index.frag's kBlock
+    // Indices and the count are 32-bit: 2 W H vertices, up to 12 indices per quad.
+    if (std::int64_t(lightW) * lightH * 2 > std::int64_t(0x7fffffff) || quads * 12 > std::int64_t(0xffffffff)) return false;
+    if (indexCapacity == 0) growIndices(std::min<std::int64_t>(quads * 12, 12 * 65536));
+    const int blocksX = (lightW - 1 + kBlockX - 1) / kBlockX, blocksY = (lightH - 1 + kBlockY - 1) / kBlockY;
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, listFbo.id()));
+    SV_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, blocksX));
+    SV_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, blocksY));
+    SV_GL(glViewport(0, 0, blocksX, blocksY));
+    bindTexture(0, depth, fetchSampler);
+    bindTexture(1, occupancy, fetchSampler);
+    setVolumeUniforms(volumeIndexProgram, vo, bias);
+    volumeIndexProgram.set("occupancy", 1);
+    volumeIndexProgram.set("useOccupancy", occupancyValid ? 1 : 0);
+    GLuint count = 0;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const GLuint zero = 0;
+      SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indexCount.id()));
+      SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(GLuint), &zero, GL_DYNAMIC_READ));
+      SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, indexCount.id()));
+      SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indexBuffer.id()));
+      volumeIndexProgram.set("capacity", int(std::min<std::int64_t>(indexCapacity, 0x7fffffff)));
+      SV_GL(glBindVertexArray(emptyVao.id()));
+      SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+      SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT));
+      SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indexCount.id()));
+      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), &count));
+      if (std::int64_t(count) <= indexCapacity) break;
+      if (std::int64_t(count) * 4 > kMaxIndexBytes) break;
+      growIndices(std::int64_t(count) + std::int64_t(count) / 4);
+    }
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0));
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0));
+    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+    bindTexture(1, Texture(), fetchSampler);
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    if (std::int64_t(count) > indexCapacity) return false;
+    result.gpuVolumeQuadsDrawn = count / (zPassFrame ? 6 : 12);
+    setVolumeUniforms(volumeIndexedProgram, vo, bias);
+    volumeIndexedProgram.set("lightViewToClip", toFloat(lightViewToClip));
+    SV_GL(glBindVertexArray(indexVao.id()));
+    SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
+    SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, nullptr));
+    SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
+    SV_GL(glBindVertexArray(0));
+    volumeTrianglesPending = true;
+    return true;
+  }
+
+  void growIndices(std::int64_t indices) {
+    SV_GL(glBindVertexArray(indexVao.id()));
+    SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.id()));
+    SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices * 4), nullptr, GL_DYNAMIC_COPY));
+    SV_GL(glBindVertexArray(0));
+    indexCapacity = indices;
   }
 
   void growMesh(std::int64_t vertices) {
@@ -901,6 +1032,7 @@ struct Renderer::Impl {
     const CameraSetup cam = cameraSetup(o);
     validate(o, cam);
     volumeTrianglesPending = false;  // a frame that threw may have left it set
+    volumeReadsWindowDepth = false;
     RenderResult result;
     zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
     result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
@@ -912,9 +1044,12 @@ struct Renderer::Impl {
     const bool stencilShadows = hybrid || silhouette;
     const VolumeBuildOptions& vo = o.volumeOptions;
 
+    const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu;
+    const bool indexedVolume = gpuVolume && chooseGpuVolumeDraw(o.gpuVolumeDraw, vo) == GpuVolumeDraw::Indexed;
+    occupancyValid = false;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
-      lightPass(o.depthWidth, o.depthHeight, o.capture);
+      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume);
     }
 
     std::size_t explicitTriangles = 0;
@@ -957,11 +1092,16 @@ struct Renderer::Impl {
       timer.cpu("upload", msSince(t0));
       explicitTriangles = givenVolume->triangleCount();
     } else if (hybrid) {
-      {
+      // The indexed volume converts the few texels it reads itself; the other ways read every
+      // texel several times, and midpoint and blur need the resolved depth (docs/gpu.md).
+      volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;
+      if (volumeReadsWindowDepth) {
+        volumeDepth = &layer0;
+      } else {
         TimedPass t(timer, "resolve");
         resolvePass(o.capture);
+        volumeDepth = &linearDepth;
       }
-      volumeDepth = &linearDepth;
       if (vo.blur) {
         TimedPass t(timer, "blur");
         blurPass(vo.blurOffset);
@@ -1098,7 +1238,7 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
   s.context.makeCurrent();
   s.requireScene();
   s.checkSize("Renderer::captureDepth", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
-  s.lightPass(width, height, mode);
+  s.lightPass(width, height, mode, false);
   return s.readBack(mode);
 }
 
