@@ -17,7 +17,7 @@
 // keep kBlock in step with renderer.cpp and light_mark.frag (the GL tests compare the counts with
 // the other ways of drawing).
 const ivec2 kBlock = ivec2(8, 4);
-layout(std430, binding = 0) buffer Count { uint indexCount; };
+layout(std430, binding = 0) buffer Count { uint indexCount; uint quadCount; };
 layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
 uniform int capacity;          // indices the buffer holds
 uniform usampler2D occupancy;  // light_mark.frag's bits; with useOccupancy = 0 every texel is read
@@ -25,6 +25,34 @@ uniform int useOccupancy;
 
 uint occupancyWord(ivec2 b) {
   return all(lessThan(b, textureSize(occupancy, 0))) ? texelFetch(occupancy, b, 0).r : 0u;
+}
+
+// The far cap of a block whose 32 quads are all kept: the rectangle over its texels on the far
+// plane as a fan of kFanTriangles around its texel (4, 2), through every texel of its border in
+// turn, so that it meets its neighbours' caps and the sheet's far edges at the same vertices (no
+// T-junction) with 24 triangles instead of 64. Its triangles turn the way the per-quad cap
+// triangles do (clockwise in texel coordinates, away from the light). `d` is the block's sheet
+// depths as in main (a far texel is its own cap vertex).
+const uint kFanTriangles = 24u;
+ivec2 borderTexel(int k) {  // counterclockwise from texel (0, 0): bottom, right, top, left
+  if (k < 8) return ivec2(k, 0);
+  if (k < 12) return ivec2(8, k - 8);
+  if (k < 20) return ivec2(20 - k, 4);
+  return ivec2(0, 24 - k);
+}
+void capFan(ivec2 q0, float d[(kBlock.x + 1) * (kBlock.y + 1)], uint v) {
+  uint texels = uint(size.x * size.y);
+  ivec2 c = ivec2(4, 2);
+  uint centre = uint((q0.y + c.y) * size.x + q0.x + c.x);
+  if (d[c.y * (kBlock.x + 1) + c.x] < farPlane) centre += texels;
+  for (int k = 0; k < int(kFanTriangles); ++k) {
+    ivec2 a = borderTexel(k), b = borderTexel((k + 1) % int(kFanTriangles));
+    uint ia = uint((q0.y + a.y) * size.x + q0.x + a.x), ib = uint((q0.y + b.y) * size.x + q0.x + b.x);
+    if (d[a.y * (kBlock.x + 1) + a.x] < farPlane) ia += texels;
+    if (d[b.y * (kBlock.x + 1) + b.x] < farPlane) ib += texels;
+    indices[v] = centre; indices[v + 1u] = ib; indices[v + 2u] = ia;
+    v += 3u;
+  }
 }
 
 void main() {
@@ -59,10 +87,18 @@ void main() {
       }
     }
   if (kept == 0u) return;
-  uint n = drawCap != 0 ? 12u : 6u;  // drawCap = 0 (z-pass): the sheet triangles alone
-  uint v = atomicAdd(indexCount, n * kept);
-  if (v + n * kept > uint(capacity)) return;
+  // A block of 32 kept quads gets its far cap as one fan (capFan) instead of two triangles per quad.
+  bool fan = drawCap != 0 && keptMask == 0xffffffffu;
+  uint n = drawCap != 0 && !fan ? 12u : 6u;  // per quad; drawCap = 0 (z-pass): the sheet alone
+  uint total = n * kept + (fan ? 3u * kFanTriangles : 0u);
+  uint v = atomicAdd(indexCount, total);
+  atomicAdd(quadCount, kept);
+  if (v + total > uint(capacity)) return;
   uint texels = uint(size.x * size.y);
+  if (fan) {
+    capFan(q0, d, v);
+    v += 3u * kFanTriangles;
+  }
   for (int y = 0; y < kBlock.y; ++y)
     for (int x = 0; x < kBlock.x; ++x) {
       if ((keptMask & (1u << uint(y * kBlock.x + x))) == 0u) continue;
@@ -76,17 +112,18 @@ void main() {
         f[c] = dc < farPlane ? texels + s[c] : s[c];
         p[c] = lightViewPoint(t, dc);
       }
+      bool cap = n == 12u;
       if (perfect == 0 || !flipDiagonal(p[0], p[1], p[2], p[3])) {
         indices[v] = s[0]; indices[v + 1u] = s[1]; indices[v + 2u] = s[3];
         indices[v + 3u] = s[3]; indices[v + 4u] = s[1]; indices[v + 5u] = s[2];
-        if (drawCap != 0) {
+        if (cap) {
           indices[v + 6u] = f[0]; indices[v + 7u] = f[3]; indices[v + 8u] = f[1];
           indices[v + 9u] = f[1]; indices[v + 10u] = f[3]; indices[v + 11u] = f[2];
         }
       } else {
         indices[v] = s[1]; indices[v + 1u] = s[2]; indices[v + 2u] = s[0];
         indices[v + 3u] = s[0]; indices[v + 4u] = s[2]; indices[v + 5u] = s[3];
-        if (drawCap != 0) {
+        if (cap) {
           indices[v + 6u] = f[1]; indices[v + 7u] = f[0]; indices[v + 8u] = f[2];
           indices[v + 9u] = f[2]; indices[v + 10u] = f[0]; indices[v + 11u] = f[3];
         }

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -141,6 +143,23 @@ inline std::vector<char> insideLightMask(const Scene& scene, double lightAspect 
     mask[k] = c.w > 0 && std::abs(c.x) <= c.w && std::abs(c.y) <= c.w && std::abs(c.z) <= c.w;
   }
   return mask;
+}
+
+/// Whether `triangles` is what the GPU volume draws (exact cap) for `quads` kept quads: two sheet
+/// triangles each and, with z-fail, two cap triangles each; except that the indexed way
+/// (volume_index.frag) draws the cap of each block of 8 x 4 kept quads as one fan of 24 triangles
+/// (40 fewer). `someFan`: at least one such block is expected.
+inline ::testing::AssertionResult gpuVolumeTrianglesFit(std::size_t triangles, std::size_t quads, bool zfail,
+                                                        bool indexed, bool someFan = false) {
+  const std::size_t perQuad = (zfail ? 4 : 2) * quads;
+  if (!zfail || !indexed) {
+    if (triangles == perQuad) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << triangles << " triangles for " << quads << " quads, expected " << perQuad;
+  }
+  if (triangles > perQuad || (perQuad - triangles) % 40 != 0 || (someFan && triangles == perQuad))
+    return ::testing::AssertionFailure() << triangles << " triangles for " << quads
+                                         << " quads: not 4 per quad less 40 per fan" << (someFan ? " (a fan expected)" : "");
+  return ::testing::AssertionSuccess();
 }
 
 /// agreement() over the pixels where mask is set.

@@ -824,11 +824,12 @@ struct Renderer::Impl {
     setVolumeUniforms(volumeIndexProgram, vo, bias);
     volumeIndexProgram.set("occupancy", 1);
     volumeIndexProgram.set("useOccupancy", occupancyValid ? 1 : 0);
-    GLuint count = 0;
+    GLuint counts[2] = {0, 0};  // indices, kept quads
+    GLuint& count = counts[0];
     for (int attempt = 0; attempt < 2; ++attempt) {
-      const GLuint zero = 0;
+      const GLuint zero[2] = {0, 0};
       SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indexCount.id()));
-      SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(GLuint), &zero, GL_DYNAMIC_READ));
+      SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero, GL_DYNAMIC_READ));
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, indexCount.id()));
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indexBuffer.id()));
       volumeIndexProgram.set("capacity", int(std::min<std::int64_t>(indexCapacity, 0x7fffffff)));
@@ -836,7 +837,7 @@ struct Renderer::Impl {
       SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
       SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT));
       SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indexCount.id()));
-      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(GLuint), &count));
+      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(counts), counts));
       if (std::int64_t(count) <= indexCapacity) break;
       if (std::int64_t(count) * 4 > kMaxIndexBytes) break;
       growIndices(std::int64_t(count) + std::int64_t(count) / 4);
@@ -848,7 +849,7 @@ struct Renderer::Impl {
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
     if (std::int64_t(count) > indexCapacity) return false;
-    result.gpuVolumeQuadsDrawn = count / (zPassFrame ? 6 : 12);
+    result.gpuVolumeQuadsDrawn = counts[1];
     setVolumeUniforms(volumeIndexedProgram, vo, bias);
     volumeIndexedProgram.set("lightViewToClip", toFloat(lightViewToClip));
     SV_GL(glBindVertexArray(indexVao.id()));
