@@ -7,7 +7,8 @@
 // others read the depths of their covered texels (the others are far without a read), and for
 // each quad that is not all on the far plane append its triangles, as texel indices, at an
 // atomically taken offset of `indices`: the two sheet triangles and, with drawCap, their reversed
-// copies on the far plane, with the vertex order of volume_gpu.geom's strips (fixed B-D: ABD, DBC
+// copies on the far plane (a block of 32 kept quads has its cap as one fan instead, capFan), with
+// the vertex order of volume_gpu.geom's strips (fixed B-D: ABD, DBC
 // and ADB, BDC; flipped A-C: BCA, ACD and BAC, CAD), so that both rasterise alike. Index
 // t = j * W + i is texel (i, j) on the sheet, W * H + t the same texel on the far plane; a far sheet
 // vertex is its own cap copy (index t), so the two are one vertex. volume_index.vert places the
@@ -20,29 +21,28 @@ const ivec2 kBlock = ivec2(8, 4);
 layout(std430, binding = 0) buffer Count { uint indexCount; uint quadCount; };
 layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
 uniform int capacity;          // indices the buffer holds
-uniform usampler2D occupancy;  // light_mark.frag's bits; with useOccupancy = 0 every texel is read
-uniform int useOccupancy;
+uniform usampler2D occupancy;  // light_mark.frag's bits
 
 uint occupancyWord(ivec2 b) {
   return all(lessThan(b, textureSize(occupancy, 0))) ? texelFetch(occupancy, b, 0).r : 0u;
 }
 
 // The far cap of a block whose 32 quads are all kept: the rectangle over its texels on the far
-// plane as a fan of kFanTriangles around its texel (4, 2), through every texel of its border in
+// plane as a fan of kFanTriangles (24) around its texel (4, 2), through every texel of its border in
 // turn, so that it meets its neighbours' caps and the sheet's far edges at the same vertices (no
 // T-junction) with 24 triangles instead of 64. Its triangles turn the way the per-quad cap
 // triangles do (clockwise in texel coordinates, away from the light). `d` is the block's sheet
 // depths as in main (a far texel is its own cap vertex).
-const uint kFanTriangles = 24u;
+const uint kFanTriangles = uint(2 * (kBlock.x + kBlock.y));
 ivec2 borderTexel(int k) {  // counterclockwise from texel (0, 0): bottom, right, top, left
-  if (k < 8) return ivec2(k, 0);
-  if (k < 12) return ivec2(8, k - 8);
-  if (k < 20) return ivec2(20 - k, 4);
-  return ivec2(0, 24 - k);
+  if (k < kBlock.x) return ivec2(k, 0);
+  if (k < kBlock.x + kBlock.y) return ivec2(kBlock.x, k - kBlock.x);
+  if (k < 2 * kBlock.x + kBlock.y) return ivec2(2 * kBlock.x + kBlock.y - k, kBlock.y);
+  return ivec2(0, 2 * (kBlock.x + kBlock.y) - k);
 }
 void capFan(ivec2 q0, float d[(kBlock.x + 1) * (kBlock.y + 1)], uint v) {
   uint texels = uint(size.x * size.y);
-  ivec2 c = ivec2(4, 2);
+  ivec2 c = kBlock / 2;
   uint centre = uint((q0.y + c.y) * size.x + q0.x + c.x);
   if (d[c.y * (kBlock.x + 1) + c.x] < farPlane) centre += texels;
   for (int k = 0; k < int(kFanTriangles); ++k) {
@@ -58,15 +58,10 @@ void capFan(ivec2 q0, float d[(kBlock.x + 1) * (kBlock.y + 1)], uint v) {
 void main() {
   ivec2 b = ivec2(gl_FragCoord.xy);
   ivec2 q0 = b * kBlock;  // corner A of the block's first quad
-  // The block's texels and those of its neighbours it shares (all set without occupancy).
-  uint here = ~0u, right = ~0u, above = ~0u, aboveRight = ~0u;
-  if (useOccupancy != 0) {
-    here = occupancyWord(b);
-    right = occupancyWord(b + ivec2(1, 0));
-    above = occupancyWord(b + ivec2(0, 1));
-    aboveRight = occupancyWord(b + ivec2(1, 1));
-    if (here == 0u && (right & 0x01010101u) == 0u && (above & 0xffu) == 0u && (aboveRight & 1u) == 0u) return;
-  }
+  // The block's texels and those of its neighbours it shares.
+  uint here = occupancyWord(b), right = occupancyWord(b + ivec2(1, 0));
+  uint above = occupancyWord(b + ivec2(0, 1)), aboveRight = occupancyWord(b + ivec2(1, 1));
+  if (here == 0u && (right & 0x01010101u) == 0u && (above & 0xffu) == 0u && (aboveRight & 1u) == 0u) return;
   float d[(kBlock.x + 1) * (kBlock.y + 1)];
   for (int y = 0; y <= kBlock.y; ++y)
     for (int x = 0; x <= kBlock.x; ++x) {

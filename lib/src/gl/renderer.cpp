@@ -405,9 +405,9 @@ struct Renderer::Impl {
     SV_GL(glBindVertexArray(0));
   }
 
-  /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to 0.
-  /// The light's depth layer(s); with markOccupancy (the indexed GPU volume, GL 4.3) the first
-  /// layer's fragments also set their bits in `occupancy` (light_mark.frag).
+  /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to
+  /// 0. With markOccupancy (the indexed GPU volume, GL 4.3) the first layer's fragments also set
+  /// their bits in `occupancy` (light_mark.frag).
   void lightPass(int w, int h, CaptureMode mode, bool markOccupancy) {
     ensureLightTargets(w, h);
     if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
@@ -710,7 +710,10 @@ struct Renderer::Impl {
     if (how == GpuVolumeDraw::Auto) return hasCompute ? GpuVolumeDraw::Indexed : GpuVolumeDraw::KeptQuads;
     if ((how == GpuVolumeDraw::ComputeMesh || how == GpuVolumeDraw::Indexed) && !hasCompute)
       throw InputError("RenderOptions", "gpuVolumeDraw", toString(how),
-                       "needs GL 4.3 (shader storage buffers); this context is " + context.info().glVersion);
+                       std::string("needs GL 4.3 (") +
+                           (how == GpuVolumeDraw::Indexed ? "shader storage buffers and image atomics in fragment shaders"
+                                                          : "compute shaders") +
+                           "); this context is " + context.info().glVersion);
     return how;
   }
 
@@ -820,10 +823,10 @@ struct Renderer::Impl {
     SV_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, blocksY));
     SV_GL(glViewport(0, 0, blocksX, blocksY));
     bindTexture(0, depth, fetchSampler);
+    SV_CHECK(occupancyValid);  // the light pass marked the covered texels (render: indexedVolume)
     bindTexture(1, occupancy, fetchSampler);
     setVolumeUniforms(volumeIndexProgram, vo, bias);
     volumeIndexProgram.set("occupancy", 1);
-    volumeIndexProgram.set("useOccupancy", occupancyValid ? 1 : 0);
     GLuint counts[2] = {0, 0};  // indices, kept quads
     GLuint& count = counts[0];
     for (int attempt = 0; attempt < 2; ++attempt) {
