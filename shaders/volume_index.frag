@@ -23,6 +23,11 @@ layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
 uniform int capacity;          // indices the buffer holds
 uniform usampler2D occupancy;  // light_mark.frag's bits
 
+// Vertex indices (volume_index.vert): texel t on the sheet, and its copy on the far plane, which
+// for a far texel (sheet depth d on the far plane) is the sheet vertex itself.
+uint sheetIndex(ivec2 t) { return uint(t.y * size.x + t.x); }
+uint capIndex(ivec2 t, float d) { return d < farPlane ? uint(size.x * size.y) + sheetIndex(t) : sheetIndex(t); }
+
 uint occupancyWord(ivec2 b) {
   return all(lessThan(b, textureSize(occupancy, 0))) ? texelFetch(occupancy, b, 0).r : 0u;
 }
@@ -41,15 +46,12 @@ ivec2 borderTexel(int k) {  // counterclockwise from texel (0, 0): bottom, right
   return ivec2(0, 2 * (kBlock.x + kBlock.y) - k);
 }
 void capFan(ivec2 q0, float d[(kBlock.x + 1) * (kBlock.y + 1)], uint v) {
-  uint texels = uint(size.x * size.y);
   ivec2 c = kBlock / 2;
-  uint centre = uint((q0.y + c.y) * size.x + q0.x + c.x);
-  if (d[c.y * (kBlock.x + 1) + c.x] < farPlane) centre += texels;
+  uint centre = capIndex(q0 + c, d[c.y * (kBlock.x + 1) + c.x]);
   for (int k = 0; k < int(kFanTriangles); ++k) {
     ivec2 a = borderTexel(k), b = borderTexel((k + 1) % int(kFanTriangles));
-    uint ia = uint((q0.y + a.y) * size.x + q0.x + a.x), ib = uint((q0.y + b.y) * size.x + q0.x + b.x);
-    if (d[a.y * (kBlock.x + 1) + a.x] < farPlane) ia += texels;
-    if (d[b.y * (kBlock.x + 1) + b.x] < farPlane) ib += texels;
+    uint ia = capIndex(q0 + a, d[a.y * (kBlock.x + 1) + a.x]);
+    uint ib = capIndex(q0 + b, d[b.y * (kBlock.x + 1) + b.x]);
     indices[v] = centre; indices[v + 1u] = ib; indices[v + 2u] = ia;
     v += 3u;
   }
@@ -89,7 +91,6 @@ void main() {
   uint v = atomicAdd(indexCount, total);
   atomicAdd(quadCount, kept);
   if (v + total > uint(capacity)) return;
-  uint texels = uint(size.x * size.y);
   if (fan) {
     capFan(q0, d, v);
     v += 3u * kFanTriangles;
@@ -103,8 +104,8 @@ void main() {
         ivec2 o = ivec2(x, y) + kCornerOffset[c];
         float dc = d[o.y * (kBlock.x + 1) + o.x];
         ivec2 t = q0 + o;
-        s[c] = uint(t.y * size.x + t.x);
-        f[c] = dc < farPlane ? texels + s[c] : s[c];
+        s[c] = sheetIndex(t);
+        f[c] = capIndex(t, dc);
         p[c] = lightViewPoint(t, dc);
       }
       bool cap = n == 12u;

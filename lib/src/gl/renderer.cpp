@@ -717,6 +717,8 @@ struct Renderer::Impl {
     return how;
   }
 
+  /// `how`: chooseGpuVolumeDraw's choice for this frame (made before the light pass, which marks
+  /// the occupancy bits for Indexed); here it may still fall back for sizes.
   void drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
                      GpuVolumeDraw how, RenderResult& result) {
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
@@ -725,7 +727,6 @@ struct Renderer::Impl {
     result.gpuVolumeQuadsDrawn = std::size_t(quads);
     // KeptQuads needs 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
     constexpr std::int64_t kMaxKeptQuads = std::int64_t(1) << 26;
-    how = chooseGpuVolumeDraw(how, vo);
     if (how == GpuVolumeDraw::Indexed && drawIndexedGpuVolume(cam, lightViewToClip, vo, bias, depth, quads, result)) {
       result.gpuVolumeDrawUsed = how;
       return;
@@ -1049,7 +1050,8 @@ struct Renderer::Impl {
     const VolumeBuildOptions& vo = o.volumeOptions;
 
     const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu;
-    const bool indexedVolume = gpuVolume && chooseGpuVolumeDraw(o.gpuVolumeDraw, vo) == GpuVolumeDraw::Indexed;
+    const GpuVolumeDraw gpuDraw = gpuVolume ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo) : GpuVolumeDraw::Auto;
+    const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed;
     occupancyValid = false;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
@@ -1132,7 +1134,7 @@ struct Renderer::Impl {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume(zPassFrame);
         if (volumeDepth)
-          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, o.gpuVolumeDraw, result);
+          drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();
