@@ -52,15 +52,25 @@ bool quadAllFar(ivec2 t0) {
   return true;
 }
 
-// Light-view point of the centre of texel t at light-view depth d (the inverse of the projection
-// for x and y; z = -d exactly, as TexelUnprojector).
-vec3 lightViewPoint(ivec2 t, float d) {
-  vec2 ndc = (vec2(t) + 0.5) / vec2(size) * 2.0 - 1.0;
+// Light-view point at texel coordinates u (texel (i, j)'s centre is u = (i, j); the map's edges
+// are u = -0.5 and W - 0.5) and light-view depth d (the inverse of the projection for x and y;
+// z = -d exactly, as TexelUnprojector).
+vec3 lightViewPointAt(vec2 u, float d) {
+  vec2 ndc = (u + 0.5) / vec2(size) * 2.0 - 1.0;
   float z = -d;
   float w = projZW.z * z + projZW.w;
   float x = (ndc.x * w - projShear.x * z - projXY.z) / projXY.x;
   float y = (ndc.y * w - projShear.y * z - projXY.w) / projXY.y;
   return vec3(x, y, z);
+}
+vec3 lightViewPoint(ivec2 t, float d) { return lightViewPointAt(vec2(t), d); }
+
+// The projection's w of a light-view point (> 0 in front of a spot light; 1 for a directional one)
+// and its texel coordinates (as lightViewPointAt's u), for w > 0.
+float lightClipW(vec3 p) { return projZW.z * p.z + projZW.w; }
+vec2 texelOf(vec3 p) {
+  vec2 clip = vec2(projXY.x * p.x + projShear.x * p.z + projXY.z, projXY.y * p.y + projShear.y * p.z + projXY.w);
+  return (clip / lightClipW(p) + 1.0) * 0.5 * vec2(size) - 0.5;
 }
 
 // triangulation.h's flipDiagonal in float: squared areas as there; the planarity test keeps its

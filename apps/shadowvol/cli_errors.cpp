@@ -17,6 +17,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"RenderOptions", "volumeOptions.refineSteps", "--refine"},
     LibraryFieldFlag{"RenderOptions", "volumeCount", "--count"},
     LibraryFieldFlag{"RenderOptions", "gpuVolumeDraw", "--gpu-draw"},
+    LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},

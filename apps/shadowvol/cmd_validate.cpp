@@ -126,8 +126,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
                     v.facingAway, v.outsideLight, v.background);
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
-          std::printf("  refinement: %zu boundary edges, %zu rays, %.2f ms\n", result.volumeStats->boundaryEdges,
-                      result.volumeStats->raysCast, result.volumeStats->msRefine);
+          std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
+                      result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
+                      result.volumeStats->crossingFallbacks, result.volumeStats->msRefine);
         if (v.meshCheck) {
           std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
           std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",

@@ -45,6 +45,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "far quads')")
       ->check(CLI::IsMember({"auto", "indexed", "kept-quads", "compute-mesh", "all-quads"}))
       ->capture_default_str();
+  cmd.add_option("--crossings", o.crossings,
+                 "With --volume explicit --refine K: where refinement finds each boundary edge's crossing: rays (K "
+                 "bisection rays into the Embree scene) or gpu-walk (the GPU walks over the scene's triangles from "
+                 "the one each texel recorded to the silhouette edge: exact, no rays, K only switches it on; GL 4.3, "
+                 "not with --chord-points or --refine-grid; docs/gpu.md 'Crossings from a triangle walk')")
+      ->check(CLI::IsMember({"rays", "gpu-walk"}))
+      ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
                  "near rectangle provably lies outside the volume, else z-fail), zfail (always, with the cap), zpass "
@@ -84,6 +91,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
                      : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
                                                    : gl::GpuVolumeDraw::Auto;
   gl::parseVolumeCount(o.count, ro.volumeCount);
+  parseRefineCrossings(o.crossings, ro.refineCrossings);
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
   ro.volumeOptions = toVolumeBuildOptions(o.shape);
@@ -108,10 +116,16 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
   if (o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit")
     throw CLI::ValidationError("--refine", "refines the explicit volume only: add --volume explicit (refinement on "
                                            "the GPU volume is not implemented yet)");
+  if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid" || o.volume != "explicit"))
+    throw CLI::ValidationError("--crossings", "gpu-walk refines the explicit hybrid volume: add --method hybrid "
+                                              "--volume explicit --refine K");
+  if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
+    throw CLI::ValidationError("--crossings", "gpu-walk gives the boundary edges' crossings alone: --chord-points "
+                                              "and --refine-grid need --crossings rays");
 }
 
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro) {
-  if (ro.volumeOptions.refineSteps <= 0) return nullptr;
+  if (ro.volumeOptions.refineSteps <= 0 || ro.refineCrossings != gl::RefineCrossings::Rays) return nullptr;
   auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
   ro.volumeOptions.depthOracle = oracle->oracle();
   return oracle;

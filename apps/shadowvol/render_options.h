@@ -17,6 +17,7 @@ struct RenderCliOptions {
   std::string volume = "gpu";
   std::string gpuDraw = "auto";
   std::string count = "auto";  ///< --count: auto | zfail | zpass
+  std::string crossings = "rays";  ///< --crossings: rays | gpu-walk
   int resolution = 512;
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
@@ -27,7 +28,7 @@ struct RenderCliOptions {
   std::string shaderDir;
 };
 
-/// Adds --scene, --json, --method, --volume, --gpu-draw, --resolution, --capture, --triangulation, --blur,
+/// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --count, --resolution, --capture, --triangulation, --blur,
 /// --blur-offset, --bias, --cap, --refine, --size, --shadow-bias, --shadow-slope, --platform,
 /// --shader-dir.
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
@@ -42,8 +43,8 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
 /// volume. Throws CLI::ValidationError; call it from the subcommand's callback.
 void checkRenderOptionConflicts(const RenderCliOptions& o);
 
-/// With --refine, the scene's Embree depth oracle, set as ro.volumeOptions.depthOracle; keep the
-/// returned object alive while rendering. Null without --refine.
+/// With --refine and --crossings rays, the scene's Embree depth oracle, set as ro.volumeOptions.depthOracle; keep the
+/// returned object alive while rendering. Null otherwise.
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro);
 
 /// The GL context as JSON (platform, device, vendors, renderer, version).

@@ -27,7 +27,7 @@ struct Validated {
 };
 
 Validated renderAndValidate(Scene scene, gl::RenderOptions ro) {
-  ro.readStencil = ro.readDepthMap = ro.readVisibility = true;
+  ro.readStencil = ro.readDepthMap = ro.readVisibility = ro.keepVolume = true;
   renderer().setScene(scene);
   const gl::RenderResult r = renderer().render(ro);
   Validated out;
@@ -36,6 +36,7 @@ Validated renderAndValidate(Scene scene, gl::RenderOptions ro) {
   out.frame.stencil = r.stencil;
   out.frame.hybrid = ro.method == gl::ShadowMethod::Hybrid;
   for (auto vis : r.visibility) out.frame.shadowed.push_back(vis < 128);
+  out.frame.volume = r.volume;  // the explicit mesh drawn (its crossings may come from the GPU)
   out.v = validateFrame(scene, *r.depthMap, ro.volumeOptions, out.frame);
   return out;
 }
@@ -125,6 +126,57 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
       }
   }
   EXPECT_GE(frames, 8 * 8);
+}
+
+// Refinement with the GPU's silhouette walk (the explicit volume built from crossings read back from
+// the GPU): the same agreement on every shipped scene, back and front capture (the walk refuses
+// midpoint), both triangulations, blur.
+TEST(Validation, WalkRefinedVolumeMatchesCrossingCountsOnEveryScene) {
+  int frames = 0;
+  for (auto& [path, scene] : loadableScenes()) {
+    scene.camera.width = 128;
+    scene.camera.height = 96;
+    for (auto capture : {CaptureMode::Back, CaptureMode::Front})
+      for (auto tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+        const bool blur = tri == Triangulation::Fixed;  // both ways across the combinations
+        gl::RenderOptions ro;
+        ro.volume = gl::VolumeSource::Explicit;
+        ro.refineCrossings = gl::RefineCrossings::GpuWalk;
+        ro.capture = capture;
+        ro.depthWidth = ro.depthHeight = 64;
+        ro.volumeOptions.triangulation = tri;
+        ro.volumeOptions.blur = blur;
+        ro.volumeOptions.refineSteps = 1;
+        SCOPED_TRACE(path.filename().string() + " walk " + toString(capture) + " " + toString(tri) + (blur ? " blur" : ""));
+        const Validated r = renderAndValidate(scene, ro);
+        expectConsistent(r);
+        ++frames;
+      }
+  }
+  EXPECT_GE(frames, 8 * 4);
+}
+
+// The walk refuses what it cannot do, by name.
+TEST(Validation, WalkRefusesWhatItCannotDo) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 32;
+  scene.camera.height = 24;
+  renderer().setScene(scene);
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Explicit;
+  ro.refineCrossings = gl::RefineCrossings::GpuWalk;
+  EXPECT_THROW(renderer().render(ro), InputError);  // refineSteps 0: nothing to walk for
+  ro.volumeOptions.refineSteps = 2;
+  ro.volumeOptions.refineChords = true;
+  EXPECT_THROW(renderer().render(ro), InputError);  // chord points need rays
+  ro.volumeOptions.refineChords = false;
+  ro.capture = CaptureMode::Midpoint;
+  EXPECT_THROW(renderer().render(ro), InputError);  // the walk follows one layer
+  ro.capture = CaptureMode::Back;
+  ro.volume = gl::VolumeSource::Gpu;
+  EXPECT_THROW(renderer().render(ro), InputError);  // the GPU volume does not refine yet
+  ro.volume = gl::VolumeSource::Explicit;
+  EXPECT_NO_THROW(renderer().render(ro));
 }
 
 // The GPU volume refuses refinement (not implemented there) with an InputError, not a wrong frame.

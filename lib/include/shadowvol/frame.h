@@ -66,6 +66,17 @@ enum class GpuVolumeDraw {
 };
 const char* toString(GpuVolumeDraw d);
 
+/// Where an explicit volume's refinement finds its crossings (volumeOptions.refineSteps > 0).
+enum class RefineCrossings {
+  Rays,     ///< bisection rays from volumeOptions.depthOracle (Embree), refineSteps per edge
+  GpuWalk,  ///< the GPU's silhouette walk over the scene's triangles (walk_crossings.h,
+            ///< docs/gpu.md "Crossings from a triangle walk"): exact crossings without rays; needs
+            ///< GL 4.3 and the explicit volume, refineSteps > 0 only switches it on; not with chord
+            ///< points or the sub-grid
+};
+const char* toString(RefineCrossings c);  ///< "rays", "gpu-walk"
+bool parseRefineCrossings(const std::string& text, RefineCrossings& c);
+
 struct RenderOptions {
   ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
   VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
@@ -91,6 +102,7 @@ struct RenderOptions {
   bool readDepthMap = false;                   ///< read the light depth back into the result
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
                                                ///< shadow test per pixel); off = no extra cost
+  bool keepVolume = false;                     ///< explicit volume: return the mesh drawn (RenderResult::volume)
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
   /// quads"). All give the same stencil.
@@ -98,6 +110,8 @@ struct RenderOptions {
   /// hybrid (gpu and explicit volumes): z-pass without the far cap where it is safe, or z-fail.
   /// Silhouette volumes and renderWithVolume always use z-fail.
   VolumeCount volumeCount = VolumeCount::Auto;
+  /// hybrid/explicit with refinement: where the crossings come from.
+  RefineCrossings refineCrossings = RefineCrossings::Rays;
 };
 
 struct PassTime {
@@ -127,6 +141,7 @@ struct RenderResult {
   ///   none: 255 everywhere.
   std::vector<std::uint8_t> visibility;
   std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
+  std::optional<VolumeMesh> volume;   ///< the explicit volume drawn, when RenderOptions::keepVolume
   std::vector<PassTime> passes;       ///< in execution order
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes

@@ -19,6 +19,7 @@
 // builder's chord points use it too.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -43,8 +44,19 @@ struct Refinement {
   std::vector<double> centreDepths; ///< sheet depth at each requested point (`centres`), the far
                                     ///< plane where nothing short of it is hit
   std::size_t raysCast = 0;         ///< oracle queries
-  double msRays = 0.0;              ///< time inside the oracle (ms)
+  double msRays = 0.0;              ///< time inside the oracle (ms), or the crossing source's
+  std::size_t fallbacks = 0;        ///< CrossingSource only: edges whose crossing it could not find
+                                    ///< (walk_crossings.h: they get the middle of the edge)
 };
+
+/// Where refinement's crossings can come from instead of bisection with a depth oracle
+/// (VolumeBuildOptions::crossingSource; the renderer's GPU silhouette walk, walk_crossings.h):
+/// one Crossing per edge of `edges` (in order) and the sheet depth at each of `centres` (texel
+/// coordinates), with the same meaning as refineBoundaryEdges' result.
+using CrossingSource = std::function<Refinement(const DepthMap& map, const BoundaryEdges& edges,
+                                                const SheetDepthRule& rule, bool blur,
+                                                std::span<const double> blurredSheetDepths,
+                                                std::span<const glm::dvec2> centres)>;
 
 /// A segment of the image plane to bisect (texel coordinates): from a point on the near surface to
 /// a point off it, by the rule of the header comment (far: off = no hit; surface: off = nearer the

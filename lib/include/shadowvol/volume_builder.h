@@ -41,6 +41,7 @@
 
 #include "shadowvol/depth_map.h"
 #include "shadowvol/depth_oracle.h"
+#include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/triangulation.h"
 #include "shadowvol/volume_mesh.h"
 
@@ -70,6 +71,11 @@ struct VolumeBuildOptions {
                                 ///< Needs depthOracle and the exact cap (docs/volume.md, "Refinement")
   DepthOracle depthOracle;      ///< refinement only: the captured depth anywhere in the light's image
                                 ///< (depth_oracle.h); unset = no refinement possible
+  CrossingSource crossingSource; ///< refinement only: the crossings and centre depths from elsewhere
+                                ///< instead of bisection with depthOracle (the renderer's GPU
+                                ///< silhouette walk, walk_crossings.h); with it refineSteps > 0 only
+                                ///< switches refinement on. Not with refineChords or the sub-grid,
+                                ///< whose extra points need depthOracle
   bool refineChords = false;    ///< refinement only: bend the wall of a quad with two boundary edges
                                 ///< at one more crossing inside it (refineSteps more rays per such
                                 ///< quad), so it follows a curved outline. Off by default: about 15 %
@@ -133,6 +139,8 @@ struct VolumeBuildStats {
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
                                       ///< edge and per chord point, plus one per ambiguous cell; with the
                                       ///< sub-grid its samples, steps per boundary sub-edge and centres)
+  std::size_t crossingFallbacks = 0;  ///< refinement with a crossing source: edges it found no crossing
+                                      ///< on (walk_crossings.h: a wall in the middle of the edge)
   std::size_t subgridQuads = 0;       ///< sub-grid: refined quads cut into sub-cells (the others stay plain)
   std::size_t subgridSamples = 0;     ///< sub-grid: lattice nodes sampled by the oracle
   std::size_t subgridBoundaryEdges = 0; ///< sub-grid: boundary sub-edges (each with a wall)

@@ -49,6 +49,19 @@ SweepMethod refined(CaptureMode capture) {
   return m;
 }
 
+// The refined explicit volume with its crossings from the GPU's silhouette walk instead of rays
+// (RefineCrossings::GpuWalk; the walk's time, with its read-back, is part of the build pass).
+SweepMethod refinedWalk(CaptureMode capture) {
+  SweepMethod m = refined(capture);
+  m.key = std::string("hybrid-refined-walk") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/explicit";
+  m.options.refineCrossings = gl::RefineCrossings::GpuWalk;
+  m.description = "explicit volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the "
+                  "scene's triangles (no rays), perfect triangulation, " + std::string(toString(capture)) + " capture" +
+                  (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
 // The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
 // boundary edge), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
@@ -134,6 +147,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(zfail);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     SweepMethod s;
     s.key = "silhouette";
     s.family = "silhouette";
@@ -285,7 +299,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     }
     report(label);
     gl::RenderOptions ro = c.method->options;
-    if (ro.volumeOptions.refineSteps > 0) {
+    if (ro.volumeOptions.refineSteps > 0 && ro.refineCrossings == gl::RefineCrossings::Rays) {
       if (!oracle) oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
     }

@@ -74,6 +74,15 @@ bool parseVolumeCount(const std::string& text, VolumeCount& c) {
   return true;
 }
 
+const char* toString(RefineCrossings c) { return c == RefineCrossings::GpuWalk ? "gpu-walk" : "rays"; }
+
+bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
+  if (text == "rays") c = RefineCrossings::Rays;
+  else if (text == "gpu-walk") c = RefineCrossings::GpuWalk;
+  else return false;
+  return true;
+}
+
 const char* toString(TimingMethod t) {
   return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish";
 }

@@ -53,6 +53,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridFarBoundaryEdges", s.subgridFarBoundaryEdges},
           {"subgridSplitTriangles", s.subgridSplitTriangles},
           {"raysCast", s.raysCast},
+          {"crossingFallbacks", s.crossingFallbacks},
           {"bias", s.biasUsed},
           {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};

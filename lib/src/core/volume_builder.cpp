@@ -86,10 +86,15 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (options.refineSteps < 0 || options.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
-  if (options.refineSteps > 0 && !options.depthOracle)
+  if (options.refineSteps > 0 && !options.depthOracle && !options.crossingSource)
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
+  if (options.crossingSource && (options.refineChords || options.refineSubdivisions > 1) && !options.depthOracle)
+    throw InputError("volume options", options.refineChords ? "refine chords" : "refine subdivisions",
+                     options.refineChords ? "true" : std::to_string(options.refineSubdivisions),
+                     "chord points and the sub-grid sample points that only a depth oracle answers; the crossing "
+                     "source gives the boundary edges' crossings alone");
   const int s = options.refineSubdivisions;
   if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
     throw InputError("volume options", "refine subdivisions", std::to_string(s),
@@ -128,9 +133,17 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
                         const VolumeBuildOptions& options, Refinement& refinement, volume::ChordPoints& chords,
                         VolumeBuildStats& stats) {
   const DepthMap& map = sheet.map();
-  refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                   options.refineSteps, centres ? std::span<const glm::dvec2>(quads.centres)
-                                                                : std::span<const glm::dvec2>());
+  const std::span<const glm::dvec2> centreList = centres ? std::span<const glm::dvec2>(quads.centres)
+                                                          : std::span<const glm::dvec2>();
+  if (options.crossingSource) {
+    refinement = options.crossingSource(map, edges, sheet.rule(), options.blur, blurred, centreList);
+    SV_CHECK_EQ(refinement.crossings.size(), edges.edges.size());
+    SV_CHECK_EQ(refinement.centreDepths.size(), centreList.size());
+  } else {
+    refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
+                                     options.refineSteps, centreList);
+  }
+  stats.crossingFallbacks = refinement.fallbacks;
   countBoundaryEdges(edges, stats);
   stats.ambiguousCells = centres ? quads.centres.size() : 0;
   stats.raysCast = refinement.raysCast;

@@ -22,6 +22,7 @@
 #include "shadowvol/light.h"
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
+#include "silhouette_walk.h"
 
 namespace shadowvol::gl {
 
@@ -152,6 +153,12 @@ Texture makeTexture2D(GLenum internalFormat, GLenum format, GLenum type, int w, 
   return t;
 }
 
+// A vertex of the scene's buffer (the silhouette walk reads its positions as an SSBO).
+struct SceneVertex {
+  glm::vec3 position, albedo;
+};
+constexpr int kSceneVertexFloats = int(sizeof(SceneVertex) / sizeof(float));
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -211,6 +218,14 @@ struct Renderer::Impl {
   int occupancyW = 0, occupancyH = 0;
   bool occupancyValid = false;    // this frame's light pass wrote the occupancy bits
 
+  // Refinement by the silhouette walk (GL 4.3 only): the light pass records each texel's triangle
+  Program lightTriangleProgram;   // light.vert + light_triangle.frag
+  SilhouetteWalk walk;
+  Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
+  Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
+  int triangleIdsW = 0, triangleIdsH = 0;
+  GLuint layer0IdFboDepth = 0;    // the layer0 it was made with (ensureLightTargets remakes layer0)
+
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
   Texture layer0, layer1, linearDepth, blurredDepth, resolvedDepth;
@@ -251,6 +266,8 @@ struct Renderer::Impl {
       volumeIndexedProgram =
           Program(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.vert"}, {"depth_only.frag"});
       lightMarkProgram = Program(shaders, "light.vert", "light_mark.frag");
+      lightTriangleProgram = Program(shaders, "light.vert", "light_triangle.frag");
+      walk = SilhouetteWalk(shaders);
     }
 
     fetchSampler = makeSampler();
@@ -408,20 +425,26 @@ struct Renderer::Impl {
   /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to
   /// 0. With markOccupancy (the indexed GPU volume, GL 4.3) the first layer's fragments also set
   /// their bits in `occupancy` (light_mark.frag).
-  void lightPass(int w, int h, CaptureMode mode, bool markOccupancy) {
+  void lightPass(int w, int h, CaptureMode mode, bool markOccupancy, bool recordTriangles = false) {
+    SV_CHECK(!(markOccupancy && recordTriangles));
     ensureLightTargets(w, h);
     if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
+    if (recordTriangles) ensureTriangleIds(w, h);
     resetState();
     const glm::dmat4 worldToLightClip = reversedZ(lightProjection(light, double(w) / double(h))) * lightView(light);
     SV_GL(glViewport(0, 0, w, h));
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer0Fbo.id()));
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, recordTriangles ? layer0IdFbo.id() : layer0Fbo.id()));
     SV_GL(glClearDepth(0.0));  // reversed Z: 0 = nothing seen
     SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
+    if (recordTriangles) {
+      const GLuint none[4] = {0, 0, 0, 0};
+      SV_GL(glClearBufferuiv(GL_COLOR, 0, none));
+    }
     if (mode == CaptureMode::Back) {
       SV_GL(glEnable(GL_CULL_FACE));
       SV_GL(glCullFace(GL_FRONT));
     }
-    const Program& first = markOccupancy ? lightMarkProgram : lightProgram;
+    const Program& first = markOccupancy ? lightMarkProgram : recordTriangles ? lightTriangleProgram : lightProgram;
     first.use();
     first.set("worldToLightClip", toFloat(worldToLightClip));
     if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
@@ -443,6 +466,23 @@ struct Renderer::Impl {
       bindTexture(0, Texture(), fetchSampler);
     }
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  /// The triangle record of the light's first layer (light_triangle.frag) at w x h, with its
+  /// framebuffer (layer0's depth; call after ensureLightTargets).
+  void ensureTriangleIds(int w, int h) {
+    if (w == triangleIdsW && h == triangleIdsH && layer0IdFboDepth == layer0.id()) return;
+    triangleIds = makeTexture2D(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, w, h);
+    layer0IdFbo = makeFramebuffer();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer0IdFbo.id()));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, triangleIds.id(), 0));
+    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, layer0.id(), 0));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    checkFramebufferComplete("light depth with triangle record");
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+    triangleIdsW = w;
+    triangleIdsH = h;
+    layer0IdFboDepth = layer0.id();
   }
 
   /// Occupancy of a bw x bh block grid, all bits cleared.
@@ -1016,6 +1056,52 @@ struct Renderer::Impl {
     if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.volumeOptions.refineSteps > 0)
       throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
                        "the GPU volume does not refine silhouettes yet: use the explicit volume (VolumeSource::Explicit)");
+    if (o.refineCrossings == RefineCrossings::GpuWalk) {
+      auto refuse = [](const std::string& value, const std::string& why) {
+        throw InputError("RenderOptions", "refineCrossings", value, why);
+      };
+      if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit || o.volumeOptions.refineSteps == 0)
+        refuse("gpu-walk", "the silhouette walk refines the explicit hybrid volume: it needs method hybrid, volume "
+                           "explicit and refineSteps > 0");
+      if (!hasCompute) refuse("gpu-walk", "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
+                                              context.info().glVersion);
+      if (o.capture == CaptureMode::Midpoint)
+        refuse("gpu-walk", "the silhouette walk follows one layer; midpoint capture is the mean of two: use rays "
+                           "(RefineCrossings::Rays) or back or front capture");
+      if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
+        refuse("gpu-walk", "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
+                           "edges' crossings alone");
+    }
+  }
+
+  /// This frame refines its explicit volume with the GPU's silhouette walk.
+  static bool walkCrossings(const RenderOptions& o) {
+    return o.refineCrossings == RefineCrossings::GpuWalk && o.method == ShadowMethod::Hybrid &&
+           o.volume == VolumeSource::Explicit && o.volumeOptions.refineSteps > 0;
+  }
+
+  /// The volume options with the silhouette walk as the crossing source, reading this frame's
+  /// light pass (its triangle record) and the scene's buffers.
+  VolumeBuildOptions withWalk(const VolumeBuildOptions& vo) {
+    VolumeBuildOptions v = vo;
+    v.crossingSource = [this](const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
+                                              bool blur, std::span<const double> blurred,
+                                              std::span<const glm::dvec2> centres) {
+      return walk.run(walkInputs(), map, edges, rule, blur, blurred, centres);
+    };
+    return v;
+  }
+
+  /// What the walk reads after a light pass that recorded its triangles; sets its uniforms.
+  WalkInputs walkInputs() {
+    setVolumeUniforms(walk.program(), VolumeBuildOptions(), 0.0);  // the map's size and projection
+    WalkInputs in;
+    in.sceneVertices = sceneVbo.id();
+    in.sceneIndices = sceneEbo.id();
+    in.vertexStride = kSceneVertexFloats;
+    in.triangleIds = triangleIds.id();
+    in.worldToLightView = toFloat(lightView(light));
+    return in;
   }
 
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
@@ -1055,7 +1141,7 @@ struct Renderer::Impl {
     occupancyValid = false;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
-      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume);
+      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o));
     }
 
     std::size_t explicitTriangles = 0;
@@ -1065,7 +1151,7 @@ struct Renderer::Impl {
       result.depthMap = readBack(o.capture);
       timer.cpu("readback", msSince(t0));
       t0 = Clock::now();
-      VolumeBuildResult built = buildVolume(*result.depthMap, vo);
+      VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
       timer.cpu("build", msSince(t0));
       result.biasUsed = built.stats.biasUsed;
       result.volumeStats = built.stats;
@@ -1073,6 +1159,7 @@ struct Renderer::Impl {
       uploadVolume(built.mesh);
       glFinish();
       timer.cpu("upload", msSince(t0));
+      if (o.keepVolume) result.volume = built.mesh;
       // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
       explicitTriangles = built.mesh.triangleCount() - (zPassFrame ? built.stats.capTrianglesAfter : 0);
     } else if (silhouette) {
@@ -1202,9 +1289,7 @@ void Renderer::setScene(const Scene& scene) {
     throw InputError(scene.source, "/light or /camera", "", "near and far planes are not set (fitLightAndCamera)");
   if (scene.light.type == LightType::Spot && !(scene.light.nearPlane > 0.0))
     throw InputError(scene.source, "/light/near", std::to_string(scene.light.nearPlane), "a spot light needs near > 0");
-  struct Vertex {
-    glm::vec3 position, albedo;
-  };
+  using Vertex = SceneVertex;
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
   int colourIndex = 0;
@@ -1236,6 +1321,7 @@ void Renderer::setScene(const Scene& scene) {
   s.camera = scene.camera;
   s.scene = scene;
   s.occluders.reset();
+  s.walk.setScene(&s.scene);
   s.hasScene = true;
 }
 
@@ -1246,6 +1332,19 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
   s.checkSize("Renderer::captureDepth", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
   s.lightPass(width, height, mode, false);
   return s.readBack(mode);
+}
+
+std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, CaptureMode mode,
+                                                  std::span<const WalkQuery> queries) {
+  Impl& s = *impl_;
+  s.context.makeCurrent();
+  s.requireScene();
+  s.checkSize("Renderer::walkSilhouettes", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
+  if (!s.hasCompute)
+    throw InputError("Renderer::walkSilhouettes", "OpenGL version", s.context.info().glVersion,
+                     "the silhouette walk needs OpenGL 4.3 (compute shaders)");
+  s.lightPass(width, height, mode, false, true);
+  return s.walk.answers(s.walkInputs(), queries);
 }
 
 RenderResult Renderer::render(const RenderOptions& options) {

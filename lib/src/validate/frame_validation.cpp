@@ -70,7 +70,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
 
   if (frame.hybrid) {
     // The explicit volume of the same depth map and options, its checks and crossing counts.
-    const VolumeMesh volume = buildVolume(depth, volumeOptions).mesh;
+    const VolumeMesh volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
     MeshCheckOptions co;
     co.selfIntersections = options.selfIntersections;
     const double farTolerance = 1e-7 * depth.farPlane;

@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@
 #include "shadowvol/scene.h"
 #include "shadowvol/volume_builder.h"
 #include "shadowvol/volume_mesh.h"
+#include "shadowvol/walk_crossings.h"
 
 namespace shadowvol::gl {
 
@@ -54,6 +56,7 @@ using shadowvol::TimingMethod;
 using shadowvol::toString;
 using shadowvol::VolumeCount;
 using shadowvol::VolumeSource;
+using shadowvol::RefineCrossings;
 
 struct RendererOptions {
   ContextOptions context;           ///< which EGL platform (auto = device, surfaceless, default)
@@ -85,6 +88,11 @@ class Renderer {
   /// depth, kNoHit where the light sees nothing, row 0 at the bottom). Window depth is converted
   /// in double. Throws InputError for a size below 2 or too large for the GL implementation.
   DepthMap captureDepth(int width, int height, CaptureMode mode);
+
+  /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
+  /// at width x height with `mode` and its triangle record, then the walk's raw answers to
+  /// `queries`, in order. Throws InputError for a bad size or without OpenGL 4.3.
+  std::vector<WalkResult> walkSilhouettes(int width, int height, CaptureMode mode, std::span<const WalkQuery> queries);
 
   /// One frame with the scene's camera. Throws InputError on bad options, GlError on GL failure.
   RenderResult render(const RenderOptions& options);

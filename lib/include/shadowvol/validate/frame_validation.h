@@ -29,6 +29,9 @@ struct RenderedFrame {
   bool hybrid = true;                   ///< a shadow-volume method (stencil and volume apply)
   bool zPass = false;                   ///< the stencil counted with z-pass and no far cap (zpass.h):
                                         ///< compared with the counts only where the light reaches
+  std::optional<VolumeMesh> volume;     ///< hybrid, explicit volume: the mesh drawn, checked and counted
+                                        ///< as it is; unset = rebuilt from the depth map and options
+                                        ///< (the GPU volume, which mirrors the CPU build)
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -107,7 +110,9 @@ struct FrameValidation {
 inline constexpr double kRequiredAgreement = 0.9999;
 
 /// Runs every check. `depth` is the depth map the GPU used (read back), `volumeOptions` the options
-/// it drew the volume with; the explicit volume is rebuilt from them on the CPU.
+/// it drew the volume with; the explicit volume is rebuilt from them on the CPU unless the frame
+/// carries the mesh drawn (RenderedFrame::volume: needed where the build read the GPU, as the
+/// silhouette walk's crossings do).
 FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const VolumeBuildOptions& volumeOptions,
                               const RenderedFrame& frame, const ValidationOptions& options = {});
 

@@ -10,12 +10,13 @@
 
 namespace shadowvol {
 
-/// The render options a validated frame needs on top of the caller's: stencil, depth map and the
-/// method's own shadow test read back.
+/// The render options a validated frame needs on top of the caller's: stencil, depth map, the
+/// method's own shadow test and (explicit volume) the mesh drawn read back.
 inline gl::RenderOptions validationRenderOptions(gl::RenderOptions ro) {
   ro.readStencil = true;
   ro.readDepthMap = true;
   ro.readVisibility = true;
+  ro.keepVolume = true;
   return ro;
 }
 
@@ -29,6 +30,7 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   frame.hybrid = method == gl::ShadowMethod::Hybrid;
   if (frame.hybrid) frame.stencil = result.stencil;
   frame.zPass = result.volumeCountUsed == gl::VolumeCount::ZPass;
+  frame.volume = result.volume;
   frame.shadowed.resize(result.visibility.size());
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;

@@ -1,0 +1,69 @@
+#include "shadowvol/triangle_adjacency.h"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+#include <tuple>
+
+#include <tbb/parallel_sort.h>
+
+#include "shadowvol/error.h"
+
+namespace shadowvol {
+
+namespace {
+
+// Welded vertex ids: the smallest index of the vertices with exactly the same position.
+std::vector<std::uint32_t> weldByPosition(const std::vector<glm::vec3>& positions) {
+  std::vector<std::uint32_t> order(positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  auto key = [&](std::uint32_t v) { return std::make_tuple(positions[v].x, positions[v].y, positions[v].z, v); };
+  tbb::parallel_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  std::vector<std::uint32_t> weld(positions.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::uint32_t v = order[k];
+    weld[v] = (k > 0 && positions[order[k - 1]] == positions[v]) ? weld[order[k - 1]] : v;
+  }
+  return weld;
+}
+
+struct DirectedEdge {
+  std::uint64_t key;   // (smaller welded vertex << 32) | larger
+  std::uint32_t slot;  // 3 t + k
+  bool forward;        // runs from the smaller welded vertex to the larger
+};
+
+}  // namespace
+
+std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
+  const std::size_t n = mesh.triangles.size();
+  if (n >= (std::size_t(1) << 31))
+    throw InputError("triangle mesh", "triangles", std::to_string(n), "the triangle walk's neighbours take fewer than 2^31 triangles");
+  const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions);
+  std::vector<DirectedEdge> edges;
+  edges.reserve(3 * n);
+  for (std::size_t t = 0; t < n; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const std::uint32_t w[3] = {weld[tri[0]], weld[tri[1]], weld[tri[2]]};
+    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;  // degenerate: no neighbours
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = w[k], b = w[(k + 1) % 3];
+      edges.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), std::uint32_t(3 * t + k), a < b});
+    }
+  }
+  tbb::parallel_sort(edges.begin(), edges.end(),
+                     [](const DirectedEdge& a, const DirectedEdge& b) { return std::tie(a.key, a.slot) < std::tie(b.key, b.slot); });
+  std::vector<std::int32_t> neighbours(3 * n, kNoNeighbour);
+  for (std::size_t b = 0; b < edges.size();) {
+    std::size_t e = b + 1;
+    while (e < edges.size() && edges[e].key == edges[b].key) ++e;
+    if (e - b == 2 && edges[b].forward != edges[b + 1].forward) {
+      neighbours[edges[b].slot] = std::int32_t(edges[b + 1].slot / 3);
+      neighbours[edges[b + 1].slot] = std::int32_t(edges[b].slot / 3);
+    }
+    b = e;
+  }
+  return neighbours;
+}
+
+}  // namespace shadowvol

@@ -1,0 +1,221 @@
+// (version_430.glsl, light_window_depth.glsl and volume_common.glsl come first.) The silhouette
+// walk (RefineCrossings::GpuWalk, docs/gpu.md "Crossings from a triangle walk"): where along a
+// boundary edge the near surface ends, exactly, from the scene's triangles instead of rays.
+//
+// The light pass recorded at each texel the triangle it kept (light_triangle.frag: index + 1, 0 =
+// none). A walk goes from a texel centre A towards a point B of the image plane, starting in the
+// triangle A recorded: in the current triangle (projected to texel coordinates) it finds the edge
+// through which the segment leaves, and steps to the triangle across it (triangle_adjacency.h)
+// when that one turns the same way as the first as the light sees it (the sign of its projected
+// area: front or back facing, the distinction the light pass's culling makes). It stops
+//   - where it leaves through an edge with no neighbour, or into a triangle that turns the other
+//     way or is edge-on (a silhouette edge of the surface A sees): status kCrossed, at that point;
+//   - where it reaches B inside a triangle of the surface: status kReached, at B;
+//   - after kMaxWalkTriangles triangles, or at a vertex behind a spot light's apex plane, or
+//     where A recorded no triangle: status kFailed.
+// The depth it reports is the light-view depth (world units) of the last triangle's plane on the
+// light ray through the stopping point; the caller applies the sheet-depth rule.
+// A surface edge's walk also stops (kDeeper) where the surface's depth reaches the middle of the
+// jump between the two ends (bisection's rule for the near side, silhouette_refinement.h).
+// One invocation per query:
+//   edge (boundary edge P-Q, texel P = (i, j), Q one step along `axis`): a walk from the near end
+//     N towards the far end R. kCrossed gives the crossing's edge parameter s (from N) and near
+//     depth; a surface edge then walks back from R towards the crossing point X, stopping there (or
+//     where R's surface ends first): the far depth, that of the surface seen past the outline at X.
+//     kDeeper (a steep surface, split where it goes on): the crossing there, its wall from the
+//     depth kWallHalfWidth before it to the depth kWallHalfWidth after it. kReached on a far edge
+//     (the near surface spans the edge; its far end is far only as the map's border ring): s = 1
+//     at R's depth. Answered kCrossed in these three cases; kReached on a surface edge (a jump
+//     that never reaches its middle) and kFailed are left to the caller's fallback.
+//   centre (quad (i, j), its centre (i + 0.5, j + 0.5)): a walk from each corner that recorded a
+//     triangle, nearest corner first (its triangle's depth at the corner); the first that reaches
+//     the centre gives its depth, none: kNoHit.
+// One layer only: midpoint capture (the mean of two) is refused by the renderer. The walk ignores
+// surfaces that cover the segment in its middle without covering A or B (as bisection's rays may
+// miss them too), and a fold of the walked surface, where it turns away and something behind goes
+// on, ends the walk there (bisection may go on into what lies behind). Keep the result layout in
+// step with walk_crossings.h's WalkResult.
+layout(local_size_x = 64) in;
+
+const uint kEdgeQuery = 0u, kCentreQuery = 1u;
+const uint kCrossed = 0u, kReached = 1u, kFailed = 2u, kDeeper = 3u;
+const int kMaxWalkTriangles = 1024;
+const float kWallHalfWidth = 1.0 / 256.0;  // kDeeper: the wall's ends this far either side (edge parameter)
+const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
+
+struct WalkQuery { uint kind; int i; int j; uint flags; };  // flags: bit 0 axis, 1 nearAtP, 2 surface
+struct WalkResult { float s; float nearDepth; float farDepth; uint status; };
+
+layout(std430, binding = 0) readonly buffer Queries { WalkQuery queries[]; };
+layout(std430, binding = 1) writeonly buffer Results { WalkResult results[]; };
+layout(std430, binding = 2) readonly buffer SceneVertices { float sceneVertices[]; };  // renderer's VBO
+layout(std430, binding = 3) readonly buffer SceneIndices { uint sceneIndices[]; };
+layout(std430, binding = 4) readonly buffer Neighbours { int neighbours[]; };
+uniform usampler2D triangleIds;   // light_triangle.frag's record
+uniform int queryCount;
+uniform int vertexStride;         // floats per scene vertex (position first)
+uniform mat4 worldToLightView;    // V_light, composed in double
+
+// One scene triangle as the light sees it: light-view vertices, their texel coordinates, and the
+// sign of its projected area (+1, -1; 0 when edge-on or behind a spot light's apex plane).
+struct LightTriangle { vec3 lv[3]; vec2 p[3]; float turn; };
+
+float cross2(vec2 u, vec2 v) { return u.x * v.y - u.y * v.x; }
+
+LightTriangle lightTriangle(int t) {
+  LightTriangle T;
+  bool behind = false;
+  for (int k = 0; k < 3; ++k) {
+    uint v = sceneIndices[3 * t + k] * uint(vertexStride);
+    vec3 world = vec3(sceneVertices[v], sceneVertices[v + 1u], sceneVertices[v + 2u]);
+    T.lv[k] = (worldToLightView * vec4(world, 1.0)).xyz;
+    behind = behind || !(lightClipW(T.lv[k]) > 0.0);
+    T.p[k] = behind ? vec2(0.0) : texelOf(T.lv[k]);
+  }
+  float area = cross2(T.p[1] - T.p[0], T.p[2] - T.p[0]);
+  T.turn = behind ? 0.0 : sign(area);
+  return T;
+}
+
+// Light-view depth of triangle T's plane on the light ray through texel coordinates u.
+float depthOn(LightTriangle T, vec2 u) {
+  vec3 p0 = lightViewPointAt(u, 0.0), dir = lightViewPointAt(u, 1.0) - p0;
+  vec3 n = cross(T.lv[1] - T.lv[0], T.lv[2] - T.lv[0]);
+  float den = dot(n, dir);
+  if (abs(den) <= 1e-30 * length(n) * length(dir))  // edge-on: the nearest vertex's depth
+    return min(-T.lv[0].z, min(-T.lv[1].z, -T.lv[2].z));
+  return dot(n, T.lv[0] - p0) / den;
+}
+
+// Where, between parameters t0 and t1 of the segment a -> b inside triangle T, its depth reaches
+// `threshold` (it is below it at t0 and not at t1): 16 halvings.
+float depthCrossing(LightTriangle T, vec2 a, vec2 b, float t0, float t1, float threshold) {
+  for (int k = 0; k < 16; ++k) {
+    float m = 0.5 * (t0 + t1);
+    if (depthOn(T, mix(a, b, m)) < threshold) t0 = m; else t1 = m;
+  }
+  return 0.5 * (t0 + t1);
+}
+
+// Walks from a (inside triangle t) towards b, up to parameter tEnd of the segment a -> b. With a
+// finite `threshold` it also stops (kDeeper) where the surface's depth reaches it.
+// Returns the status; tOut is where it stopped, depth the depth there (see the header comment).
+uint walk(int t, vec2 a, vec2 b, float tEnd, float threshold, out float tOut, out float depth) {
+  tOut = 0.0;
+  depth = kNoHitDepth;
+  LightTriangle T = lightTriangle(t);
+  float turn = T.turn;
+  if (turn == 0.0) return kFailed;
+  int entered = -1;  // the current triangle's edge the walk came in through
+  float tc = 0.0;
+  for (int step = 0; step < kMaxWalkTriangles; ++step) {
+    float tExit = 1e30;
+    int exitEdge = -1;
+    for (int k = 0; k < 3; ++k) {
+      if (k == entered) continue;
+      vec2 p = T.p[k], q = T.p[(k + 1) % 3];
+      float ea = turn * cross2(q - p, a - p), eb = turn * cross2(q - p, b - p);
+      if (eb < ea) {  // the segment runs out through this edge's line
+        float tk = ea / (ea - eb);
+        if (tk < tExit) { tExit = tk; exitEdge = k; }
+      }
+    }
+    tExit = max(tExit, tc);
+    bool reached = exitEdge < 0 || tExit >= tEnd;
+    float tStop = reached ? tEnd : tExit;
+    if (depthOn(T, mix(a, b, tStop)) >= threshold) {
+      tOut = depthCrossing(T, a, b, tc, tStop, threshold);
+      depth = depthOn(T, mix(a, b, tOut));
+      return kDeeper;
+    }
+    if (reached) {
+      tOut = tEnd;
+      depth = depthOn(T, mix(a, b, tEnd));
+      return kReached;
+    }
+    int next = neighbours[3 * t + exitEdge];
+    LightTriangle N;
+    if (next >= 0) N = lightTriangle(next);
+    if (next < 0 || N.turn != turn) {
+      tOut = tExit;
+      depth = depthOn(T, mix(a, b, tExit));
+      return kCrossed;
+    }
+    entered = neighbours[3 * next] == t ? 0 : (neighbours[3 * next + 1] == t ? 1 : 2);
+    t = next;
+    T = N;
+    tc = tExit;
+  }
+  return kFailed;
+}
+
+int recorded(ivec2 texel) { return int(texelFetch(triangleIds, texel, 0).r) - 1; }
+
+WalkResult edgeQuery(WalkQuery q) {
+  WalkResult r = WalkResult(0.5, kNoHitDepth, kNoHitDepth, kFailed);
+  ivec2 P = ivec2(q.i, q.j), Q = P + ((q.flags & 1u) == 0u ? ivec2(1, 0) : ivec2(0, 1));
+  bool nearAtP = (q.flags & 2u) != 0u, surface = (q.flags & 4u) != 0u;
+  ivec2 N = nearAtP ? P : Q, R = nearAtP ? Q : P;
+  int t = recorded(N), tr = recorded(R);
+  if (t < 0 || (surface && tr < 0)) return r;
+  // A surface edge: the middle of the jump, the ends' depths as their triangles give them.
+  float threshold = surface ? 0.5 * (depthOn(lightTriangle(t), vec2(N)) + depthOn(lightTriangle(tr), vec2(R)))
+                            : kNoHitDepth;
+  float s, d;
+  uint status = walk(t, vec2(N), vec2(R), 1.0, threshold, s, d);
+  if (status == kFailed || (status == kReached && surface)) return r;
+  r.status = kCrossed;
+  if (status == kReached) {  // a far edge whose near surface spans it (its far end is the ring)
+    r.s = 1.0;
+    r.nearDepth = d;
+    return r;
+  }
+  if (status == kDeeper) {  // the surface goes on, steeply: a wall where it crosses the middle
+    float h = kWallHalfWidth;
+    float dn, df;
+    walk(t, vec2(N), vec2(R), max(s - h, 0.0), kNoHitDepth, r.s, dn);
+    r.s = s;
+    r.nearDepth = dn;
+    walk(t, vec2(N), vec2(R), min(s + h, 1.0), kNoHitDepth, df, r.farDepth);
+    return r;
+  }
+  r.s = s;
+  r.nearDepth = d;
+  if (!surface) return r;
+  float back, df;
+  if (walk(tr, vec2(R), vec2(N), 1.0 - s, kNoHitDepth, back, df) != kFailed) r.farDepth = df;
+  return r;
+}
+
+WalkResult centreQuery(WalkQuery q) {
+  WalkResult r = WalkResult(0.5, kNoHitDepth, kNoHitDepth, kReached);
+  vec2 c = vec2(q.i, q.j) + 0.5;
+  int tri[4];
+  float dist[4];
+  for (int k = 0; k < 4; ++k) {
+    ivec2 corner = ivec2(q.i, q.j) + kCornerOffset[k];
+    tri[k] = recorded(corner);
+    dist[k] = tri[k] < 0 ? kNoHitDepth : depthOn(lightTriangle(tri[k]), vec2(corner));
+  }
+  for (int n = 0; n < 4; ++n) {  // nearest corner first; ties by corner order
+    int best = -1;
+    for (int k = 0; k < 4; ++k)
+      if (tri[k] >= 0 && (best < 0 || dist[k] < dist[best])) best = k;
+    if (best < 0) break;
+    float s, d;
+    if (walk(tri[best], vec2(ivec2(q.i, q.j) + kCornerOffset[best]), c, 1.0, kNoHitDepth, s, d) == kReached) {
+      r.nearDepth = d;
+      return r;
+    }
+    tri[best] = -1;
+  }
+  r.status = kCrossed;  // every walk left its surface before the centre
+  return r;
+}
+
+void main() {
+  int k = int(gl_GlobalInvocationID.x);
+  if (k >= queryCount) return;
+  WalkQuery q = queries[k];
+  results[k] = q.kind == kEdgeQuery ? edgeQuery(q) : centreQuery(q);
+}

@@ -1,0 +1,78 @@
+// Edge neighbours for the silhouette walk (triangle_adjacency.h): closed, open, soup, non-manifold
+// and inconsistently oriented meshes.
+#include <gtest/gtest.h>
+
+#include "shadowvol/primitives.h"
+#include "shadowvol/triangle_adjacency.h"
+
+namespace shadowvol {
+namespace {
+
+// Every neighbour link is mutual: t's edge k has n, and one of n's edges has t.
+void expectMutual(const std::vector<std::int32_t>& n) {
+  for (std::size_t s = 0; s < n.size(); ++s) {
+    if (n[s] == kNoNeighbour) continue;
+    const std::size_t t = s / 3, u = std::size_t(n[s]);
+    EXPECT_TRUE(n[3 * u] == std::int32_t(t) || n[3 * u + 1] == std::int32_t(t) || n[3 * u + 2] == std::int32_t(t));
+  }
+}
+
+TEST(TriangleAdjacency, ClosedBoxHasANeighbourAcrossEveryEdge) {
+  const TriangleMesh box = makeBox(1.0, 2.0, 3.0);
+  const auto n = triangleNeighbours(box);
+  ASSERT_EQ(n.size(), 3 * box.triangleCount());
+  for (std::int32_t v : n) EXPECT_NE(v, kNoNeighbour);
+  expectMutual(n);
+}
+
+TEST(TriangleAdjacency, SoupIsWeldedByPosition) {
+  const TriangleMesh box = makeBox(1.0, 2.0, 3.0);
+  TriangleMesh soup;  // every triangle with its own three vertices
+  for (const auto& t : box.triangles) {
+    const auto base = std::uint32_t(soup.positions.size());
+    for (auto v : t) soup.positions.push_back(box.positions[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  EXPECT_EQ(triangleNeighbours(soup), triangleNeighbours(box));
+}
+
+TEST(TriangleAdjacency, OpenSheetHasNoneAcrossItsBorder) {
+  const TriangleMesh plane = makePlane(2.0, 2.0, 3);  // 3 x 3 quads: 12 border edges
+  const auto n = triangleNeighbours(plane);
+  std::size_t none = 0;
+  for (std::int32_t v : n) none += v == kNoNeighbour;
+  EXPECT_EQ(none, 12u);
+  expectMutual(n);
+}
+
+TEST(TriangleAdjacency, NonManifoldAndMisorientedEdgesHaveNone) {
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  // Three triangles on edge 0-1: none of them has a neighbour there.
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {1, 0, 4}};
+  auto n = triangleNeighbours(m);
+  EXPECT_EQ(n[0], kNoNeighbour);
+  EXPECT_EQ(n[3], kNoNeighbour);
+  EXPECT_EQ(n[6], kNoNeighbour);
+  // Two triangles using edge 0-1 in the same direction: inconsistently oriented, no neighbour.
+  m.triangles = {{0, 1, 2}, {0, 1, 3}};
+  n = triangleNeighbours(m);
+  EXPECT_EQ(n[0], kNoNeighbour);
+  EXPECT_EQ(n[3], kNoNeighbour);
+  // Opposite directions: neighbours.
+  m.triangles = {{0, 1, 2}, {1, 0, 3}};
+  n = triangleNeighbours(m);
+  EXPECT_EQ(n[0], 1);
+  EXPECT_EQ(n[3], 0);
+  // A triangle with a repeated (welded) vertex has no neighbours, and gives none.
+  m.positions.push_back({1, 0, 0});  // vertex 5 = vertex 1's position
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {1, 5, 2}};
+  n = triangleNeighbours(m);
+  EXPECT_EQ(n[6], kNoNeighbour);
+  EXPECT_EQ(n[7], kNoNeighbour);
+  EXPECT_EQ(n[8], kNoNeighbour);
+  EXPECT_EQ(n[1], kNoNeighbour);  // edge 1-2 of the first triangle: only it (the degenerate one gives nothing)
+}
+
+}  // namespace
+}  // namespace shadowvol
