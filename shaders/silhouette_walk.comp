@@ -7,7 +7,8 @@
 // triangle A recorded: in the current triangle (projected to texel coordinates) it finds the edge
 // through which the segment leaves, and steps to the triangle across it (triangle_adjacency.h)
 // when that one turns the same way as the first as the light sees it (the sign of its projected
-// area: front or back facing, the distinction the light pass's culling makes). It stops
+// area: front or back facing, the distinction the light pass's culling makes; the other sign
+// across a link to a triangle wound the other way). It stops
 //   - where it leaves through an edge with no neighbour, or into a triangle that turns the other
 //     way or is edge-on (a silhouette edge of the surface A sees): status kCrossed, at that point;
 //   - where it reaches B inside a triangle of the surface: status kReached, at B;
@@ -16,13 +17,16 @@
 // The depth it reports is the light-view depth (world units) of the last triangle's plane on the
 // light ray through the stopping point; the caller applies the sheet-depth rule.
 // A surface edge's walk also stops (kDeeper) where the surface's depth reaches the middle of the
-// jump between the two ends (bisection's rule for the near side, silhouette_refinement.h).
+// jump between the two ends (bisection's rule for the near side, silhouette_refinement.h), a far
+// edge's where it reaches the depth the sheet-depth rule puts on the far plane (hitLimit: beyond
+// it a bisection ray's sample counts as no hit).
 // One invocation per query:
 //   edge (boundary edge P-Q, texel P = (i, j), Q one step along `axis`): a walk from the near end
 //     N towards the far end R. kCrossed gives the crossing's edge parameter s (from N) and near
 //     depth; a surface edge then walks back from R towards the crossing point X, stopping there (or
 //     where R's surface ends first): the far depth, that of the surface seen past the outline at X.
-//     kDeeper (a steep surface, split where it goes on): the crossing there, its wall from the
+//     kDeeper (a steep surface split where it goes on, or one passing the far plane): the crossing
+//     there, its wall from the
 //     depth kWallHalfWidth before it to the depth kWallHalfWidth after it. kReached on a far edge
 //     (the near surface spans the edge; its far end is far only as the map's border ring): s = 1
 //     at R's depth. Answered kCrossed in these three cases; kReached on a surface edge (a jump
@@ -40,6 +44,7 @@ layout(local_size_x = 64) in;
 const uint kEdgeQuery = 0u, kCentreQuery = 1u;
 const uint kCrossed = 0u, kReached = 1u, kFailed = 2u, kDeeper = 3u;
 const int kMaxWalkTriangles = 1024;
+const int kFlippedNeighbour = 1 << 30;  // triangle_adjacency.h
 const float kWallHalfWidth = 1.0 / 256.0;  // kDeeper: the wall's ends this far either side (edge parameter)
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 
@@ -55,6 +60,8 @@ uniform usampler2D triangleIds;   // light_triangle.frag's record
 uniform int queryCount;
 uniform int vertexStride;         // floats per scene vertex (position first)
 uniform mat4 worldToLightView;    // V_light, composed in double
+uniform float hitLimit;           // the largest depth the sheet-depth rule takes as a hit (farSnap less
+                                  // the bias and, with blur, the blur offset)
 
 // One scene triangle as the light sees it: light-view vertices, their texel coordinates, and the
 // sign of its projected area (+1, -1; 0 when edge-on or behind a spot light's apex plane).
@@ -133,15 +140,20 @@ uint walk(int t, vec2 a, vec2 b, float tEnd, float threshold, out float tOut, ou
       depth = depthOn(T, mix(a, b, tEnd));
       return kReached;
     }
-    int next = neighbours[3 * t + exitEdge];
+    int link = neighbours[3 * t + exitEdge];
+    int next = link < 0 ? -1 : link & ~kFlippedNeighbour;
+    // A neighbour wound the other way (kFlippedNeighbour) faces as this one does when its sign is
+    // the opposite: from there on the walk compares with the flipped sign.
+    float expected = (link & kFlippedNeighbour) != 0 ? -turn : turn;
     LightTriangle N;
     if (next >= 0) N = lightTriangle(next);
-    if (next < 0 || N.turn != turn) {
+    if (next < 0 || N.turn != expected) {
       tOut = tExit;
       depth = depthOn(T, mix(a, b, tExit));
       return kCrossed;
     }
-    entered = neighbours[3 * next] == t ? 0 : (neighbours[3 * next + 1] == t ? 1 : 2);
+    turn = expected;
+    entered = (neighbours[3 * next] & ~kFlippedNeighbour) == t ? 0 : ((neighbours[3 * next + 1] & ~kFlippedNeighbour) == t ? 1 : 2);
     t = next;
     T = N;
     tc = tExit;
@@ -158,9 +170,10 @@ WalkResult edgeQuery(WalkQuery q) {
   ivec2 N = nearAtP ? P : Q, R = nearAtP ? Q : P;
   int t = recorded(N), tr = recorded(R);
   if (t < 0 || (surface && tr < 0)) return r;
-  // A surface edge: the middle of the jump, the ends' depths as their triangles give them.
+  // A surface edge: the middle of the jump, the ends' depths as their triangles give them; a far
+  // edge: where the surface passes the far plane (the light pass clips it there).
   float threshold = surface ? 0.5 * (depthOn(lightTriangle(t), vec2(N)) + depthOn(lightTriangle(tr), vec2(R)))
-                            : kNoHitDepth;
+                            : hitLimit;
   float s, d;
   uint status = walk(t, vec2(N), vec2(R), 1.0, threshold, s, d);
   if (status == kFailed || (status == kReached && surface)) return r;
@@ -170,7 +183,7 @@ WalkResult edgeQuery(WalkQuery q) {
     r.nearDepth = d;
     return r;
   }
-  if (status == kDeeper) {  // the surface goes on, steeply: a wall where it crosses the middle
+  if (status == kDeeper) {  // the surface goes on (steeply, or past the far plane): a wall where it crosses
     float h = kWallHalfWidth;
     float dn, df;
     walk(t, vec2(N), vec2(R), max(s - h, 0.0), kNoHitDepth, r.s, dn);

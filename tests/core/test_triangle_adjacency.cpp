@@ -12,8 +12,9 @@ namespace {
 void expectMutual(const std::vector<std::int32_t>& n) {
   for (std::size_t s = 0; s < n.size(); ++s) {
     if (n[s] == kNoNeighbour) continue;
-    const std::size_t t = s / 3, u = std::size_t(n[s]);
-    EXPECT_TRUE(n[3 * u] == std::int32_t(t) || n[3 * u + 1] == std::int32_t(t) || n[3 * u + 2] == std::int32_t(t));
+    const std::int32_t flag = n[s] & kFlippedNeighbour, t = std::int32_t(s / 3) | flag;
+    const std::size_t u = std::size_t(n[s] & ~kFlippedNeighbour);
+    EXPECT_TRUE(n[3 * u] == t || n[3 * u + 1] == t || n[3 * u + 2] == t);
   }
 }
 
@@ -45,7 +46,7 @@ TEST(TriangleAdjacency, OpenSheetHasNoneAcrossItsBorder) {
   expectMutual(n);
 }
 
-TEST(TriangleAdjacency, NonManifoldAndMisorientedEdgesHaveNone) {
+TEST(TriangleAdjacency, NonManifoldEdgesHaveNoneAndMisorientedOnesAreFlagged) {
   TriangleMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
   // Three triangles on edge 0-1: none of them has a neighbour there.
@@ -54,11 +55,11 @@ TEST(TriangleAdjacency, NonManifoldAndMisorientedEdgesHaveNone) {
   EXPECT_EQ(n[0], kNoNeighbour);
   EXPECT_EQ(n[3], kNoNeighbour);
   EXPECT_EQ(n[6], kNoNeighbour);
-  // Two triangles using edge 0-1 in the same direction: inconsistently oriented, no neighbour.
+  // Two triangles using edge 0-1 in the same direction: wound oppositely, a flipped link.
   m.triangles = {{0, 1, 2}, {0, 1, 3}};
   n = triangleNeighbours(m);
-  EXPECT_EQ(n[0], kNoNeighbour);
-  EXPECT_EQ(n[3], kNoNeighbour);
+  EXPECT_EQ(n[0], 1 | kFlippedNeighbour);
+  EXPECT_EQ(n[3], 0 | kFlippedNeighbour);
   // Opposite directions: neighbours.
   m.triangles = {{0, 1, 2}, {1, 0, 3}};
   n = triangleNeighbours(m);

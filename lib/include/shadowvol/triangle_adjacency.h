@@ -4,10 +4,12 @@
 //
 // The rule: vertices are welded by exactly equal positions first (an STL file or a triangle soup
 // repeats them), then edge k of triangle t (from its vertex k to vertex k + 1 mod 3) has a
-// neighbour when exactly two triangles use that welded edge and they use it in opposite directions
-// (consistently oriented). An open edge, an edge of three or more triangles, two triangles using
-// an edge in the same direction, and every edge of a triangle with a repeated welded vertex have
-// none: the walk treats them as the end of the surface. Deterministic (sorted, not hashed).
+// neighbour when exactly two triangles use that welded edge. When they use it in the same
+// direction (one of them is wound the other way, as in a mesh with shuffled orientations) the link
+// carries kFlippedNeighbour, so that the walk compares their facing the other way round. An open
+// edge, an edge of three or more triangles, and every edge of a triangle with a repeated welded
+// vertex have none: the walk treats them as the end of the surface. Deterministic (sorted, not
+// hashed).
 #pragma once
 
 #include <cstdint>
@@ -18,9 +20,12 @@
 namespace shadowvol {
 
 inline constexpr std::int32_t kNoNeighbour = -1;
+/// Set in a link whose two triangles use their edge in the same direction (wound oppositely).
+inline constexpr std::int32_t kFlippedNeighbour = 1 << 30;
 
-/// neighbours[3 t + k]: the triangle across edge k of triangle t, or kNoNeighbour (the rule above).
-/// Throws InputError for a mesh with 2^31 or more triangles (the neighbours are signed 32-bit).
+/// neighbours[3 t + k]: the triangle across edge k of triangle t (| kFlippedNeighbour when wound the
+/// other way), or kNoNeighbour (the rule above). Throws InputError for a mesh with 2^30 or more
+/// triangles (the index and the flag share a signed 32-bit word).
 std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh);
 
 }  // namespace shadowvol

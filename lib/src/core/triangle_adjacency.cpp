@@ -37,8 +37,8 @@ struct DirectedEdge {
 
 std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
   const std::size_t n = mesh.triangles.size();
-  if (n >= (std::size_t(1) << 31))
-    throw InputError("triangle mesh", "triangles", std::to_string(n), "the triangle walk's neighbours take fewer than 2^31 triangles");
+  if (n >= std::size_t(kFlippedNeighbour))
+    throw InputError("triangle mesh", "triangles", std::to_string(n), "the triangle walk's neighbours take fewer than 2^30 triangles");
   const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions);
   std::vector<DirectedEdge> edges;
   edges.reserve(3 * n);
@@ -57,9 +57,10 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
   for (std::size_t b = 0; b < edges.size();) {
     std::size_t e = b + 1;
     while (e < edges.size() && edges[e].key == edges[b].key) ++e;
-    if (e - b == 2 && edges[b].forward != edges[b + 1].forward) {
-      neighbours[edges[b].slot] = std::int32_t(edges[b + 1].slot / 3);
-      neighbours[edges[b + 1].slot] = std::int32_t(edges[b].slot / 3);
+    if (e - b == 2) {
+      const std::int32_t flipped = edges[b].forward == edges[b + 1].forward ? kFlippedNeighbour : 0;
+      neighbours[edges[b].slot] = std::int32_t(edges[b + 1].slot / 3) | flipped;
+      neighbours[edges[b + 1].slot] = std::int32_t(edges[b].slot / 3) | flipped;
     }
     b = e;
   }

@@ -1335,7 +1335,7 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
 }
 
 std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, CaptureMode mode,
-                                                  std::span<const WalkQuery> queries) {
+                                                  std::span<const WalkQuery> queries, double bias) {
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
@@ -1344,7 +1344,7 @@ std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, Capture
     throw InputError("Renderer::walkSilhouettes", "OpenGL version", s.context.info().glVersion,
                      "the silhouette walk needs OpenGL 4.3 (compute shaders)");
   s.lightPass(width, height, mode, false, true);
-  return s.walk.answers(s.walkInputs(), queries);
+  return s.walk.answers(s.walkInputs(), queries, s.light.farPlane * (1.0 - kFarSnap) - bias);
 }
 
 RenderResult Renderer::render(const RenderOptions& options) {

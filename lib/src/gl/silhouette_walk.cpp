@@ -41,7 +41,8 @@ void SilhouetteWalk::ensureNeighbours() {
   neighboursBuilt_ = true;
 }
 
-std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<const WalkQuery> queries) {
+std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<const WalkQuery> queries,
+                                                double hitLimit) {
   ensureNeighbours();
   std::vector<WalkResult> out(queries.size());
   if (queries.size() > kMaxQueries)
@@ -63,6 +64,7 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
   program_.set("vertexStride", in.vertexStride);
   program_.set("worldToLightView", in.worldToLightView);
   program_.set("triangleIds", 1);
+  program_.set("hitLimit", float(hitLimit));
   SV_GL(glActiveTexture(GL_TEXTURE1));
   SV_GL(glBindTexture(GL_TEXTURE_2D, in.triangleIds));
   SV_GL(glDispatchCompute(GLuint((queries.size() + kLocalSize - 1) / kLocalSize), 1, 1));
@@ -81,7 +83,10 @@ Refinement SilhouetteWalk::run(const WalkInputs& in, const DepthMap& map, const 
                                std::span<const glm::dvec2> centres) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<WalkQuery> queries = walkQueries(edges, centres);
-  const std::vector<WalkResult> found = answers(in, queries);
+  // A sample is a hit while ofSample keeps it short of the far plane: stored + bias (+ the blur
+  // offset) below farSnap.
+  const double hitLimit = rule.farSnap - rule.bias - (blur ? rule.blurOffset : 0.0);
+  const std::vector<WalkResult> found = answers(in, queries, hitLimit);
   Refinement r = refinementFromWalks(map, edges, rule, blur, blurredSheetDepths, found, centres.size());
   r.msRays = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -45,8 +45,9 @@ class SilhouetteWalk {
   Refinement run(const WalkInputs& in, const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
                  bool blur, std::span<const double> blurredSheetDepths, std::span<const glm::dvec2> centres);
 
-  /// The walk's raw answers to `queries`, in order (the same uniforms needed as for run).
-  std::vector<WalkResult> answers(const WalkInputs& in, std::span<const WalkQuery> queries);
+  /// The walk's raw answers to `queries`, in order (the same uniforms needed as for run); a far
+  /// edge's walk stops where the depth reaches `hitLimit` (the rule's last hit depth).
+  std::vector<WalkResult> answers(const WalkInputs& in, std::span<const WalkQuery> queries, double hitLimit);
 
  private:
   void ensureNeighbours();

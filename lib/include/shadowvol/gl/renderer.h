@@ -91,8 +91,10 @@ class Renderer {
 
   /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
   /// at width x height with `mode` and its triangle record, then the walk's raw answers to
-  /// `queries`, in order. Throws InputError for a bad size or without OpenGL 4.3.
-  std::vector<WalkResult> walkSilhouettes(int width, int height, CaptureMode mode, std::span<const WalkQuery> queries);
+  /// `queries`, in order, for a sheet with `bias` (a far edge's walk stops where depth + bias
+  /// reaches the far plane). Throws InputError for a bad size or without OpenGL 4.3.
+  std::vector<WalkResult> walkSilhouettes(int width, int height, CaptureMode mode, std::span<const WalkQuery> queries,
+                                          double bias = 0.0);
 
   /// One frame with the scene's camera. Throws InputError on bad options, GlError on GL failure.
   RenderResult render(const RenderOptions& options);
