@@ -10,7 +10,8 @@
 // area: front or back facing, the distinction the light pass's culling makes; the other sign
 // across a link to a triangle wound the other way). It stops
 //   - where it leaves through an edge with no neighbour, or into a triangle that turns the other
-//     way or is edge-on (a silhouette edge of the surface A sees): status kCrossed, at that point;
+//     way or is edge-on (a silhouette edge of the surface A sees): status kCrossed, at that point
+//     (but see the fold rule below);
 //   - where it reaches B inside a triangle of the surface: status kReached, at B;
 //   - after kMaxWalkTriangles triangles, or at a vertex behind a spot light's apex plane, or
 //     where A recorded no triangle: status kFailed.
@@ -34,17 +35,23 @@
 //   centre (quad (i, j), its centre (i + 0.5, j + 0.5)): a walk from each corner that recorded a
 //     triangle, nearest corner first (its triangle's depth at the corner); the first that reaches
 //     the centre gives its depth, none: kNoHit.
-// One layer only: midpoint capture (the mean of two) is refused by the renderer. The walk ignores
-// surfaces that cover the segment in its middle without covering A or B (as bisection's rays may
-// miss them too), and a fold of the walked surface, where it turns away and something behind goes
-// on, ends the walk there (bisection may go on into what lies behind). Keep the result layout in
-// step with walk_crossings.h's WalkResult.
+// Folds: where an edge's walk stops at a silhouette edge, the surface it walked may only fold away
+// while another goes on behind it (a bump of a real mesh seen edge-on), which bisection's rays
+// would follow. So the walk looks for a surface just past the stop (kRestartStep further along the
+// edge): from the triangle recorded at each of N, R and their neighbours across the edge it walks
+// to that point, and of those that reach it with a depth below the edge's threshold (what the rays
+// would count as the near side) the nearest is where the walk resumes, at most kMaxRestarts times.
+// Only surfaces recorded at those six texels are found; one that covers the segment in its middle
+// and none of them is missed (as bisection's rays may miss it too).
+// One layer only: midpoint capture (the mean of two) is refused by the renderer. Keep the result
+// layout in step with walk_crossings.h's WalkResult.
 layout(local_size_x = 64) in;
 
 const uint kEdgeQuery = 0u, kCentreQuery = 1u;
 const uint kCrossed = 0u, kReached = 1u, kFailed = 2u, kDeeper = 3u;
 const int kMaxWalkTriangles = 1024;
 const int kFlippedNeighbour = 1 << 30;  // triangle_adjacency.h
+const float kRestartStep = 1.0 / 1024.0;   // how far past the fold (edge parameter) the resumed walk starts
 const float kWallHalfWidth = 1.0 / 256.0;  // kDeeper: the wall's ends this far either side (edge parameter)
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 
@@ -60,6 +67,11 @@ uniform usampler2D triangleIds;   // light_triangle.frag's record
 uniform int queryCount;
 uniform int vertexStride;         // floats per scene vertex (position first)
 uniform mat4 worldToLightView;    // V_light, composed in double
+// Loop bounds as uniforms (16, kMaxRestarts = 4 and 6, set by silhouette_walk.cpp), so that the compiler
+// does not unroll the loops around a walk into many copies of it (seconds of JIT on llvmpipe).
+uniform int depthHalvings;        // where a walk's depth reaches its threshold, found to 2^-16 of the stretch
+uniform int maxRestarts;          // walks resumed past a fold, per edge
+uniform int candidateTexels;      // texels whose triangles may go on past a fold: N, R and their neighbours across
 uniform float hitLimit;           // the largest depth the sheet-depth rule takes as a hit (farSnap less
                                   // the bias and, with blur, the blur offset)
 
@@ -95,26 +107,29 @@ float depthOn(LightTriangle T, vec2 u) {
 }
 
 // Where, between parameters t0 and t1 of the segment a -> b inside triangle T, its depth reaches
-// `threshold` (it is below it at t0 and not at t1): 16 halvings.
+// `threshold` (it is below it at t0 and not at t1): depthHalvings (16) halvings.
 float depthCrossing(LightTriangle T, vec2 a, vec2 b, float t0, float t1, float threshold) {
-  for (int k = 0; k < 16; ++k) {
+  for (int k = 0; k < depthHalvings; ++k) {
     float m = 0.5 * (t0 + t1);
     if (depthOn(T, mix(a, b, m)) < threshold) t0 = m; else t1 = m;
   }
   return 0.5 * (t0 + t1);
 }
 
-// Walks from a (inside triangle t) towards b, up to parameter tEnd of the segment a -> b. With a
-// finite `threshold` it also stops (kDeeper) where the surface's depth reaches it.
-// Returns the status; tOut is where it stopped, depth the depth there (see the header comment).
-uint walk(int t, vec2 a, vec2 b, float tEnd, float threshold, out float tOut, out float depth) {
-  tOut = 0.0;
+// Walks along the segment a -> b from parameter tStart (a point inside triangle t) up to tEnd.
+// With a finite `threshold` it also stops (kDeeper) where the surface's depth reaches it.
+// Returns the status; tOut is where it stopped, depth the depth there, last the triangle there
+// (see the header comment).
+uint walk(int t, vec2 a, vec2 b, float tStart, float tEnd, float threshold, out float tOut, out float depth,
+          out int last) {
+  tOut = tStart;
   depth = kNoHitDepth;
+  last = t;
   LightTriangle T = lightTriangle(t);
   float turn = T.turn;
   if (turn == 0.0) return kFailed;
   int entered = -1;  // the current triangle's edge the walk came in through
-  float tc = 0.0;
+  float tc = tStart;
   for (int step = 0; step < kMaxWalkTriangles; ++step) {
     float tExit = 1e30;
     int exitEdge = -1;
@@ -130,6 +145,7 @@ uint walk(int t, vec2 a, vec2 b, float tEnd, float threshold, out float tOut, ou
     tExit = max(tExit, tc);
     bool reached = exitEdge < 0 || tExit >= tEnd;
     float tStop = reached ? tEnd : tExit;
+    last = t;
     if (depthOn(T, mix(a, b, tStop)) >= threshold) {
       tOut = depthCrossing(T, a, b, tc, tStop, threshold);
       depth = depthOn(T, mix(a, b, tOut));
@@ -163,6 +179,30 @@ uint walk(int t, vec2 a, vec2 b, float tEnd, float threshold, out float tOut, ou
 
 int recorded(ivec2 texel) { return int(texelFetch(triangleIds, texel, 0).r) - 1; }
 
+// After a walk stopped at a silhouette edge at parameter s of N -> R: a surface that goes on just
+// past it, below `threshold` (what bisection's rays would still count as the near side), found by
+// walking from the triangles recorded at N, R and their neighbours across the edge to that point.
+// Returns the triangle there (the nearest such surface), or -1.
+int surfaceGoingOn(ivec2 N, ivec2 R, float s, float threshold) {
+  vec2 y = mix(vec2(N), vec2(R), s + kRestartStep);
+  ivec2 across = N.x == R.x ? ivec2(1, 0) : ivec2(0, 1);
+  ivec2 from[6] = ivec2[6](N, R, N + across, N - across, R + across, R - across);
+  int best = -1;
+  float bestDepth = threshold;
+  for (int k = 0; k < candidateTexels; ++k) {
+    if (any(lessThan(from[k], ivec2(0))) || any(greaterThanEqual(from[k], size))) continue;
+    int t = recorded(from[k]);
+    if (t < 0) continue;
+    float tOut, d;
+    int last;
+    if (walk(t, vec2(from[k]), y, 0.0, 1.0, kNoHitDepth, tOut, d, last) == kReached && d < bestDepth) {
+      best = last;
+      bestDepth = d;
+    }
+  }
+  return best;
+}
+
 WalkResult edgeQuery(WalkQuery q) {
   WalkResult r = WalkResult(0.5, kNoHitDepth, kNoHitDepth, kFailed);
   ivec2 P = ivec2(q.i, q.j), Q = P + ((q.flags & 1u) == 0u ? ivec2(1, 0) : ivec2(0, 1));
@@ -171,32 +211,34 @@ WalkResult edgeQuery(WalkQuery q) {
   int t = recorded(N), tr = recorded(R);
   if (t < 0 || (surface && tr < 0)) return r;
   // A surface edge: the middle of the jump, the ends' depths as their triangles give them; a far
-  // edge: where the surface passes the far plane (the light pass clips it there).
+  // edge: where depth + bias passes the far plane.
   float threshold = surface ? 0.5 * (depthOn(lightTriangle(t), vec2(N)) + depthOn(lightTriangle(tr), vec2(R)))
                             : hitLimit;
-  float s, d;
-  uint status = walk(t, vec2(N), vec2(R), 1.0, threshold, s, d);
+  float s = 0.0, d;
+  int last = t;
+  uint status = kFailed;
+  for (int restart = 0; restart <= maxRestarts; ++restart) {
+    status = walk(t, vec2(N), vec2(R), s, 1.0, threshold, s, d, last);
+    if (status != kCrossed || s + kRestartStep >= 1.0) break;
+    int goingOn = surfaceGoingOn(N, R, s, threshold);  // a fold: something behind goes on
+    if (goingOn < 0) break;
+    t = goingOn;
+    s += kRestartStep;
+  }
   if (status == kFailed || (status == kReached && surface)) return r;
   r.status = kCrossed;
-  if (status == kReached) {  // a far edge whose near surface spans it (its far end is the ring)
-    r.s = 1.0;
-    r.nearDepth = d;
-    return r;
-  }
-  if (status == kDeeper) {  // the surface goes on (steeply, or past the far plane): a wall where it crosses
-    float h = kWallHalfWidth;
-    float dn, df;
-    walk(t, vec2(N), vec2(R), max(s - h, 0.0), kNoHitDepth, r.s, dn);
-    r.s = s;
-    r.nearDepth = dn;
-    walk(t, vec2(N), vec2(R), min(s + h, 1.0), kNoHitDepth, df, r.farDepth);
-    return r;
-  }
-  r.s = s;
+  r.s = status == kReached ? 1.0 : s;  // reached: a far edge whose near surface spans it (its far end is the ring)
   r.nearDepth = d;
-  if (!surface) return r;
+  if (status == kDeeper) {  // the surface goes on (steeply, or past the far plane): a wall where it crosses
+    LightTriangle T = lightTriangle(last);
+    r.nearDepth = depthOn(T, mix(vec2(N), vec2(R), max(s - kWallHalfWidth, 0.0)));
+    r.farDepth = depthOn(T, mix(vec2(N), vec2(R), min(s + kWallHalfWidth, 1.0)));
+    return r;
+  }
+  if (!surface || status == kReached) return r;
   float back, df;
-  if (walk(tr, vec2(R), vec2(N), 1.0 - s, kNoHitDepth, back, df) != kFailed) r.farDepth = df;
+  int lastBack;
+  if (walk(tr, vec2(R), vec2(N), 0.0, 1.0 - s, kNoHitDepth, back, df, lastBack) != kFailed) r.farDepth = df;
   return r;
 }
 
@@ -216,7 +258,8 @@ WalkResult centreQuery(WalkQuery q) {
       if (tri[k] >= 0 && (best < 0 || dist[k] < dist[best])) best = k;
     if (best < 0) break;
     float s, d;
-    if (walk(tri[best], vec2(ivec2(q.i, q.j) + kCornerOffset[best]), c, 1.0, kNoHitDepth, s, d) == kReached) {
+    int last;
+    if (walk(tri[best], vec2(ivec2(q.i, q.j) + kCornerOffset[best]), c, 0.0, 1.0, kNoHitDepth, s, d, last) == kReached) {
       r.nearDepth = d;
       return r;
     }

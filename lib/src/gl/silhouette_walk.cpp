@@ -14,6 +14,7 @@ namespace shadowvol::gl {
 
 namespace {
 constexpr int kLocalSize = 64;  // silhouette_walk.comp's local_size_x
+constexpr int kMaxRestarts = 4;  // silhouette_walk.comp: walks resumed past a fold, per edge
 constexpr std::size_t kMaxQueries = std::size_t(65535) * kLocalSize;  // one row of work groups
 }  // namespace
 
@@ -65,6 +66,9 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
   program_.set("worldToLightView", in.worldToLightView);
   program_.set("triangleIds", 1);
   program_.set("hitLimit", float(hitLimit));
+  program_.set("maxRestarts", kMaxRestarts);
+  program_.set("depthHalvings", 16);
+  program_.set("candidateTexels", 6);
   SV_GL(glActiveTexture(GL_TEXTURE1));
   SV_GL(glBindTexture(GL_TEXTURE_2D, in.triangleIds));
   SV_GL(glDispatchCompute(GLuint((queries.size() + kLocalSize - 1) / kLocalSize), 1, 1));
