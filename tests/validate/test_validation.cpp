@@ -157,11 +157,16 @@ TEST(Validation, WalkRefinedVolumeMatchesCrossingCountsOnEveryScene) {
 }
 
 // The walk refuses what it cannot do, by name.
-TEST(Validation, WalkRefusesWhatItCannotDo) {
+// The plate scene with a tiny camera, set on the renderer: for options that must be refused.
+void setSmallPlate() {
   Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
   scene.camera.width = 32;
   scene.camera.height = 24;
   renderer().setScene(scene);
+}
+
+TEST(Validation, WalkRefusesWhatItCannotDo) {
+  setSmallPlate();
   gl::RenderOptions ro;
   ro.volume = gl::VolumeSource::Explicit;
   ro.refineCrossings = gl::RefineCrossings::GpuWalk;
@@ -181,10 +186,7 @@ TEST(Validation, WalkRefusesWhatItCannotDo) {
 
 // The GPU volume refuses refinement (not implemented there) with an InputError, not a wrong frame.
 TEST(Validation, GpuVolumeRefusesRefinement) {
-  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
-  scene.camera.width = 32;
-  scene.camera.height = 24;
-  renderer().setScene(scene);
+  setSmallPlate();
   gl::RenderOptions ro;
   ro.volumeOptions.refineSteps = 2;
   EXPECT_THROW(renderer().render(ro), InputError);

@@ -153,6 +153,17 @@ Texture makeTexture2D(GLenum internalFormat, GLenum format, GLenum type, int w, 
   return t;
 }
 
+// A framebuffer drawing into `colour` (attachment 0) with `depth`; left bound.
+Framebuffer colourDepthFramebuffer(const Texture& colour, const Texture& depth, const char* what) {
+  Framebuffer f = makeFramebuffer();
+  SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, f.id()));
+  SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour.id(), 0));
+  SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth.id(), 0));
+  SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+  checkFramebufferComplete(what);
+  return f;
+}
+
 // A vertex of the scene's buffer (the silhouette walk reads its positions as an SSBO).
 struct SceneVertex {
   glm::vec3 position, albedo;
@@ -346,12 +357,7 @@ struct Renderer::Impl {
     };
     layer0Fbo = depthFbo(layer0, "light depth (first layer)");
     layer1Fbo = depthFbo(layer1, "light depth (second layer)");
-    resolveFbo = makeFramebuffer();
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, resolveFbo.id()));
-    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, linearDepth.id(), 0));
-    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, resolvedDepth.id(), 0));
-    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
-    checkFramebufferComplete("light depth resolve");
+    resolveFbo = colourDepthFramebuffer(linearDepth, resolvedDepth, "light depth resolve");
     blurFbo = makeFramebuffer();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, blurFbo.id()));
     SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, blurredDepth.id(), 0));
@@ -473,12 +479,7 @@ struct Renderer::Impl {
   void ensureTriangleIds(int w, int h) {
     if (w == triangleIdsW && h == triangleIdsH && layer0IdFboDepth == layer0.id()) return;
     triangleIds = makeTexture2D(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, w, h);
-    layer0IdFbo = makeFramebuffer();
-    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer0IdFbo.id()));
-    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, triangleIds.id(), 0));
-    SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, layer0.id(), 0));
-    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
-    checkFramebufferComplete("light depth with triangle record");
+    layer0IdFbo = colourDepthFramebuffer(triangleIds, layer0, "light depth with triangle record");
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
     triangleIdsW = w;
     triangleIdsH = h;
