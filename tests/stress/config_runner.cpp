@@ -19,6 +19,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.gpu && !c.refused) runs.push_back(RunKind::Gpu);
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
   if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
+  if (c.refined && !c.refused) runs.push_back(RunKind::Walk);
   runs.push_back(RunKind::Build);
   return runs;
 }
@@ -43,6 +44,8 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, cons
     }
     if (kind == RunKind::Refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
       for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
+    if (kind == RunKind::Walk)  // refinement with the crossings from the GPU's walk over the triangles
+      for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
   }
   r.process = runProcess(r.argv, dir / "stdout.txt", dir / "stderr.txt", s.timeoutSeconds);
   r.stdoutJson = parseJson(r.process.stdoutText);
@@ -75,6 +78,8 @@ const char* runName(RunKind k) {
       return "front";
     case RunKind::Refined:
       return "refined";
+    case RunKind::Walk:
+      return "walk";
     case RunKind::Build:
       return "build";
   }

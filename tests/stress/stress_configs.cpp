@@ -206,7 +206,7 @@ std::vector<StressConfig> generateConfigs() {
   addLightInside(all);
   addRefused(all);
   // Every third legal configuration of each category is also validated with front capture, and
-  // every third from the second on with refinement on the sub-grid.
+  // every third from the second on with refinement on the sub-grid and with the GPU walk's crossings.
   std::map<std::string, int> index;
   std::set<std::string> names;
   for (StressConfig& c : all) {
