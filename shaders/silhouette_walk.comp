@@ -13,12 +13,13 @@
 //     way or is edge-on (a silhouette edge of the surface A sees): status kCrossed, at that point
 //     (but see the fold rule below);
 //   - where it reaches B inside a triangle of the surface: status kReached, at B;
-//   - after kMaxWalkTriangles triangles, or at a vertex behind a spot light's apex plane, or
-//     where A recorded no triangle: status kFailed.
+//   - after kMaxWalkTriangles triangles, at a triangle with a vertex behind a spot light's apex
+//     plane, where A recorded no triangle or A's triangle is edge-on: status kFailed.
 // The depth it reports is the light-view depth (world units) of the last triangle's plane on the
 // light ray through the stopping point; the caller applies the sheet-depth rule.
 // A surface edge's walk also stops (kDeeper) where the surface's depth reaches the middle of the
-// jump between the two ends (bisection's rule for the near side, silhouette_refinement.h), a far
+// jump between the two ends (as bisection's first step does; its later steps move the middle with
+// their bracket, silhouette_refinement.h), a far
 // edge's where it reaches the depth the sheet-depth rule puts on the far plane (hitLimit: beyond
 // it a bisection ray's sample counts as no hit).
 // One invocation per query:
@@ -77,7 +78,7 @@ uniform float hitLimit;           // the largest depth the sheet-depth rule take
 
 // One scene triangle as the light sees it: light-view vertices, their texel coordinates, and the
 // sign of its projected area (+1, -1; 0 when edge-on or behind a spot light's apex plane).
-struct LightTriangle { vec3 lv[3]; vec2 p[3]; float turn; };
+struct LightTriangle { vec3 lv[3]; vec2 p[3]; float turn; bool behind; };
 
 float cross2(vec2 u, vec2 v) { return u.x * v.y - u.y * v.x; }
 
@@ -93,6 +94,7 @@ LightTriangle lightTriangle(int t) {
   }
   float area = cross2(T.p[1] - T.p[0], T.p[2] - T.p[0]);
   T.turn = behind ? 0.0 : sign(area);
+  T.behind = behind;
   return T;
 }
 
@@ -163,6 +165,7 @@ uint walk(int t, vec2 a, vec2 b, float tStart, float tEnd, float threshold, out 
     float expected = (link & kFlippedNeighbour) != 0 ? -turn : turn;
     LightTriangle N;
     if (next >= 0) N = lightTriangle(next);
+    if (next >= 0 && N.behind) return kFailed;  // no projection to compare: not a silhouette
     if (next < 0 || N.turn != expected) {
       tOut = tExit;
       depth = depthOn(T, mix(a, b, tExit));
@@ -219,7 +222,7 @@ WalkResult edgeQuery(WalkQuery q) {
   uint status = kFailed;
   for (int restart = 0; restart <= maxRestarts; ++restart) {
     status = walk(t, vec2(N), vec2(R), s, 1.0, threshold, s, d, last);
-    if (status != kCrossed || s + kRestartStep >= 1.0) break;
+    if (status != kCrossed || restart == maxRestarts || s + kRestartStep >= 1.0) break;
     int goingOn = surfaceGoingOn(N, R, s, threshold);  // a fold: something behind goes on
     if (goingOn < 0) break;
     t = goingOn;
@@ -230,6 +233,8 @@ WalkResult edgeQuery(WalkQuery q) {
   r.s = status == kReached ? 1.0 : s;  // reached: a far edge whose near surface spans it (its far end is the ring)
   r.nearDepth = d;
   if (status == kDeeper) {  // the surface goes on (steeply, or past the far plane): a wall where it crosses
+    // The wall's ends on the last triangle's plane, 1/256 either side (a plane nearly along the
+    // light's rays can put them off the surface; refinementFromWalks then falls back to the ends').
     LightTriangle T = lightTriangle(last);
     r.nearDepth = depthOn(T, mix(vec2(N), vec2(R), max(s - kWallHalfWidth, 0.0)));
     r.farDepth = depthOn(T, mix(vec2(N), vec2(R), min(s + kWallHalfWidth, 1.0)));

@@ -8,6 +8,7 @@
 
 #include "gl_test_support.h"
 #include "shadowvol/boundary_edges.h"
+#include "shadowvol/error.h"
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/walk_crossings.h"
@@ -102,6 +103,21 @@ TEST(SilhouetteWalk, CurvedAndThinOccludersUnderASpotLight) {
     // Measured at 96^2 (back / front): 150 of 162 and 147 of 167 surface edges agree.
     EXPECT_GE(c.surfaceAgreeing * 5, c.surface * 4) << c.surfaceAgreeing << " of " << c.surface;
   }
+}
+
+// Queries outside the map are refused before anything is read; sizes may change between walks
+// (the triangle record follows the light targets when they are remade).
+TEST(SilhouetteWalk, RefusesQueriesOutsideTheMapAndFollowsSizeChanges) {
+  gl::Renderer& r = gltest::sharedRenderer();
+  r.setScene(gltest::plateScene());
+  const WalkQuery outside{WalkQuery::kEdge, 63, 10, 0u};  // P = (63, 10), Q = (64, 10): off a 64-wide map
+  EXPECT_THROW(r.walkSilhouettes(64, 64, CaptureMode::Back, std::vector<WalkQuery>{outside}), InputError);
+  const WalkQuery centre{WalkQuery::kCentre, 10, 63, 0u};  // quad (10, 63) needs row 64
+  EXPECT_THROW(r.walkSilhouettes(64, 64, CaptureMode::Back, std::vector<WalkQuery>{centre}), InputError);
+  const Compared first = compare(gltest::plateScene(), 64, CaptureMode::Back, true);
+  (void)r.captureDepth(48, 48, CaptureMode::Back);  // the light targets remade at another size
+  const Compared again = compare(gltest::plateScene(), 64, CaptureMode::Back, true);
+  EXPECT_EQ(first.edges, again.edges);
 }
 
 }  // namespace

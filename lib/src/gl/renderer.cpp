@@ -234,8 +234,7 @@ struct Renderer::Impl {
   SilhouetteWalk walk;
   Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
   Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
-  int triangleIdsW = 0, triangleIdsH = 0;
-  GLuint layer0IdFboDepth = 0;    // the layer0 it was made with (ensureLightTargets remakes layer0)
+  int triangleIdsW = 0, triangleIdsH = 0;  // 0: to be made (ensureLightTargets remakes layer0)
 
   // Light targets (W x H)
   int lightW = 0, lightH = 0;
@@ -356,6 +355,7 @@ struct Renderer::Impl {
       return f;
     };
     layer0Fbo = depthFbo(layer0, "light depth (first layer)");
+    triangleIdsW = triangleIdsH = 0;  // its framebuffer held the old layer0
     layer1Fbo = depthFbo(layer1, "light depth (second layer)");
     resolveFbo = colourDepthFramebuffer(linearDepth, resolvedDepth, "light depth resolve");
     blurFbo = makeFramebuffer();
@@ -477,13 +477,12 @@ struct Renderer::Impl {
   /// The triangle record of the light's first layer (light_triangle.frag) at w x h, with its
   /// framebuffer (layer0's depth; call after ensureLightTargets).
   void ensureTriangleIds(int w, int h) {
-    if (w == triangleIdsW && h == triangleIdsH && layer0IdFboDepth == layer0.id()) return;
+    if (w == triangleIdsW && h == triangleIdsH) return;
     triangleIds = makeTexture2D(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, w, h);
     layer0IdFbo = colourDepthFramebuffer(triangleIds, layer0, "light depth with triangle record");
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
     triangleIdsW = w;
     triangleIdsH = h;
-    layer0IdFboDepth = layer0.id();
   }
 
   /// Occupancy of a bw x bh block grid, all bits cleared.
@@ -1345,7 +1344,8 @@ std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, Capture
     throw InputError("Renderer::walkSilhouettes", "OpenGL version", s.context.info().glVersion,
                      "the silhouette walk needs OpenGL 4.3 (compute shaders)");
   s.lightPass(width, height, mode, false, true);
-  return s.walk.answers(s.walkInputs(), queries, s.light.farPlane * (1.0 - kFarSnap) - bias);
+  const double farSnap = s.light.farPlane * (1.0 - kFarSnap);
+  return s.walk.answers(s.walkInputs(), queries, std::min(farSnap, farSnap - bias));
 }
 
 RenderResult Renderer::render(const RenderOptions& options) {

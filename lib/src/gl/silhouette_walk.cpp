@@ -50,6 +50,21 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
     throw InputError("silhouette walk", "boundary edges", std::to_string(queries.size()),
                      "more walks than one dispatch takes (" + std::to_string(kMaxQueries) + ")");
   if (queries.empty()) return out;
+  GLint size[2] = {0, 0};
+  SV_GL(glBindTexture(GL_TEXTURE_2D, in.triangleIds));
+  SV_GL(glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &size[0]));
+  SV_GL(glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &size[1]));
+  SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
+  for (std::size_t k = 0; k < queries.size(); ++k) {  // every texel a query reads lies in the map
+    const WalkQuery& q = queries[k];
+    const bool edge = q.kind == WalkQuery::kEdge;
+    const int di = edge ? ((q.flags & 1u) == 0u) : 1, dj = edge ? ((q.flags & 1u) != 0u) : 1;
+    if ((q.kind != WalkQuery::kEdge && q.kind != WalkQuery::kCentre) || q.i < 0 || q.j < 0 || q.i + di >= size[0] ||
+        q.j + dj >= size[1])
+      throw InputError("silhouette walk", "query " + std::to_string(k),
+                       std::to_string(q.kind) + " at " + std::to_string(q.i) + ", " + std::to_string(q.j),
+                       "not an edge or quad of the " + std::to_string(size[0]) + " x " + std::to_string(size[1]) + " map");
+  }
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, queries_.id()));
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(queries.size() * sizeof(WalkQuery)), queries.data(),
                      GL_STREAM_DRAW));
@@ -89,7 +104,7 @@ Refinement SilhouetteWalk::run(const WalkInputs& in, const DepthMap& map, const 
   const std::vector<WalkQuery> queries = walkQueries(edges, centres);
   // A sample is a hit while ofSample keeps it short of the far plane: stored + bias (+ the blur
   // offset) below farSnap.
-  const double hitLimit = rule.farSnap - rule.bias - (blur ? rule.blurOffset : 0.0);
+  const double hitLimit = std::min(rule.farSnap, rule.farSnap - rule.bias - (blur ? rule.blurOffset : 0.0));
   const std::vector<WalkResult> found = answers(in, queries, hitLimit);
   Refinement r = refinementFromWalks(map, edges, rule, blur, blurredSheetDepths, found, centres.size());
   r.msRays = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

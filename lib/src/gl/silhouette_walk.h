@@ -41,7 +41,8 @@ class SilhouetteWalk {
 
   /// Walks every edge of `edges` and every centre, reads the answers back and turns them into a
   /// Refinement (refinementFromWalks; msRays = the walk's time, with the read-back). The
-  /// program's volume_common uniforms must be set for the map. Throws GlError on a GL failure.
+  /// program's volume_common uniforms must be set for the map. Throws GlError on a GL failure,
+  /// InputError for more queries than one dispatch takes or a query outside the map.
   Refinement run(const WalkInputs& in, const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
                  bool blur, std::span<const double> blurredSheetDepths, std::span<const glm::dvec2> centres);
 

@@ -92,7 +92,8 @@ class Renderer {
   /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
   /// at width x height with `mode` and its triangle record, then the walk's raw answers to
   /// `queries`, in order, for a sheet with `bias` (a far edge's walk stops where depth + bias
-  /// reaches the far plane). Throws InputError for a bad size or without OpenGL 4.3.
+  /// reaches the far plane). With midpoint capture it walks the first layer (render() refuses the
+  /// walk there). Throws InputError for a bad size, a query outside the map or without OpenGL 4.3.
   std::vector<WalkResult> walkSilhouettes(int width, int height, CaptureMode mode, std::span<const WalkQuery> queries,
                                           double bias = 0.0);
 
