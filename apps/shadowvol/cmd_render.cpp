@@ -168,8 +168,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           std::printf(", %s%s%s", gl::toString(result.volumeCountUsed), result.zPassRefused.empty() ? "" : " (z-pass not safe: ",
                       result.zPassRefused.empty() ? "" : (result.zPassRefused + ")").c_str());
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
-          std::printf(", refined: %zu boundary edges, %zu rays", result.volumeStats->boundaryEdges,
-                      result.volumeStats->raysCast);
+          std::printf(", refined: %zu boundary edges, %zu rays, %zu without a crossing found (crossings: %s)",
+                      result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
+                      result.volumeStats->crossingFallbacks, o->render.crossings.c_str());
         if (!result.receiversOnly.empty()) {
           std::printf("\nreceivers only (open, cast no silhouette shadow):");
           for (const auto& r : result.receiversOnly) std::printf(" %s", r.c_str());
