@@ -19,17 +19,16 @@
 // light ray through the stopping point; the caller applies the sheet-depth rule.
 // A surface edge's walk also stops (kDeeper) where the surface's depth reaches the middle of the
 // jump between the two ends (as bisection's first step does; its later steps move the middle with
-// their bracket, silhouette_refinement.h), a far
-// edge's where it reaches the depth the sheet-depth rule puts on the far plane (hitLimit: beyond
-// it a bisection ray's sample counts as no hit).
+// their bracket, silhouette_refinement.h), a far edge's where it reaches the depth the sheet-depth
+// rule puts on the far plane (hitLimit: beyond it a bisection ray's sample counts as no hit).
 // One invocation per query:
 //   edge (boundary edge P-Q, texel P = (i, j), Q one step along `axis`): a walk from the near end
 //     N towards the far end R. kCrossed gives the crossing's edge parameter s (from N) and near
 //     depth; a surface edge then walks back from R towards the crossing point X, stopping there (or
 //     where R's surface ends first): the far depth, that of the surface seen past the outline at X.
 //     kDeeper (a steep surface split where it goes on, or one passing the far plane): the crossing
-//     there, its wall from the
-//     depth kWallHalfWidth before it to the depth kWallHalfWidth after it. kReached on a far edge
+//     there, its wall from the depth kWallHalfWidth before it to the depth kWallHalfWidth after it.
+//     kReached on a far edge
 //     (the near surface spans the edge; its far end is far only as the map's border ring): s = 1
 //     at R's depth. Answered kCrossed in these three cases; kReached on a surface edge (a jump
 //     that never reaches its middle) and kFailed are left to the caller's fallback.
@@ -41,7 +40,7 @@
 // would follow. So the walk looks for a surface just past the stop (kRestartStep further along the
 // edge): from the triangle recorded at each of N, R and their neighbours across the edge it walks
 // to that point, and of those that reach it with a depth below the edge's threshold (what the rays
-// would count as the near side) the nearest is where the walk resumes, at most kMaxRestarts times.
+// would count as the near side) the nearest is where the walk resumes, at most maxRestarts (4) times.
 // Only surfaces recorded at those six texels are found; one that covers the segment in its middle
 // and none of them is missed (as bisection's rays may miss it too).
 // One layer only: midpoint capture (the mean of two) is refused by the renderer. Keep the result
