@@ -69,6 +69,14 @@ struct BisectionSegment {
   double nearFallback = 0.0;  ///< the near vertex's depth when no sample short of the far plane was near
 };
 
+/// The segment of boundary edge e, from its near end to its far end, with the ends' depths as
+/// refinement takes them: SheetDepthRule::ofSample of the stored depths (the ring on the far
+/// plane), the far plane for a far edge's far end, and as nearFallback the near end's final sheet
+/// depth from `blurredSheetDepths` where the blur offset puts its sample on the far plane (read
+/// with blur only).
+BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,
+                             std::span<const double> blurredSheetDepths);
+
 /// Rays spent, and the time inside the oracle (ms).
 struct RayBudget {
   std::size_t rays = 0;

@@ -80,31 +80,35 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
   return out;
 }
 
-Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
-                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
-                               std::span<const glm::dvec2> centres) {
-  const std::vector<BoundaryEdge>& edges = boundary.edges;
+BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,
+                             std::span<const double> blurredSheetDepths) {
   const double farPlane = rule.farPlane;
   auto sample = [&](int i, int j) {
     if (SheetDepthRule::ring(i, j, map.width, map.height)) return farPlane;
     return rule.ofSample(map.at(i, j), blur);
   };
+  const glm::ivec2 p(e.i, e.j), q(e.i + (e.axis == 0), e.j + (e.axis == 1));
+  const glm::ivec2 a = e.nearAtP ? p : q, f = e.nearAtP ? q : p;
+  BisectionSegment g;
+  g.nearPoint = glm::dvec2(a), g.farPoint = glm::dvec2(f);
+  g.surface = e.surface;
+  g.nearDepth = sample(a.x, a.y);
+  g.farDepth = e.surface ? sample(f.x, f.y) : farPlane;
+  // Without blur the unblurred depth is the final one, so only the blur can put it on the far
+  // plane; then the end's final sheet depth stands in.
+  if (g.nearDepth == farPlane) SV_CHECK(blur);
+  g.nearFallback = g.nearDepth != farPlane ? g.nearDepth : blurredSheetDepths[map.index(a.x, a.y)];
+  return g;
+}
+
+Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
+                               std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
+                               std::span<const glm::dvec2> centres) {
+  const std::vector<BoundaryEdge>& edges = boundary.edges;
   std::vector<BisectionSegment> segments(edges.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      const BoundaryEdge& e = edges[k];
-      const glm::ivec2 p(e.i, e.j), q(e.i + (e.axis == 0), e.j + (e.axis == 1));
-      const glm::ivec2 a = e.nearAtP ? p : q, f = e.nearAtP ? q : p;
-      BisectionSegment& g = segments[k];
-      g.nearPoint = glm::dvec2(a), g.farPoint = glm::dvec2(f);
-      g.surface = e.surface;
-      g.nearDepth = sample(a.x, a.y);
-      g.farDepth = e.surface ? sample(f.x, f.y) : farPlane;
-      // Without blur the unblurred depth is the final one, so only the blur can put it on the far
-      // plane; then the end's final sheet depth stands in.
-      if (g.nearDepth == farPlane) SV_CHECK(blur);
-      g.nearFallback = g.nearDepth != farPlane ? g.nearDepth : blurredSheetDepths[map.index(a.x, a.y)];
-    }
+    for (std::size_t k = r.begin(); k != r.end(); ++k)
+      segments[k] = edgeSegment(map, edges[k], rule, blur, blurredSheetDepths);
   });
   Refinement result;
   RayBudget budget;

@@ -26,22 +26,12 @@ Refinement refinementFromWalks(const DepthMap& map, const BoundaryEdges& boundar
   const double farPlane = rule.farPlane;
   // A walk's depth as a sample of the surface: no hit where it is not a finite depth >= 0.
   auto ofWalk = [&](float d) { return rule.ofSample(std::isfinite(d) && d >= 0.0f ? d : DepthMap::kNoHit, blur); };
-  auto sample = [&](int i, int j) {
-    if (SheetDepthRule::ring(i, j, map.width, map.height)) return farPlane;
-    return rule.ofSample(map.at(i, j), blur);
-  };
   Refinement result;
   result.crossings.resize(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const BoundaryEdge& e = edges[k];
-    const int pi = e.i, pj = e.j, qi = e.i + (e.axis == 0), qj = e.j + (e.axis == 1);
-    const int ni = e.nearAtP ? pi : qi, nj = e.nearAtP ? pj : qj, fi = e.nearAtP ? qi : pi, fj = e.nearAtP ? qj : pj;
-    double nearEnd = sample(ni, nj);
-    if (nearEnd == farPlane) {  // only the blur can put a hit end there (refineBoundaryEdges)
-      SV_CHECK(blur);
-      nearEnd = blurredSheetDepths[map.index(ni, nj)];
-    }
-    const double farEnd = e.surface ? sample(fi, fj) : farPlane;
+    const BisectionSegment ends = edgeSegment(map, e, rule, blur, blurredSheetDepths);  // as bisection takes them
+    const double nearEnd = ends.nearFallback, farEnd = ends.farDepth;
     const WalkResult& w = answers[k];
     Crossing& c = result.crossings[k];
     c = {0.5, nearEnd, farEnd};

@@ -1100,6 +1100,8 @@ struct Renderer::Impl {
     in.sceneIndices = sceneEbo.id();
     in.vertexStride = kSceneVertexFloats;
     in.triangleIds = triangleIds.id();
+    in.width = triangleIdsW;
+    in.height = triangleIdsH;
     in.worldToLightView = toFloat(lightView(light));
     return in;
   }

@@ -50,11 +50,7 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
     throw InputError("silhouette walk", "boundary edges", std::to_string(queries.size()),
                      "more walks than one dispatch takes (" + std::to_string(kMaxQueries) + ")");
   if (queries.empty()) return out;
-  GLint size[2] = {0, 0};
-  SV_GL(glBindTexture(GL_TEXTURE_2D, in.triangleIds));
-  SV_GL(glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &size[0]));
-  SV_GL(glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &size[1]));
-  SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
+  const int size[2] = {in.width, in.height};
   for (std::size_t k = 0; k < queries.size(); ++k) {  // every texel a query reads lies in the map
     const WalkQuery& q = queries[k];
     const bool edge = q.kind == WalkQuery::kEdge;

@@ -23,6 +23,7 @@ struct WalkInputs {
   GLuint sceneIndices = 0;     ///< its index buffer (3 per triangle, Scene::merged() order)
   int vertexStride = 0;
   GLuint triangleIds = 0;      ///< R32UI, light_triangle.frag's record, at the map's size
+  int width = 0, height = 0;   ///< the map's size
   glm::mat4 worldToLightView;  ///< V_light, composed in double
 };
 
