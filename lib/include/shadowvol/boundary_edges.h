@@ -35,6 +35,9 @@ namespace shadowvol {
 
 inline constexpr double kJumpFootprints = 2.0;  ///< see the header comment
 inline constexpr double kJumpSlope = 3.0;       ///< see the header comment
+/// Rounds of findBoundaryEdges' unfolding: a fold that survives them keeps its edges (its wall
+/// crosses itself; the volume stays closed).
+inline constexpr int kMaxUnfoldRounds = 8;
 
 /// The texel footprint of a map as a function of light-view depth: F(d) = a + b * d (exact for
 /// orthographic (b = 0) and perspective (a = 0) lights; measured at the map's centre, where a
@@ -70,8 +73,8 @@ struct BoundaryEdges {
 /// materialised grid); without, it is not read (the final depth is u, the ring aside).
 /// Row-parallel, deterministic. When splitBits is given (one byte per texel), bit 0 / bit 1 of
 /// texel (i, j) are set when its edge along +i / +j is a boundary edge, and every other bit is
-/// cleared. Quads whose two boundary sides would give a folded wall are made continuous (see the
-/// implementation's keepWallsUnfolded).
+/// cleared. Quads whose two boundary sides would give a folded wall are made continuous, in rounds
+/// independent of the quads' order (see the implementation's keepWallsUnfolded).
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
                                 std::span<const double> blurredSheetDepths = {}, std::uint8_t* splitBits = nullptr);
 

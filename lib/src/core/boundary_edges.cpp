@@ -46,8 +46,11 @@ namespace {
 // A quad with exactly two boundary sides, both surface edges, whose two sides disagree on which
 // of its two components is the near one (the near surface at one crossing is the far one at the
 // other: the surfaces cross inside the quad) would get a wall folded onto itself (a bow-tie,
-// self-intersecting). Both edges are made continuous instead; that can leave a neighbour in the
-// same state, so this repeats until no quad is (serially, in quad order: deterministic).
+// self-intersecting). Both edges are made continuous instead. That can leave a neighbour in the
+// same state, so this goes in rounds: each round finds every quad that folds in the edges left by
+// the round before and makes all their edges continuous at once (independent of the order of the
+// quads, so the GPU's boundary_unfold.comp runs the same rounds in parallel), up to
+// kMaxUnfoldRounds rounds.
 void keepWallsUnfolded(std::vector<std::vector<BoundaryEdge>>& rows, int w, int h, std::uint8_t* splitBits) {
   const int qw = w - 1, qh = h - 1;
   std::vector<std::vector<std::uint8_t>> alive(rows.size());
@@ -76,8 +79,9 @@ void keepWallsUnfolded(std::vector<std::vector<BoundaryEdge>>& rows, int w, int 
   std::sort(quads.begin(), quads.end());
   quads.erase(std::unique(quads.begin(), quads.end()), quads.end());
   bool any = false;
-  for (bool changed = true; changed;) {
-    changed = false;
+  std::vector<BoundaryEdge*> dying;
+  for (int round = 0; round < kMaxUnfoldRounds; ++round) {
+    dying.clear();
     for (std::uint64_t q : quads) {
       const int qi = int(q % std::uint64_t(qw)), qj = int(q / std::uint64_t(qw));
       // Sides 0..3 (A->B, B->C, C->D, D->A); the first two run from their edge's P end.
@@ -88,14 +92,15 @@ void keepWallsUnfolded(std::vector<std::vector<BoundaryEdge>>& rows, int w, int 
       if (n != 2 || !side[split[0]]->surface || !side[split[1]]->surface) continue;
       auto nearAtStart = [&](int k) { return k < 2 ? side[k]->nearAtP : !side[k]->nearAtP; };
       if (nearAtStart(split[0]) != nearAtStart(split[1])) continue;  // one component near at both
-      for (int k : {split[0], split[1]}) {
-        const BoundaryEdge& e = *side[k];
-        if (splitBits) splitBits[std::size_t(e.j) * w + e.i] &= std::uint8_t(~(1 << e.axis));
-        auto& row = rows[std::size_t(e.j)];
-        alive[std::size_t(e.j)][std::size_t(&e - row.data())] = 0;
-      }
-      changed = any = true;
+      dying.push_back(side[split[0]]);
+      dying.push_back(side[split[1]]);
     }
+    if (dying.empty()) break;
+    for (BoundaryEdge* e : dying) {
+      if (splitBits) splitBits[std::size_t(e->j) * w + e->i] &= std::uint8_t(~(1 << e->axis));
+      alive[std::size_t(e->j)][std::size_t(e - rows[std::size_t(e->j)].data())] = 0;
+    }
+    any = true;
   }
   if (!any) return;
   for (std::size_t j = 0; j < rows.size(); ++j) {
