@@ -1,4 +1,5 @@
-// (version_430.glsl, light_window_depth.glsl and volume_common.glsl come first.) The silhouette
+// (version_430.glsl, light_window_depth.glsl, volume_common.glsl and refine_common.glsl come
+// first.) The silhouette
 // walk (RefineCrossings::GpuWalk, docs/gpu.md "Crossings from a triangle walk"): where along a
 // boundary edge the near surface ends, exactly, from the scene's triangles instead of rays.
 //
@@ -45,6 +46,13 @@
 // and none of them is missed (as bisection's rays may miss it too).
 // One layer only: midpoint capture (the mean of two) is refused by the renderer. Keep the result
 // layout in step with walk_crossings.h's WalkResult.
+// Queries come from a list (gridQueries = 0: the explicit volume's, walk_crossings.h) or from the
+// boundary flags (gridQueries = 1: the refined GPU volume, refine_common.glsl): one invocation per
+// edge slot and quad centre, x = 3 i + k (k = 0, 1: the edge of texel (i, j) along axis k; 2: the
+// centre of quad (i, j)), y = j; only boundary edges and quads with 3 or 4 boundary sides walk.
+// Their answers become the wall's crossing as walk_crossings.h's refinementFromWalks makes it
+// (gridCrossing, rule for rule) and go to crossingRecords, layer k at (i, j): (texel coordinates
+// of the crossing, near depth, far depth); a centre's: (its sheet depth, 0, 0, 0).
 layout(local_size_x = 64) in;
 
 const uint kEdgeQuery = 0u, kCentreQuery = 1u;
@@ -63,6 +71,10 @@ layout(std430, binding = 1) writeonly buffer Results { WalkResult results[]; };
 layout(std430, binding = 2) readonly buffer SceneVertices { float sceneVertices[]; };  // renderer's VBO
 layout(std430, binding = 3) readonly buffer SceneIndices { uint sceneIndices[]; };
 layout(std430, binding = 4) readonly buffer Neighbours { int neighbours[]; };
+layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };   // gridQueries = 1
+layout(std430, binding = 6) buffer Counters { uint counters[]; };      // [2] edges walked, [3] fallbacks
+layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
+uniform int gridQueries;          // 1: the queries are the boundary flags' (see the header comment)
 uniform usampler2D triangleIds;   // light_triangle.frag's record
 uniform int queryCount;
 uniform int vertexStride;         // floats per scene vertex (position first)
@@ -273,7 +285,65 @@ WalkResult centreQuery(WalkQuery q) {
   return r;
 }
 
+const float kWalkEdgeMargin = 1.0 / 256.0;  // walk_crossings.h
+
+// walk_crossings.h's refinementFromWalks for one edge (P, axis; flags e shifted to axis 0):
+// (crossing's texel coordinates, near depth, far depth); counts a fallback.
+vec4 gridCrossing(ivec2 P, int axis, uint e, WalkResult w) {
+  bool nearAtP = (e & kNearAtPBit) != 0u, surface = (e & kSurfaceBit) != 0u;
+  ivec2 Q = P + (axis == 0 ? ivec2(1, 0) : ivec2(0, 1));
+  ivec2 N = nearAtP ? P : Q, R = nearAtP ? Q : P;
+  float uN = unblurredDepth(N);
+  float nearEnd = uN != farPlane ? uN : sheetDepth(N);  // edgeSegment's nearFallback
+  float farEnd = surface ? unblurredDepth(R) : farPlane;
+  float s = 0.5, nearDepth = nearEnd, farDepth = farEnd;
+  bool found = w.status == kCrossed && !isnan(w.s) && !isinf(w.s);
+  if (found) {
+    s = clamp(w.s, kWalkEdgeMargin, 1.0 - kWalkEdgeMargin);
+    float nearAt = ofSample(w.nearDepth);
+    if (nearAt != farPlane) nearDepth = nearAt;
+    if (surface) {
+      float farAt = ofSample(w.farDepth);
+      farDepth = farAt != farPlane && farAt > nearDepth ? farAt : farEnd;
+      if (!(farDepth > nearDepth)) {  // the near vertex came out beyond the far end's depth
+        found = false;
+        s = 0.5;
+        nearDepth = nearEnd;
+        farDepth = farEnd;
+      }
+    }
+  }
+  if (!found) atomicAdd(counters[3], 1u);
+  return vec4(mix(vec2(N), vec2(R), s), nearDepth, farDepth);
+}
+
+void gridMain() {
+  int i = int(gl_GlobalInvocationID.x) / 3, k = int(gl_GlobalInvocationID.x) % 3, j = int(gl_GlobalInvocationID.y);
+  ivec2 P = ivec2(i, j);
+  if (!inGrid(P)) return;
+  if (k < 2) {
+    uint e = flags[texelIndex(P)] >> uint(k);
+    if ((e & kBoundaryBit) == 0u) return;
+    uint queryFlags = uint(k) | ((e & kNearAtPBit) != 0u ? 2u : 0u) | ((e & kSurfaceBit) != 0u ? 4u : 0u);
+    WalkResult r = edgeQuery(WalkQuery(kEdgeQuery, i, j, queryFlags));
+    imageStore(crossingRecords, ivec3(P, k), gridCrossing(P, k, e, r));
+    atomicAdd(counters[2], 1u);
+    return;
+  }
+  if (i + 1 >= size.x || j + 1 >= size.y) return;
+  int sides = 0;
+  for (int m = 0; m < 4; ++m)
+    if (((flags[texelIndex(sideTexel(P, m))] >> uint(sideAxis(m))) & kBoundaryBit) != 0u) ++sides;
+  if (sides < 3) return;
+  WalkResult r = centreQuery(WalkQuery(kCentreQuery, i, j, 0u));
+  imageStore(crossingRecords, ivec3(P, 2), vec4(ofSample(r.nearDepth), 0.0, 0.0, 0.0));
+}
+
 void main() {
+  if (gridQueries != 0) {
+    gridMain();
+    return;
+  }
   int k = int(gl_GlobalInvocationID.x);
   if (k >= queryCount) return;
   WalkQuery q = queries[k];

@@ -147,6 +147,9 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};
+      if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
+        j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
+                              {"crossingFallbacks", result.gpuCrossingFallbacks}};
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (result.volumeStats) j["volumeBuild"] = describeVolumeStats(*result.volumeStats);
       if (o->render.scene.json) {
@@ -170,7 +173,10 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         if (result.volumeStats && result.volumeStats->refinedCells > 0)
           std::printf(", refined: %zu boundary edges, %zu rays, %zu without a crossing found (crossings: %s)",
                       result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
-                      result.volumeStats->crossingFallbacks, o->render.crossings.c_str());
+                      result.volumeStats->crossingFallbacks, gl::toString(ro.refineCrossings));
+        if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
+          std::printf(", refined on the GPU: %zu boundary edges, %zu without a crossing found (crossings: gpu-walk)",
+                      result.gpuBoundaryEdges, result.gpuCrossingFallbacks);
         if (!result.receiversOnly.empty()) {
           std::printf("\nreceivers only (open, cast no silhouette shadow):");
           for (const auto& r : result.receiversOnly) std::printf(" %s", r.c_str());

@@ -46,11 +46,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->check(CLI::IsMember({"auto", "indexed", "kept-quads", "compute-mesh", "all-quads"}))
       ->capture_default_str();
   cmd.add_option("--crossings", o.crossings,
-                 "With --volume explicit --refine K: where refinement finds each boundary edge's crossing: rays (K "
-                 "bisection rays into the Embree scene) or gpu-walk (the GPU walks over the scene's triangles from "
-                 "the one each texel recorded to the silhouette edge: exact, no rays, K only switches it on; GL 4.3, "
-                 "not with --chord-points or --refine-grid; docs/gpu.md 'Crossings from a triangle walk')")
-      ->check(CLI::IsMember({"rays", "gpu-walk"}))
+                 "With --refine K: where refinement finds each boundary edge's crossing: rays (K bisection rays "
+                 "into the Embree scene; --volume explicit only) or gpu-walk (the GPU walks over the scene's "
+                 "triangles from the one each texel recorded to the silhouette edge: exact, no rays, K only "
+                 "switches it on; GL 4.3, back or front capture, not with --chord-points or --refine-grid; "
+                 "docs/gpu.md 'Crossings from a triangle walk'); auto: rays for --volume explicit, gpu-walk for "
+                 "--volume gpu (the refined GPU volume always walks)")
+      ->check(CLI::IsMember({"auto", "rays", "gpu-walk"}))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
@@ -91,7 +93,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
                      : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
                                                    : gl::GpuVolumeDraw::Auto;
   gl::parseVolumeCount(o.count, ro.volumeCount);
-  parseRefineCrossings(o.crossings, ro.refineCrossings);
+  if (o.crossings != "auto") parseRefineCrossings(o.crossings, ro.refineCrossings);
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
   ro.volumeOptions = toVolumeBuildOptions(o.shape);
@@ -113,19 +115,25 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
 }
 
 void checkRenderOptionConflicts(const RenderCliOptions& o) {
-  if (o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit")
-    throw CLI::ValidationError("--refine", "refines the explicit volume only: add --volume explicit (refinement on "
-                                           "the GPU volume is not implemented yet)");
-  if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid" || o.volume != "explicit"))
-    throw CLI::ValidationError("--crossings", "gpu-walk refines the explicit hybrid volume: add --method hybrid "
-                                              "--volume explicit --refine K");
+  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume == "gpu";
+  if (refinedGpu && o.crossings == "rays")
+    throw CLI::ValidationError("--crossings", "the refined GPU volume finds its crossings with the GPU's walk: use "
+                                              "--crossings gpu-walk (or auto), or --volume explicit for rays");
+  if (refinedGpu && (o.shape.chordPoints || o.shape.refineGrid > 1))
+    throw CLI::ValidationError(o.shape.chordPoints ? "--chord-points" : "--refine-grid",
+                               "needs rays (--volume explicit --crossings rays): the refined GPU volume refines the "
+                               "boundary edges' crossings alone");
+  if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))
+    throw CLI::ValidationError("--crossings", "gpu-walk refines a hybrid volume: add --method hybrid --refine K");
   if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
     throw CLI::ValidationError("--crossings", "gpu-walk gives the boundary edges' crossings alone: --chord-points "
                                               "and --refine-grid need --crossings rays");
 }
 
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro) {
-  if (ro.volumeOptions.refineSteps <= 0 || ro.refineCrossings != gl::RefineCrossings::Rays) return nullptr;
+  if (ro.volumeOptions.refineSteps <= 0 || ro.refineCrossings != gl::RefineCrossings::Rays ||
+      ro.volume != gl::VolumeSource::Explicit)
+    return nullptr;
   auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
   ro.volumeOptions.depthOracle = oracle->oracle();
   return oracle;

@@ -17,7 +17,7 @@ struct RenderCliOptions {
   std::string volume = "gpu";
   std::string gpuDraw = "auto";
   std::string count = "auto";  ///< --count: auto | zfail | zpass
-  std::string crossings = "rays";  ///< --crossings: rays | gpu-walk
+  std::string crossings = "auto";  ///< --crossings: auto | rays | gpu-walk
   int resolution = 512;
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap

@@ -63,10 +63,13 @@ enum class GpuVolumeDraw {
                 ///< list (GL 4.3; falls back to KeptQuads past a 512 MiB mesh); InputError without 4.3
   KeptQuads,    ///< a transform-feedback pass lists the kept quads, the geometry shader expands them (GL 3.3)
   AllQuads,     ///< one point per quad through the geometry shader, none skipped (the first version)
+  Refined,      ///< not a choice: what RenderResult::gpuVolumeDrawUsed says of a refined GPU volume
+                ///< (volumeOptions.refineSteps > 0: compute passes list its triangles, GL 4.3)
 };
 const char* toString(GpuVolumeDraw d);
 
-/// Where an explicit volume's refinement finds its crossings (volumeOptions.refineSteps > 0).
+/// Where an explicit volume's refinement finds its crossings (volumeOptions.refineSteps > 0). The
+/// refined GPU volume always finds them with the walk (docs/gpu.md "The refined GPU volume").
 enum class RefineCrossings {
   Rays,     ///< bisection rays from volumeOptions.depthOracle (Embree), refineSteps per edge
   GpuWalk,  ///< the GPU's silhouette walk over the scene's triangles (walk_crossings.h,
@@ -84,9 +87,10 @@ struct RenderOptions {
   int depthHeight = 256;                       ///< light depth map texels (> 1)
   CaptureMode capture = CaptureMode::Back;     ///< back faces: no self-shadow acne on lit faces
   VolumeBuildOptions volumeOptions;            ///< hybrid: triangulation, blur, blurOffset, bias,
-                                               ///< cap (flattenCap and refinement (refineSteps,
-                                               ///< depthOracle) apply to explicit only; the GPU
-                                               ///< volume refuses refineSteps > 0)
+                                               ///< cap (flattenCap, depthOracle, chord points and the
+                                               ///< sub-grid apply to explicit only; refineSteps > 0
+                                               ///< refines the GPU volume by the walk: GL 4.3, back
+                                               ///< or front capture, the exact cap)
   int imageWidth = 0;                          ///< camera image pixels; 0 = scene camera's width
   int imageHeight = 0;                         ///< camera image pixels; 0 = scene camera's height
   double ambient = 0.2;                        ///< ambient factor of the albedo
@@ -102,7 +106,9 @@ struct RenderOptions {
   bool readDepthMap = false;                   ///< read the light depth back into the result
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own
                                                ///< shadow test per pixel); off = no extra cost
-  bool keepVolume = false;                     ///< explicit volume: return the mesh drawn (RenderResult::volume)
+  bool keepVolume = false;                     ///< explicit volume: return the mesh drawn (RenderResult::volume);
+                                               ///< refined GPU volume: the CPU builder's mesh from the
+                                               ///< GPU's own boundary edges and crossings (a debug read-back)
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
   /// quads"). All give the same stencil.
@@ -155,6 +161,9 @@ struct RenderResult {
   VolumeCount volumeCountUsed = VolumeCount::ZFail;      ///< stencil methods: ZFail or ZPass
   std::string zPassRefused;         ///< hybrid with Auto and z-fail used: why z-pass was not safe
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
+  std::size_t gpuBoundaryEdges = 0;     ///< refined GPU volume: boundary edges walked
+  std::size_t gpuCrossingFallbacks = 0; ///< refined GPU volume: of them, walls in the middle of the
+                                        ///< edge (no crossing found, walk_crossings.h)
   std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
                                                 ///< (its time, refinement rays included, is the
                                                 ///< "build" pass)

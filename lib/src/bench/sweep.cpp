@@ -299,7 +299,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     }
     report(label);
     gl::RenderOptions ro = c.method->options;
-    if (ro.volumeOptions.refineSteps > 0 && ro.refineCrossings == gl::RefineCrossings::Rays) {
+    if (ro.volumeOptions.refineSteps > 0 && ro.refineCrossings == gl::RefineCrossings::Rays &&
+        ro.volume == gl::VolumeSource::Explicit) {
       if (!oracle) oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
     }

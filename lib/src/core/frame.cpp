@@ -58,6 +58,7 @@ const char* toString(GpuVolumeDraw d) {
     case GpuVolumeDraw::Indexed: return "indexed";
     case GpuVolumeDraw::ComputeMesh: return "compute-mesh";
     case GpuVolumeDraw::KeptQuads: return "kept-quads";
+    case GpuVolumeDraw::Refined: return "refined";
     default: return "all-quads";
   }
 }

@@ -22,6 +22,7 @@
 #include "shadowvol/light.h"
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
+#include "refined_gpu_volume.h"
 #include "silhouette_walk.h"
 
 namespace shadowvol::gl {
@@ -234,6 +235,9 @@ struct Renderer::Impl {
   SilhouetteWalk walk;
   Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
   Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
+  std::optional<RefinedGpuVolume> refined;  // the refined GPU volume's passes, made on its first frame
+  std::optional<TexelFootprint> footprint;  // of the light's map at footprintW x footprintH (setScene resets)
+  int footprintW = 0, footprintH = 0;
   int triangleIdsW = 0, triangleIdsH = 0;  // 0: to be made (ensureLightTargets remakes layer0)
 
   // Light targets (W x H)
@@ -905,6 +909,59 @@ struct Renderer::Impl {
     return true;
   }
 
+  /// The refined GPU volume's boundary edges and crossings for this frame's map (`depth`: the
+  /// final sheet depths; with blur the unblurred are linearDepth).
+  void findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth) {
+    if (!refined) refined.emplace(shaders);  // compiled on the first refined frame
+    if (!footprint || footprintW != lightW || footprintH != lightH) {
+      footprint = TexelFootprint::of(makeDepthMap(light, lightW, lightH, CaptureMode::Back));  // metadata only
+      footprintW = lightW, footprintH = lightH;
+    }
+    const WalkInputs in = walkInputs();  // sets the walk's map uniforms (bias 0): before the ones below
+    std::vector<const Program*> programs = refined->programs();
+    programs.push_back(&walk.program());
+    for (const Program* p : programs) {
+      setVolumeUniforms(*p, vo, bias);
+      p->set("blurOn", vo.blur ? 1 : 0);
+      p->set("blurOffset", float(vo.blurOffset));
+    }
+    bindTexture(0, depth, fetchSampler);
+    bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
+    const double farSnap = light.farPlane * (1.0 - kFarSnap);
+    const double hitLimit = std::min(farSnap, farSnap - bias - (vo.blur ? vo.blurOffset : 0.0));
+    refined->findCrossings(walk, in, *footprint, hitLimit);
+  }
+
+  void drawRefinedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
+                            RenderResult& result) {
+    const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
+    (void)bias;  // findGpuCrossings set the programs' uniforms for this frame
+    bindTexture(0, depth, fetchSampler);
+    bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
+    RefinedGpuCounts counts;
+    const bool drawn = refined->listAndDraw(toFloat(lightViewToClip), counts);
+    bindTexture(3, Texture(), fetchSampler);
+    if (!drawn)
+      throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(lightW) + "x" + std::to_string(lightH),
+                       "the refined GPU volume's index list would pass 512 MiB or 32-bit indices: use a smaller map");
+    result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
+    result.gpuVolumeQuads = std::size_t(lightW - 1) * std::size_t(lightH - 1);
+    result.gpuVolumeQuadsDrawn = counts.quads;
+    result.volumeTriangles = counts.indices / 3;
+    result.gpuBoundaryEdges = counts.boundaryEdges;
+    result.gpuCrossingFallbacks = counts.fallbacks;
+  }
+
+  /// The crossings of the last refined GPU frame, read back, as the CPU builder's crossing source
+  /// (refinementFromGpuRecords).
+  CrossingSource gpuCrossingSource() {
+    return [flags = refined->readFlags(), records = refined->readRecords()](
+               const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule, bool blur,
+               std::span<const double> blurred, std::span<const glm::dvec2> centres) {
+      return refinementFromGpuRecords(map, edges, rule, blur, blurred, centres, flags, records);
+    };
+  }
+
   void growIndices(std::int64_t indices) {
     SV_GL(glBindVertexArray(indexVao.id()));
     SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indexBuffer.id()));
@@ -1053,9 +1110,24 @@ struct Renderer::Impl {
                        "must be finite");
     if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
       throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
-    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.volumeOptions.refineSteps > 0)
-      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                       "the GPU volume does not refine silhouettes yet: use the explicit volume (VolumeSource::Explicit)");
+    if (refinedGpuVolume(o)) {
+      auto refuse = [&](const std::string& why) {
+        throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                         "the refined GPU volume " + why);
+      };
+      if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
+      if (o.capture == CaptureMode::Midpoint)
+        refuse("walks one layer; midpoint capture is the mean of two: use back or front capture, or the explicit "
+               "volume with rays");
+      if (o.volumeOptions.cap != FarCap::Exact)
+        refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
+      if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
+        refuse("finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
+               "with rays");
+    }
+    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.gpuVolumeDraw == GpuVolumeDraw::Refined)
+      throw InputError("RenderOptions", "gpuVolumeDraw", "refined",
+                       "is what a refined GPU volume reports, not a choice: set volumeOptions.refineSteps > 0");
     if (o.refineCrossings == RefineCrossings::GpuWalk) {
       auto refuse = [](const std::string& value, const std::string& why) {
         throw InputError("RenderOptions", "refineCrossings", value, why);
@@ -1072,6 +1144,11 @@ struct Renderer::Impl {
         refuse("gpu-walk", "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
                            "edges' crossings alone");
     }
+  }
+
+  /// This frame draws the refined GPU volume (refined_gpu_volume.h).
+  static bool refinedGpuVolume(const RenderOptions& o) {
+    return o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.volumeOptions.refineSteps > 0;
   }
 
   /// This frame refines its explicit volume with the GPU's silhouette walk.
@@ -1138,12 +1215,15 @@ struct Renderer::Impl {
     const VolumeBuildOptions& vo = o.volumeOptions;
 
     const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu;
-    const GpuVolumeDraw gpuDraw = gpuVolume ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo) : GpuVolumeDraw::Auto;
+    const bool refinedGpu = gpuVolume && refinedGpuVolume(o);
+    const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
+                                  : refinedGpu             ? GpuVolumeDraw::Refined
+                                                           : GpuVolumeDraw::Auto;
     const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed;
     occupancyValid = false;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
-      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o));
+      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o) || refinedGpu);
     }
 
     std::size_t explicitTriangles = 0;
@@ -1203,6 +1283,10 @@ struct Renderer::Impl {
         volumeDepth = &blurredDepth;
       }
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
+      if (refinedGpu) {
+        TimedPass t(timer, "crossings");
+        findGpuCrossings(vo, result.biasUsed, *volumeDepth);
+      }
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);
@@ -1222,7 +1306,9 @@ struct Renderer::Impl {
       {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume(zPassFrame);
-        if (volumeDepth)
+        if (refinedGpu)
+          drawRefinedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
+        else if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
@@ -1256,6 +1342,14 @@ struct Renderer::Impl {
       SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
       result.volumeTriangles = std::size_t(n);
       volumeTrianglesPending = false;
+    }
+    if (refinedGpu && o.keepVolume) {  // the debug read-back: the CPU mesh from the GPU's crossings
+      result.depthMap = readBack(o.capture);
+      VolumeBuildOptions v = vo;
+      v.crossingSource = gpuCrossingSource();
+      VolumeBuildResult built = buildVolume(*result.depthMap, v);
+      result.volume = std::move(built.mesh);
+      result.volumeStats = built.stats;
     }
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette)
       result.depthMap = readBack(o.capture);
@@ -1324,6 +1418,7 @@ void Renderer::setScene(const Scene& scene) {
   s.scene = scene;
   s.occluders.reset();
   s.walk.setScene(&s.scene);
+  s.footprint.reset();
   s.hasScene = true;
 }
 

@@ -20,7 +20,7 @@ constexpr std::size_t kMaxQueries = std::size_t(65535) * kLocalSize;  // one row
 
 SilhouetteWalk::SilhouetteWalk(const ShaderLibrary& shaders)
     : program_(Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl",
-                                          "silhouette_walk.comp"})),
+                                          "refine_common.glsl", "silhouette_walk.comp"})),
       neighbours_(makeBuffer()),
       queries_(makeBuffer()),
       results_(makeBuffer()) {}
@@ -68,11 +68,23 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(out.size() * sizeof(WalkResult)), nullptr, GL_STREAM_READ));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, queries_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, results_.id()));
+  bindInputs(in, hitLimit);
+  program_.set("queryCount", int(queries.size()));
+  program_.set("gridQueries", 0);
+  SV_GL(glDispatchCompute(GLuint((queries.size() + kLocalSize - 1) / kLocalSize), 1, 1));
+  SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, results_.id()));
+  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * sizeof(WalkResult)), out.data()));
+  unbindInputs();
+  return out;
+}
+
+void SilhouetteWalk::bindInputs(const WalkInputs& in, double hitLimit) {
+  ensureNeighbours();
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, in.sceneVertices));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, in.sceneIndices));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, neighbours_.id()));
   program_.use();
-  program_.set("queryCount", int(queries.size()));
   program_.set("vertexStride", in.vertexStride);
   program_.set("worldToLightView", in.worldToLightView);
   program_.set("triangleIds", 1);
@@ -82,15 +94,23 @@ std::vector<WalkResult> SilhouetteWalk::answers(const WalkInputs& in, std::span<
   program_.set("candidateTexels", 6);
   SV_GL(glActiveTexture(GL_TEXTURE1));
   SV_GL(glBindTexture(GL_TEXTURE_2D, in.triangleIds));
-  SV_GL(glDispatchCompute(GLuint((queries.size() + kLocalSize - 1) / kLocalSize), 1, 1));
-  SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
-  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, results_.id()));
-  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * sizeof(WalkResult)), out.data()));
+  SV_GL(glActiveTexture(GL_TEXTURE0));
+}
+
+void SilhouetteWalk::unbindInputs() {
+  SV_GL(glActiveTexture(GL_TEXTURE1));
   SV_GL(glBindTexture(GL_TEXTURE_2D, 0));
   SV_GL(glActiveTexture(GL_TEXTURE0));
   for (GLuint b = 0; b < 5; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
-  return out;
+}
+
+void SilhouetteWalk::dispatchGrid(const WalkInputs& in, double hitLimit) {
+  bindInputs(in, hitLimit);
+  program_.set("gridQueries", 1);
+  // x = 3 i + k in groups of kLocalSize, y = j (silhouette_walk.comp's grid queries).
+  SV_GL(glDispatchCompute(GLuint((3 * in.width + kLocalSize - 1) / kLocalSize), GLuint(in.height), 1));
+  unbindInputs();
 }
 
 Refinement SilhouetteWalk::run(const WalkInputs& in, const DepthMap& map, const BoundaryEdges& edges,

@@ -51,8 +51,15 @@ class SilhouetteWalk {
   /// edge's walk stops where the depth reaches `hitLimit` (the rule's last hit depth).
   std::vector<WalkResult> answers(const WalkInputs& in, std::span<const WalkQuery> queries, double hitLimit);
 
+  /// The grid queries of the refined GPU volume (silhouette_walk.comp's gridQueries = 1): one
+  /// dispatch over the map's edge slots and quads; the caller binds the boundary flags (SSBO 5),
+  /// the counters (SSBO 6) and the crossing records (image unit 0) and orders the memory barrier.
+  void dispatchGrid(const WalkInputs& in, double hitLimit);
+
  private:
   void ensureNeighbours();
+  void bindInputs(const WalkInputs& in, double hitLimit);  // scene buffers, triangle record, uniforms
+  void unbindInputs();
   Program program_;
   const Scene* scene_ = nullptr;
   bool neighboursBuilt_ = false;

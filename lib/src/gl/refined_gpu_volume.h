@@ -1,0 +1,79 @@
+// The refined GPU volume (--volume gpu --refine K, docs/gpu.md "The refined GPU volume"): the
+// explicit builder's refined walls made on the GPU from the light pass's depth and triangle record,
+// without a read-back. Four steps, each a compute pass (GL 4.3):
+//   1. boundary_edges.comp: every texel's boundary flags (boundary_edges.h's rule);
+//   2. boundary_unfold.comp: the unfolding rounds (kMaxUnfoldRounds, each dispatched indirectly
+//      from the one before: no read-back);
+//   3. silhouette_walk.comp with grid queries: each boundary edge's crossing and each ambiguous
+//      quad's centre depth, as walk_crossings.h's refinementFromWalks makes them, into a
+//      W x H x 3 RGBA32F array texture (layers: axis 0, axis 1, centre);
+//   4. volume_refined.comp lists the triangles as vertex indices, volume_refined.vert places them.
+// Internal to the renderer (renderer.cpp owns one per context and sets the volume_common.glsl
+// uniforms on every program before a frame).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "shadowvol/boundary_edges.h"
+#include "shadowvol/silhouette_refinement.h"
+#include "shadowvol/gl/gl_objects.h"
+#include "shadowvol/gl/shader_program.h"
+#include "silhouette_walk.h"
+
+namespace shadowvol::gl {
+
+/// Counts of one refined GPU volume (read back with the listing pass's index count).
+struct RefinedGpuCounts {
+  std::uint32_t indices = 0, quads = 0, boundaryEdges = 0, fallbacks = 0;
+};
+
+/// The debug path: the CPU builder's Refinement for `edges` (its own boundary edges of the
+/// read-back map) from the GPU's flags and records (readFlags, readRecords): an edge the GPU also
+/// found takes its crossing (s from the record's texel coordinates, its near and far depths); one
+/// it did not gets the fallback of walk_crossings.h (the middle of the edge with the ends'
+/// depths), counted in `fallbacks`. Centres: the record's depth.
+Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
+                                    bool blur, std::span<const double> blurredSheetDepths,
+                                    std::span<const glm::dvec2> centres, std::span<const std::uint32_t> flags,
+                                    std::span<const glm::vec4> records);
+
+class RefinedGpuVolume {
+ public:
+  RefinedGpuVolume() = default;
+  explicit RefinedGpuVolume(const ShaderLibrary& shaders);
+
+  /// The programs that read volume_common.glsl's and refine_common.glsl's uniforms (the walk's
+  /// program is the SilhouetteWalk's).
+  std::vector<const Program*> programs() const { return {&boundary_, &unfold_, &list_, &draw_}; }
+
+  /// Steps 1-3 for a W x H map (in.width, in.height). Textures: the final sheet depths on unit 0
+  /// (lightDepth), with blur the unblurred on unit 3 (rawDepth); the walk's program's uniforms
+  /// must be set. `hitLimit` as for SilhouetteWalk::answers.
+  void findCrossings(SilhouetteWalk& walk, const WalkInputs& in, const TexelFootprint& footprint, double hitLimit);
+
+  /// Step 4 and the draw into the bound framebuffer (stencil state set by the caller). The index
+  /// buffer grows to what the frame needs (the count is read back; a frame that overflows it
+  /// lists again) up to 512 MiB; false (nothing drawn) when the list would be larger.
+  bool listAndDraw(const glm::mat4& lightViewToClip, RefinedGpuCounts& counts);
+
+  /// Debug read-backs of the last findCrossings (tests, validation): every texel's boundary flags
+  /// (refine_common.glsl's bits) and the crossing records, layer-major (layer k at k W H + j W + i).
+  std::vector<std::uint32_t> readFlags() const;
+  std::vector<glm::vec4> readRecords() const;
+
+ private:
+  void ensureSize(int w, int h);
+  Program boundary_, unfold_, list_, draw_;
+  Buffer flags_, counters_, rounds_, indices_;
+  VertexArray vao_;
+  Texture records_;
+  int w_ = 0, h_ = 0;
+  std::int64_t indexCapacity_ = 0;
+};
+
+}  // namespace shadowvol::gl
