@@ -92,7 +92,11 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                                          scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
                       {"shadowSlope", o->render.shadowSlope},
                       {"selfIntersections", o->selfIntersections}};
-      if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
+      if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
+      if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
+        j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
+                              {"crossingFallbacks", result.gpuCrossingFallbacks},
+                              {"volumeTriangles", result.volumeTriangles}};
       j.update(describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette));
       if (frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
         j["volumeCount"] = gl::toString(result.volumeCountUsed);
@@ -125,12 +129,18 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                     renderer.info().glRenderer.c_str());
         std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
                     v.facingAway, v.outsideLight, v.background);
-        if (result.volumeStats && result.volumeStats->refinedCells > 0)
+        if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
+          std::printf("  refinement on the GPU: %zu boundary edges walked, %zu without a crossing found; the CPU "
+                      "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
+                      result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
+                      result.volumeStats->crossingFallbacks);
+        else if (result.volumeStats && result.volumeStats->refinedCells > 0)
           std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
                       result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
                       result.volumeStats->crossingFallbacks, result.volumeStats->msRefine);
         if (v.meshCheck) {
           std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
+          if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());
           std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",
                       gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
                       v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",

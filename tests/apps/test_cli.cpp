@@ -527,13 +527,27 @@ TEST(CliGl, FitViewNarrowsTheLightAndLowersTheError) {
   EXPECT_LT(error[1], 0.5 * error[0]) << error[0] << " " << error[1];
 }
 
-TEST(CliGl, RefinementNeedsTheExplicitVolume) {
+// --refine K on both volumes: the GPU volume refines with its walk (and refuses rays, which it has
+// none of, exit 2 before any output), the explicit one with rays by default.
+TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();
-  const CliResult gpu = runCli("validate --refine 4 --resolution 32 --size 64x48 --report " + (dir / "g").string());
-  EXPECT_EQ(gpu.code, 2) << gpu.out;
-  EXPECT_TRUE(contains(gpu.out, "--volume explicit")) << gpu.out;
+  const CliResult rays = runCli("validate --refine 4 --crossings rays --resolution 32 --size 64x48 --report " +
+                                (dir / "g").string());
+  EXPECT_EQ(rays.code, 2) << rays.out;
+  EXPECT_TRUE(contains(rays.out, "--crossings")) << rays.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "g"));
+  const CliResult gpu = runCli("validate --json --refine 4 --resolution 64 --size 160x120 --scene " + scene("plate.json") +
+                               " --report " + (dir / "gpu").string());
+  ASSERT_EQ(gpu.code, 0) << gpu.out;
+  const auto g = nlohmann::json::parse(gpu.out);
+  EXPECT_EQ(g["options"]["volume"], "gpu");
+  EXPECT_EQ(g["gpuRefinement"]["boundaryEdges"], 64);
+  EXPECT_EQ(g["gpuRefinement"]["crossingFallbacks"], 0);
+  EXPECT_EQ(g["volume"]["boundaryEdges"], 64);  // the CPU rule on the read-back map: the same edges
+  EXPECT_EQ(g["volume"]["crossingFallbacks"], 0);
+  EXPECT_TRUE(g["gpuVolumeMeshChecks"]["valid"].get<bool>()) << gpu.out;
+  EXPECT_TRUE(g["passed"].get<bool>());
   const CliResult r = runCli("validate --json --volume explicit --refine 4 --resolution 64 --size 160x120 --scene " +
                              scene("plate.json") + " --report " + (dir / "e").string());
   ASSERT_EQ(r.code, 0) << r.out;

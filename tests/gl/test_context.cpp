@@ -121,7 +121,8 @@ TEST(GlRenderer, RejectsBadSizesAndMissingScene) {
   o.shadowBiasSlope = std::nan("");
   expectInputError([&] { r.render(o); }, "RenderOptions", "shadowBiasSlope");
   o = {};
-  o.volumeOptions.refineSteps = 2;  // the GPU volume does not refine
+  o.volumeOptions.refineSteps = 2;  // the refined GPU volume walks one layer: not midpoint
+  o.capture = CaptureMode::Midpoint;
   expectInputError([&] { r.render(o); }, "RenderOptions", "volumeOptions.refineSteps");
 }
 

@@ -24,6 +24,8 @@ gl::Renderer& renderer() {
 struct Validated {
   FrameValidation v;
   RenderedFrame frame;
+  std::size_t gpuBoundaryEdges = 0;             // refined GPU volume: the edges it walked
+  std::optional<VolumeBuildStats> volumeStats;  // explicit, or the CPU mesh of a refined GPU volume
 };
 
 Validated renderAndValidate(Scene scene, gl::RenderOptions ro) {
@@ -37,6 +39,9 @@ Validated renderAndValidate(Scene scene, gl::RenderOptions ro) {
   out.frame.hybrid = ro.method == gl::ShadowMethod::Hybrid;
   for (auto vis : r.visibility) out.frame.shadowed.push_back(vis < 128);
   out.frame.volume = r.volume;  // the explicit mesh drawn (its crossings may come from the GPU)
+  out.frame.gpuVolume = r.gpuVolume;
+  out.gpuBoundaryEdges = r.gpuBoundaryEdges;
+  out.volumeStats = r.volumeStats;
   out.v = validateFrame(scene, *r.depthMap, ro.volumeOptions, out.frame);
   return out;
 }
@@ -178,18 +183,66 @@ TEST(Validation, WalkRefusesWhatItCannotDo) {
   ro.capture = CaptureMode::Midpoint;
   EXPECT_THROW(renderer().render(ro), InputError);  // the walk follows one layer
   ro.capture = CaptureMode::Back;
-  ro.volume = gl::VolumeSource::Gpu;
-  EXPECT_THROW(renderer().render(ro), InputError);  // the GPU volume does not refine yet
   ro.volume = gl::VolumeSource::Explicit;
   EXPECT_NO_THROW(renderer().render(ro));
 }
 
-// The GPU volume refuses refinement (not implemented there) with an InputError, not a wrong frame.
-TEST(Validation, GpuVolumeRefusesRefinement) {
+// The refined GPU volume (--volume gpu --refine K): its stencil against the crossing counts of the
+// CPU builder's mesh from the GPU's own boundary edges and crossings (read back: the debug path),
+// on every shipped scene, back and front capture, both triangulations, blur; and the GPU found
+// exactly the CPU rule's boundary edges (as many, each with the same near end and kind: no edge
+// of the CPU build fell back).
+TEST(Validation, RefinedGpuVolumeMatchesCrossingCountsOnEveryScene) {
+  int frames = 0;
+  for (auto& [path, scene] : loadableScenes()) {
+    scene.camera.width = 128;
+    scene.camera.height = 96;
+    for (auto capture : {CaptureMode::Back, CaptureMode::Front})
+      for (auto tri : {Triangulation::Fixed, Triangulation::Perfect}) {
+        const bool blur = tri == Triangulation::Fixed;  // both ways across the combinations
+        gl::RenderOptions ro;
+        ro.volume = gl::VolumeSource::Gpu;
+        ro.capture = capture;
+        ro.depthWidth = ro.depthHeight = 64;
+        ro.volumeOptions.triangulation = tri;
+        ro.volumeOptions.blur = blur;
+        ro.volumeOptions.refineSteps = 1;
+        SCOPED_TRACE(path.filename().string() + " gpu refined " + toString(capture) + " " + toString(tri) +
+                     (blur ? " blur" : ""));
+        const Validated r = renderAndValidate(scene, ro);
+        expectConsistent(r);
+        ASSERT_TRUE(r.volumeStats.has_value());
+        EXPECT_EQ(r.gpuBoundaryEdges, r.volumeStats->boundaryEdges);
+        EXPECT_EQ(r.volumeStats->crossingFallbacks, 0u);
+        ASSERT_TRUE(r.v.gpuMeshCheck.has_value());  // what the GPU drew: closed, outward, welded
+        EXPECT_TRUE(r.v.gpuMeshCheck->valid()) << r.v.gpuMeshCheck->summary();
+        ++frames;
+      }
+  }
+  EXPECT_GE(frames, 8 * 4);
+}
+
+// The refined GPU volume refuses what it cannot do with an InputError, not a wrong frame.
+TEST(Validation, RefinedGpuVolumeRefusesWhatItCannotDo) {
   setSmallPlate();
   gl::RenderOptions ro;
   ro.volumeOptions.refineSteps = 2;
-  EXPECT_THROW(renderer().render(ro), InputError);
+  EXPECT_NO_THROW(renderer().render(ro));
+  ro.capture = CaptureMode::Midpoint;
+  EXPECT_THROW(renderer().render(ro), InputError);  // the walk follows one layer
+  ro.capture = CaptureMode::Back;
+  ro.volumeOptions.cap = FarCap::Quad;
+  EXPECT_THROW(renderer().render(ro), InputError);  // refinement replaces the quad cap's far sheet
+  ro.volumeOptions.cap = FarCap::Exact;
+  ro.volumeOptions.refineChords = true;
+  EXPECT_THROW(renderer().render(ro), InputError);  // chord points need rays
+  ro.volumeOptions.refineChords = false;
+  ro.volumeOptions.refineSubdivisions = 4;
+  EXPECT_THROW(renderer().render(ro), InputError);  // so does the sub-grid
+  ro.volumeOptions.refineSubdivisions = 1;
+  ro.volumeOptions.refineSteps = 0;
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::Refined;
+  EXPECT_THROW(renderer().render(ro), InputError);  // reported, not chosen
 }
 
 TEST(Validation, PlateDiffersFromExactOnlyWithinOneTexelOfItsOutline) {

@@ -108,7 +108,8 @@ struct RenderOptions {
                                                ///< shadow test per pixel); off = no extra cost
   bool keepVolume = false;                     ///< explicit volume: return the mesh drawn (RenderResult::volume);
                                                ///< refined GPU volume: the CPU builder's mesh from the
-                                               ///< GPU's own boundary edges and crossings (a debug read-back)
+                                               ///< GPU's own boundary edges and crossings, and the
+                                               ///< GPU's triangles (RenderResult::gpuVolume; debug read-backs)
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
   /// quads"). All give the same stencil.
@@ -148,6 +149,9 @@ struct RenderResult {
   std::vector<std::uint8_t> visibility;
   std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
   std::optional<VolumeMesh> volume;   ///< the explicit volume drawn, when RenderOptions::keepVolume
+                                      ///< (refined GPU volume: the CPU mesh from its crossings)
+  std::optional<VolumeMesh> gpuVolume;  ///< refined GPU volume with keepVolume: the GPU's own
+                                        ///< triangles, read back and placed in double (a debug path)
   std::vector<PassTime> passes;       ///< in execution order
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes

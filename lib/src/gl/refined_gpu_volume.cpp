@@ -57,6 +57,40 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
   return r;
 }
 
+VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rule, bool blur,
+                                  std::span<const std::uint32_t> indices, std::span<const glm::vec4> records) {
+  const std::uint64_t w = std::uint64_t(map.width), texels = w * std::uint64_t(map.height);
+  SV_CHECK_EQ(records.size(), 3 * texels);
+  SV_CHECK_EQ(indices.size() % 3, 0u);
+  const TexelUnprojector unproject(map);
+  const double farPlane = rule.farPlane;
+  auto depth = [&](float d) { return d == float(farPlane) ? farPlane : double(d); };
+  auto place = [&](std::uint64_t id) -> glm::dvec3 {
+    if (id < 2 * texels) {
+      const std::uint64_t t = id % texels;
+      const int i = int(t % w), j = int(t / w);
+      return unproject.worldPoint(i, j, id < texels ? sheetDepthOf(map, i, j, rule, blur) : farPlane);
+    }
+    const std::uint64_t rel = id - 2 * texels, slot = rel / 3, k = rel % 3, t = slot / 2;
+    SV_CHECK_LT(t, texels);
+    const glm::vec4 r = records[(slot % 2) * texels + t];
+    return unproject.worldPoint(r.x, r.y, k == 0 ? depth(r.z) : k == 1 ? depth(r.w) : farPlane);
+  };
+  std::vector<std::uint32_t> sorted(indices.begin(), indices.end());
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  VolumeMesh mesh;
+  mesh.positions.resize(sorted.size());
+  for (std::size_t k = 0; k < sorted.size(); ++k) mesh.positions[k] = place(sorted[k]);
+  auto number = [&](std::uint32_t id) {
+    return std::uint32_t(std::lower_bound(sorted.begin(), sorted.end(), id) - sorted.begin());
+  };
+  mesh.triangles.resize(indices.size() / 3);
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
+    mesh.triangles[k] = {number(indices[3 * k]), number(indices[3 * k + 1]), number(indices[3 * k + 2])};
+  return mesh;
+}
+
 RefinedGpuVolume::RefinedGpuVolume(const ShaderLibrary& shaders)
     : boundary_(Program::compute(shaders, sources("boundary_edges.comp"))),
       unfold_(Program::compute(shaders, sources("boundary_unfold.comp"))),
@@ -134,7 +168,7 @@ void RefinedGpuVolume::findCrossings(SilhouetteWalk& walk, const WalkInputs& in,
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
 }
 
-bool RefinedGpuVolume::listAndDraw(const glm::mat4& lightViewToClip, RefinedGpuCounts& counts) {
+bool RefinedGpuVolume::list(RefinedGpuCounts& counts) {
   SV_CHECK(w_ > 0 && h_ > 0);
   const std::int64_t quads = std::int64_t(w_ - 1) * (h_ - 1);
   // Vertex indices run to 8 W H (volume_refined.comp), the count to 60 per quad: 32 bits.
@@ -174,23 +208,43 @@ bool RefinedGpuVolume::listAndDraw(const glm::mat4& lightViewToClip, RefinedGpuC
   }
   for (GLuint b = 5; b < 8; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+  SV_GL(glActiveTexture(GL_TEXTURE2));
+  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
+  SV_GL(glActiveTexture(GL_TEXTURE0));
   counts = {c[0], c[1], c[2], c[3]};
-  if (std::int64_t(c[0]) > indexCapacity_) return false;
+  const bool fits = std::int64_t(c[0]) <= indexCapacity_;
+  indexCount_ = fits ? c[0] : 0;
+  return fits;
+}
+
+void RefinedGpuVolume::draw(const glm::mat4& lightViewToClip) {
+  SV_GL(glActiveTexture(GL_TEXTURE2));
+  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, records_.id()));
+  SV_GL(glActiveTexture(GL_TEXTURE0));
   draw_.use();
   draw_.set("lightViewToClip", lightViewToClip);
   SV_GL(glBindVertexArray(vao_.id()));
-  SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(c[0]), GL_UNSIGNED_INT, nullptr));
+  SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr));
   SV_GL(glBindVertexArray(0));
   SV_GL(glActiveTexture(GL_TEXTURE2));
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
   SV_GL(glActiveTexture(GL_TEXTURE0));
-  return true;
 }
 
 std::vector<std::uint32_t> RefinedGpuVolume::readFlags() const {
   std::vector<std::uint32_t> out(std::size_t(w_) * std::size_t(h_));
   SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, flags_.id()));
+  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * 4), out.data()));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+  return out;
+}
+
+std::vector<std::uint32_t> RefinedGpuVolume::readIndices() const {
+  std::vector<std::uint32_t> out(indexCount_);
+  if (out.empty()) return out;
+  SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indices_.id()));
   SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * 4), out.data()));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
   return out;

@@ -20,7 +20,9 @@
 #include <glm/vec4.hpp>
 
 #include "shadowvol/boundary_edges.h"
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_refinement.h"
+#include "shadowvol/volume_mesh.h"
 #include "shadowvol/gl/gl_objects.h"
 #include "shadowvol/gl/shader_program.h"
 #include "silhouette_walk.h"
@@ -42,6 +44,13 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
                                     std::span<const glm::dvec2> centres, std::span<const std::uint32_t> flags,
                                     std::span<const glm::vec4> records);
 
+/// The debug path's other half: the GPU's own triangles (readIndices) as a mesh, each vertex index
+/// placed as volume_refined.vert places it but in double (texels by sheetDepthOf of the read-back
+/// map, crossings from the records), unused indices left out. For the mesh checks (closed,
+/// outward, welded) of what the GPU drew.
+VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rule, bool blur,
+                                  std::span<const std::uint32_t> indices, std::span<const glm::vec4> records);
+
 class RefinedGpuVolume {
  public:
   RefinedGpuVolume() = default;
@@ -50,21 +59,27 @@ class RefinedGpuVolume {
   /// The programs that read volume_common.glsl's and refine_common.glsl's uniforms (the walk's
   /// program is the SilhouetteWalk's).
   std::vector<const Program*> programs() const { return {&boundary_, &unfold_, &list_, &draw_}; }
+  /// The listing pass's program (its drawCap uniform decides the cap).
+  const Program& listProgram() const { return list_; }
 
   /// Steps 1-3 for a W x H map (in.width, in.height). Textures: the final sheet depths on unit 0
   /// (lightDepth), with blur the unblurred on unit 3 (rawDepth); the walk's program's uniforms
   /// must be set. `hitLimit` as for SilhouetteWalk::answers.
   void findCrossings(SilhouetteWalk& walk, const WalkInputs& in, const TexelFootprint& footprint, double hitLimit);
 
-  /// Step 4 and the draw into the bound framebuffer (stencil state set by the caller). The index
-  /// buffer grows to what the frame needs (the count is read back; a frame that overflows it
-  /// lists again) up to 512 MiB; false (nothing drawn) when the list would be larger.
-  bool listAndDraw(const glm::mat4& lightViewToClip, RefinedGpuCounts& counts);
+  /// Step 4: the triangles as vertex indices. The index buffer grows to what the frame needs (the
+  /// count is read back; a frame that overflows it lists again) up to 512 MiB; false (nothing to
+  /// draw) when the list would be larger. The list program's drawCap decides the cap.
+  bool list(RefinedGpuCounts& counts);
+  /// Draws the last list into the bound framebuffer (stencil state set by the caller).
+  void draw(const glm::mat4& lightViewToClip);
 
   /// Debug read-backs of the last findCrossings (tests, validation): every texel's boundary flags
   /// (refine_common.glsl's bits) and the crossing records, layer-major (layer k at k W H + j W + i).
   std::vector<std::uint32_t> readFlags() const;
   std::vector<glm::vec4> readRecords() const;
+  /// The last listAndDraw's vertex indices (volume_refined.comp's), 3 per triangle.
+  std::vector<std::uint32_t> readIndices() const;
 
  private:
   void ensureSize(int w, int h);
@@ -74,6 +89,7 @@ class RefinedGpuVolume {
   Texture records_;
   int w_ = 0, h_ = 0;
   std::int64_t indexCapacity_ = 0;
+  std::uint32_t indexCount_ = 0;  // of the last listAndDraw
 };
 
 }  // namespace shadowvol::gl

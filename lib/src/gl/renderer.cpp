@@ -939,9 +939,10 @@ struct Renderer::Impl {
     bindTexture(0, depth, fetchSampler);
     bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
     RefinedGpuCounts counts;
-    const bool drawn = refined->listAndDraw(toFloat(lightViewToClip), counts);
+    const bool listed = refined->list(counts);
+    if (listed) refined->draw(toFloat(lightViewToClip));
     bindTexture(3, Texture(), fetchSampler);
-    if (!drawn)
+    if (!listed)
       throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(lightW) + "x" + std::to_string(lightH),
                        "the refined GPU volume's index list would pass 512 MiB or 32-bit indices: use a smaller map");
     result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
@@ -1350,6 +1351,17 @@ struct Renderer::Impl {
       VolumeBuildResult built = buildVolume(*result.depthMap, v);
       result.volume = std::move(built.mesh);
       result.volumeStats = built.stats;
+      const SheetDepthRule rule(*result.depthMap, result.biasUsed, vo.blurOffset);
+      if (zPassFrame) {  // the frame drew no cap: list again with it, for a closed mesh
+        RefinedGpuCounts counts;
+        refined->listProgram().use();
+        refined->listProgram().set("drawCap", 1);
+        bindTexture(0, *volumeDepth, fetchSampler);
+        bindTexture(3, vo.blur ? linearDepth : *volumeDepth, fetchSampler);
+        SV_CHECK(refined->list(counts));
+        bindTexture(3, Texture(), fetchSampler);
+      }
+      result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, refined->readIndices(), refined->readRecords());
     }
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette)
       result.depthMap = readBack(o.capture);

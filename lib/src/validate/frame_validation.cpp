@@ -78,6 +78,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
       return std::abs(depth.viewDepthOf(p) - depth.farPlane) <= farTolerance;
     };
     v.meshCheck = checkMesh(volume, co);
+    if (frame.gpuVolume) v.gpuMeshCheck = checkMesh(*frame.gpuVolume, co);
     const TriangleMesh volumeF = volume.toTriangleMesh();
     const EmbreeScene volumeRt(device, {&volumeF});
     v.counts = countCrossings(volumeRt, scene.camera, hits);
@@ -125,6 +126,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
       v.failures.push_back("stencil and crossing counts agree on " + percent(v.stencilVsCount.fraction()) +
                            " of visible pixels, below the required " + percent(kRequiredAgreement));
     if (!meshOk) v.failures.push_back("the volume's mesh checks fail: " + m.summary());
+    if (v.gpuMeshCheck && !v.gpuMeshCheck->valid())
+      v.failures.push_back("the GPU volume's mesh checks fail: " + v.gpuMeshCheck->summary());
     v.consistent = v.failures.empty();
   }
   // The accuracy verdict: the method's own test against the exact shadows.

@@ -53,6 +53,7 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
                  {"exactShadowed", v.exactShadowed}};
   if (v.meshCheck) {
     j["meshChecks"] = toJson(*v.meshCheck, v.meshChecksNotApplicable);
+    if (v.gpuMeshCheck) j["gpuVolumeMeshChecks"] = toJson(*v.gpuMeshCheck, "");
     j["stencilVsCount"] = toJson(v.stencilVsCount);
     j["stencilVsCount"]["over"] = v.stencilOverLitFrustumOnly ? "visible pixels inside the light's frustum (z-pass)"
                                                               : "visible pixels";

@@ -32,6 +32,8 @@ struct RenderedFrame {
   std::optional<VolumeMesh> volume;     ///< hybrid, explicit volume: the mesh drawn, checked and counted
                                         ///< as it is; unset = rebuilt from the depth map and options
                                         ///< (the GPU volume, which mirrors the CPU build)
+  std::optional<VolumeMesh> gpuVolume;  ///< the refined GPU volume's own triangles (read back): mesh-checked
+                                        ///< as well (`volume` is then the CPU mesh of its crossings)
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -77,6 +79,7 @@ struct FrameValidation {
   std::vector<PixelClass> exact;           ///< per pixel
   // Volume (hybrid only).
   std::optional<MeshCheckReport> meshCheck;
+  std::optional<MeshCheckReport> gpuMeshCheck;  ///< RenderedFrame::gpuVolume's checks (same options)
   std::optional<CrossingCounts> counts;
   bool eyeInsideVolume = false;
   /// Pixels whose Embree counts contradicted the eye's side and were recounted in double

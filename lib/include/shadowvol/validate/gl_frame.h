@@ -31,6 +31,7 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   if (frame.hybrid) frame.stencil = result.stencil;
   frame.zPass = result.volumeCountUsed == gl::VolumeCount::ZPass;
   frame.volume = result.volume;
+  frame.gpuVolume = result.gpuVolume;
   frame.shadowed.resize(result.visibility.size());
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;
