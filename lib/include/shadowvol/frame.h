@@ -122,7 +122,8 @@ struct RenderOptions {
 };
 
 struct PassTime {
-  std::string name;  ///< light, resolve, blur, readback, build, upload, camera, volume, lighting, shade;
+  std::string name;  ///< light, resolve, blur, crossings (refined GPU volume: boundary edges and the walk),
+                     ///< readback, build, upload, camera, volume, lighting, shade;
                      ///< silhouette: connectivity (first frame only), build, upload, camera,
                      ///< silhouette, lighting
   double ms = 0.0;   ///< GPU time (timer query) or wall clock, see RenderResult::timing; CPU

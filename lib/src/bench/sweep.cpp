@@ -62,6 +62,19 @@ SweepMethod refinedWalk(CaptureMode capture) {
   return m;
 }
 
+// The refined GPU volume (--volume gpu --refine K: boundary edges, the walk's crossings and the
+// refined cells in compute passes, no read-back; the walk's passes are the frame's "crossings" pass).
+SweepMethod refinedGpu(CaptureMode capture) {
+  SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, capture);
+  m.key = std::string("hybrid-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/gpu";
+  m.options.volumeOptions.refineSteps = kSweepRefineSteps;  // only switches it on: the walk is exact
+  m.description = "GPU volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the scene's "
+                  "triangles, all on the GPU without a read-back; perfect triangulation, " + std::string(toString(capture)) +
+                  " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
 // The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
 // boundary edge), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
@@ -148,6 +161,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
     SweepMethod s;
     s.key = "silhouette";
     s.family = "silhouette";
@@ -173,7 +187,10 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const gl::ContextInfo& gli = renderer.info();
   if (gli.glMajor < 4 || (gli.glMajor == 4 && gli.glMinor < 3))
     std::erase_if(methods, [&](const SweepMethod* m) {
-      const bool needsCompute = m->options.gpuVolumeDraw == gl::GpuVolumeDraw::ComputeMesh;
+      const gl::RenderOptions& ro = m->options;
+      const bool needsCompute = ro.gpuVolumeDraw == gl::GpuVolumeDraw::ComputeMesh ||
+                                (ro.volumeOptions.refineSteps > 0 &&
+                                 (ro.refineCrossings == gl::RefineCrossings::GpuWalk || ro.volume == gl::VolumeSource::Gpu));
       if (needsCompute) notes.push_back(m->key + " skipped: needs GL 4.3 compute shaders, the context is " + gli.glVersion);
       return needsCompute;
     });

@@ -55,8 +55,8 @@ std::string headerOf(const std::vector<std::string>& cols) {
 }  // namespace
 
 const std::vector<std::string>& sweepPhases() {
-  static const std::vector<std::string> p = {"light",  "resolve", "blur",     "readback", "build",     "upload",
-                                             "camera", "volume",  "lighting", "shade",    "silhouette"};
+  static const std::vector<std::string> p = {"light",  "resolve", "blur",     "crossings", "readback", "build",
+                                             "upload", "camera",  "volume",   "lighting",  "shade",    "silhouette"};
   return p;
 }
 
