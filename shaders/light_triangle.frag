@@ -1,7 +1,3 @@
-#version 330 core
-// Light depth pass of frames that refine with the silhouette walk (silhouette_walk.comp): besides
-// the depth, each texel keeps the index of the scene triangle it recorded, plus one (0 = none; the
-// target is cleared to 0). The scene is one draw call, so gl_PrimitiveID is the triangle's index
-// in Scene::merged() order.
-layout(location = 0) out uint triangle;
-void main() { triangle = uint(gl_PrimitiveID) + 1u; }
+// (version_330.glsl and light_triangle.glsl come first.) The light pass of the explicit volume
+// refined by the walk.
+void main() { recordTriangle(); }

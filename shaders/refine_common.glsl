@@ -8,7 +8,7 @@
 //   bit axis      the edge from t along axis is a boundary edge
 //   bit 2 + axis  its near end is P (nearAtP)
 //   bit 4 + axis  it is a surface edge (both ends hit)
-//   bit 6 + axis  boundary_unfold.comp: made continuous in this round
+//   bit 6 + 2 r + axis  boundary_unfold.comp: made continuous in round r (cleared by its last phase)
 // Quad (i, j)'s sides (cell_triangulator.h's sideEdge): 0 = the axis-0 edge of (i, j), 1 = the
 // axis-1 edge of (i + 1, j), 2 = the axis-0 edge of (i, j + 1), 3 = the axis-1 edge of (i, j);
 // sides 0 and 1 run from their edge's P end, 2 and 3 towards it.
@@ -18,7 +18,7 @@ uniform sampler2D rawDepth;  // with blur: the unblurred light-view depth (light
 uniform int blurOn;          // 1: lightDepth is blurred (the blur offset included)
 uniform float blurOffset;    // world units, VolumeBuildOptions::blurOffset
 
-const uint kBoundaryBit = 1u, kNearAtPBit = 4u, kSurfaceBit = 16u, kDyingBit = 64u;
+const uint kBoundaryBit = 1u, kNearAtPBit = 4u, kSurfaceBit = 16u;
 
 // SheetDepthRule::ofSample of a light-view depth d (a texel's stored depth or a walk's): the far
 // plane when invalid (d >= farSnap, or not a finite depth >= 0), else clamp(d (+ the blur

@@ -48,8 +48,9 @@
 // layout in step with walk_crossings.h's WalkResult.
 // Queries come from a list (gridQueries = 0: the explicit volume's, walk_crossings.h) or from the
 // boundary flags (gridQueries = 1: the refined GPU volume, refine_common.glsl): one invocation per
-// edge slot and quad centre, x = 3 i + k (k = 0, 1: the edge of texel (i, j) along axis k; 2: the
-// centre of quad (i, j)), y = j; only boundary edges and quads with 3 or 4 boundary sides walk.
+// slot of walk_slots.comp's list, slot 3 t + k for texel t = (i, j) (k = 0, 1: its boundary edge
+// along axis k; 2: the centre of quad (i, j), which has 3 or 4 boundary sides), dispatched
+// indirectly in rows of work groups.
 // Their answers become the wall's crossing as walk_crossings.h's refinementFromWalks makes it
 // (gridCrossing, rule for rule) and go to crossingRecords, layer k at (i, j): (texel coordinates
 // of the crossing, near depth, far depth); a centre's: (its sheet depth, 0, 0, 0).
@@ -72,7 +73,8 @@ layout(std430, binding = 2) readonly buffer SceneVertices { float sceneVertices[
 layout(std430, binding = 3) readonly buffer SceneIndices { uint sceneIndices[]; };
 layout(std430, binding = 4) readonly buffer Neighbours { int neighbours[]; };
 layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };   // gridQueries = 1
-layout(std430, binding = 6) buffer Counters { uint counters[]; };      // [2] edges walked, [3] fallbacks
+layout(std430, binding = 6) buffer Counters { uint counters[]; };      // [2] edges walked, [3] fallbacks, [10] slots
+layout(std430, binding = 7) readonly buffer WalkSlots { uint walkSlots[]; };  // walk_slots.comp's list
 layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
 uniform int gridQueries;          // 1: the queries are the boundary flags' (see the header comment)
 uniform usampler2D triangleIds;   // light_triangle.frag's record
@@ -318,9 +320,11 @@ vec4 gridCrossing(ivec2 P, int axis, uint e, WalkResult w) {
 }
 
 void gridMain() {
-  int i = int(gl_GlobalInvocationID.x) / 3, k = int(gl_GlobalInvocationID.x) % 3, j = int(gl_GlobalInvocationID.y);
+  uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
+  if (id >= counters[10]) return;
+  uint slot = walkSlots[id], t = slot / 3u;
+  int k = int(slot % 3u), i = int(t % uint(size.x)), j = int(t / uint(size.x));
   ivec2 P = ivec2(i, j);
-  if (!inGrid(P)) return;
   if (k < 2) {
     uint e = flags[texelIndex(P)] >> uint(k);
     if ((e & kBoundaryBit) == 0u) return;
@@ -330,11 +334,6 @@ void gridMain() {
     atomicAdd(counters[2], 1u);
     return;
   }
-  if (i + 1 >= size.x || j + 1 >= size.y) return;
-  int sides = 0;
-  for (int m = 0; m < 4; ++m)
-    if (((flags[texelIndex(sideTexel(P, m))] >> uint(sideAxis(m))) & kBoundaryBit) != 0u) ++sides;
-  if (sides < 3) return;
   WalkResult r = centreQuery(WalkQuery(kCentreQuery, i, j, 0u));
   imageStore(crossingRecords, ivec3(P, 2), vec4(ofSample(r.nearDepth), 0.0, 0.0, 0.0));
 }

@@ -16,12 +16,23 @@
 // on it. Past `capacity` indices nothing is written but the count still grows, so the renderer can
 // grow the buffer and run the pass again. At most 32 quads per block (one bit each in keptMask);
 // keep kBlock in step with renderer.cpp and light_mark.frag (the GL tests compare the counts with
-// the other ways of drawing).
+// the other ways of drawing). With skipRefined (the refined GPU volume) a quad with a boundary side
+// is left out: volume_refined.comp lists it, so
+// a block holding one never gets the fan cap (boundaryFlags: refine_common.glsl's bits).
 const ivec2 kBlock = ivec2(8, 4);
 layout(std430, binding = 0) buffer Count { uint indexCount; uint quadCount; };
 layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
 uniform int capacity;          // indices the buffer holds
 uniform usampler2D occupancy;  // light_mark.frag's bits
+uniform int skipRefined;       // 1: leave out the quads with a boundary side (boundaryFlags)
+layout(std430, binding = 5) readonly buffer BoundaryFlags { uint boundaryFlags[]; };  // refine_common.glsl's bits
+
+bool refinedQuad(ivec2 q0) {
+  if (skipRefined == 0) return false;
+  uint a = boundaryFlags[q0.y * size.x + q0.x], b = boundaryFlags[q0.y * size.x + q0.x + 1];
+  uint d = boundaryFlags[(q0.y + 1) * size.x + q0.x];
+  return ((a & 3u) | (b & 2u) | (d & 1u)) != 0u;  // sides 0 and 3, side 1, side 2
+}
 
 // Vertex indices (volume_index.vert): texel t on the sheet, and its copy on the far plane, which
 // for a far texel (sheet depth d on the far plane) is the sheet vertex itself.
@@ -77,7 +88,7 @@ void main() {
   for (int y = 0; y < kBlock.y; ++y)
     for (int x = 0; x < kBlock.x; ++x) {
       int k = y * (kBlock.x + 1) + x;
-      if (any(greaterThanEqual(q0 + ivec2(x, y), size - 1))) continue;
+      if (any(greaterThanEqual(q0 + ivec2(x, y), size - 1)) || refinedQuad(q0 + ivec2(x, y))) continue;
       if (d[k] < farPlane || d[k + 1] < farPlane || d[k + kBlock.x + 1] < farPlane || d[k + kBlock.x + 2] < farPlane) {
         keptMask |= 1u << uint(y * kBlock.x + x);
         ++kept;

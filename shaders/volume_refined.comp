@@ -1,12 +1,10 @@
 // (version_430.glsl, light_window_depth.glsl, volume_common.glsl and refine_common.glsl come
-// first.) The refined GPU volume's listing pass (--volume gpu --refine K): one invocation per quad
-// appends its triangles as vertex indices (volume_refined.vert places them) at an atomically taken
-// offset, exactly the triangles of the CPU builder with the mirrored cap (volume_builder.h with
-// flattenCap = false) from the same boundary edges and crossings:
-//   a quad without a boundary side: nothing when its four corners are far, else its two sheet
-//     triangles by the diagonal rule and their reversed copies on the far plane (as
-//     volume_mesh.comp; such a quad's corners are all hit);
-//   a refined quad (a boundary side): cell_triangulator.h's CellTriangulator without chord
+// first.) The refined GPU volume's cells (--volume gpu --refine K): one invocation per quad of
+// walk_slots.comp's list of refined quads (those with a boundary side; volume_index.frag lists the
+// others into the same buffer) appends its triangles as vertex indices (volume_refined.vert places
+// them, for both) at an atomically taken offset, exactly the triangles of the CPU builder with the mirrored cap
+// (volume_builder.h with flattenCap = false) from the same boundary edges and crossings:
+//   cell_triangulator.h's CellTriangulator without chord
 //     points, rule for rule: its loop of corners with each boundary side's wall edge (the
 //     crossing's near and far vertex) between the side's corners, components closed by chords,
 //     the taper (one side), the wall (two), the middle polygon by the centre's depth (three or
@@ -18,10 +16,12 @@
 // (a far edge's far vertex is its own).
 // Past `capacity` indices nothing is written but the count still grows (the renderer grows the
 // buffer and lists again).
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 64) in;
 layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 6) buffer Counters { uint counters[]; };  // [0] indices, [1] quads listed
-layout(std430, binding = 7) writeonly buffer Indices { uint indices[]; };
+layout(std430, binding = 0) buffer Count { uint indexCount; uint quadCount; };  // shared with volume_index.frag
+layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
+layout(std430, binding = 6) readonly buffer Counters { uint counters[]; };  // [11] refined quads (walk_slots.comp)
+layout(std430, binding = 4) readonly buffer RefinedQuads { uint refinedQuads[]; };
 uniform sampler2DArray crossingRecords;  // silhouette_walk.comp's grid answers
 uniform int capacity;
 
@@ -159,43 +159,16 @@ void assemble(ivec2 q0, uint sides[4]) {
   }
 }
 
-void listPlainQuad(ivec2 q0) {
-  uint t[4], f[4];
-  float d[4];
-  vec3 p[4];
-  bool allFar = true;
-  for (int k = 0; k < 4; ++k) {
-    ivec2 c = q0 + kCornerOffset[k];
-    d[k] = sheetDepth(c);
-    allFar = allFar && d[k] == farPlane;
-    t[k] = texelIndex(c);
-    f[k] = d[k] == farPlane ? t[k] : texelCount() + t[k];
-    p[k] = lightViewPoint(c, d[k]);
-  }
-  if (allFar) return;
-  bool flip = perfect != 0 && flipDiagonal(p[0], p[1], p[2], p[3]);
-  uint n = drawCap != 0 ? 12u : 6u;
-  uint v = atomicAdd(counters[0], n);
-  atomicAdd(counters[1], 1u);
-  if (v + n > uint(capacity)) return;
-  uint list[12] = flip ? uint[12](t[0], t[1], t[2], t[0], t[2], t[3], f[0], f[2], f[1], f[0], f[3], f[2])
-                       : uint[12](t[0], t[1], t[3], t[1], t[2], t[3], f[0], f[3], f[1], f[1], f[3], f[2]);
-  for (uint k = 0u; k < n; ++k) indices[v + k] = list[k];
-}
-
 void main() {
-  ivec2 q0 = ivec2(gl_GlobalInvocationID.xy);
-  if (q0.x + 1 >= size.x || q0.y + 1 >= size.y) return;
+  uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
+  if (id >= counters[11]) return;
+  ivec2 q0 = quadCorner(int(refinedQuads[id]));
   uint sides[4];
   int split[4];
   int n = 0;
   for (int k = 0; k < 4; ++k) {
     sides[k] = flags[texelIndex(sideTexel(q0, k))] >> uint(sideAxis(k));
     if ((sides[k] & kBoundaryBit) != 0u) split[n++] = k;
-  }
-  if (n == 0) {
-    listPlainQuad(q0);
-    return;
   }
   assemble(q0, sides);
   float centre = n >= 3 ? texelFetch(crossingRecords, ivec3(q0, 2), 0).x : farPlane;
@@ -208,8 +181,8 @@ void main() {
     n3 += (footprint[k] && drawCap != 0) ? 6u : 3u;
   }
   if (n3 == 0u) return;
-  uint at = atomicAdd(counters[0], n3);
-  atomicAdd(counters[1], 1u);
+  uint at = atomicAdd(indexCount, n3);
+  atomicAdd(quadCount, 1u);
   if (at + n3 > uint(capacity)) return;
   for (int k = 0; k < triCount; ++k) {
     ivec3 v = tri[k];

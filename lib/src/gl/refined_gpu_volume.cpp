@@ -10,8 +10,9 @@
 namespace shadowvol::gl {
 
 namespace {
-constexpr int kGroup = 8;  // local size 8 x 8 of boundary_edges.comp, boundary_unfold.comp, volume_refined.comp
-constexpr std::int64_t kMaxIndexBytes = std::int64_t(1) << 29;  // 512 MiB
+constexpr int kGroup = 16;  // local size 16 x 16 of boundary_edges.comp, boundary_unfold.comp, walk_slots.comp
+constexpr int kCounters = 12;  // walk_slots.comp's layout of the Counters buffer
+constexpr GLintptr kWalkDispatch = 4 * 4, kCellDispatch = 7 * 4;  // their byte offsets there
 
 std::vector<std::string> sources(const char* body) {
   return {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "refine_common.glsl", body};
@@ -94,13 +95,14 @@ VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rul
 RefinedGpuVolume::RefinedGpuVolume(const ShaderLibrary& shaders)
     : boundary_(Program::compute(shaders, sources("boundary_edges.comp"))),
       unfold_(Program::compute(shaders, sources("boundary_unfold.comp"))),
+      slots_(Program::compute(shaders, sources("walk_slots.comp"))),
       list_(Program::compute(shaders, sources("volume_refined.comp"))),
       draw_(shaders, sources("volume_refined.vert"), {"depth_only.frag"}),
       flags_(makeBuffer()),
       counters_(makeBuffer()),
       rounds_(makeBuffer()),
-      indices_(makeBuffer()),
-      vao_(makeVertexArray()) {
+      walkSlots_(makeBuffer()),
+      refinedQuads_(makeBuffer()) {
   for (const Program* p : programs()) {
     p->use();
     p->set("rawDepth", 3);
@@ -110,8 +112,11 @@ RefinedGpuVolume::RefinedGpuVolume(const ShaderLibrary& shaders)
 
 void RefinedGpuVolume::ensureSize(int w, int h) {
   if (w == w_ && h == h_) return;
-  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, flags_.id()));
-  SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::int64_t(w) * h * 4), nullptr, GL_DYNAMIC_COPY));
+  const std::int64_t texels = std::int64_t(w) * h;
+  for (auto [buffer, n] : {std::pair{&flags_, texels}, std::pair{&walkSlots_, 3 * texels}, std::pair{&refinedQuads_, texels}}) {
+    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer->id()));
+    SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(n * 4), nullptr, GL_DYNAMIC_COPY));
+  }
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
   records_ = makeTexture();  // immutable storage: a new texture per size
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, records_.id()));
@@ -126,12 +131,12 @@ void RefinedGpuVolume::findCrossings(SilhouetteWalk& walk, const WalkInputs& in,
                                      double hitLimit) {
   ensureSize(in.width, in.height);
   const GLuint gx = GLuint((in.width + kGroup - 1) / kGroup), gy = GLuint((in.height + kGroup - 1) / kGroup);
-  const std::array<GLuint, 4> zero{0, 0, 0, 0};
+  const std::array<GLuint, kCounters> zero{};
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id()));
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero.data(), GL_DYNAMIC_READ));
-  // Round 0 runs in full; each later one only when the round before made an edge continuous.
-  std::vector<GLuint> rounds(3 * kMaxUnfoldRounds, 0);
-  for (int r = 0; r < kMaxUnfoldRounds; ++r) rounds[3 * r] = r == 0 ? gx : 0, rounds[3 * r + 1] = gy, rounds[3 * r + 2] = 1;
+  // The unfolding's dispatches (boundary_unfold.comp): none until a pass gives them work groups.
+  std::vector<GLuint> rounds(3 * (kMaxUnfoldRounds + 1), 0);
+  for (int r = 0; r <= kMaxUnfoldRounds; ++r) rounds[3 * r + 1] = gy, rounds[3 * r + 2] = 1;
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, rounds_.id()));
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(rounds.size() * 4), rounds.data(), GL_DYNAMIC_COPY));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, flags_.id()));
@@ -142,109 +147,73 @@ void RefinedGpuVolume::findCrossings(SilhouetteWalk& walk, const WalkInputs& in,
   boundary_.set("footprint", glm::vec2(float(footprint.a), float(footprint.b)));
   boundary_.set("jumpFootprints", float(kJumpFootprints));
   boundary_.set("jumpSlope", float(kJumpSlope));
+  boundary_.set("unfoldRounds", kMaxUnfoldRounds);
+  boundary_.set("groupsX", int(gx));
   SV_GL(glDispatchCompute(gx, gy, 1));
 
   unfold_.use();
   unfold_.set("groupsX", int(gx));
+  unfold_.set("roundCount", kMaxUnfoldRounds);
   SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, rounds_.id()));
-  for (int r = 0; r < kMaxUnfoldRounds; ++r) {
+  unfold_.set("phase", 0);
+  for (int r = 0; r <= kMaxUnfoldRounds; ++r) {
     SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
-    unfold_.set("nextRound", r + 1 < kMaxUnfoldRounds ? r + 1 : -1);
-    for (int phase = 0; phase < 2; ++phase) {
-      unfold_.set("phase", phase);
-      SV_GL(glDispatchComputeIndirect(GLintptr(12 * r)));
-      SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
-    }
+    if (r == kMaxUnfoldRounds) unfold_.set("phase", 1);
+    else unfold_.set("round", r);
+    SV_GL(glDispatchComputeIndirect(GLintptr(12 * r)));
   }
-  SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0));
+  SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
 
+  // The work lists (walk_slots.comp) and the walk over them.
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, walkSlots_.id()));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, refinedQuads_.id()));
+  slots_.use();
+  slots_.set("phase", 0);
+  SV_GL(glDispatchCompute(gx, gy, 1));
+  SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
+  slots_.set("phase", 1);
+  SV_GL(glDispatchCompute(1, 1, 1));
+  SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
+  SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id()));
   SV_GL(glBindImageTexture(0, records_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F));
   walk.program().use();
   walk.program().set("rawDepth", 3);
-  walk.dispatchGrid(in, hitLimit);  // unbinds SSBOs 0-4 afterwards
+  walk.dispatchGrid(in, hitLimit, kWalkDispatch);  // binds SSBOs 2-4 and unbinds 0-4 afterwards
+  SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0));
   SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
   SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));
   for (GLuint b = 5; b < 8; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
 }
 
-bool RefinedGpuVolume::list(RefinedGpuCounts& counts) {
+void RefinedGpuVolume::dispatchCells(std::int64_t capacity) {
   SV_CHECK(w_ > 0 && h_ > 0);
-  const std::int64_t quads = std::int64_t(w_ - 1) * (h_ - 1);
-  // Vertex indices run to 8 W H (volume_refined.comp), the count to 60 per quad: 32 bits.
-  if (std::int64_t(w_) * h_ * 8 > std::int64_t(0xffffffff) || quads * 60 > std::int64_t(0xffffffff)) return false;
-  if (indexCapacity_ == 0) {
-    SV_GL(glBindVertexArray(vao_.id()));
-    SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id()));
-    SV_GL(glBindVertexArray(0));
-  }
-  auto grow = [&](std::int64_t n) {
-    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indices_.id()));
-    SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(n * 4), nullptr, GL_DYNAMIC_COPY));
-    indexCapacity_ = n;
-  };
-  if (indexCapacity_ == 0) grow(std::min<std::int64_t>(quads * 12, 12 * 65536));
   SV_GL(glActiveTexture(GL_TEXTURE2));
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, records_.id()));
   SV_GL(glActiveTexture(GL_TEXTURE0));
-  const GLuint gx = GLuint((w_ - 1 + kGroup - 1) / kGroup), gy = GLuint((h_ - 1 + kGroup - 1) / kGroup);
-  std::array<GLuint, 4> c{};
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    // Keep the walk's counts ([2], [3]); clear the listing's.
-    const GLuint zero[2] = {0, 0};
-    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id()));
-    SV_GL(glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(zero), zero));
-    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, flags_.id()));
-    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counters_.id()));
-    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, indices_.id()));
-    list_.use();
-    list_.set("capacity", int(std::min<std::int64_t>(indexCapacity_, 0x7fffffff)));
-    SV_GL(glDispatchCompute(gx, gy, 1));
-    SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT));
-    SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id()));
-    SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(c), c.data()));
-    if (std::int64_t(c[0]) <= indexCapacity_ || std::int64_t(c[0]) * 4 > kMaxIndexBytes) break;
-    grow(std::int64_t(c[0]) + std::int64_t(c[0]) / 4);
-  }
-  for (GLuint b = 5; b < 8; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
-  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
-  SV_GL(glActiveTexture(GL_TEXTURE2));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
-  SV_GL(glActiveTexture(GL_TEXTURE0));
-  counts = {c[0], c[1], c[2], c[3]};
-  const bool fits = std::int64_t(c[0]) <= indexCapacity_;
-  indexCount_ = fits ? c[0] : 0;
-  return fits;
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, refinedQuads_.id()));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, flags_.id()));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, counters_.id()));
+  list_.use();
+  list_.set("capacity", int(std::min<std::int64_t>(capacity, 0x7fffffff)));
+  SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id()));
+  SV_GL(glDispatchComputeIndirect(kCellDispatch));
+  SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0));
+  for (GLuint b = 4; b < 7; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
 }
 
-void RefinedGpuVolume::draw(const glm::mat4& lightViewToClip) {
-  SV_GL(glActiveTexture(GL_TEXTURE2));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, records_.id()));
-  SV_GL(glActiveTexture(GL_TEXTURE0));
-  draw_.use();
-  draw_.set("lightViewToClip", lightViewToClip);
-  SV_GL(glBindVertexArray(vao_.id()));
-  SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(indexCount_), GL_UNSIGNED_INT, nullptr));
-  SV_GL(glBindVertexArray(0));
-  SV_GL(glActiveTexture(GL_TEXTURE2));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
-  SV_GL(glActiveTexture(GL_TEXTURE0));
+RefinedGpuCounts RefinedGpuVolume::walkCounts() const {
+  std::array<GLuint, 2> c{};
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id()));
+  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 2 * 4, GLsizeiptr(sizeof(c)), c.data()));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+  return {c[0], c[1]};
 }
 
 std::vector<std::uint32_t> RefinedGpuVolume::readFlags() const {
   std::vector<std::uint32_t> out(std::size_t(w_) * std::size_t(h_));
   SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, flags_.id()));
-  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * 4), out.data()));
-  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
-  return out;
-}
-
-std::vector<std::uint32_t> RefinedGpuVolume::readIndices() const {
-  std::vector<std::uint32_t> out(indexCount_);
-  if (out.empty()) return out;
-  SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
-  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indices_.id()));
   SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(out.size() * 4), out.data()));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
   return out;

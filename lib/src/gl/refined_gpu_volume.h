@@ -4,10 +4,14 @@
 //   1. boundary_edges.comp: every texel's boundary flags (boundary_edges.h's rule);
 //   2. boundary_unfold.comp: the unfolding rounds (kMaxUnfoldRounds, each dispatched indirectly
 //      from the one before: no read-back);
-//   3. silhouette_walk.comp with grid queries: each boundary edge's crossing and each ambiguous
-//      quad's centre depth, as walk_crossings.h's refinementFromWalks makes them, into a
-//      W x H x 3 RGBA32F array texture (layers: axis 0, axis 1, centre);
-//   4. volume_refined.comp lists the triangles as vertex indices, volume_refined.vert places them.
+//   3. walk_slots.comp lists the boundary edges and ambiguous quads to walk and the quads to refine;
+//      silhouette_walk.comp with grid queries, dispatched indirectly over the first list: each
+//      boundary edge's crossing and each ambiguous quad's centre depth, as walk_crossings.h's
+//      refinementFromWalks makes them, into a W x H x 3 RGBA32F array texture (layers: axis 0,
+//      axis 1, centre);
+//   4. volume_refined.comp, dispatched indirectly over the refined quads, lists their triangles as
+//      vertex indices into the indexed GPU volume's buffer, where the renderer's listing pass
+//      (volume_index.frag with skipRefined) lists the other quads; volume_refined.vert places all.
 // Internal to the renderer (renderer.cpp owns one per context and sets the volume_common.glsl
 // uniforms on every program before a frame).
 #pragma once
@@ -29,9 +33,9 @@
 
 namespace shadowvol::gl {
 
-/// Counts of one refined GPU volume (read back with the listing pass's index count).
+/// The walk's counts of one refined GPU volume.
 struct RefinedGpuCounts {
-  std::uint32_t indices = 0, quads = 0, boundaryEdges = 0, fallbacks = 0;
+  std::uint32_t boundaryEdges = 0, fallbacks = 0;
 };
 
 /// The debug path: the CPU builder's Refinement for `edges` (its own boundary edges of the
@@ -44,7 +48,7 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
                                     std::span<const glm::dvec2> centres, std::span<const std::uint32_t> flags,
                                     std::span<const glm::vec4> records);
 
-/// The debug path's other half: the GPU's own triangles (readIndices) as a mesh, each vertex index
+/// The debug path's other half: the GPU's own triangles (the index list read back) as a mesh, each vertex index
 /// placed as volume_refined.vert places it but in double (texels by sheetDepthOf of the read-back
 /// map, crossings from the records), unused indices left out. For the mesh checks (closed,
 /// outward, welded) of what the GPU drew.
@@ -58,38 +62,38 @@ class RefinedGpuVolume {
 
   /// The programs that read volume_common.glsl's and refine_common.glsl's uniforms (the walk's
   /// program is the SilhouetteWalk's).
-  std::vector<const Program*> programs() const { return {&boundary_, &unfold_, &list_, &draw_}; }
+  std::vector<const Program*> programs() const { return {&boundary_, &unfold_, &slots_, &list_, &draw_}; }
   /// The listing pass's program (its drawCap uniform decides the cap).
   const Program& listProgram() const { return list_; }
+  /// The boundary flags buffer (W H words, refine_common.glsl's bits) of the last findCrossings.
+  GLuint flags() const { return flags_.id(); }
 
   /// Steps 1-3 for a W x H map (in.width, in.height). Textures: the final sheet depths on unit 0
   /// (lightDepth), with blur the unblurred on unit 3 (rawDepth); the walk's program's uniforms
   /// must be set. `hitLimit` as for SilhouetteWalk::answers.
   void findCrossings(SilhouetteWalk& walk, const WalkInputs& in, const TexelFootprint& footprint, double hitLimit);
 
-  /// Step 4: the triangles as vertex indices. The index buffer grows to what the frame needs (the
-  /// count is read back; a frame that overflows it lists again) up to 512 MiB; false (nothing to
-  /// draw) when the list would be larger. The list program's drawCap decides the cap.
-  bool list(RefinedGpuCounts& counts);
-  /// Draws the last list into the bound framebuffer (stencil state set by the caller).
-  void draw(const glm::mat4& lightViewToClip);
+  /// Step 4: the refined quads' triangles appended as vertex indices to the buffers bound at SSBO
+  /// 0 (index count, quad count) and 1 (indices, `capacity` of them), as volume_index.frag appends
+  /// the other quads' (the caller runs both, reads the count back and draws with drawProgram).
+  /// Textures as for findCrossings; binds the crossing records on unit 2 and leaves them bound.
+  void dispatchCells(std::int64_t capacity);
+  /// The vertex program of the whole list (volume_refined.vert); the records on unit 2.
+  const Program& drawProgram() const { return draw_; }
+  /// The walk's counts of the last findCrossings: boundary edges walked, fallbacks.
+  RefinedGpuCounts walkCounts() const;
 
   /// Debug read-backs of the last findCrossings (tests, validation): every texel's boundary flags
   /// (refine_common.glsl's bits) and the crossing records, layer-major (layer k at k W H + j W + i).
   std::vector<std::uint32_t> readFlags() const;
   std::vector<glm::vec4> readRecords() const;
-  /// The last listAndDraw's vertex indices (volume_refined.comp's), 3 per triangle.
-  std::vector<std::uint32_t> readIndices() const;
 
  private:
   void ensureSize(int w, int h);
-  Program boundary_, unfold_, list_, draw_;
-  Buffer flags_, counters_, rounds_, indices_;
-  VertexArray vao_;
+  Program boundary_, unfold_, slots_, list_, draw_;
+  Buffer flags_, counters_, rounds_, walkSlots_, refinedQuads_;
   Texture records_;
   int w_ = 0, h_ = 0;
-  std::int64_t indexCapacity_ = 0;
-  std::uint32_t indexCount_ = 0;  // of the last listAndDraw
 };
 
 }  // namespace shadowvol::gl

@@ -173,6 +173,10 @@ constexpr int kSceneVertexFloats = int(sizeof(SceneVertex) / sizeof(float));
 
 }  // namespace
 
+// The largest map the refined GPU volume takes: its buffers hold 68 bytes per texel (flags, work
+// lists, crossing records), 1.1 GiB at 4096^2.
+constexpr std::int64_t kMaxRefinedGpuTexels = std::int64_t(4096) * 4096;
+
 struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
@@ -232,6 +236,7 @@ struct Renderer::Impl {
 
   // Refinement by the silhouette walk (GL 4.3 only): the light pass records each texel's triangle
   Program lightTriangleProgram;   // light.vert + light_triangle.frag
+  Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
   Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
   Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
@@ -279,8 +284,11 @@ struct Renderer::Impl {
           Program(shaders, {"fullscreen.vert"}, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.frag"});
       volumeIndexedProgram =
           Program(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.vert"}, {"depth_only.frag"});
-      lightMarkProgram = Program(shaders, "light.vert", "light_mark.frag");
-      lightTriangleProgram = Program(shaders, "light.vert", "light_triangle.frag");
+      lightMarkProgram = Program(shaders, {"light.vert"}, {"version_430.glsl", "light_mark.glsl", "light_mark.frag"});
+      lightTriangleProgram =
+          Program(shaders, {"light.vert"}, {"version_330.glsl", "light_triangle.glsl", "light_triangle.frag"});
+      lightMarkTriangleProgram = Program(shaders, {"light.vert"},
+                                         {"version_430.glsl", "light_mark.glsl", "light_triangle.glsl", "light_mark_triangle.frag"});
       walk = SilhouetteWalk(shaders);
     }
 
@@ -436,7 +444,6 @@ struct Renderer::Impl {
   /// 0. With markOccupancy (the indexed GPU volume, GL 4.3) the first layer's fragments also set
   /// their bits in `occupancy` (light_mark.frag).
   void lightPass(int w, int h, CaptureMode mode, bool markOccupancy, bool recordTriangles = false) {
-    SV_CHECK(!(markOccupancy && recordTriangles));
     ensureLightTargets(w, h);
     if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
     if (recordTriangles) ensureTriangleIds(w, h);
@@ -454,7 +461,10 @@ struct Renderer::Impl {
       SV_GL(glEnable(GL_CULL_FACE));
       SV_GL(glCullFace(GL_FRONT));
     }
-    const Program& first = markOccupancy ? lightMarkProgram : recordTriangles ? lightTriangleProgram : lightProgram;
+    const Program& first = markOccupancy && recordTriangles ? lightMarkTriangleProgram
+                           : markOccupancy                  ? lightMarkProgram
+                           : recordTriangles                ? lightTriangleProgram
+                                                            : lightProgram;
     first.use();
     first.set("worldToLightClip", toFloat(worldToLightClip));
     if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
@@ -856,11 +866,35 @@ struct Renderer::Impl {
   /// count is read back after the pass; a frame that overflows it runs the pass again) up to
   /// kMaxIndexBytes; false when the list would be larger (the caller falls back to KeptQuads).
   bool drawIndexedGpuVolume(const CameraSetup& cam, const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo,
-                            double bias, const Texture& depth, std::int64_t quads, RenderResult& result) {
+                            double bias, const Texture& depth, std::int64_t quads, RenderResult& result,
+                            RefinedGpuVolume* cells = nullptr) {
+    std::array<GLuint, 2> counts{};  // indices, kept quads
+    if (!listIndexedGpuVolume(cam, vo, bias, depth, quads, counts, cells)) return false;
+    result.gpuVolumeQuadsDrawn = counts[1];
+    const Program& draw = cells ? cells->drawProgram() : volumeIndexedProgram;
+    setVolumeUniforms(draw, vo, bias);
+    draw.set("lightViewToClip", toFloat(lightViewToClip));
+    SV_GL(glBindVertexArray(indexVao.id()));
+    SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
+    SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(counts[0]), GL_UNSIGNED_INT, nullptr));
+    SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
+    SV_GL(glBindVertexArray(0));
+    volumeTrianglesPending = true;
+    return true;
+  }
+
+  /// drawIndexedGpuVolume's listing pass alone: `counts` = indices, quads; false when the list
+  /// would not fit. `skipRefinedFlags`: the refined GPU volume's boundary flags (0 = none).
+  bool listIndexedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
+                            std::int64_t quads, std::array<GLuint, 2>& counts, RefinedGpuVolume* cells = nullptr) {
     constexpr std::int64_t kMaxIndexBytes = std::int64_t(1) << 29;  // 512 MiB
     constexpr int kBlockX = 8, kBlockY = 4;                        // volume_index.frag's kBlock
-    // Indices and the count are 32-bit: 2 W H vertices, up to 12 indices per quad.
-    if (std::int64_t(lightW) * lightH * 2 > std::int64_t(0x7fffffff) || quads * 12 > std::int64_t(0xffffffff)) return false;
+    // Indices and the count are 32-bit: 2 W H vertices (8 W H with the refined cells' crossings),
+    // up to 12 indices per quad (60 in a refined cell).
+    if (std::int64_t(lightW) * lightH * (cells ? 8 : 2) > std::int64_t(0x7fffffff) ||
+        quads * (cells ? 60 : 12) > std::int64_t(0xffffffff))
+      return false;
+    const GLuint skipRefinedFlags = cells ? cells->flags() : 0;
     if (indexCapacity == 0) growIndices(std::min<std::int64_t>(quads * 12, 12 * 65536));
     const int blocksX = (lightW - 1 + kBlockX - 1) / kBlockX, blocksY = (lightH - 1 + kBlockY - 1) / kBlockY;
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, listFbo.id()));
@@ -872,7 +906,8 @@ struct Renderer::Impl {
     bindTexture(1, occupancy, fetchSampler);
     setVolumeUniforms(volumeIndexProgram, vo, bias);
     volumeIndexProgram.set("occupancy", 1);
-    GLuint counts[2] = {0, 0};  // indices, kept quads
+    volumeIndexProgram.set("skipRefined", skipRefinedFlags != 0 ? 1 : 0);  // with the refined GPU volume's flags
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, skipRefinedFlags));
     GLuint& count = counts[0];
     for (int attempt = 0; attempt < 2; ++attempt) {
       const GLuint zero[2] = {0, 0};
@@ -880,33 +915,41 @@ struct Renderer::Impl {
       SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero, GL_DYNAMIC_READ));
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, indexCount.id()));
       SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indexBuffer.id()));
+      if (cells) {  // the refined cells first, into the same list
+        cells->dispatchCells(indexCapacity);
+        SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
+        SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, skipRefinedFlags));
+      }
+      volumeIndexProgram.use();
       volumeIndexProgram.set("capacity", int(std::min<std::int64_t>(indexCapacity, 0x7fffffff)));
       SV_GL(glBindVertexArray(emptyVao.id()));
       SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
       SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ELEMENT_ARRAY_BARRIER_BIT));
       SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, indexCount.id()));
-      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(counts), counts));
+      SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(sizeof(counts)), counts.data()));
       if (std::int64_t(count) <= indexCapacity) break;
       if (std::int64_t(count) * 4 > kMaxIndexBytes) break;
       growIndices(std::int64_t(count) + std::int64_t(count) / 4);
     }
     SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0));
     SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0));
+    SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0));
     SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
     bindTexture(1, Texture(), fetchSampler);
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
-    if (std::int64_t(count) > indexCapacity) return false;
-    result.gpuVolumeQuadsDrawn = counts[1];
-    setVolumeUniforms(volumeIndexedProgram, vo, bias);
-    volumeIndexedProgram.set("lightViewToClip", toFloat(lightViewToClip));
-    SV_GL(glBindVertexArray(indexVao.id()));
-    SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery.id()));
-    SV_GL(glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT, nullptr));
-    SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
-    SV_GL(glBindVertexArray(0));
-    volumeTrianglesPending = true;
-    return true;
+    return std::int64_t(count) <= indexCapacity;
+  }
+
+  /// The first `count` indices of the indexed volume's buffer (the refined GPU volume's debug path).
+  std::vector<std::uint32_t> readIndexList(GLuint count) {
+    std::vector<std::uint32_t> out(count);
+    if (out.empty()) return out;
+    SV_GL(glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT));
+    SV_GL(glBindBuffer(GL_COPY_READ_BUFFER, indexBuffer.id()));
+    SV_GL(glGetBufferSubData(GL_COPY_READ_BUFFER, 0, GLsizeiptr(out.size() * 4), out.data()));
+    SV_GL(glBindBuffer(GL_COPY_READ_BUFFER, 0));
+    return out;
   }
 
   /// The refined GPU volume's boundary edges and crossings for this frame's map (`depth`: the
@@ -932,23 +975,24 @@ struct Renderer::Impl {
     refined->findCrossings(walk, in, *footprint, hitLimit);
   }
 
+  /// The refined GPU volume: its refined cells (volume_refined.comp) and the other quads as the
+  /// indexed way lists them (volume_index.frag with skipRefined), one list, one draw.
   void drawRefinedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
                             RenderResult& result) {
     const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
-    (void)bias;  // findGpuCrossings set the programs' uniforms for this frame
-    bindTexture(0, depth, fetchSampler);
+    const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
     bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
-    RefinedGpuCounts counts;
-    const bool listed = refined->list(counts);
-    if (listed) refined->draw(toFloat(lightViewToClip));
+    const bool drawn = drawIndexedGpuVolume(cam, lightViewToClip, vo, bias, depth, quads, result, &*refined);
     bindTexture(3, Texture(), fetchSampler);
-    if (!listed)
+    SV_GL(glActiveTexture(GL_TEXTURE2));
+    SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
+    SV_GL(glActiveTexture(GL_TEXTURE0));
+    if (!drawn)
       throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(lightW) + "x" + std::to_string(lightH),
                        "the refined GPU volume's index list would pass 512 MiB or 32-bit indices: use a smaller map");
+    const RefinedGpuCounts counts = refined->walkCounts();
     result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
-    result.gpuVolumeQuads = std::size_t(lightW - 1) * std::size_t(lightH - 1);
-    result.gpuVolumeQuadsDrawn = counts.quads;
-    result.volumeTriangles = counts.indices / 3;
+    result.gpuVolumeQuads = std::size_t(quads);
     result.gpuBoundaryEdges = counts.boundaryEdges;
     result.gpuCrossingFallbacks = counts.fallbacks;
   }
@@ -1125,6 +1169,10 @@ struct Renderer::Impl {
       if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
         refuse("finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
                "with rays");
+      if (std::int64_t(o.depthWidth) * o.depthHeight > kMaxRefinedGpuTexels)
+        throw InputError("RenderOptions", "depthWidth x depthHeight",
+                         std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
+                         "the refined GPU volume takes maps of up to 4096 x 4096 texels (68 bytes of buffers per texel)");
     }
     if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.gpuVolumeDraw == GpuVolumeDraw::Refined)
       throw InputError("RenderOptions", "gpuVolumeDraw", "refined",
@@ -1220,7 +1268,8 @@ struct Renderer::Impl {
     const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
                                   : refinedGpu             ? GpuVolumeDraw::Refined
                                                            : GpuVolumeDraw::Auto;
-    const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed;
+    // The refined GPU volume lists its unrefined quads as the indexed way does.
+    const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
     occupancyValid = false;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
       TimedPass t(timer, "light");
@@ -1270,7 +1319,7 @@ struct Renderer::Impl {
     } else if (hybrid) {
       // The indexed volume converts the few texels it reads itself; the other ways read every
       // texel several times, and midpoint and blur need the resolved depth (docs/gpu.md).
-      volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;
+      volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;  // refined too
       if (volumeReadsWindowDepth) {
         volumeDepth = &layer0;
       } else {
@@ -1352,16 +1401,17 @@ struct Renderer::Impl {
       result.volume = std::move(built.mesh);
       result.volumeStats = built.stats;
       const SheetDepthRule rule(*result.depthMap, result.biasUsed, vo.blurOffset);
-      if (zPassFrame) {  // the frame drew no cap: list again with it, for a closed mesh
-        RefinedGpuCounts counts;
-        refined->listProgram().use();
-        refined->listProgram().set("drawCap", 1);
-        bindTexture(0, *volumeDepth, fetchSampler);
-        bindTexture(3, vo.blur ? linearDepth : *volumeDepth, fetchSampler);
-        SV_CHECK(refined->list(counts));
-        bindTexture(3, Texture(), fetchSampler);
-      }
-      result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, refined->readIndices(), refined->readRecords());
+      // The list again, with the cap where the frame (z-pass) drew none: the closed mesh. (The
+      // frame is drawn: zPassFrame = false only makes setVolumeUniforms set drawCap = 1.)
+      zPassFrame = false;
+      for (const Program* p : refined->programs()) setVolumeUniforms(*p, vo, result.biasUsed);
+      bindTexture(3, vo.blur ? linearDepth : *volumeDepth, fetchSampler);
+      std::array<GLuint, 2> listed{};
+      SV_CHECK(listIndexedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, std::int64_t(lightW - 1) * (lightH - 1),
+                                    listed, &*refined));
+      bindTexture(3, Texture(), fetchSampler);
+      const std::vector<std::uint32_t> indices = readIndexList(listed[0]);
+      result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, indices, refined->readRecords());
     }
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette)
       result.depthMap = readBack(o.capture);

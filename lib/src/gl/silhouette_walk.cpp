@@ -105,11 +105,10 @@ void SilhouetteWalk::unbindInputs() {
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
 }
 
-void SilhouetteWalk::dispatchGrid(const WalkInputs& in, double hitLimit) {
+void SilhouetteWalk::dispatchGrid(const WalkInputs& in, double hitLimit, GLintptr indirectOffset) {
   bindInputs(in, hitLimit);
   program_.set("gridQueries", 1);
-  // x = 3 i + k in groups of kLocalSize, y = j (silhouette_walk.comp's grid queries).
-  SV_GL(glDispatchCompute(GLuint((3 * in.width + kLocalSize - 1) / kLocalSize), GLuint(in.height), 1));
+  SV_GL(glDispatchComputeIndirect(indirectOffset));
   unbindInputs();
 }
 

@@ -52,9 +52,10 @@ class SilhouetteWalk {
   std::vector<WalkResult> answers(const WalkInputs& in, std::span<const WalkQuery> queries, double hitLimit);
 
   /// The grid queries of the refined GPU volume (silhouette_walk.comp's gridQueries = 1): one
-  /// dispatch over the map's edge slots and quads; the caller binds the boundary flags (SSBO 5),
-  /// the counters (SSBO 6) and the crossing records (image unit 0) and orders the memory barrier.
-  void dispatchGrid(const WalkInputs& in, double hitLimit);
+  /// dispatch, indirect from the bound GL_DISPATCH_INDIRECT_BUFFER at `indirectOffset`, over
+  /// walk_slots.comp's list; the caller binds the boundary flags (SSBO 5), the counters (SSBO 6),
+  /// the list (SSBO 7) and the crossing records (image unit 0) and orders the memory barrier.
+  void dispatchGrid(const WalkInputs& in, double hitLimit, GLintptr indirectOffset);
 
  private:
   void ensureNeighbours();
