@@ -74,20 +74,42 @@ TEST(SweepCsv, HeaderAndRowHaveTheSameColumnsAndRoundTrip) {
 TEST(SweepCsv, ResultsOfEarlierVersionsStillRead) {
   const auto dir = test::tempDir();
   const auto csv = dir / "results.csv";
-  auto dropLast = [](std::string line, int n) {
-    for (int k = 0; k < n; ++k) line.erase(line.rfind(','));
-    return line;
+  // Versions 0-2: no crossings_ms column; 2 without the last column of 3, 1 and 0 without more.
+  auto splitCsvLine = [](const std::string& line) {  // the sample has no quoted field
+    std::vector<std::string> f(1);
+    for (char c : line)
+      if (c == ',') f.emplace_back();
+      else f.back() += c;
+    return f;
+  };
+  const std::vector<std::string> header = splitCsvLine(sweepCsvHeader());
+  const std::size_t crossings = std::size_t(std::find(header.begin(), header.end(), "crossings_ms") - header.begin());
+  ASSERT_LT(crossings, header.size());
+  auto olderVersion = [&](const std::string& line, int dropped) {
+    std::vector<std::string> f = splitCsvLine(line);
+    f.erase(f.begin() + std::ptrdiff_t(crossings));
+    f.resize(f.size() - std::size_t(dropped));
+    std::string out;
+    for (const auto& x : f) out += (out.empty() ? "" : ",") + x;
+    return out;
   };
   SweepRow sample = sampleRow();
   sample.volumeCount = "z-pass";
-  for (int dropped : {1, 3}) {
+  sample.phases.push_back({"crossings", TimeStat{2.5, 2.5, 2.5}});
+  test::writeText(csv, sweepCsvHeader() + "\n" + toCsv(sample) + "\n");
+  const auto now = readSweepCsv(csv);
+  ASSERT_EQ(now.size(), 1u);
+  EXPECT_EQ(now[0].volumeCount, "z-pass");
+  EXPECT_TRUE(std::any_of(now[0].phases.begin(), now[0].phases.end(), [](const auto& p) { return p.first == "crossings"; }));
+  for (int dropped : {0, 1, 3}) {
     SCOPED_TRACE(dropped);
-    test::writeText(csv, dropLast(sweepCsvHeader(), dropped) + "\n" + dropLast(toCsv(sample), dropped) + "\n");
+    test::writeText(csv, olderVersion(sweepCsvHeader(), dropped) + "\n" + olderVersion(toCsv(sample), dropped) + "\n");
     const auto rows = readSweepCsv(csv);
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].volumeTriangles, 123456u);
-    EXPECT_EQ(rows[0].volumeQuads, dropped == 1 ? 65025u : 0u);
-    EXPECT_EQ(rows[0].volumeCount, "");
+    EXPECT_EQ(rows[0].volumeQuads, dropped <= 1 ? 65025u : 0u);
+    EXPECT_EQ(rows[0].volumeCount, dropped == 0 ? "z-pass" : "");
+    EXPECT_TRUE(std::none_of(rows[0].phases.begin(), rows[0].phases.end(), [](const auto& p) { return p.first == "crossings"; }));
   }
   EXPECT_EQ(readSweepCsv(test::sourceDir() / "docs/results/main/results.csv").empty(), false);
 }

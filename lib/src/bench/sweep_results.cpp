@@ -31,12 +31,18 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+// The phases a file of `version` has a column for: the crossings pass (the refined GPU volume)
+// from version 3 on.
+bool phaseIn(const std::string& phase, int version) { return version >= 3 || phase != "crossings"; }
+
 // The columns of each version of the file, all still read: 0 before the GPU volume reported its
-// quads (docs/results/main), 1 before the stencil count (z-pass or z-fail) was recorded, 2 now.
+// quads (docs/results/main), 1 before the stencil count (z-pass or z-fail) was recorded, 2 before
+// the crossings pass, 3 now.
 std::vector<std::string> columns(int version = kSweepCsvVersion) {
   std::vector<std::string> c = {"scene", "triangles", "method", "family", "capture", "resolution", "width", "height",
                                 "timing", "frames", "frame_ms", "frame_ms_min", "frame_ms_max"};
-  for (const auto& p : sweepPhases()) c.push_back(p + "_ms");
+  for (const auto& p : sweepPhases())
+    if (phaseIn(p, version)) c.push_back(p + "_ms");
   for (const char* s : {"volume_triangles", "pixels", "error", "leak", "acne", "band_pixels", "band_error",
                         "band_leak", "band_acne", "dist_mean", "dist_p99", "dist_max"})
     c.push_back(s);
@@ -154,6 +160,7 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
   r.frame.min = real();
   r.frame.max = real();
   for (const auto& name : sweepPhases()) {
+    if (!phaseIn(name, version)) continue;
     const auto v = maybe();
     if (v) r.phases.push_back({name, TimeStat{*v, *v, *v}});
   }
