@@ -20,6 +20,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
   if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
   if (c.refined && !c.refused) runs.push_back(RunKind::Walk);
+  if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);
   runs.push_back(RunKind::Build);
   return runs;
 }
@@ -36,7 +37,8 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, cons
   } else {
     r.argv = {
         s.shadowvol.string(), "validate",         "--scene", scene.string(), "--resolution",
-        resolution,           "--size",           s.size,    "--volume",     kind == RunKind::Gpu ? "gpu" : "explicit",
+        resolution,           "--size",           s.size,    "--volume",
+        kind == RunKind::Gpu || kind == RunKind::GpuRefined ? "gpu" : "explicit",
         "--report",           reportDir.string(), "--json"};
     if (kind == RunKind::Front) {
       r.argv.push_back("--capture");
@@ -46,6 +48,8 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, cons
       for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
     if (kind == RunKind::Walk)  // refinement with the crossings from the GPU's walk over the triangles
       for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
+    if (kind == RunKind::GpuRefined)  // the refined GPU volume: edges, walk and cells on the GPU
+      for (const char* a : {"--refine", "6"}) r.argv.push_back(a);
   }
   r.process = runProcess(r.argv, dir / "stdout.txt", dir / "stderr.txt", s.timeoutSeconds);
   r.stdoutJson = parseJson(r.process.stdoutText);
@@ -80,6 +84,8 @@ const char* runName(RunKind k) {
       return "refined";
     case RunKind::Walk:
       return "walk";
+    case RunKind::GpuRefined:
+      return "gpu-refined";
     case RunKind::Build:
       return "build";
   }

@@ -240,6 +240,12 @@ TEST(Validation, RefinedGpuVolumeRefusesWhatItCannotDo) {
   ro.volumeOptions.refineSubdivisions = 4;
   EXPECT_THROW(renderer().render(ro), InputError);  // so does the sub-grid
   ro.volumeOptions.refineSubdivisions = 1;
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::KeptQuads;
+  EXPECT_THROW(renderer().render(ro), InputError);  // it lists its triangles its own way
+  ro.depthWidth = ro.depthHeight = 4096;
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::Auto;
+  EXPECT_THROW(renderer().render(ro), InputError);  // past 2048^2
+  ro.depthWidth = ro.depthHeight = 256;
   ro.volumeOptions.refineSteps = 0;
   ro.gpuVolumeDraw = gl::GpuVolumeDraw::Refined;
   EXPECT_THROW(renderer().render(ro), InputError);  // reported, not chosen

@@ -112,7 +112,7 @@ struct RenderOptions {
                                                ///< GPU's triangles (RenderResult::gpuVolume; debug read-backs)
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
-  /// quads"). All give the same stencil.
+  /// quads"). All give the same stencil. The refined GPU volume (refineSteps > 0) takes only Auto.
   GpuVolumeDraw gpuVolumeDraw = GpuVolumeDraw::Auto;
   /// hybrid (gpu and explicit volumes): z-pass without the far cap where it is safe, or z-fail.
   /// Silhouette volumes and renderWithVolume always use z-fail.

@@ -50,9 +50,20 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
     c.nearDepth = depth(rec.z);
     c.farDepth = depth(rec.w);
   }
+  // A centre the GPU walked: a quad its flags give 3 or 4 boundary sides (else the far plane, a
+  // fallback: the record was not written this frame).
+  auto gpuSides = [&](int i, int j) {
+    const std::uint32_t a = flags[map.index(i, j)], b = flags[map.index(i + 1, j)], d = flags[map.index(i, j + 1)];
+    return int(a & 1) + int((a >> 1) & 1) + int((b >> 1) & 1) + int(d & 1);
+  };
   r.centreDepths.resize(centres.size());
   for (std::size_t k = 0; k < centres.size(); ++k) {
     const int i = int(std::floor(centres[k].x)), j = int(std::floor(centres[k].y));
+    if (gpuSides(i, j) < 3) {
+      r.centreDepths[k] = farPlane;
+      ++r.fallbacks;
+      continue;
+    }
     r.centreDepths[k] = depth(records[2 * texels + map.index(i, j)].x);
   }
   return r;

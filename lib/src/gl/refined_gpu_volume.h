@@ -42,7 +42,8 @@ struct RefinedGpuCounts {
 /// read-back map) from the GPU's flags and records (readFlags, readRecords): an edge the GPU also
 /// found takes its crossing (s from the record's texel coordinates, its near and far depths); one
 /// it did not gets the fallback of walk_crossings.h (the middle of the edge with the ends'
-/// depths), counted in `fallbacks`. Centres: the record's depth.
+/// depths), counted in `fallbacks`. Centres: the record's depth where the GPU's flags give the quad
+/// 3 or 4 boundary sides (it walked there), else the far plane, counted in `fallbacks` too.
 Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
                                     bool blur, std::span<const double> blurredSheetDepths,
                                     std::span<const glm::dvec2> centres, std::span<const std::uint32_t> flags,

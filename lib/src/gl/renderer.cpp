@@ -173,9 +173,11 @@ constexpr int kSceneVertexFloats = int(sizeof(SceneVertex) / sizeof(float));
 
 }  // namespace
 
-// The largest map the refined GPU volume takes: its buffers hold 68 bytes per texel (flags, work
-// lists, crossing records), 1.1 GiB at 4096^2.
-constexpr std::int64_t kMaxRefinedGpuTexels = std::int64_t(4096) * 4096;
+// The largest map the refined GPU volume takes: a 2048^2 map's index list stays under 512 MiB
+// unless more than about 40 % of its quads are refined cells (60 indices each at most; then the
+// frame is refused with an InputError); its other buffers hold 68 bytes per texel (flags, work
+// lists, crossing records).
+constexpr std::int64_t kMaxRefinedGpuTexels = std::int64_t(2048) * 2048;
 
 struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
@@ -1172,11 +1174,15 @@ struct Renderer::Impl {
       if (std::int64_t(o.depthWidth) * o.depthHeight > kMaxRefinedGpuTexels)
         throw InputError("RenderOptions", "depthWidth x depthHeight",
                          std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
-                         "the refined GPU volume takes maps of up to 4096 x 4096 texels (68 bytes of buffers per texel)");
+                         "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
+                         "under 512 MiB)");
+      if (o.gpuVolumeDraw != GpuVolumeDraw::Auto)
+        throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
+                         "the refined GPU volume lists its triangles its own way: leave it at auto");
     }
-    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu && o.gpuVolumeDraw == GpuVolumeDraw::Refined)
+    if (o.gpuVolumeDraw == GpuVolumeDraw::Refined)
       throw InputError("RenderOptions", "gpuVolumeDraw", "refined",
-                       "is what a refined GPU volume reports, not a choice: set volumeOptions.refineSteps > 0");
+                       "is what a refined GPU volume (volumeOptions.refineSteps > 0) reports, not a choice");
     if (o.refineCrossings == RefineCrossings::GpuWalk) {
       auto refuse = [](const std::string& value, const std::string& why) {
         throw InputError("RenderOptions", "refineCrossings", value, why);
