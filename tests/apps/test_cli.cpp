@@ -548,6 +548,9 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   EXPECT_EQ(g["volume"]["crossingFallbacks"], 0);
   EXPECT_TRUE(g["gpuVolumeMeshChecks"]["valid"].get<bool>()) << gpu.out;
   EXPECT_TRUE(g["passed"].get<bool>());
+  const CliResult walk = runCli("render --refine 2 --crossings gpu-walk --resolution 32 --size 64x48 --out " +
+                                (dir / "w.png").string());  // the walk named: what the GPU volume does anyway
+  EXPECT_EQ(walk.code, 0) << walk.out;
   const CliResult r = runCli("validate --json --volume explicit --refine 4 --resolution 64 --size 160x120 --scene " +
                              scene("plate.json") + " --report " + (dir / "e").string());
   ASSERT_EQ(r.code, 0) << r.out;

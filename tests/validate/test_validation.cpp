@@ -133,10 +133,11 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
   EXPECT_GE(frames, 8 * 8);
 }
 
-// Refinement with the GPU's silhouette walk (the explicit volume built from crossings read back from
-// the GPU): the same agreement on every shipped scene, back and front capture (the walk refuses
-// midpoint), both triangulations, blur.
-TEST(Validation, WalkRefinedVolumeMatchesCrossingCountsOnEveryScene) {
+// Every shipped scene with refinement by the GPU's walk at 64^2, back and front capture (the walk
+// refuses midpoint), both triangulations (blur with fixed); `check` gets each frame's validation.
+// Returns the number of frames.
+template <class Check>
+int everyWalkRefinedFrame(gl::VolumeSource source, Check check) {
   int frames = 0;
   for (auto& [path, scene] : loadableScenes()) {
     scene.camera.width = 128;
@@ -145,20 +146,26 @@ TEST(Validation, WalkRefinedVolumeMatchesCrossingCountsOnEveryScene) {
       for (auto tri : {Triangulation::Fixed, Triangulation::Perfect}) {
         const bool blur = tri == Triangulation::Fixed;  // both ways across the combinations
         gl::RenderOptions ro;
-        ro.volume = gl::VolumeSource::Explicit;
-        ro.refineCrossings = gl::RefineCrossings::GpuWalk;
+        ro.volume = source;
+        ro.refineCrossings = gl::RefineCrossings::GpuWalk;  // the explicit volume's choice; the GPU's always
         ro.capture = capture;
         ro.depthWidth = ro.depthHeight = 64;
         ro.volumeOptions.triangulation = tri;
         ro.volumeOptions.blur = blur;
         ro.volumeOptions.refineSteps = 1;
-        SCOPED_TRACE(path.filename().string() + " walk " + toString(capture) + " " + toString(tri) + (blur ? " blur" : ""));
-        const Validated r = renderAndValidate(scene, ro);
-        expectConsistent(r);
+        SCOPED_TRACE(path.filename().string() + " walk, " + gl::toString(source) + " volume, " + toString(capture) +
+                     " " + toString(tri) + (blur ? " blur" : ""));
+        check(renderAndValidate(scene, ro));
         ++frames;
       }
   }
-  EXPECT_GE(frames, 8 * 4);
+  return frames;
+}
+
+// Refinement with the GPU's silhouette walk (the explicit volume built from crossings read back from
+// the GPU): the same agreement on every shipped scene.
+TEST(Validation, WalkRefinedVolumeMatchesCrossingCountsOnEveryScene) {
+  EXPECT_GE(everyWalkRefinedFrame(gl::VolumeSource::Explicit, [](const Validated& r) { expectConsistent(r); }), 8 * 4);
 }
 
 // The walk refuses what it cannot do, by name.
@@ -193,32 +200,14 @@ TEST(Validation, WalkRefusesWhatItCannotDo) {
 // exactly the CPU rule's boundary edges (as many, each with the same near end and kind: no edge
 // of the CPU build fell back).
 TEST(Validation, RefinedGpuVolumeMatchesCrossingCountsOnEveryScene) {
-  int frames = 0;
-  for (auto& [path, scene] : loadableScenes()) {
-    scene.camera.width = 128;
-    scene.camera.height = 96;
-    for (auto capture : {CaptureMode::Back, CaptureMode::Front})
-      for (auto tri : {Triangulation::Fixed, Triangulation::Perfect}) {
-        const bool blur = tri == Triangulation::Fixed;  // both ways across the combinations
-        gl::RenderOptions ro;
-        ro.volume = gl::VolumeSource::Gpu;
-        ro.capture = capture;
-        ro.depthWidth = ro.depthHeight = 64;
-        ro.volumeOptions.triangulation = tri;
-        ro.volumeOptions.blur = blur;
-        ro.volumeOptions.refineSteps = 1;
-        SCOPED_TRACE(path.filename().string() + " gpu refined " + toString(capture) + " " + toString(tri) +
-                     (blur ? " blur" : ""));
-        const Validated r = renderAndValidate(scene, ro);
-        expectConsistent(r);
-        ASSERT_TRUE(r.volumeStats.has_value());
-        EXPECT_EQ(r.gpuBoundaryEdges, r.volumeStats->boundaryEdges);
-        EXPECT_EQ(r.volumeStats->crossingFallbacks, 0u);
-        ASSERT_TRUE(r.v.gpuMeshCheck.has_value());  // what the GPU drew: closed, outward, welded
-        EXPECT_TRUE(r.v.gpuMeshCheck->valid()) << r.v.gpuMeshCheck->summary();
-        ++frames;
-      }
-  }
+  const int frames = everyWalkRefinedFrame(gl::VolumeSource::Gpu, [](const Validated& r) {
+    expectConsistent(r);
+    ASSERT_TRUE(r.volumeStats.has_value());
+    EXPECT_EQ(r.gpuBoundaryEdges, r.volumeStats->boundaryEdges);
+    EXPECT_EQ(r.volumeStats->crossingFallbacks, 0u);
+    ASSERT_TRUE(r.v.gpuMeshCheck.has_value());  // what the GPU drew: closed, outward, welded
+    EXPECT_TRUE(r.v.gpuMeshCheck->valid()) << r.v.gpuMeshCheck->summary();
+  });
   EXPECT_GE(frames, 8 * 4);
 }
 

@@ -69,7 +69,8 @@ enum class GpuVolumeDraw {
 const char* toString(GpuVolumeDraw d);
 
 /// Where an explicit volume's refinement finds its crossings (volumeOptions.refineSteps > 0). The
-/// refined GPU volume always finds them with the walk (docs/gpu.md "The refined GPU volume").
+/// refined GPU volume always finds them with the walk (docs/gpu.md "The refined GPU volume"),
+/// whichever is set.
 enum class RefineCrossings {
   Rays,     ///< bisection rays from volumeOptions.depthOracle (Embree), refineSteps per edge
   GpuWalk,  ///< the GPU's silhouette walk over the scene's triangles (walk_crossings.h,

@@ -1187,9 +1187,9 @@ struct Renderer::Impl {
       auto refuse = [](const std::string& value, const std::string& why) {
         throw InputError("RenderOptions", "refineCrossings", value, why);
       };
-      if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit || o.volumeOptions.refineSteps == 0)
-        refuse("gpu-walk", "the silhouette walk refines the explicit hybrid volume: it needs method hybrid, volume "
-                           "explicit and refineSteps > 0");
+      if (o.method != ShadowMethod::Hybrid || o.volumeOptions.refineSteps == 0)
+        refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0 "
+                           "(the refined GPU volume always walks)");
       if (!hasCompute) refuse("gpu-walk", "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
                                               context.info().glVersion);
       if (o.capture == CaptureMode::Midpoint)
