@@ -867,6 +867,7 @@ struct Renderer::Impl {
   /// volume_index.vert places each texel's vertex. The buffer grows to what the frame needs (the
   /// count is read back after the pass; a frame that overflows it runs the pass again) up to
   /// kMaxIndexBytes; false when the list would be larger (the caller falls back to KeptQuads).
+  /// With `cells` the refined GPU volume: its cells in the same list, volume_refined.vert draws all.
   bool drawIndexedGpuVolume(const CameraSetup& cam, const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo,
                             double bias, const Texture& depth, std::int64_t quads, RenderResult& result,
                             RefinedGpuVolume* cells = nullptr) {
@@ -886,7 +887,8 @@ struct Renderer::Impl {
   }
 
   /// drawIndexedGpuVolume's listing pass alone: `counts` = indices, quads; false when the list
-  /// would not fit. `skipRefinedFlags`: the refined GPU volume's boundary flags (0 = none).
+  /// would not fit. With `cells` (the refined GPU volume) its refined cells are listed first into
+  /// the same buffer and the listing pass leaves their quads out.
   bool listIndexedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
                             std::int64_t quads, std::array<GLuint, 2>& counts, RefinedGpuVolume* cells = nullptr) {
     constexpr std::int64_t kMaxIndexBytes = std::int64_t(1) << 29;  // 512 MiB
