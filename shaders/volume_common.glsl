@@ -1,5 +1,7 @@
 // Shared by the GPU volume's stages (volume_gpu.geom, volume_keep.geom, volume_mesh.comp,
-// volume_index.frag, volume_index.vert; each program's sources are version_330.glsl or
+// volume_index.frag, volume_index.vert, and the refined GPU volume's with refine_common.glsl after
+// this file: boundary_edges.comp, boundary_unfold.comp, walk_slots.comp, silhouette_walk.comp,
+// volume_refined.comp, volume_refined.vert; each program's sources are version_330.glsl or
 // version_430.glsl, light_window_depth.glsl, this file, then the stage's body): the sheet vertex
 // of a texel, the quads the exact cap drops and the diagonal rule, mirroring buildVolume.
 //

@@ -1,9 +1,9 @@
 // The refined GPU volume (--volume gpu --refine K, docs/gpu.md "The refined GPU volume"): the
 // explicit builder's refined walls made on the GPU from the light pass's depth and triangle record,
-// without a read-back. Four steps, each a compute pass (GL 4.3):
+// without a read-back of the map. Four steps of compute passes (GL 4.3):
 //   1. boundary_edges.comp: every texel's boundary flags (boundary_edges.h's rule);
-//   2. boundary_unfold.comp: the unfolding rounds (kMaxUnfoldRounds, each dispatched indirectly
-//      from the one before: no read-back);
+//   2. boundary_unfold.comp: the unfolding rounds (kMaxUnfoldRounds), every dispatch indirect and
+//      given work groups only by a surface edge or the round before (no read-back);
 //   3. walk_slots.comp lists the boundary edges and ambiguous quads to walk and the quads to refine;
 //      silhouette_walk.comp with grid queries, dispatched indirectly over the first list: each
 //      boundary edge's crossing and each ambiguous quad's centre depth, as walk_crossings.h's
