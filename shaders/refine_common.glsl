@@ -1,6 +1,6 @@
 // (volume_common.glsl comes first.) Shared by the refined GPU volume's passes (boundary_edges.comp,
-// boundary_unfold.comp, silhouette_walk.comp's grid queries, volume_refined.comp and
-// volume_refined.vert): the sheet-depth rule for one sample of the surface (sheet_depth.h's
+// boundary_unfold.comp, walk_slots.comp, silhouette_walk.comp's grid queries, volume_refined.comp
+// and volume_refined.vert): the sheet-depth rule for one sample of the surface (sheet_depth.h's
 // SheetDepthRule::ofSample), the boundary flags of a texel and the sides of a quad.
 //
 // Boundary flags, one word per texel t = j W + i (boundary_edges.h; P = t, Q = P + (1, 0) for
@@ -12,8 +12,8 @@
 // Quad (i, j)'s sides (cell_triangulator.h's sideEdge): 0 = the axis-0 edge of (i, j), 1 = the
 // axis-1 edge of (i + 1, j), 2 = the axis-0 edge of (i, j + 1), 3 = the axis-1 edge of (i, j);
 // sides 0 and 1 run from their edge's P end, 2 and 3 towards it.
-// Edge slots: 2 t + axis (a crossing's record, its vertex indices); quad (i, j)'s centre is slot
-// 2 W H + t (t = j W + i).
+// A crossing's record: layer `axis` of crossingRecords at texel t; a quad's centre depth: layer 2
+// at its corner A. Work slots (walk_slots.comp): 3 t + k, k = axis or 2 for the centre.
 uniform sampler2D rawDepth;  // with blur: the unblurred light-view depth (lightDepth holds the blurred)
 uniform int blurOn;          // 1: lightDepth is blurred (the blur offset included)
 uniform float blurOffset;    // world units, VolumeBuildOptions::blurOffset

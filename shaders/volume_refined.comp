@@ -2,14 +2,14 @@
 // first.) The refined GPU volume's cells (--volume gpu --refine K): one invocation per quad of
 // walk_slots.comp's list of refined quads (those with a boundary side; volume_index.frag lists the
 // others into the same buffer) appends its triangles as vertex indices (volume_refined.vert places
-// them, for both) at an atomically taken offset, exactly the triangles of the CPU builder with the mirrored cap
-// (volume_builder.h with flattenCap = false) from the same boundary edges and crossings:
-//   cell_triangulator.h's CellTriangulator without chord
-//     points, rule for rule: its loop of corners with each boundary side's wall edge (the
-//     crossing's near and far vertex) between the side's corners, components closed by chords,
-//     the taper (one side), the wall (two), the middle polygon by the centre's depth (three or
-//     four); triangles with three far vertices dropped; every kept triangle that is not a wall
-//     mirrored on the far plane, reversed, unless drawCap = 0 (z-pass).
+// them, for both) at an atomically taken offset: exactly the triangles of the CPU builder with the
+// mirrored cap (volume_builder.h with flattenCap = false) from the same boundary edges and
+// crossings. That is cell_triangulator.h's CellTriangulator without chord points, rule for rule:
+// its loop of corners with each boundary side's wall edge (the crossing's near and far vertex)
+// between the side's corners, components closed by chords, the taper (one side), the wall (two),
+// the middle polygon by the centre's depth (three or four); triangles with three far vertices
+// dropped; every kept triangle that is not a wall mirrored on the far plane, reversed, unless
+// drawCap = 0 (z-pass).
 // Vertex indices (W H = texels): t = j W + i the sheet vertex of texel (i, j); W H + t its point on
 // the far plane (a far texel is its own); 2 W H + 3 (2 t + axis) + k for the crossing of the edge
 // from texel t along axis: k = 0 its near vertex, 1 its far vertex, 2 its point on the far plane
