@@ -36,8 +36,7 @@ namespace shadowvol {
 inline constexpr double kJumpFootprints = 2.0;  ///< see the header comment
 inline constexpr double kJumpSlope = 3.0;       ///< see the header comment
 /// Rounds of findBoundaryEdges' unfolding: a fold that survives them keeps its edges (its wall
-/// crosses itself; the volume stays closed). On every shipped scene (main, unseen and sweep) at
-/// 64² to 512², back and front capture, at most 3 rounds changed an edge.
+/// crosses itself; the volume stays closed).
 inline constexpr int kMaxUnfoldRounds = 4;
 
 /// The texel footprint of a map as a function of light-view depth: F(d) = a + b * d (exact for

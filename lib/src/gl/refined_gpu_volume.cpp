@@ -14,6 +14,10 @@ constexpr int kGroup = 16;  // local size 16 x 16 of boundary_edges.comp, bounda
 constexpr int kCounters = 12;  // walk_slots.comp's layout of the Counters buffer
 constexpr GLintptr kWalkDispatch = 4 * 4, kCellDispatch = 7 * 4;  // their byte offsets there
 
+// A depth of a crossing record in double: the GPU's far plane is float(farPlane), so a depth equal
+// to it is the far plane itself.
+double recordDepth(float d, double farPlane) { return d == float(farPlane) ? farPlane : double(d); }
+
 std::vector<std::string> sources(const char* body) {
   return {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "refine_common.glsl", body};
 }
@@ -27,9 +31,8 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
   SV_CHECK_EQ(flags.size(), texels);
   SV_CHECK_EQ(records.size(), 3 * texels);
   constexpr std::uint32_t kBoundaryBit = 1, kNearAtPBit = 4, kSurfaceBit = 16;  // refine_common.glsl
-  // The GPU's far plane is float(farPlane): a depth equal to it is the far plane.
   const double farPlane = rule.farPlane;
-  auto depth = [&](float d) { return d == float(farPlane) ? farPlane : double(d); };
+  auto depth = [&](float d) { return recordDepth(d, farPlane); };
   Refinement r;
   r.crossings.resize(edges.edges.size());
   for (std::size_t k = 0; k < edges.edges.size(); ++k) {
@@ -76,7 +79,7 @@ VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rul
   SV_CHECK_EQ(indices.size() % 3, 0u);
   const TexelUnprojector unproject(map);
   const double farPlane = rule.farPlane;
-  auto depth = [&](float d) { return d == float(farPlane) ? farPlane : double(d); };
+  auto depth = [&](float d) { return recordDepth(d, farPlane); };
   auto place = [&](std::uint64_t id) -> glm::dvec3 {
     if (id < 2 * texels) {
       const std::uint64_t t = id % texels;
