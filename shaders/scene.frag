@@ -2,9 +2,10 @@
 // Shading of the camera pass (docs/gpu.md "Lighting"):
 //   colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit)
 // N: the flat face normal (from screen-space derivatives) turned toward the camera; L: toward the
-// light (spot: toward its apex; directional: against its direction). lit = 0 outside the light's
-// frustum (|x|, |y|, |z| <= w in light clip space), times the shadow-map visibility when
-// shadowTaps > 0. Location 0: that colour. Location 1 (writeVisibility): the shadow test alone
+// light (spot and point: toward its position; directional: against its direction). lit = 0
+// outside the light's frustum (|x|, |y|, |z| <= w in light clip space; a point light's: between
+// its near and far cubes, the largest |coordinate| of the offset from it in [near, far],
+// cube_map.h), times the shadow-map visibility when shadowTaps > 0. Location 0: that colour. Location 1 (writeVisibility): the shadow test alone
 // (1 = lit, PCF fraction; 1 outside the frustum; not multiplied by N.L), which the renderer binds
 // to an R8 attachment only when RenderOptions::readVisibility is set. Location 2: the ambient term
 // alone, albedo * ambient, which the stencil methods' camera pass keeps for the pixels their
@@ -12,8 +13,9 @@
 in vec3 worldPos;
 in vec3 color;
 uniform vec3 cameraPosition;      // world
-uniform int lightIsSpot;
-uniform vec3 lightPosition;       // world, spot apex
+uniform int lightType;            // LightType: 0 spot, 1 directional, 2 point
+uniform vec2 lightNearFar;        // a point light's near and far (light.h)
+uniform vec3 lightPosition;       // world, spot apex or point light
 uniform vec3 lightDirection;      // world, unit, the way the light shines
 uniform mat4 worldToLightClip;    // P_light * V_light
 uniform mat4 worldToLightView;    // V_light
@@ -36,7 +38,7 @@ layout(location = 2) out vec4 ambientOut;
 // tan(theta) with cos(theta) = |dot(N, lightDirection)|, clamped to 10.
 float shadowVisibility(vec4 lightClip, float cosTheta) {
   float d = -(worldToLightView * vec4(worldPos, 1.0)).z;
-  float footprint = lightIsSpot != 0 ? texelFootprint * d : texelFootprint;
+  float footprint = lightType != 1 ? texelFootprint * d : texelFootprint;
   float c = clamp(cosTheta, 1e-4, 1.0);
   float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / c, 10.0);
   float z = -(d - (biasConstant + biasSlope * footprint * tanTheta));
@@ -53,10 +55,13 @@ void main() {
   ambientOut = vec4(color * ambient, 1.0);
   vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
   if (dot(n, cameraPosition - worldPos) < 0.0) n = -n;
-  vec3 l = lightIsSpot != 0 ? normalize(lightPosition - worldPos) : -lightDirection;
+  vec3 l = lightType != 1 ? normalize(lightPosition - worldPos) : -lightDirection;
   float ndl = dot(n, l);
   vec4 lc = worldToLightClip * vec4(worldPos, 1.0);
-  float lit = (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
+  vec3 offset = abs(worldPos - lightPosition);
+  float cubeDepth = max(offset.x, max(offset.y, offset.z));
+  float lit = lightType == 2 ? ((cubeDepth >= lightNearFar.x && cubeDepth <= lightNearFar.y) ? 1.0 : 0.0)
+              : (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
   float test = 1.0;
   if (lit > 0.0 && (ndl > 0.0 || writeVisibility != 0) && shadowTaps > 0)
     test = shadowVisibility(lc, abs(dot(n, lightDirection)));

@@ -100,6 +100,43 @@ TEST(SceneParser, DirectionalLightFitsPositionExtentAndRange) {
   EXPECT_GT(s.light.farPlane, glm::dot(b.min - s.light.position, s.light.direction));
 }
 
+// A point light fits one near and far for its six faces: far just past the farthest face's view of
+// the bounds (the largest |coordinate| of a bounds corner from the light), near before the nearest.
+TEST(SceneParser, PointLightFitsOnePairOfPlanesForItsSixFaces) {
+  const Scene s = parse(withLight(R"({"type":"point","position":[0.2,3,0.1]})")).scene;
+  EXPECT_EQ(s.light.type, LightType::Point);
+  EXPECT_EQ(s.light.position, glm::dvec3(0.2, 3, 0.1));
+  // The unit box at the origin: seen from above by the -y face only, from depth 2.5 to 3.5.
+  EXPECT_GT(s.light.farPlane, 3.5);
+  EXPECT_LT(s.light.farPlane, 3.6);
+  EXPECT_LT(s.light.nearPlane, 2.5);
+  EXPECT_GT(s.light.nearPlane, 0.0);
+  // Inside the box: every face sees it, the near plane comes from the nearest geometry.
+  const Scene in = parse(withLight(R"({"type":"point","position":[0.1,0,0]})")).scene;
+  EXPECT_GT(in.light.farPlane, 0.5);
+  EXPECT_LT(in.light.farPlane, 0.7);
+  EXPECT_GT(in.light.nearPlane, 0.0);
+  EXPECT_LT(in.light.nearPlane, 0.4);
+  // A given far inside the scene is kept; a given near before all of it moves there, with a note.
+  const auto given = parse(withLight(R"({"type":"point","position":[0,3,0],"near":0.5,"far":3.2})"));
+  EXPECT_EQ(given.scene.light.farPlane, 3.2);
+  EXPECT_GT(given.scene.light.nearPlane, 2.4);
+  EXPECT_LT(given.scene.light.nearPlane, 2.5);
+  ASSERT_EQ(given.warnings.size(), 1u);
+  EXPECT_NE(given.warnings[0].find("/light/near"), std::string::npos);
+}
+
+TEST(SceneParser, PointLightRefusesWhatItHasNot) {
+  for (const char* field : {"direction", "target", "up", "fov", "extent"}) {
+    const std::string value = std::string(field) == "fov" || std::string(field) == "extent" ? "30" : "[0,-1,0]";
+    expectError(withLight(R"({"type":"point","position":[0,5,0],")" + std::string(field) + "\":" + value + "}"),
+                std::string("/light/") + field, "no direction");
+  }
+  expectError(withLight(R"({"type":"point"})"), "/light/position");
+  expectError(withLight(R"({"type":"point","position":[0,5,0],"near":0})"), "/light/near", "point light");
+  expectError(withLight(R"({"type":"lamp","position":[0,5,0]})"), "/light/type", "point");
+}
+
 // Given planes that cut the scene are kept; planes beyond what the scene needs are tightened to it,
 // with a note naming the field (regression: a light far/near of 1e6 cost 3 % of stencil agreement).
 TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
@@ -455,7 +492,10 @@ TEST(SceneParser, MissingFileIsAnError) {
 
 TEST(SceneParser, EveryShippedSceneLoads) {
   int count = 0;
-  for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / "data/scenes")) {
+  std::vector<std::filesystem::directory_entry> files;
+  for (const char* dir : {"data/scenes", "data/scenes/point"})
+    for (const auto& e : std::filesystem::directory_iterator(test::sourceDir() / dir)) files.push_back(e);
+  for (const auto& e : files) {
     if (e.path().extension() != ".json") continue;
     SCOPED_TRACE(e.path().string());
     try {

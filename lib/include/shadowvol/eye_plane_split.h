@@ -49,7 +49,7 @@ struct EyePlaneSplit {
 /// so the mesh stays conforming).
 EyePlaneSplit splitAcrossEyePlanes(TriangleMesh& mesh, std::span<const EyePlane> planes, std::size_t maxTriangles);
 
-/// The scene's eye planes (the camera's, and a spot light's) with maxEdge = kEyePlaneEdgeRatio x
+/// The scene's eye planes (the camera's, a spot light's, a point light's six faces') with maxEdge = kEyePlaneEdgeRatio x
 /// near; applied to every object, adding at most kMaxEyePlaneTriangles and staying within
 /// `maxTriangles` for the scene. Call after the near planes are fitted.
 EyePlaneSplit splitSceneAcrossEyePlanes(Scene& scene, std::size_t maxTriangles);

@@ -1,4 +1,5 @@
-// The light: spot (perspective) or directional (orthographic), and its matrices.
+// The light: spot (perspective), directional (orthographic) or point (six 90-degree spot views,
+// cube_map.h), and its matrices.
 // Spaces: world -> light view (lightView) -> light clip/NDC (lightProjection). OpenGL conventions:
 // the light looks down -Z of its view space, NDC z in [-1, 1], right-handed world, Y up.
 #pragma once
@@ -8,19 +9,25 @@
 
 namespace shadowvol {
 
-enum class LightType { Spot, Directional };
+enum class LightType { Spot, Directional, Point };
+
+/// "spot", "directional", "point".
+const char* toString(LightType type);
 
 struct Light {
   LightType type = LightType::Spot;
-  glm::dvec3 position{0.0, 10.0, 0.0};    ///< world; spot: apex. Directional: origin of the view
+  glm::dvec3 position{0.0, 10.0, 0.0};    ///< world; spot and point: apex. Directional: origin of the view
                                           ///< (fitted behind the scene when fitPosition is true)
   bool fitPosition = false;               ///< directional only: place position from the scene bounds
-  glm::dvec3 direction{0.0, -1.0, 0.0};   ///< world, unit length: the way the light shines
+  glm::dvec3 direction{0.0, -1.0, 0.0};   ///< world, unit length: the way the light shines (not
+                                          ///< used by a point light)
   glm::dvec3 up{0.0, 0.0, 0.0};           ///< world; zero = pick deterministically (see lightUp)
   double fovYDegrees = 60.0;              ///< spot only: full vertical (= horizontal) opening angle
   double halfExtent = 0.0;                ///< directional only: half width of the square view, world units
   double nearPlane = 0.0;                 ///< distance along the light axis, world units (> 0 for
-                                          ///< spot); 0 = fitted to the scene by fitLightAndCamera,
+                                          ///< spot and point: along each cube face's axis, the
+                                          ///< largest |coordinate| of the offset from the light);
+                                          ///< 0 = fitted to the scene by fitLightAndCamera,
                                           ///< which also tightens given planes to the scene
   double farPlane = 0.0;                  ///< distance along the light axis (> near); 0 = fitted
 };
@@ -29,11 +36,13 @@ struct Light {
 /// when the direction is within about 2.6 degrees of +-Y (|dir.y| > 0.999).
 glm::dvec3 lightUp(const Light& light);
 
-/// World -> light view. The light sits at `position` looking along `direction`.
+/// World -> light view. The light sits at `position` looking along `direction`; a point light's
+/// view is the translation by -position alone (world axes; its faces' views: cube_map.h).
 glm::dmat4 lightView(const Light& light);
 
 /// Light view -> light clip. Square aspect (the depth map is W x H texels over a square window
 /// only when W == H; otherwise aspect W/H). Perspective for spot, orthographic for directional.
+/// A point light has none (its faces do: cubeFaceLight); asking is a programming error.
 glm::dmat4 lightProjection(const Light& light, double aspect = 1.0);
 
 }  // namespace shadowvol

@@ -74,6 +74,10 @@ class SilhouetteOccluders {
   std::unique_ptr<Impl> impl_;
 };
 
+/// How much farther than its far cube a point light's silhouette volume is extruded (see
+/// SilhouetteVolume::extrusionDepth).
+inline constexpr double kPointLightExtrusion = 8.0;
+
 struct SilhouetteVolume {
   /// World space, closed, every triangle counter-clockwise seen from outside (like the hybrid
   /// volume): per caster its light cap (the triangles facing the light, the object's own vertices
@@ -91,7 +95,9 @@ struct SilhouetteVolume {
   std::size_t lightCapTriangles = 0;       ///< all casters
   std::size_t darkCapTriangles = 0;        ///< all casters
   double extrusionDepth = 0.0;             ///< light-view depth of the dark cap, world units: the light's far
-                                           ///< plane, or 1.001 x the deepest caster vertex when that is farther
+                                           ///< plane, or 1.001 x the deepest caster vertex when that is farther;
+                                           ///< a point light's (cube depth, cube_map.h) kPointLightExtrusion
+                                           ///< times that (its dark cap's triangles are chords of the cube)
   std::vector<std::string> receiversOnly;  ///< open objects that cast nothing, by name
   std::vector<std::string> skipped;        ///< spot: casters entirely behind the apex plane
 };

@@ -173,7 +173,7 @@ struct VolumeBuildResult {
 double defaultBias(const DepthMap& map);
 
 /// The same value from the light and the map size alone, without allocating a depth map:
-/// defaultBias(makeDepthMap(light, width, height, capture)).
+/// defaultBias(makeDepthMap(light, width, height, capture)); a point light's is its faces'.
 double defaultBias(const Light& light, int width, int height, CaptureMode capture);
 
 /// Builds shadow volumes again and again (one per frame, say) without grid-sized allocations: the

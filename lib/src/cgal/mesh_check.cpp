@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include <CGAL/Cartesian_converter.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -28,6 +30,68 @@ using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 Point toPoint(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+
+// Whether a closed 2-manifold is outward. PMP::is_outward_oriented decides from the faces around
+// one extreme vertex, which is ambiguous where a closed volume touches itself at that point (the
+// copies of a far vertex of the exact volume, docs/volume.md; a point light's sheet reaching the
+// far cube at a cap vertex): it can answer either way there. So this decides from every
+// connected component: outward iff each component's signed volume has the sign its nesting
+// asks, positive inside an even number of other components (a solid), negative inside an odd
+// number (a cavity, such as the inner side of a point light's shell). A component's probe is the
+// centroid of one of its kProbes largest faces, the first that lies on no other component's
+// surface (components touch along far-plane edges), classified only against components whose
+// bounding box holds it; no such probe makes the answer no. Beyond kMaxComponents components
+// (the pairwise box tests would cost too much) PMP::is_outward_oriented's answer stands.
+bool isOutward(const Mesh& sm) {
+  constexpr std::size_t kMaxComponents = 4096, kProbes = 8;
+  std::vector<Mesh> parts;
+  PMP::split_connected_components(sm, parts);
+  if (parts.size() > kMaxComponents) return PMP::is_outward_oriented(sm);
+  std::vector<std::vector<Point>> probes(parts.size());
+  std::vector<double> volume;
+  std::vector<CGAL::Bbox_3> box;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const Mesh& m = parts[k];
+    std::vector<std::pair<double, Point>> faces;
+    CGAL::Bbox_3 b;
+    for (auto f : m.faces()) {
+      auto h = m.halfedge(f);
+      const Point &p = m.point(m.source(h)), &q = m.point(m.target(h)), &r = m.point(m.target(m.next(h)));
+      faces.push_back({CGAL::to_double(CGAL::squared_area(p, q, r)), CGAL::centroid(p, q, r)});
+      b += p.bbox() + q.bbox() + r.bbox();
+    }
+    const std::size_t count = std::min(kProbes, faces.size());
+    std::partial_sort(faces.begin(), faces.begin() + std::ptrdiff_t(count), faces.end(),
+                      [](const auto& x, const auto& y) { return x.first > y.first; });
+    for (std::size_t c = 0; c < count; ++c) probes[k].push_back(faces[c].second);
+    volume.push_back(CGAL::to_double(PMP::volume(m)));
+    box.push_back(b);
+  }
+  std::vector<std::optional<CGAL::Side_of_triangle_mesh<Mesh, K>>> side(parts.size());
+  std::vector<int> depth(parts.size(), 0);
+  for (std::size_t a = 0; a < parts.size(); ++a) {
+    bool decided = false;
+    for (const Point& p : probes[a]) {
+      int inside = 0;
+      bool onSurface = false;
+      for (std::size_t b = 0; b < parts.size() && !onSurface; ++b) {
+        if (b == a || !CGAL::do_overlap(box[b], p.bbox())) continue;
+        if (!side[b]) side[b].emplace(parts[b]);
+        const CGAL::Bounded_side s = (*side[b])(p);
+        onSurface = s == CGAL::ON_BOUNDARY;
+        inside += s == CGAL::ON_BOUNDED_SIDE;
+      }
+      if (onSurface) continue;
+      depth[a] = inside;
+      decided = true;
+      break;
+    }
+    if (!decided) return false;
+  }
+  for (std::size_t a = 0; a < parts.size(); ++a)
+    if (depth[a] % 2 == 0 ? !(volume[a] > 0.0) : !(volume[a] < 0.0)) return false;
+  return true;
+}
 
 // Builds a Surface_mesh; returns false if CGAL refuses a face (non-manifold input).
 bool buildSurfaceMesh(const VolumeMesh& in, Mesh& out) {
@@ -149,7 +213,7 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
     ++r.nonManifoldVertices;  // CGAL refused a face our checks accepted; report it as non-manifold
     return r;
   }
-  r.outward = PMP::is_outward_oriented(sm);
+  r.outward = isOutward(sm);
   r.volume = CGAL::to_double(PMP::volume(sm));
   if (options.selfIntersections && r.degenerateTriangles == 0) {
     std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;

@@ -1,5 +1,7 @@
 #include "shadowvol/eye_plane_split.h"
 
+#include "shadowvol/cube_map.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -156,6 +158,9 @@ EyePlaneSplit splitSceneAcrossEyePlanes(Scene& scene, std::size_t maxTriangles) 
   const Light& l = scene.light;
   if (l.type == LightType::Spot)
     planes.push_back({l.position, glm::normalize(l.direction), l.nearPlane, kEyePlaneEdgeRatio * l.nearPlane});
+  if (l.type == LightType::Point)  // the eye planes of its six cube faces
+    for (int f = 0; f < kCubeFaces; ++f)
+      planes.push_back({l.position, cubeFaceDirection(f), l.nearPlane, kEyePlaneEdgeRatio * l.nearPlane});
   EyePlaneSplit result;
   for (auto& o : scene.objects) {
     const std::size_t total = scene.triangleCount();

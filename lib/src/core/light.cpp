@@ -15,7 +15,17 @@ glm::dvec3 lightUp(const Light& light) {
   return std::abs(d.y) > 0.999 ? glm::dvec3(0.0, 0.0, -1.0) : glm::dvec3(0.0, 1.0, 0.0);
 }
 
+const char* toString(LightType type) {
+  switch (type) {
+    case LightType::Spot: return "spot";
+    case LightType::Directional: return "directional";
+    case LightType::Point: return "point";
+  }
+  return "spot";
+}
+
 glm::dmat4 lightView(const Light& light) {
+  if (light.type == LightType::Point) return glm::translate(glm::dmat4(1.0), -light.position);
   const glm::dvec3 d = glm::normalize(light.direction);
   return glm::lookAt(light.position, light.position + d, lightUp(light));
 }
@@ -23,6 +33,7 @@ glm::dmat4 lightView(const Light& light) {
 glm::dmat4 lightProjection(const Light& light, double aspect) {
   SV_CHECK_GT(light.farPlane, light.nearPlane);
   SV_CHECK_GT(aspect, 0.0);
+  SV_CHECK(light.type != LightType::Point);
   if (light.type == LightType::Spot) {
     SV_CHECK_GT(light.nearPlane, 0.0);
     return glm::perspective(glm::radians(light.fovYDegrees), aspect, light.nearPlane, light.farPlane);

@@ -18,6 +18,7 @@
 #include "frustum_depth_range.h"
 #include "scene_fit_planes.h"
 #include "shadowvol/eye_plane_split.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/scene.h"
 
 namespace shadowvol {
@@ -174,6 +175,10 @@ bool parseLightFit(const std::string& text, LightFit& fit) {
 LightFitResult fitLightToView(Scene& scene, int mapResolution) {
   LightFitResult r;
   Light& l = scene.light;
+  if (l.type == LightType::Point) {
+    r.note = "light not fitted to the view: a point light's six faces cover every direction";
+    return r;
+  }
   const bool spot = l.type == LightType::Spot;
   r.windowBefore = r.windowAfter = spot ? l.fovYDegrees : l.halfExtent;
   const auto footprint = litFootprint(scene);
@@ -207,8 +212,9 @@ LightFitResult fitLightToView(Scene& scene, int mapResolution) {
   return r;
 }
 
-std::optional<std::pair<double, double>> receiverTexelSize(const Scene& scene, int mapResolution) {
-  const Light& l = scene.light;
+namespace {
+
+std::optional<std::pair<double, double>> receiverTexelSizeOf(const Scene& scene, const Light& l, int mapResolution) {
   const glm::dmat4 view = lightView(l);
   const double window = windowOf(l);
   // Vertices of the camera-visible part inside the light's frustum, and of the lit part inside
@@ -233,6 +239,17 @@ std::optional<std::pair<double, double>> receiverTexelSize(const Scene& scene, i
   if (l.type == LightType::Directional) return std::pair{2.0 * window / n, 2.0 * window / n};
   const auto [lo, hi] = std::minmax_element(depths.begin(), depths.end());
   return std::pair{2.0 * window * std::max(*lo, l.nearPlane) / n, 2.0 * window * std::min(*hi, l.farPlane) / n};
+}
+
+}  // namespace
+
+std::optional<std::pair<double, double>> receiverTexelSize(const Scene& scene, int mapResolution) {
+  if (scene.light.type != LightType::Point) return receiverTexelSizeOf(scene, scene.light, mapResolution);
+  std::optional<std::pair<double, double>> r;  // a point light: over its six faces
+  for (int f = 0; f < kCubeFaces; ++f)
+    if (const auto t = receiverTexelSizeOf(scene, cubeFaceLight(scene.light, f), mapResolution))
+      r = r ? std::pair{std::min(r->first, t->first), std::max(r->second, t->second)} : *t;
+  return r;
 }
 
 }  // namespace shadowvol

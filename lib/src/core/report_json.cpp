@@ -8,14 +8,16 @@ nlohmann::json describeScene(const Scene& s) {
   // Positions in world units (stored + origin); directions need no origin.
   auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
   auto w3 = [&](const glm::dvec3& v) { return v3(v + s.origin); };
-  nlohmann::json light = {{"type", s.light.type == LightType::Spot ? "spot" : "directional"},
+  nlohmann::json light = {{"type", toString(s.light.type)},
                           {"position", w3(s.light.position)},
-                          {"direction", v3(s.light.direction)},
-                          {"up", v3(lightUp(s.light))},
                           {"near", s.light.nearPlane},
                           {"far", s.light.farPlane}};
+  if (s.light.type != LightType::Point) {  // a point light has neither
+    light["direction"] = v3(s.light.direction);
+    light["up"] = v3(lightUp(s.light));
+  }
   if (s.light.type == LightType::Spot) light["fov"] = s.light.fovYDegrees;
-  else light["extent"] = s.light.halfExtent;
+  if (s.light.type == LightType::Directional) light["extent"] = s.light.halfExtent;
   const Bounds3 b = s.bounds();
   return {{"source", s.source},
           {"objects", s.objects.size()},

@@ -371,15 +371,44 @@ void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std
   scene.camera.target -= scene.origin;
 }
 
+void readLightPlanes(ObjectReader& r, Light& light) {
+  if (r.has("near")) {
+    light.nearPlane = r.number("near");
+    if (light.type != LightType::Directional && !(light.nearPlane > 0.0))
+      r.fail("near", json(light.nearPlane), std::string("a ") + toString(light.type) + " light's near plane must be greater than zero");
+    if (light.type == LightType::Directional && !(light.nearPlane >= 0.0))
+      r.fail("near", json(light.nearPlane),
+             "a directional light's near plane must be >= 0: it is a distance in front of the plane through its "
+             "position, and nothing behind that plane is lit");
+  }
+  if (r.has("far")) {
+    light.farPlane = r.number("far");
+    if (r.has("near") && !(light.farPlane > light.nearPlane))
+      r.fail("far", json(light.farPlane), "far must be greater than near (" + std::to_string(light.nearPlane) + ")");
+    if (light.type != LightType::Directional && !(light.farPlane > 0.0))
+      r.fail("far", json(light.farPlane), "must be greater than zero");
+  }
+}
+
 Light readLight(const json& v, const std::string& source) {
   ObjectReader r(v, "/light", source);
   Light light;
   const std::string type = r.string("type");
   if (type == "spot") light.type = LightType::Spot;
   else if (type == "directional") light.type = LightType::Directional;
-  else r.fail("type", json(type), "expected \"spot\" or \"directional\"");
+  else if (type == "point") light.type = LightType::Point;
+  else r.fail("type", json(type), "expected \"spot\", \"directional\" or \"point\"");
 
-  if (light.type == LightType::Spot || r.has("position")) light.position = r.vec3("position");
+  if (light.type != LightType::Directional || r.has("position")) light.position = r.vec3("position");
+  if (light.type == LightType::Point) {
+    for (const char* field : {"direction", "target", "up", "fov", "extent"})
+      if (r.has(field))
+        r.fail(field, r.raw(field), "a point light shines every way from its position: it has no direction, up, "
+                                    "fov or extent (its six cube faces are fixed, README \"Point lights\")");
+    readLightPlanes(r, light);
+    r.finish();
+    return light;
+  }
   light.fitPosition = light.type == LightType::Directional && !r.has("position");
   if (r.has("target") && r.has("direction"))
     r.fail("target", r.raw("target"), "give either direction or target, not both");
@@ -407,22 +436,7 @@ Light readLight(const json& v, const std::string& source) {
   } else if (r.has("extent")) {
     light.halfExtent = r.positive("extent");
   }
-  if (r.has("near")) {
-    light.nearPlane = r.number("near");
-    if (light.type == LightType::Spot && !(light.nearPlane > 0.0))
-      r.fail("near", json(light.nearPlane), "a spot light's near plane must be greater than zero");
-    if (light.type == LightType::Directional && !(light.nearPlane >= 0.0))
-      r.fail("near", json(light.nearPlane),
-             "a directional light's near plane must be >= 0: it is a distance in front of the plane through its "
-             "position, and nothing behind that plane is lit");
-  }
-  if (r.has("far")) {
-    light.farPlane = r.number("far");
-    if (r.has("near") && !(light.farPlane > light.nearPlane))
-      r.fail("far", json(light.farPlane), "far must be greater than near (" + std::to_string(light.nearPlane) + ")");
-    if (light.type == LightType::Spot && !(light.farPlane > 0.0))
-      r.fail("far", json(light.farPlane), "must be greater than zero");
-  }
+  readLightPlanes(r, light);
   r.finish();
   return light;
 }
@@ -554,7 +568,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   for (const auto& o : scene.objects)
     if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
       result.warnings.push_back(source + ": /light/position: the " +
-                                (scene.light.type == LightType::Spot ? "spot" : "directional") +
+                                toString(scene.light.type) +
                                 " light is inside the closed mesh \"" + o.name +
                                 "\": everything it lights will be in shadow");
   if (scene.light.type == LightType::Directional && detail::depthRange(scene.bounds(), scene.light.position,

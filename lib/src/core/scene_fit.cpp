@@ -14,6 +14,7 @@
 #include "frustum_depth_range.h"
 #include "scene_fit_planes.h"
 #include "scene_fit_range.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/scene.h"
 
 namespace shadowvol {
@@ -127,6 +128,32 @@ void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<s
   if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
 }
 
+// A point light: one near and far plane for its six faces (cube_map.h), each face fitted as the
+// 90-degree spot light it is; far is the farthest face's far side, near the nearest face's near,
+// over the faces that see part of the bounds.
+void fitPointLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
+  Light& l = scene.light;
+  double far = 0.0;
+  std::vector<double> nearSides;
+  for (int f = 0; f < kCubeFaces; ++f) {
+    const Light face = cubeFaceLight(l, f);
+    const detail::ViewFrustum frustum = detail::lightFrustum(face, 1.0);
+    if (!detail::depthRangeInFrustum(b, frustum)) continue;
+    const auto [lo, hi, margin, faceFar] = seenRange(b, frustum, face.position, face.direction, radius);
+    far = std::max(far, faceFar);
+    nearSides.push_back(lo - margin);
+  }
+  if (nearSides.empty()) return;  // bounds with no extent: nothing to fit to
+  if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
+  if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
+  double near = l.farPlane;
+  for (double side : nearSides) near = std::min(near, perspectiveNear(side, l.farPlane, scene, l.position, 90.0, 1.0));
+  const bool raise = l.nearPlane > 0.0 && l.nearPlane < near && near < l.farPlane;
+  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane));
+  if (l.nearPlane == 0.0 || raise) l.nearPlane = near;
+  if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
+}
+
 void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Camera& c = scene.camera;
   const glm::dvec3 axis = glm::normalize(c.target - c.eye);
@@ -150,7 +177,8 @@ void refitLightPlanes(Scene& scene) {
   const Bounds3 b = scene.bounds();
   if (b.empty()) return;
   std::vector<std::string> notes;  // the planes only move inwards here: nothing to report
-  fitLightPlanes(scene, b, std::max(b.radius(), 1e-6), notes);
+  if (scene.light.type == LightType::Point) fitPointLightPlanes(scene, b, std::max(b.radius(), 1e-6), notes);
+  else fitLightPlanes(scene, b, std::max(b.radius(), 1e-6), notes);
 }
 
 }  // namespace detail
@@ -162,7 +190,8 @@ std::vector<std::string> fitLightAndCamera(Scene& scene) {
   const double radius = std::max(b.radius(), 1e-6);
   scene.light.direction = glm::normalize(scene.light.direction);
   if (scene.light.type == LightType::Directional) fitDirectionalWindow(scene, b, radius);
-  fitLightPlanes(scene, b, radius, notes);
+  if (scene.light.type == LightType::Point) fitPointLightPlanes(scene, b, radius, notes);
+  else fitLightPlanes(scene, b, radius, notes);
   fitCameraPlanes(scene, b, radius, notes);
   for (auto& n : notes)
     n = scene.source + ": " + n + ": moved to the scene's depth range; planes beyond it capture nothing more and "

@@ -14,6 +14,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "shadowvol/check.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol {
@@ -75,7 +76,7 @@ std::vector<char> facing(const Object& o, const Light& light) {
     const auto& t = o.triangles[k];
     const glm::dvec3 &p0 = o.positions[t[0]], &p1 = o.positions[t[1]], &p2 = o.positions[t[2]];
     const glm::dvec3 n = glm::cross(p1 - p0, p2 - p0);
-    const glm::dvec3 toLight = light.type == LightType::Spot ? light.position - p0 : -dir;
+    const glm::dvec3 toLight = light.type != LightType::Directional ? light.position - p0 : -dir;
     f[k] = glm::dot(n, toLight) > 0.0;
   }
   return f;
@@ -232,7 +233,12 @@ SilhouetteVolume buildSilhouetteVolume(const SilhouetteOccluders& occluders, con
   SilhouetteVolume out;
   out.receiversOnly = occluders.receiversOnly();
   const glm::dmat4 view = lightView(light);
-  auto depthOf = [&](const glm::dvec3& p) { return -(view * glm::dvec4(p, 1.0)).z; };
+  const bool point = light.type == LightType::Point;
+  // Depth along the light's axis; a point light's along the axis of the cube face that sees p
+  // (cube_map.h), so its far plane is the far cube.
+  auto depthOf = [&](const glm::dvec3& p) {
+    return point ? cubeDepth(p - light.position) : -(view * glm::dvec4(p, 1.0)).z;
+  };
   const bool spot = light.type == LightType::Spot;
 
   // Which casters take part, and the extrusion depth.
@@ -255,16 +261,26 @@ SilhouetteVolume buildSilhouetteVolume(const SilhouetteOccluders& occluders, con
                        "object '" + o.info.name +
                            "' reaches behind the spot light (light-view depth <= 0 at some vertex); silhouette "
                            "shadow volumes need each casting object entirely in front of the light");
+    if (point && lo < light.nearPlane)
+      throw InputError(impl.source, "/objects/" + o.info.name, "",
+                       "object '" + o.info.name +
+                           "' reaches into the point light's near cube (a vertex closer than its near plane along "
+                           "every axis): silhouette shadow volumes need each casting object clear of the light");
     deepest = std::max(deepest, hi);
     casters.push_back(&o);
   }
   out.extrusionDepth = light.farPlane;
   if (deepest >= light.farPlane) out.extrusionDepth = deepest * 1.001;
+  // A point light's far cap is flat per caster triangle, a chord between points of the far cube
+  // that may lie on different faces: nearer the light than the cube by up to a factor of sqrt(3)
+  // times the cosine of half the angle the triangle subtends. Eight times the depth keeps it
+  // beyond every receiver for triangles subtending up to 90 degrees.
+  if (point) out.extrusionDepth *= kPointLightExtrusion;
   const double D = out.extrusionDepth;
   const glm::dvec3 dir = glm::normalize(light.direction);
   auto extrude = [&](const glm::dvec3& p) {
     const double d = depthOf(p);
-    return spot ? light.position + (p - light.position) * (D / d) : p + dir * (D - d);
+    return spot || point ? light.position + (p - light.position) * (D / d) : p + dir * (D - d);
   };
 
   VolumeMesh& mesh = out.mesh;

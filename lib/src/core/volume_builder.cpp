@@ -9,6 +9,7 @@
 #include <tbb/task_group.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/error.h"
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/far_cap.h"
@@ -61,6 +62,8 @@ double defaultBias(const DepthMap& map) {
 }
 
 double defaultBias(const Light& light, int width, int height, CaptureMode capture) {
+  if (light.type == LightType::Point)  // its faces' (all six alike: defaultCubeBias)
+    return defaultBias(cubeFaceLight(light, 0), width, height, capture);
   return defaultBiasOf(lightView(light), lightProjection(light, double(width) / double(height)), width, height,
                        light.farPlane, capture);
 }

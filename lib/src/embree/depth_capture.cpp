@@ -10,6 +10,7 @@
 #include "shadowvol/depth_map.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol {
 namespace {
@@ -73,24 +74,53 @@ float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, 
   return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : DepthMap::kNoHit;
 }
 
+namespace {
+
+void fillDepthMap(const EmbreeScene& rtScene, DepthMap& map) {
+  const TexelUnprojector unproject(map);
+  const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
+  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < map.width; ++i)
+        map.depth[map.index(i, j)] = captureRay(rtScene.get(), unproject.ray(i, j), tNear, tFar, map.capture);
+  });
+}
+
+std::vector<const TriangleMesh*> meshesOf(const Scene& scene) {
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  return meshes;
+}
+
+}  // namespace
+
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
+  if (scene.light.type == LightType::Point)
+    throw InputError(scene.source, "/light/type", "point",
+                     "a point light has six depth maps, one per cube face: capture them with captureCubeEmbree");
   checkDepthMapSize(width, height, "captureDepthEmbree", "width x height");
   DepthMap map = makeDepthMap(scene.light, width, height, mode);
   map.origin = scene.origin;
-  std::vector<const TriangleMesh*> meshes;
-  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
   const EmbreeDevice device;
-  const EmbreeScene rtScene(device, meshes);
-  const TexelUnprojector unproject(map);
-  const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
-
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < width; ++i)
-        map.depth[map.index(i, j)] = captureRay(rtScene.get(), unproject.ray(i, j), tNear, tFar, mode);
-  });
+  const EmbreeScene rtScene(device, meshesOf(scene));
+  fillDepthMap(rtScene, map);
   device.throwIfError();
   return map;
+}
+
+CubeDepthMap captureCubeEmbree(const Scene& scene, int n, CaptureMode mode) {
+  if (scene.light.type != LightType::Point)
+    throw InputError(scene.source, "/light/type", toString(scene.light.type),
+                     "a cube map is a point light's: capture a spot or directional light with captureDepthEmbree");
+  CubeDepthMap cube = makeCubeDepthMap(scene.light, n, mode);
+  const EmbreeDevice device;
+  const EmbreeScene rtScene(device, meshesOf(scene));
+  for (DepthMap& face : cube.faces) {
+    face.origin = scene.origin;
+    fillDepthMap(rtScene, face);
+  }
+  device.throwIfError();
+  return cube;
 }
 
 }  // namespace shadowvol

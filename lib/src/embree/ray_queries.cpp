@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
 
 namespace shadowvol {
@@ -79,25 +80,27 @@ double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localSc
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
                                      double offset) {
   const Light& light = description.light;
-  const glm::dmat4 lv = lightView(light), lp = lightProjection(light);
+  const bool point = light.type == LightType::Point;
+  const glm::dmat4 lv = lightView(light), lp = point ? glm::dmat4(1.0) : lightProjection(light);
   const glm::dvec3 towardsLight = -glm::normalize(light.direction);
   std::vector<PixelClass> out(hits.depth.size(), PixelClass::Background);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const tbb::blocked_range<std::size_t>& b) {
     for (std::size_t k = b.begin(); k != b.end(); ++k) {
       if (hits.isBackground(k)) continue;
       const glm::dvec3 p = hits.point[k], n(hits.normal[k]);
-      // Inside the light's frustum and depth range?
+      // Inside the light's frustum and depth range? (A point light's: between its near and far
+      // cubes, cube_map.h.)
       const glm::dvec4 v = lv * glm::dvec4(p, 1.0);
       const glm::dvec4 c = lp * v;
-      const double depth = -v.z;
-      if (!(c.w > 0.0) || std::abs(c.x / c.w) > 1.0 || std::abs(c.y / c.w) > 1.0 || depth < light.nearPlane ||
-          depth > light.farPlane) {
+      const double depth = point ? cubeDepth(glm::dvec3(v)) : -v.z;
+      const bool inWindow = point || (c.w > 0.0 && std::abs(c.x / c.w) <= 1.0 && std::abs(c.y / c.w) <= 1.0);
+      if (!inWindow || depth < light.nearPlane || depth > light.farPlane) {
         out[k] = PixelClass::OutsideLight;
         continue;
       }
       glm::dvec3 l;
       double tfar = INFINITY;
-      if (light.type == LightType::Spot) {
+      if (light.type != LightType::Directional) {
         l = light.position - p;
         tfar = glm::length(l);
         l /= tfar;

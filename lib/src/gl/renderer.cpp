@@ -14,6 +14,8 @@
 
 #include "shadowvol/camera.h"
 #include "shadowvol/check.h"
+#include "shadowvol/cube_map.h"
+#include "shadowvol/cube_volume.h"
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
@@ -609,12 +611,16 @@ struct Renderer::Impl {
   /// Uniforms of sceneProgram shared by every mode.
   void setSceneUniforms(const CameraSetup& cam, const RenderOptions& o, int shadowTaps, int mapW, int mapH) {
     const double aspect = double(mapW) / double(mapH);
-    const glm::dmat4 lp = lightProjection(light, aspect);
+    // A point light has no one projection; its lit region is the shell between its near and far
+    // cubes (scene.frag), and it has no shadow map here (validatePointLight).
+    const glm::dmat4 lp = light.type == LightType::Point ? lightProjection(cubeFaceLight(light, 0), 1.0)
+                                                         : lightProjection(light, aspect);
     const glm::dmat4 lv = lightView(light);
     sceneProgram.use();
     sceneProgram.set("worldToClip", toFloat(cam.proj * cam.view));
     sceneProgram.set("cameraPosition", glm::vec3(camera.eye));
-    sceneProgram.set("lightIsSpot", light.type == LightType::Spot ? 1 : 0);
+    sceneProgram.set("lightType", int(light.type));
+    sceneProgram.set("lightNearFar", glm::vec2(float(light.nearPlane), float(light.farPlane)));
     sceneProgram.set("lightPosition", glm::vec3(light.position));
     sceneProgram.set("lightDirection", glm::vec3(glm::normalize(light.direction)));
     sceneProgram.set("worldToLightClip", toFloat(lp * lv));
@@ -693,6 +699,7 @@ struct Renderer::Impl {
   /// the lit colour there is the ambient term already.
   std::array<GLint, 4> lightFrustumOnImage(const CameraSetup& cam, double aspect) const {
     const std::array<GLint, 4> whole = {0, 0, cam.w, cam.h};
+    if (light.type == LightType::Point) return whole;  // it lights every way
     const glm::dmat4 lightClipToWorld = glm::inverse(lightProjection(light, aspect) * lightView(light));
     const glm::dmat4 worldToClip = cam.proj * cam.view;
     glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
@@ -1141,6 +1148,24 @@ struct Renderer::Impl {
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
+  /// What a point light's frame can be (docs/gpu.md "Point lights"): the explicit cube volume
+  /// (hybrid, explicit), silhouette volumes or no shadows.
+  void validatePointLight(const RenderOptions& o) const {
+    const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
+    if (!explicitHybrid && o.method != ShadowMethod::Silhouette && o.method != ShadowMethod::None)
+      throw InputError("RenderOptions", o.method == ShadowMethod::Hybrid ? "volume" : "method",
+                       o.method == ShadowMethod::Hybrid ? toString(o.volume) : toString(o.method),
+                       "a point light's frame is the explicit cube volume (method hybrid, volume explicit), "
+                       "silhouette volumes or none: cube shadow maps and the GPU cube volume are not implemented yet");
+    if (explicitHybrid && o.volumeOptions.refineSteps > 0)
+      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                       "silhouette refinement is not available for point lights yet");
+    if (o.depthWidth != o.depthHeight)
+      throw InputError("RenderOptions", "depthWidth x depthHeight",
+                       std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
+                       "a point light's cube faces are square");
+  }
+
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
     requireScene();
     checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
@@ -1159,6 +1184,7 @@ struct Renderer::Impl {
                        "must be finite");
     if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
       throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
+    if (light.type == LightType::Point) validatePointLight(o);
     if (refinedGpuVolume(o)) {
       auto refuse = [&](const std::string& why) {
         throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
@@ -1241,8 +1267,33 @@ struct Renderer::Impl {
   }
 
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
+  /// A point light's six faces (cube_map.h): the light pass and read-back of each face's spot
+  /// light, the renderer's light set back after each.
+  CubeDepthMap captureCube(int n, CaptureMode mode) {
+    const Light point = light;
+    CubeDepthMap cube = makeCubeDepthMap(point, n, mode);
+    for (int f = 0; f < kCubeFaces; ++f) {
+      light = cubeFaceLight(point, f);
+      try {
+        lightPass(n, n, mode, false);
+        cube.faces[f] = readBack(mode);
+      } catch (...) {
+        light = point;
+        throw;
+      }
+      light = point;
+    }
+    return cube;
+  }
+
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
     if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
+    if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
+      if (o.volumeCount == VolumeCount::ZPass)
+        throw InputError("RenderOptions", "volumeCount", "zpass", "a point light's volume is counted by z-fail only");
+      result.zPassRefused = "a point light's volume is counted by z-fail only";
+      return false;
+    }
     Camera c = camera;
     c.width = cam.w;
     c.height = cam.h;
@@ -1279,14 +1330,30 @@ struct Renderer::Impl {
     // The refined GPU volume lists its unrefined quads as the indexed way does.
     const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
     occupancyValid = false;
-    if (!givenVolume && o.method != ShadowMethod::None && !silhouette) {
+    const bool point = light.type == LightType::Point;
+    if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
       TimedPass t(timer, "light");
       lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o) || refinedGpu);
     }
 
     std::size_t explicitTriangles = 0;
     const Texture* volumeDepth = nullptr;
-    if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
+    if (hybrid && !givenVolume && point) {
+      auto t0 = Clock::now();
+      const CubeDepthMap cube = captureCube(o.depthWidth, o.capture);
+      timer.cpu("light", msSince(t0));  // six light passes and their read-backs
+      t0 = Clock::now();
+      VolumeBuildResult built = buildCubeVolume(cube, vo);
+      timer.cpu("build", msSince(t0));
+      result.biasUsed = built.stats.biasUsed;
+      result.volumeStats = built.stats;
+      t0 = Clock::now();
+      uploadVolume(built.mesh);
+      glFinish();
+      timer.cpu("upload", msSince(t0));
+      explicitTriangles = built.mesh.triangleCount();
+      if (o.keepVolume) result.volume = std::move(built.mesh);
+    } else if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
       auto t0 = Clock::now();
       result.depthMap = readBack(o.capture);
       timer.cpu("readback", msSince(t0));
@@ -1421,7 +1488,7 @@ struct Renderer::Impl {
       const std::vector<std::uint32_t> indices = readIndexList(listed[0]);
       result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, indices, refined->readRecords());
     }
-    if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette)
+    if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette && !point)
       result.depthMap = readBack(o.capture);
     result.passes = timer.results();
     for (const auto& p : result.passes) result.totalMs += p.ms;
@@ -1453,8 +1520,9 @@ void Renderer::setScene(const Scene& scene) {
   if (!(scene.light.farPlane > scene.light.nearPlane) || !(scene.camera.farPlane > scene.camera.nearPlane) ||
       !(scene.camera.nearPlane > 0.0))
     throw InputError(scene.source, "/light or /camera", "", "near and far planes are not set (fitLightAndCamera)");
-  if (scene.light.type == LightType::Spot && !(scene.light.nearPlane > 0.0))
-    throw InputError(scene.source, "/light/near", std::to_string(scene.light.nearPlane), "a spot light needs near > 0");
+  if (scene.light.type != LightType::Directional && !(scene.light.nearPlane > 0.0))
+    throw InputError(scene.source, "/light/near", std::to_string(scene.light.nearPlane),
+                     std::string("a ") + toString(scene.light.type) + " light needs near > 0");
   using Vertex = SceneVertex;
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
@@ -1496,9 +1564,23 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
+  if (s.light.type == LightType::Point)
+    throw InputError(s.scene.source, "/light/type", "point",
+                     "a point light has six depth maps, one per cube face: capture them with captureCube");
   s.checkSize("Renderer::captureDepth", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
   s.lightPass(width, height, mode, false);
   return s.readBack(mode);
+}
+
+CubeDepthMap Renderer::captureCube(int n, CaptureMode mode) {
+  Impl& s = *impl_;
+  s.context.makeCurrent();
+  s.requireScene();
+  if (s.light.type != LightType::Point)
+    throw InputError(s.scene.source, "/light/type", toString(s.light.type),
+                     "a cube map is a point light's: capture a spot or directional light with captureDepth");
+  s.checkSize("Renderer::captureCube", "n x n", n, n, std::min(s.maxTextureSize, s.maxViewport[0]));
+  return s.captureCube(n, mode);
 }
 
 std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, CaptureMode mode,

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "shadowvol/check.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/embree/embree_scene.h"
 #include "shadowvol/error.h"
 
@@ -70,12 +71,18 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
 
   if (frame.hybrid) {
     // The explicit volume of the same depth map and options, its checks and crossing counts.
+    if (!frame.volume && scene.light.type == LightType::Point)
+      throw InputError(scene.source, "/light/type", "point",
+                       "validating a point light's frame needs its volume (RenderOptions::keepVolume)");
     const VolumeMesh volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
     MeshCheckOptions co;
     co.selfIntersections = options.selfIntersections;
-    const double farTolerance = 1e-7 * depth.farPlane;
-    co.allowedTouch = [&depth, farTolerance](const glm::dvec3& p) {
-      return std::abs(depth.viewDepthOf(p) - depth.farPlane) <= farTolerance;
+    // Sheet and cap may touch on the far plane (a point light's: its far cube, cube_map.h).
+    const Light& light = scene.light;
+    const double far = light.type == LightType::Point ? light.farPlane : depth.farPlane, farTolerance = 1e-7 * far;
+    co.allowedTouch = [&depth, &light, far, farTolerance](const glm::dvec3& p) {
+      const double d = light.type == LightType::Point ? cubeDepth(p - light.position) : depth.viewDepthOf(p);
+      return std::abs(d - far) <= farTolerance;
     };
     v.meshCheck = checkMesh(volume, co);
     if (frame.gpuVolume) v.gpuMeshCheck = checkMesh(*frame.gpuVolume, co);

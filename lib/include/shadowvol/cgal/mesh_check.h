@@ -35,7 +35,9 @@ struct MeshCheckReport {
   std::size_t isolatedVertices = 0;      ///< vertices used by no triangle
   std::size_t coincidentVertices = 0;    ///< vertices at the same position as an earlier vertex
   /// The following need a closed 2-manifold (closedManifold()); otherwise left at their defaults.
-  bool outward = false;                  ///< CGAL PMP::is_outward_oriented
+  bool outward = false;                  ///< every connected component's volume signed as its nesting
+                                         ///< asks (mesh_check.cpp isOutward; PMP::is_outward_oriented
+                                         ///< beyond 4096 components)
   double volume = 0.0;                   ///< CGAL PMP::volume (> 0 when outward)
   std::optional<std::size_t> selfIntersectingPairs;  ///< set when MeshCheckOptions::selfIntersections
   std::size_t allowedTouchingPairs = 0;  ///< pairs accepted by MeshCheckOptions::allowedTouch

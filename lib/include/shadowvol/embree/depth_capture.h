@@ -1,6 +1,7 @@
 // CPU depth capture by ray casting with Embree 3: the no-GPU way to get a light's DepthMap.
 #pragma once
 
+#include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/scene.h"
 
@@ -19,6 +20,11 @@ namespace shadowvol {
 /// Parallel over rows (TBB) and deterministic: each texel is computed independently. A size that
 /// checkDepthMapSize refuses (below 2 or above kMaxDepthMapSide a side, or more than half of the
 /// machine's memory) is an InputError naming it.
+/// A point light's scene is an InputError here (it has six maps: captureCubeEmbree).
 DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode);
+
+/// A point light's cube map (cube_map.h): each face as captureDepthEmbree captures that face's
+/// spot light (cubeFaceLight), with one BVH for the six. The scene's light must be a point light.
+CubeDepthMap captureCubeEmbree(const Scene& scene, int n, CaptureMode mode);
 
 }  // namespace shadowvol

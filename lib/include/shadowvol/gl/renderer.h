@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/frame.h"
 #include "shadowvol/gl/egl_context.h"
@@ -88,6 +89,10 @@ class Renderer {
   /// depth, kNoHit where the light sees nothing, row 0 at the bottom). Window depth is converted
   /// in double. Throws InputError for a size below 2 or too large for the GL implementation.
   DepthMap captureDepth(int width, int height, CaptureMode mode);
+
+  /// A point light's cube map (cube_map.h): six light passes, one per face's spot light
+  /// (cubeFaceLight), each read back as captureDepth does. The scene's light must be a point light.
+  CubeDepthMap captureCube(int n, CaptureMode mode);
 
   /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
   /// at width x height with `mode` and its triangle record, then the walk's raw answers to

@@ -40,7 +40,8 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
 /// Every check of validateFrame on a frame rendered with validationRenderOptions(ro).
 inline FrameValidation validateRender(const Scene& scene, const gl::RenderOptions& ro, const gl::RenderResult& result,
                                       const RenderedFrame& frame, const ValidationOptions& options) {
-  if (frame.hybrid && !result.depthMap) throw std::runtime_error("the renderer returned no depth map");
+  if (frame.hybrid && !result.depthMap && !result.volume)
+    throw std::runtime_error("the renderer returned no depth map and no volume");
   return validateFrame(scene, result.depthMap ? *result.depthMap : DepthMap{}, ro.volumeOptions, frame, options);
 }
 

@@ -1,0 +1,37 @@
+// The closed texel grid of a cube map (cube_map.h): the point light's sheet is one surface over
+// all six faces, like the grid of one depth map but without a border. Its cells:
+//   - quads inside each face, between texels (i, j), (i+1, j), (i+1, j+1), (i, j+1);
+//   - quads across each of the 12 cube edges, between two border texels of one face and the two
+//     border texels they pair with on the other (cubeTexelAcross);
+//   - one triangle at each of the 8 cube corners, between the corner texels of its three faces.
+// 6 (N-1)^2 + 12 (N-1) quads and 8 triangles, 12 N^2 - 4 sheet triangles over 6 N^2 texels: a
+// closed surface of genus 0. Every cell's corners are counter-clockwise as the light sees them
+// (in the texel space of the face it is listed from, continued across the edge), so a cell
+// gives the same triangles as a quad of one map (triangulation.h): A B D + B C D, or A B C +
+// A C D with the flipped diagonal.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace shadowvol::cube {
+
+/// Texel id of face f's texel (i, j): f N^2 + j N + i.
+inline std::uint32_t texelId(int n, int face, int i, int j) {
+  return std::uint32_t(face) * std::uint32_t(n) * std::uint32_t(n) + std::uint32_t(j) * std::uint32_t(n) +
+         std::uint32_t(i);
+}
+
+struct Cell {
+  std::array<std::uint32_t, 4> v{};  ///< texel ids A, B, C, D; a corner triangle is A, B, D (C unused)
+  bool triangle = false;
+  int face = 0;                      ///< the face it lies in (inner quads) or is listed from
+  bool inner = false;                ///< inside one face (its far images lie in that face's far plane)
+};
+
+/// Every cell once, deterministically: the inner quads face by face, row by row; then the edge
+/// quads and corner triangles in the order of the faces and borders they are first met from.
+std::vector<Cell> cells(int n);
+
+}  // namespace shadowvol::cube

@@ -1,0 +1,335 @@
+#include "shadowvol/cube_volume.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "cube/cube_grid.h"
+#include "shadowvol/check.h"
+#include "shadowvol/depth_blur.h"
+#include "shadowvol/error.h"
+#include "shadowvol/far_cap.h"
+#include "shadowvol/sheet_depth.h"
+#include "shadowvol/triangulation.h"
+
+namespace shadowvol {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Tri = std::array<std::uint32_t, 3>;
+constexpr std::uint32_t kNone = UINT32_MAX;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
+  const int n = cube.size();
+  SV_CHECK_GE(n, 2);
+  for (const DepthMap& f : cube.faces) {
+    SV_CHECK(f.width == n && f.height == n && f.depth.size() == std::size_t(n) * std::size_t(n));
+    SV_CHECK(f.nearPlane == cube.nearPlane() && f.farPlane == cube.farPlane() && f.capture == cube.capture());
+  }
+  SV_CHECK_GT(cube.farPlane(), cube.nearPlane());
+  SV_CHECK_GT(cube.nearPlane(), 0.0);
+  auto finite = [](const char* name, double v) {
+    if (std::isfinite(v)) return;
+    std::ostringstream value;
+    value << v;
+    throw InputError("volume options", name, value.str(), "must be a finite number of world units");
+  };
+  finite("blur offset", o.blurOffset);
+  if (o.bias) finite("bias", *o.bias);
+  if (o.refineSteps != 0)
+    throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
+                     "silhouette refinement is not available for point lights yet: use refine steps 0");
+  if (o.cap != FarCap::Exact)
+    throw InputError("volume options", "cap", toString(o.cap),
+                     "a point light's volume has the exact cap only (the quad cap closes one map's border ring, "
+                     "and the cube has none)");
+  for (int f = 0; f < kCubeFaces; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const float d = cube.faces[f].at(i, j);
+        if (!std::isnan(d) && d >= 0.0f) continue;
+        std::ostringstream field, value;
+        field << "face " << cubeFaceName(f) << ": depth of texel (" << i << ", " << j << ")";
+        value << d;
+        throw InputError("cube map", field.str(), value.str(),
+                         "depths must be non-negative light-view distances (world units) or +inf for no hit");
+      }
+}
+
+// Sheet depth, sheet point and far image of every texel (ids of cube_grid.h).
+struct Texels {
+  std::vector<std::uint8_t> far;
+  std::vector<glm::dvec3> sheet, farImage;  // relative to the maps' origin
+};
+
+Texels texels(const CubeDepthMap& cube, const SheetDepthRule& rule, bool blur) {
+  const int n = cube.size();
+  const std::size_t count = std::size_t(kCubeFaces) * n * n;
+  Texels t{std::vector<std::uint8_t>(count), std::vector<glm::dvec3>(count), std::vector<glm::dvec3>(count)};
+  for (int f = 0; f < kCubeFaces; ++f) {
+    const DepthMap& map = cube.faces[f];
+    const TexelUnprojector unproject(map);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::uint32_t id = cube::texelId(n, f, i, j);
+        const double stored = map.at(i, j);
+        // sheet_depth.h's steps 1-3 without the border ring (the cube has none).
+        const double d = isFarDepth(stored, map.farPlane) ? map.farPlane
+                         : blur                             ? rule.fromBlurred(blurredDepth(map, i, j))
+                                                            : rule.fromStored(stored);
+        t.far[id] = rule.isFar(d) ? 1 : 0;
+        t.farImage[id] = unproject.worldPoint(i, j, map.farPlane);
+        t.sheet[id] = t.far[id] ? t.farImage[id] : unproject.worldPoint(i, j, d);
+      }
+  }
+  return t;
+}
+
+struct Sheet {
+  std::vector<Tri> tris;          // kept sheet triangles, texel ids, counter-clockwise from the light
+  std::vector<std::uint32_t> cell;  // the cell of each
+  std::vector<std::uint8_t> boundary;  // per texel: a dropped triangle has it as a corner
+};
+
+Sheet triangulate(const std::vector<cube::Cell>& cells, const Texels& t, const glm::dvec3& light, bool perfect,
+                  VolumeBuildStats& stats) {
+  Sheet s;
+  s.boundary.assign(t.far.size(), 0);
+  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+    const auto [a, b, cc, d] = cells[c].v;
+    Tri cand[2];
+    int k = 0;
+    if (cells[c].triangle) {
+      cand[k++] = {a, b, d};
+    } else if (perfect && flipDiagonal(t.sheet[a] - light, t.sheet[b] - light, t.sheet[cc] - light, t.sheet[d] - light)) {
+      cand[k++] = {a, b, cc};
+      cand[k++] = {a, cc, d};
+      ++stats.flippedQuads;
+    } else {
+      cand[k++] = {a, b, d};
+      cand[k++] = {b, cc, d};
+    }
+    int kept = 0;
+    for (int q = 0; q < k; ++q) {
+      const Tri& tri = cand[q];
+      if (t.far[tri[0]] && t.far[tri[1]] && t.far[tri[2]]) {
+        for (std::uint32_t v : tri) s.boundary[v] = 1;
+        continue;
+      }
+      s.tris.push_back(tri);
+      s.cell.push_back(c);
+      ++kept;
+    }
+    if (kept == 0) ++stats.droppedQuads;
+  }
+  return s;
+}
+
+// Vertex ids of the closed mesh: per kept triangle and corner, its sheet vertex and its cap vertex.
+struct Vertices {
+  std::vector<Tri> sheet, cap;
+  std::vector<glm::dvec3> positions;
+  std::vector<std::uint32_t> farTexel;  // per vertex: its texel when it is a far vertex, else kNone
+};
+
+// Far vertex rule (cube_volume.h): at a far texel with a dropped triangle around it, runs of kept
+// triangles joined across edges that are not gaps or cuts (an edge to a far texel that also has a
+// dropped triangle around it) share one vertex, sheet and cap alike; at a far texel without one,
+// the sheet keeps one vertex and the cap gets another.
+Vertices numberVertices(const Sheet& s, const Texels& t) {
+  const std::size_t texelCount = t.far.size();
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> around(texelCount);
+  for (std::uint32_t k = 0; k < s.tris.size(); ++k)
+    for (std::uint8_t c = 0; c < 3; ++c) around[s.tris[k][c]].push_back({k, c});
+  Vertices v;
+  v.sheet.resize(s.tris.size());
+  v.cap.resize(s.tris.size());
+  auto add = [&](const glm::dvec3& p, std::uint32_t farTexel) {
+    v.positions.push_back(p);
+    v.farTexel.push_back(farTexel);
+    return std::uint32_t(v.positions.size() - 1);
+  };
+  std::vector<int> parent;
+  for (std::uint32_t x = 0; x < texelCount; ++x) {
+    const auto& fan = around[x];
+    if (fan.empty()) continue;
+    if (!t.far[x]) {
+      const std::uint32_t sheetId = add(t.sheet[x], kNone), capId = add(t.farImage[x], kNone);
+      for (auto [k, c] : fan) v.sheet[k][c] = sheetId, v.cap[k][c] = capId;
+      continue;
+    }
+    if (!s.boundary[x]) {
+      const std::uint32_t sheetId = add(t.sheet[x], x), capId = add(t.farImage[x], x);
+      for (auto [k, c] : fan) v.sheet[k][c] = sheetId, v.cap[k][c] = capId;
+      continue;
+    }
+    parent.resize(fan.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    for (std::size_t a = 0; a < fan.size(); ++a)
+      for (std::size_t b = a + 1; b < fan.size(); ++b) {
+        const Tri& ta = s.tris[fan[a].first];
+        const Tri& tb = s.tris[fan[b].first];
+        for (std::uint32_t w : ta) {
+          if (w == x || std::find(tb.begin(), tb.end(), w) == tb.end()) continue;
+          const bool separates = t.far[w] && s.boundary[w];  // a gap, or a cut between two boundary vertices
+          if (!separates) parent[root(int(a))] = root(int(b));
+        }
+      }
+    std::vector<std::uint32_t> runId(fan.size(), kNone);
+    for (std::size_t a = 0; a < fan.size(); ++a) {  // runs numbered in the order of their first triangle
+      const int r = root(int(a));
+      if (runId[r] == kNone) runId[r] = add(t.sheet[x], x);
+      v.sheet[fan[a].first][fan[a].second] = v.cap[fan[a].first][fan[a].second] = runId[r];
+    }
+  }
+  return v;
+}
+
+// Face `face`'s part of the cap, flattened: the CDT of far_cap.h over the boundary of its mirrored
+// triangles, in the face's texel space. A vertex where the part touches itself (two or more
+// wedges of it around one vertex, the cap across the cube's edge between them) enters the CDT
+// once per wedge, as the pinches of one map do, and each wedge's triangles get it back.
+std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec2>& texelOf) {
+  auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
+  std::unordered_map<std::uint64_t, std::uint32_t> third;  // directed edge a -> b: the triangle's third corner
+  for (const Tri& t : part)
+    for (int e = 0; e < 3; ++e) third[key(t[e], t[(e + 1) % 3])] = t[(e + 2) % 3];
+  auto boundary = [&](std::uint32_t a, std::uint32_t b) { return !third.count(key(b, a)); };
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // boundary edges a -> b of the part
+  std::unordered_map<std::uint32_t, int> outCount;
+  for (const Tri& t : part)
+    for (int e = 0; e < 3; ++e)
+      if (boundary(t[e], t[(e + 1) % 3])) {
+        edges.push_back({t[e], t[(e + 1) % 3]});
+        ++outCount[t[e]];
+      }
+  // The wedge of an edge a -> v's end v: turn around v inside the part to the boundary edge
+  // leaving v; that edge's start v is the same wedge's.
+  const std::uint32_t firstTemp = std::uint32_t(texelOf.size());
+  std::vector<std::uint32_t> original;  // temp id - firstTemp -> vertex
+  std::unordered_map<std::uint64_t, std::uint32_t> startId;  // boundary edge -> the id of its start
+  std::unordered_map<std::uint32_t, int> wedgesSeen;
+  std::vector<std::uint32_t> endId(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const auto [a, v] = edges[k];
+    std::uint32_t x = third.at(key(a, v));
+    for (std::size_t steps = 0; !boundary(v, x); ++steps) {
+      SV_CHECK_LT(steps, part.size());
+      x = third.at(key(x, v));
+    }
+    std::uint32_t id = v;
+    if (outCount[v] > 1 && wedgesSeen[v]++ > 0) {
+      id = firstTemp + std::uint32_t(original.size());
+      original.push_back(v);
+      texelOf.push_back(texelOf[v]);
+    }
+    endId[k] = id;
+    startId[key(v, x)] = id;
+  }
+  // The cap's triangles are clockwise in texel space: the region lies right of a -> b, so the
+  // CDT's edges (region on the left) run b -> a.
+  std::vector<CapEdge> capEdges;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    const std::uint32_t from = endId[k], to = startId.at(key(edges[k].first, edges[k].second));
+    capEdges.push_back({from, to, texelOf[from], texelOf[to]});
+  }
+  std::vector<Tri> out;
+  auto back = [&](std::uint32_t id) { return id < firstTemp ? id : original[id - firstTemp]; };
+  for (const auto& t : triangulateCapLoops(capEdges)) out.push_back({back(t[2]), back(t[1]), back(t[0])});
+  texelOf.resize(firstTemp);
+  return out;
+}
+
+}  // namespace
+
+double defaultCubeBias(const CubeDepthMap& cube) { return defaultBias(cube.faces[0]); }
+
+VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options) {
+  const auto t0 = Clock::now();
+  validate(cube, options);
+  const int n = cube.size();
+  VolumeBuildResult r;
+  VolumeBuildStats& stats = r.stats;
+  stats.biasUsed = options.bias ? *options.bias : defaultCubeBias(cube);
+  const SheetDepthRule rule(cube.faces[0], stats.biasUsed, options.blurOffset);
+  const std::vector<cube::Cell> cells = cube::cells(n);
+  stats.quads = cells.size();
+
+  const auto tSheet = Clock::now();
+  const Texels t = texels(cube, rule, options.blur);
+  const Sheet sheet = triangulate(cells, t, cube.lightPosition(), options.triangulation == Triangulation::Perfect, stats);
+  const Vertices v = numberVertices(sheet, t);
+  stats.msSheet = msSince(tSheet);
+  stats.capTrianglesBefore = sheet.tris.size();
+
+  const auto tCap = Clock::now();
+  std::vector<Tri> cap;
+  cap.reserve(sheet.tris.size());
+  std::array<std::vector<Tri>, kCubeFaces> facePart;
+  for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+    const Tri& c = v.cap[k];
+    const Tri mirrored{c[2], c[1], c[0]};
+    const cube::Cell& cell = cells[sheet.cell[k]];
+    if (options.flattenCap && cell.inner) facePart[cell.face].push_back(mirrored);
+    else cap.push_back(mirrored);
+  }
+  if (options.flattenCap) {
+    std::vector<glm::dvec2> texelOf(v.positions.size());
+    for (int f = 0; f < kCubeFaces; ++f) {
+      // Texel coordinates of this face's vertices (the part's vertices all lie on its texels).
+      for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+        if (!cells[sheet.cell[k]].inner || cells[sheet.cell[k]].face != f) continue;
+        for (int c = 0; c < 3; ++c) {
+          const std::uint32_t id = sheet.tris[k][c] - cube::texelId(n, f, 0, 0);
+          texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
+        }
+      }
+      if (facePart[f].empty()) continue;
+      const std::vector<Tri> flat = flattenFace(facePart[f], texelOf);
+      cap.insert(cap.end(), flat.begin(), flat.end());
+    }
+  }
+  stats.msCap = msSince(tCap);
+
+  // The mesh: sheet first, cap last (as buildVolume's), without the vertices no triangle uses
+  // (a flattened cap leaves its inner far images out).
+  std::vector<std::uint32_t> remap(v.positions.size(), kNone);
+  auto use = [&](const Tri& tri) {
+    for (std::uint32_t id : tri) remap[id] = 0;
+  };
+  for (const Tri& tri : v.sheet) use(tri);
+  for (const Tri& tri : cap) use(tri);
+  std::uint32_t next = 0;
+  std::vector<std::uint32_t> copiesPerFarTexel;
+  std::unordered_map<std::uint32_t, std::uint32_t> farCopies;
+  for (std::uint32_t id = 0; id < remap.size(); ++id) {
+    if (remap[id] == kNone) continue;
+    remap[id] = next++;
+    if (v.farTexel[id] != kNone) ++farCopies[v.farTexel[id]];
+  }
+  for (const auto& [texel, copies] : farCopies) stats.splitVertices += copies - 1;
+  r.mesh.origin = cube.faces[0].origin;
+  r.mesh.positions.resize(next);
+  for (std::uint32_t id = 0; id < remap.size(); ++id)
+    if (remap[id] != kNone) r.mesh.positions[remap[id]] = v.positions[id];
+  r.mesh.triangles.resize(v.sheet.size() + cap.size());
+  std::size_t k = 0;
+  for (const Tri& tri : v.sheet) r.mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
+  for (const Tri& tri : cap) r.mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
+  stats.capTrianglesAfter = cap.size();
+  stats.msTotal = msSince(t0);
+  return r;
+}
+
+}  // namespace shadowvol
