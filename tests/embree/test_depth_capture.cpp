@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -125,6 +127,26 @@ TEST(Capture, BackModeSeesTheUndersideOfAFloatingBoxOverAGround) {
   // Near the edge of the map only the ground is seen: front hits it, back does not.
   EXPECT_FALSE(DepthMap::isNoHit(front.at(0, 0)));
   EXPECT_TRUE(DepthMap::isNoHit(back.at(0, 0)));
+}
+
+// Midpoint takes the two nearest surfaces whatever order the BVH reports the hits in (regression:
+// a hit after a farther one took the empty second slot, so three stacked plates gave the first
+// and the third). Every order of three plates under a directional light, at 1, 2 and 3 below it.
+TEST(Capture, MidpointTakesTheTwoNearestSurfacesInAnyHitOrder) {
+  std::array<int, 3> order = {0, 1, 2};
+  do {
+    std::vector<TriangleMesh> plates;
+    for (int k : order) {
+      TriangleMesh p = makePlane(8, 8, 1);
+      for (auto& v : p.positions) v.y = float(9 - k);
+      plates.push_back(std::move(p));
+    }
+    Light l = makeLight(LightType::Directional);
+    l.direction = {0, -1, 0};
+    l.position = {0, 10, 0};
+    const DepthMap m = captureDepthEmbree(sceneOf(l, std::move(plates)), 16, 16, CaptureMode::Midpoint);
+    for (float d : m.depth) EXPECT_FLOAT_EQ(d, 1.5f) << order[0] << order[1] << order[2];
+  } while (std::next_permutation(order.begin(), order.end()));
 }
 
 TEST(Capture, IsDeterministic) {

@@ -45,7 +45,10 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
   auto* c = reinterpret_cast<CaptureContext*>(const_cast<RTCIntersectContext*>(args->context));
   const float t = RTCRayN_tfar(args->ray, args->N, 0);
   args->valid[0] = 0;
-  auto same = [](float a, float b) { return std::abs(a - b) <= kSameSurface * std::max(a, b); };
+  // Not the same as an empty slot (b = +inf): |t - inf| <= 1e-5 * inf would hold, and a hit
+  // arriving after a farther one then took the empty slot out of order (regression: the room's
+  // crate in front of the floor gave the floor as the second surface, hits in BVH order).
+  auto same = [](float a, float b) { return std::isfinite(b) && std::abs(a - b) <= kSameSurface * std::max(a, b); };
   if (same(t, c->t1) || same(t, c->t2)) {
     // a duplicate of a known surface: keep the smaller distance for determinism
     if (same(t, c->t1)) c->t1 = std::min(c->t1, t);
