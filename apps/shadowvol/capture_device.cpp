@@ -20,7 +20,31 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
   addPlatformOption(cmd, o.platform, "With --device gpu: ");
 }
 
+namespace {
+
+#ifdef SHADOWVOL_WITH_GL
+gl::Renderer rendererFor(const CaptureDeviceOptions& o, const Scene& scene) {
+  gl::RendererOptions ro;
+  ro.context.platform = o.platform;
+  gl::Renderer renderer(ro);
+  verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
+              renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
+  renderer.setScene(scene);
+  return renderer;
+}
+#endif
+
+[[noreturn]] void noGl(const CaptureDeviceOptions& o) {
+  throw InputError("command line", "--device", o.device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+}
+
+}  // namespace
+
 DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
+  if (scene.light.type == LightType::Point)
+    throw InputError(scene.source, "/light/type", "point",
+                     "a point light has six depth maps, one per cube face, and this command writes one: build, "
+                     "render, validate and bench take point lights");
   if (o.device == "cpu") {
     DepthMap map = captureDepthEmbree(scene, width, height, mode);
     verboseNote("depth captured on the CPU (Embree): %dx%d %s, %zu texels hit", width, height, toString(mode),
@@ -28,18 +52,26 @@ DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int 
     return map;
   }
 #ifdef SHADOWVOL_WITH_GL
-  gl::RendererOptions ro;
-  ro.context.platform = o.platform;
-  gl::Renderer renderer(ro);
-  verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
-              renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
-  renderer.setScene(scene);
-  DepthMap map = renderer.captureDepth(width, height, mode);
+  DepthMap map = rendererFor(o, scene).captureDepth(width, height, mode);
   verboseNote("depth captured on the GPU: %dx%d %s, %zu texels hit", width, height, toString(mode), map.hitCount());
   return map;
 #else
-  throw InputError("command line", "--device", o.device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
+  noGl(o);
 #endif
+}
+
+CubeDepthMap captureCubeOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int n, CaptureMode mode) {
+#ifdef SHADOWVOL_WITH_GL
+  CubeDepthMap cube = o.device == "cpu" ? captureCubeEmbree(scene, n, mode) : rendererFor(o, scene).captureCube(n, mode);
+#else
+  if (o.device != "cpu") noGl(o);
+  CubeDepthMap cube = captureCubeEmbree(scene, n, mode);
+#endif
+  std::size_t hits = 0;
+  for (const DepthMap& f : cube.faces) hits += f.hitCount();
+  verboseNote("cube map captured on the %s: 6 x %dx%d %s, %zu texels hit", o.device == "cpu" ? "CPU (Embree)" : "GPU",
+              n, n, toString(mode), hits);
+  return cube;
 }
 
 }  // namespace shadowvol::cli

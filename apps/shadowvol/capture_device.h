@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/scene.h"
 
@@ -21,7 +22,11 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o);
 
 /// The depth map of `scene` at width x height on the chosen device. Throws InputError naming
 /// --device when this build has no GL (SHADOWVOL_BUILD_GL=OFF) and gpu was asked for, GlError when
-/// no EGL context can be made.
+/// no EGL context can be made. A point light's scene is an InputError naming /light/type (it has
+/// six maps: captureCubeOnDevice).
 DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode);
+
+/// A point light's six N x N cube faces (cube_map.h) on the chosen device.
+CubeDepthMap captureCubeOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int n, CaptureMode mode);
 
 }  // namespace shadowvol::cli

@@ -5,10 +5,12 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "capture_device.h"
 #include "cli_common.h"
 #include "shadowvol/version.h"
+#include "shadowvol/cube_volume.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/embree/embree_depth_oracle.h"
@@ -78,6 +80,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
 
       nlohmann::json j;
       DepthMap map;
+      std::optional<CubeDepthMap> cube;  // a point light's six faces
       Scene scene;
       double msCapture = 0.0;
       if (!o->depth.empty()) {
@@ -91,7 +94,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);
         j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
         const auto t0 = std::chrono::steady_clock::now();
-        map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
+        if (scene.light.type == LightType::Point) {
+          cube = captureCubeOnDevice(o->device, scene, o->resolution, mode);
+          map = cube->faces[0];  // size, capture and origin, which the six faces share
+        } else {
+          map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
+        }
         msCapture = msSince(t0);
         j["device"] = o->device.device;
         j["scene"] = describeScene(scene);
@@ -102,12 +110,13 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         oracle = std::make_unique<EmbreeDepthOracle>(scene);
         options.depthOracle = oracle->oracle();
       }
-      const VolumeBuildResult r = buildVolume(map, options);
+      const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
       writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
       j.update({{"resolution", {map.width, map.height}},
+                {"cubeFaces", cube ? 6 : 1},
                 {"capture", toString(map.capture)},
                 {"triangulation", o->volume.triangulation},
                 {"blur", o->volume.blur},
@@ -129,11 +138,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
-        std::printf("volume of %s, %dx%d %s capture, %s triangulation%s, %s cap\n",
-                    o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(), map.width,
-                    map.height, toString(map.capture), o->volume.triangulation.c_str(), o->volume.blur ? ", blur" : "",
+        std::printf("volume of %s, %s%dx%d %s capture, %s triangulation%s, %s cap\n",
+                    o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(),
+                    cube ? "point light, 6 cube faces of " : "", map.width, map.height, toString(map.capture), o->volume.triangulation.c_str(), o->volume.blur ? ", blur" : "",
                     o->volume.cap.c_str());
-        std::printf("  %zu vertices, %zu triangles; %zu of %zu quads dropped (far plane), %zu flipped (%.1f%%)\n",
+        std::printf(cube ? "  %zu vertices, %zu triangles; %zu of %zu cells dropped (far cube), %zu flipped (%.1f%%)\n"
+                         : "  %zu vertices, %zu triangles; %zu of %zu quads dropped (far plane), %zu flipped (%.1f%%)\n",
                     r.mesh.vertexCount(), r.mesh.triangleCount(), s.droppedQuads, s.quads, s.flippedQuads,
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
