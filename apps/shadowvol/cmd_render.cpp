@@ -122,7 +122,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"lightFit", lightFit},
           {"gl", describeContext(info)},
           {"method", o->render.method},
-          {"volume", o->render.method == "hybrid" ? nlohmann::json(o->render.volume) : nlohmann::json()},
+          {"volume", o->render.method == "hybrid" ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
           {"resolution", o->render.resolution},
           {"capture", o->render.capture},
           {"triangulation", o->render.shape.triangulation},
@@ -162,7 +162,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                     result.width, result.height, o->render.resolution, o->render.resolution, o->render.capture.c_str());
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
-                      o->render.volume.c_str(), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
+                      gl::toString(ro.volume), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),
                       result.volumeTriangles, shadowed);
         if (result.gpuVolumeQuads > 0)
           std::printf(", %zu of %zu quads drawn (%s)", result.gpuVolumeQuadsDrawn, result.gpuVolumeQuads,

@@ -79,7 +79,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       j["scene"] = describeScene(scene);
       j["gl"] = describeContext(renderer.info());
       j["options"] = {{"method", o->render.method},
-                      {"volume", frame.hybrid ? nlohmann::json(o->render.volume) : nlohmann::json()},
+                      {"volume", frame.hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
                       {"resolution", o->render.resolution},
                       {"capture", o->render.capture},
                       {"triangulation", o->render.shape.triangulation},
@@ -125,7 +125,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         std::cout << j.dump(2) << '\n';
       } else {
         std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(),
-                    frame.hybrid ? ", " : "", frame.hybrid ? o->render.volume.c_str() : "",
+                    frame.hybrid ? ", " : "", frame.hybrid ? gl::toString(ro.volume) : "",
                     renderer.info().glRenderer.c_str());
         std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
                     v.facingAway, v.outsideLight, v.background);

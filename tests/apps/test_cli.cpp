@@ -470,6 +470,36 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   EXPECT_FALSE(jv["verdict"]["failures"].empty());
 }
 
+// A point light (README "Point lights"): build writes its closed cube volume, validate passes
+// with the explicit cube volume chosen by --volume auto, what it cannot do is refused plainly.
+TEST(CliGl, PointLightBuildsAndValidates) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string room = (test::sourceDir() / "data/scenes/point/room.json").string();
+  const CliResult b = runCli("build --json --resolution 32 --scene " + room + " --out " + (dir / "v.ply").string());
+  ASSERT_EQ(b.code, 0) << b.out;
+  const auto jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(jb["cubeFaces"], 6);
+  EXPECT_EQ(jb["scene"]["light"]["type"], "point");
+  EXPECT_GT(jb["triangles"].get<int>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "v.ply"));
+  const CliResult v = runCli("validate --json --resolution 32 --size 160x120 --scene " + room + " --report " +
+                             (dir / "rep").string());
+  ASSERT_EQ(v.code, 0) << v.out;
+  const auto jv = nlohmann::json::parse(v.out);
+  EXPECT_EQ(jv["options"]["volume"], "explicit");
+  EXPECT_GE(jv["stencilVsCount"]["fraction"].get<double>(), 0.9999);
+  const CliResult depth = runCli("depth --scene " + room + " --out " + (dir / "d.pfm").string());
+  EXPECT_EQ(depth.code, 1);
+  EXPECT_TRUE(contains(depth.out, "/light/type")) << depth.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));
+  const CliResult map = runCli("render --method pcf3 --scene " + room + " --out " + (dir / "f.png").string());
+  EXPECT_EQ(map.code, 1);
+  EXPECT_TRUE(contains(map.out, "--method")) << map.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+  EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
+}
+
 // Regression: `--resolutions 256,2048` failed; lists take commas as well as spaces.
 TEST(CliGl, BenchListsTakeCommas) {
   const auto dir = test::tempDir();

@@ -50,6 +50,8 @@ TEST(CubeMap, TexelCentresLookUpThemselves) {
       const DepthMap m = makeDepthMap(cubeFaceLight(point(), f), n, n, CaptureMode::Back);
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
+          const glm::dvec3 direct = point().position + 2.0 * cubeTexelDirection(n, f, i, j);
+          EXPECT_LT(glm::length(m.worldPoint(i, j, 2.0) - direct), 1e-12) << "the face's matrices agree";
           const CubeLookup l = cubeLookup(m.worldPoint(i, j, 2.0) - point().position, n);
           EXPECT_EQ(l.face, f);
           EXPECT_NEAR(l.texel.x, i, 1e-9);

@@ -43,6 +43,11 @@ glm::dvec3 cubeFaceUp(int face);         ///< U of the table above
 /// and up of the table, a 90-degree opening.
 Light cubeFaceLight(const Light& point, int face);
 
+/// The direction of face `face`'s texel (i, j) of an N x N cube map, scaled to face depth 1:
+/// D + x R + y U with x, y the texel centre's NDC ((i + 0.5) / N * 2 - 1; i, j may be
+/// fractional), so light position + d times it is the texel's point at face depth d.
+glm::dvec3 cubeTexelDirection(int n, int face, double i, double j);
+
 /// A point light's depth of a world offset from it: the largest |coordinate| (the view depth of
 /// the face whose pyramid holds it).
 double cubeDepth(const glm::dvec3& offset);

@@ -41,6 +41,12 @@ Light cubeFaceLight(const Light& point, int face) {
   return l;
 }
 
+glm::dvec3 cubeTexelDirection(int n, int face, double i, double j) {
+  const FaceAxes& f = axes(face);
+  const double x = (i + 0.5) / n * 2.0 - 1.0, y = (j + 0.5) / n * 2.0 - 1.0;
+  return f.d + x * glm::cross(f.d, f.u) + y * f.u;
+}
+
 double cubeDepth(const glm::dvec3& offset) {
   return std::max({std::abs(offset.x), std::abs(offset.y), std::abs(offset.z)});
 }
@@ -67,7 +73,7 @@ CubeTexel cubeTexelAcross(int n, int face, int i, int j, int di, int dj) {
   SV_CHECK(i + di < 0 || i + di >= n || j + dj < 0 || j + dj >= n);
   const FaceAxes& f = axes(face);
   const glm::dvec3 right = glm::cross(f.d, f.u);
-  const double a = (2.0 * i + 1.0) / n - 1.0, b = (2.0 * j + 1.0) / n - 1.0;
+  const double a = (i + 0.5) / n * 2.0 - 1.0, b = (j + 0.5) / n * 2.0 - 1.0;
   // The texel centre's direction a R + b U + D, folded over the edge: the coordinate across the
   // edge and the face axis swap roles, so the distance from the edge is kept.
   const glm::dvec3 q = di != 0 ? double(di) * right + b * f.u + (double(di) * a) * f.d

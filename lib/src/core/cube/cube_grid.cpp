@@ -25,15 +25,10 @@ struct Extended {
 
 }  // namespace
 
-std::vector<Cell> cells(int n) {
+Grid::Grid(int n) : n_(n), inner_(std::size_t(6) * std::size_t(n - 1) * std::size_t(n - 1)) {
   SV_CHECK_GE(n, 2);
-  std::vector<Cell> out;
-  out.reserve(std::size_t(6) * (n - 1) * (n - 1) + 12u * std::size_t(n - 1) + 8u);
-  for (int f = 0; f < kCubeFaces; ++f)
-    for (int j = 0; j + 1 < n; ++j)
-      for (int i = 0; i + 1 < n; ++i)
-        out.push_back({{texelId(n, f, i, j), texelId(n, f, i + 1, j), texelId(n, f, i + 1, j + 1), texelId(n, f, i, j + 1)},
-                       false, f, true});
+  std::vector<Cell>& out = seams_;
+  out.reserve(12u * std::size_t(n - 1) + 8u);
   // Edge quads and corners are met from two and three faces: each once, the first time.
   std::set<std::array<std::uint32_t, 4>> seen;
   auto add = [&](int f, std::array<std::uint32_t, 4> v, bool triangle) {
@@ -57,8 +52,7 @@ std::vector<Cell> cells(int n) {
     add(f, {t(0, -1), t(0, 0), 0, t(-1, 0)}, true);   // bottom left
     add(f, {t(e, -1), t(n, 0), 0, t(e, 0)}, true);    // bottom right
   }
-  SV_CHECK_EQ(out.size(), std::size_t(6) * (n - 1) * (n - 1) + 12u * std::size_t(n - 1) + 8u);
-  return out;
+  SV_CHECK_EQ(out.size(), 12u * std::size_t(n - 1) + 8u);
 }
 
 }  // namespace shadowvol::cube

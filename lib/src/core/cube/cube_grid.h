@@ -30,8 +30,26 @@ struct Cell {
   bool inner = false;                ///< inside one face (its far images lie in that face's far plane)
 };
 
-/// Every cell once, deterministically: the inner quads face by face, row by row; then the edge
-/// quads and corner triangles in the order of the faces and borders they are first met from.
-std::vector<Cell> cells(int n);
+/// Every cell once, deterministically: the inner quads face by face, row by row (computed when
+/// asked for: there are 6 (N-1)^2 of them); then the edge quads and corner triangles (kept) in the
+/// order of the faces and borders they are first met from.
+class Grid {
+ public:
+  explicit Grid(int n);
+  std::size_t size() const { return inner_ + seams_.size(); }
+  Cell operator[](std::size_t c) const {
+    if (c >= inner_) return seams_[c - inner_];
+    const std::size_t q = std::size_t(n_ - 1), f = c / (q * q), r = c % (q * q);
+    const int i = int(r % q), j = int(r / q), face = int(f);
+    return {{texelId(n_, face, i, j), texelId(n_, face, i + 1, j), texelId(n_, face, i + 1, j + 1),
+             texelId(n_, face, i, j + 1)},
+            false, face, true};
+  }
+
+ private:
+  int n_;
+  std::size_t inner_;
+  std::vector<Cell> seams_;
+};
 
 }  // namespace shadowvol::cube

@@ -4,10 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <span>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "cube/cube_grid.h"
 #include "shadowvol/check.h"
@@ -63,31 +66,37 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
       }
 }
 
-// Sheet depth, sheet point and far image of every texel (ids of cube_grid.h).
+// The sheet depth of every texel (ids of cube_grid.h); its sheet point and far image on the
+// texel centre's ray (cube_map.h: exact for the 90-degree faces), computed when asked for.
 struct Texels {
-  std::vector<std::uint8_t> far;
-  std::vector<glm::dvec3> sheet, farImage;  // relative to the maps' origin
+  int n = 0;
+  glm::dvec3 light{0.0};  // relative to the maps' origin, as the points
+  double farPlane = 0.0;
+  std::vector<double> depth;
+  std::size_t size() const { return depth.size(); }
+  bool far(std::uint32_t id) const { return depth[id] == farPlane; }
+  glm::dvec3 direction(std::uint32_t id) const {
+    const std::uint32_t nn = std::uint32_t(n) * std::uint32_t(n), r = id % nn;
+    return cubeTexelDirection(n, int(id / nn), double(r % std::uint32_t(n)), double(r / std::uint32_t(n)));
+  }
+  glm::dvec3 sheet(std::uint32_t id) const { return light + depth[id] * direction(id); }
+  glm::dvec3 farImage(std::uint32_t id) const { return light + farPlane * direction(id); }
 };
 
 Texels texels(const CubeDepthMap& cube, const SheetDepthRule& rule, bool blur) {
   const int n = cube.size();
-  const std::size_t count = std::size_t(kCubeFaces) * n * n;
-  Texels t{std::vector<std::uint8_t>(count), std::vector<glm::dvec3>(count), std::vector<glm::dvec3>(count)};
+  Texels t{n, cube.lightPosition(), cube.farPlane(), std::vector<double>(std::size_t(kCubeFaces) * n * n)};
   for (int f = 0; f < kCubeFaces; ++f) {
     const DepthMap& map = cube.faces[f];
-    const TexelUnprojector unproject(map);
-    for (int j = 0; j < n; ++j)
+    tbb::parallel_for(0, n, [&](int j) {
       for (int i = 0; i < n; ++i) {
-        const std::uint32_t id = cube::texelId(n, f, i, j);
         const double stored = map.at(i, j);
         // sheet_depth.h's steps 1-3 without the border ring (the cube has none).
-        const double d = isFarDepth(stored, map.farPlane) ? map.farPlane
-                         : blur                             ? rule.fromBlurred(blurredDepth(map, i, j))
-                                                            : rule.fromStored(stored);
-        t.far[id] = rule.isFar(d) ? 1 : 0;
-        t.farImage[id] = unproject.worldPoint(i, j, map.farPlane);
-        t.sheet[id] = t.far[id] ? t.farImage[id] : unproject.worldPoint(i, j, d);
+        t.depth[cube::texelId(n, f, i, j)] = isFarDepth(stored, map.farPlane) ? map.farPlane
+                                             : blur ? rule.fromBlurred(blurredDepth(map, i, j))
+                                                    : rule.fromStored(stored);
       }
+    });
   }
   return t;
 }
@@ -98,17 +107,18 @@ struct Sheet {
   std::vector<std::uint8_t> boundary;  // per texel: a dropped triangle has it as a corner
 };
 
-Sheet triangulate(const std::vector<cube::Cell>& cells, const Texels& t, const glm::dvec3& light, bool perfect,
+Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& light, bool perfect,
                   VolumeBuildStats& stats) {
   Sheet s;
-  s.boundary.assign(t.far.size(), 0);
+  s.boundary.assign(t.size(), 0);
   for (std::uint32_t c = 0; c < cells.size(); ++c) {
-    const auto [a, b, cc, d] = cells[c].v;
+    const cube::Cell cell = cells[c];
+    const auto [a, b, cc, d] = cell.v;
     Tri cand[2];
     int k = 0;
-    if (cells[c].triangle) {
+    if (cell.triangle) {
       cand[k++] = {a, b, d};
-    } else if (perfect && flipDiagonal(t.sheet[a] - light, t.sheet[b] - light, t.sheet[cc] - light, t.sheet[d] - light)) {
+    } else if (perfect && flipDiagonal(t.sheet(a) - light, t.sheet(b) - light, t.sheet(cc) - light, t.sheet(d) - light)) {
       cand[k++] = {a, b, cc};
       cand[k++] = {a, cc, d};
       ++stats.flippedQuads;
@@ -119,7 +129,7 @@ Sheet triangulate(const std::vector<cube::Cell>& cells, const Texels& t, const g
     int kept = 0;
     for (int q = 0; q < k; ++q) {
       const Tri& tri = cand[q];
-      if (t.far[tri[0]] && t.far[tri[1]] && t.far[tri[2]]) {
+      if (t.far(tri[0]) && t.far(tri[1]) && t.far(tri[2])) {
         for (std::uint32_t v : tri) s.boundary[v] = 1;
         continue;
       }
@@ -144,10 +154,20 @@ struct Vertices {
 // dropped triangle around it) share one vertex, sheet and cap alike; at a far texel without one,
 // the sheet keeps one vertex and the cap gets another.
 Vertices numberVertices(const Sheet& s, const Texels& t) {
-  const std::size_t texelCount = t.far.size();
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> around(texelCount);
-  for (std::uint32_t k = 0; k < s.tris.size(); ++k)
-    for (std::uint8_t c = 0; c < 3; ++c) around[s.tris[k][c]].push_back({k, c});
+  const std::size_t texelCount = t.size();
+  // The kept triangles around each texel (triangle, corner), in triangle order: one array with
+  // an offset per texel.
+  using Corner = std::pair<std::uint32_t, std::uint8_t>;
+  std::vector<std::uint32_t> offset(texelCount + 1, 0);
+  for (const Tri& tri : s.tris)
+    for (std::uint32_t x : tri) ++offset[x + 1];
+  for (std::size_t x = 0; x < texelCount; ++x) offset[x + 1] += offset[x];
+  std::vector<Corner> corners(offset.back());
+  {
+    std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+    for (std::uint32_t k = 0; k < s.tris.size(); ++k)
+      for (std::uint8_t c = 0; c < 3; ++c) corners[fill[s.tris[k][c]]++] = {k, c};
+  }
   Vertices v;
   v.sheet.resize(s.tris.size());
   v.cap.resize(s.tris.size());
@@ -158,15 +178,15 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
   };
   std::vector<int> parent;
   for (std::uint32_t x = 0; x < texelCount; ++x) {
-    const auto& fan = around[x];
+    const std::span<const Corner> fan(corners.data() + offset[x], offset[x + 1] - offset[x]);
     if (fan.empty()) continue;
-    if (!t.far[x]) {
-      const std::uint32_t sheetId = add(t.sheet[x], kNone), capId = add(t.farImage[x], kNone);
+    if (!t.far(x)) {
+      const std::uint32_t sheetId = add(t.sheet(x), kNone), capId = add(t.farImage(x), kNone);
       for (auto [k, c] : fan) v.sheet[k][c] = sheetId, v.cap[k][c] = capId;
       continue;
     }
     if (!s.boundary[x]) {
-      const std::uint32_t sheetId = add(t.sheet[x], x), capId = add(t.farImage[x], x);
+      const std::uint32_t sheetId = add(t.sheet(x), x), capId = add(t.farImage(x), x);
       for (auto [k, c] : fan) v.sheet[k][c] = sheetId, v.cap[k][c] = capId;
       continue;
     }
@@ -182,14 +202,14 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
         const Tri& tb = s.tris[fan[b].first];
         for (std::uint32_t w : ta) {
           if (w == x || std::find(tb.begin(), tb.end(), w) == tb.end()) continue;
-          const bool separates = t.far[w] && s.boundary[w];  // a gap, or a cut between two boundary vertices
+          const bool separates = t.far(w) && s.boundary[w];  // a gap, or a cut between two boundary vertices
           if (!separates) parent[root(int(a))] = root(int(b));
         }
       }
     std::vector<std::uint32_t> runId(fan.size(), kNone);
     for (std::size_t a = 0; a < fan.size(); ++a) {  // runs numbered in the order of their first triangle
       const int r = root(int(a));
-      if (runId[r] == kNone) runId[r] = add(t.sheet[x], x);
+      if (runId[r] == kNone) runId[r] = add(t.sheet(x), x);
       v.sheet[fan[a].first][fan[a].second] = v.cap[fan[a].first][fan[a].second] = runId[r];
     }
   }
@@ -263,7 +283,7 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
   VolumeBuildStats& stats = r.stats;
   stats.biasUsed = options.bias ? *options.bias : defaultCubeBias(cube);
   const SheetDepthRule rule(cube.faces[0], stats.biasUsed, options.blurOffset);
-  const std::vector<cube::Cell> cells = cube::cells(n);
+  const cube::Grid cells(n);
   stats.quads = cells.size();
 
   const auto tSheet = Clock::now();
@@ -280,7 +300,7 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
   for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
     const Tri& c = v.cap[k];
     const Tri mirrored{c[2], c[1], c[0]};
-    const cube::Cell& cell = cells[sheet.cell[k]];
+    const cube::Cell cell = cells[sheet.cell[k]];
     if (options.flattenCap && cell.inner) facePart[cell.face].push_back(mirrored);
     else cap.push_back(mirrored);
   }
@@ -289,7 +309,8 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
     for (int f = 0; f < kCubeFaces; ++f) {
       // Texel coordinates of this face's vertices (the part's vertices all lie on its texels).
       for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
-        if (!cells[sheet.cell[k]].inner || cells[sheet.cell[k]].face != f) continue;
+        const cube::Cell cell = cells[sheet.cell[k]];
+        if (!cell.inner || cell.face != f) continue;
         for (int c = 0; c < 3; ++c) {
           const std::uint32_t id = sheet.tris[k][c] - cube::texelId(n, f, 0, 0);
           texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
