@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Misclassified % of a point light's frames against exact shadows: the explicit cube volume at
-several cube-face sizes and capture modes, and silhouette volumes, one `shadowvol validate` each.
+several cube-face sizes and capture modes, silhouette volumes and cube shadow maps, one
+`shadowvol validate` each.
 
     python3 scripts/point_light_eval.py [SCENE.json ...]    # default: data/scenes/point/*.json
 
@@ -16,7 +17,11 @@ RUNS = [("hybrid 64", ["--resolution", "64"]), ("hybrid 128", ["--resolution", "
         ("hybrid 256", ["--resolution", "256"]), ("hybrid 512", ["--resolution", "512"]),
         ("hybrid front 256", ["--resolution", "256", "--capture", "front"]),
         ("hybrid midpoint 256", ["--resolution", "256", "--capture", "midpoint"]),
-        ("silhouette", ["--method", "silhouette"])]
+        ("silhouette", ["--method", "silhouette"]),
+        ("cube shadowmap 128", ["--method", "shadowmap", "--resolution", "128"]),
+        ("cube shadowmap 256", ["--method", "shadowmap", "--resolution", "256"]),
+        ("cube shadowmap 512", ["--method", "shadowmap", "--resolution", "512"]),
+        ("cube pcf3 256", ["--method", "pcf3", "--resolution", "256"])]
 
 
 def run(scene, name, args):

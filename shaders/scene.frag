@@ -24,6 +24,7 @@ uniform float ambient;
 uniform float diffuse;
 uniform int shadowTaps;           // 0: no shadow test; 1: one tap; 3 or 5: PCF n x n
 uniform sampler2DShadow shadowMap;  // window depth (reversed Z), compare GEQUAL, nearest
+uniform samplerCubeShadow cubeShadowMap;  // a point light's (lightType 2): the same per cube face
 uniform vec2 shadowMapSize;       // texels
 uniform float biasConstant;       // world units
 uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
@@ -51,6 +52,33 @@ float shadowVisibility(vec4 lightClip, float cosTheta) {
   return sum / float((2 * r + 1) * (2 * r + 1));
 }
 
+// A point light's visibility from its cube shadow map: the depth is the largest |coordinate| of
+// the offset (cube_map.h), the reference as shadowVisibility's with the faces' shared projection,
+// PCF taps a texel apart in the plane of the face the offset falls on.
+float cubeShadowVisibility(vec3 n) {
+  vec3 o = worldPos - lightPosition;
+  vec3 a = abs(o);
+  int axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+  float d = a[axis];
+  vec3 major = vec3(0.0);
+  major[axis] = sign(o[axis]);
+  float c = clamp(abs(dot(n, major)), 1e-4, 1.0);
+  float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / c, 10.0);
+  float z = -(d - (biasConstant + biasSlope * texelFootprint * d * tanTheta));
+  float ref = (lightDepthParams.x * z + lightDepthParams.y) / (lightDepthParams.z * z + lightDepthParams.w);
+  vec3 t1 = vec3(0.0), t2 = vec3(0.0);
+  t1[(axis + 1) % 3] = 1.0;
+  t2[(axis + 2) % 3] = 1.0;
+  vec3 onFace = o / d;
+  float step = 2.0 / shadowMapSize.x;
+  int r = shadowTaps / 2;
+  float sum = 0.0;
+  for (int y = -r; y <= r; ++y)
+    for (int x = -r; x <= r; ++x)
+      sum += texture(cubeShadowMap, vec4(onFace + (float(x) * t1 + float(y) * t2) * step, ref));
+  return sum / float((2 * r + 1) * (2 * r + 1));
+}
+
 void main() {
   ambientOut = vec4(color * ambient, 1.0);
   vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
@@ -64,7 +92,7 @@ void main() {
               : (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
   float test = 1.0;
   if (lit > 0.0 && (ndl > 0.0 || writeVisibility != 0) && shadowTaps > 0)
-    test = shadowVisibility(lc, abs(dot(n, lightDirection)));
+    test = lightType == 2 ? cubeShadowVisibility(n) : shadowVisibility(lc, abs(dot(n, lightDirection)));
   visibilityOut = test;
   if (ndl > 0.0) lit *= test;
   vec3 direct = color * diffuse * max(ndl, 0.0) * lit;

@@ -493,9 +493,9 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_EQ(depth.code, 1);
   EXPECT_TRUE(contains(depth.out, "/light/type")) << depth.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));
-  const CliResult map = runCli("render --method pcf3 --scene " + room + " --out " + (dir / "f.png").string());
+  const CliResult map = runCli("render --volume gpu --scene " + room + " --out " + (dir / "f.png").string());
   EXPECT_EQ(map.code, 1);
-  EXPECT_TRUE(contains(map.out, "--method")) << map.out;
+  EXPECT_TRUE(contains(map.out, "--volume")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
 }

@@ -191,6 +191,8 @@ struct Renderer::Impl {
   Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
   Program volumeIndexProgram, volumeIndexedProgram; // GpuVolumeDraw::Indexed (GL 4.3 only)
   bool hasCompute = false;
+  Texture cubeShadow;      // a point light's shadow-map methods: DEPTH_COMPONENT32F cube map
+  int cubeShadowSize = 0;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
@@ -521,6 +523,13 @@ struct Renderer::Impl {
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
+  void bindCube(int unit, const Texture& tex, const Sampler& sampler) {
+    SV_GL(glActiveTexture(GLenum(GL_TEXTURE0 + unit)));
+    SV_GL(glBindTexture(GL_TEXTURE_CUBE_MAP, tex.id()));
+    SV_GL(glBindSampler(GLuint(unit), tex ? sampler.id() : 0));
+    SV_GL(glActiveTexture(GL_TEXTURE0));
+  }
+
   void bindTexture(int unit, const Texture& tex, const Sampler& sampler) {
     SV_GL(glActiveTexture(GLenum(GL_TEXTURE0 + unit)));
     SV_GL(glBindTexture(GL_TEXTURE_2D, tex.id()));
@@ -631,6 +640,7 @@ struct Renderer::Impl {
     sceneProgram.set("shadowTaps", shadowTaps);
     sceneProgram.set("writeVisibility", 0);
     sceneProgram.set("shadowMap", 2);
+    sceneProgram.set("cubeShadowMap", 3);
     sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
     sceneProgram.set("biasConstant",
                      float(o.shadowBiasConstant.value_or(defaultBias(light, mapW, mapH, o.capture))));
@@ -1152,11 +1162,16 @@ struct Renderer::Impl {
   /// (hybrid, explicit), silhouette volumes or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
-    if (!explicitHybrid && o.method != ShadowMethod::Silhouette && o.method != ShadowMethod::None)
-      throw InputError("RenderOptions", o.method == ShadowMethod::Hybrid ? "volume" : "method",
-                       o.method == ShadowMethod::Hybrid ? toString(o.volume) : toString(o.method),
-                       "a point light's frame is the explicit cube volume (method hybrid, volume explicit), "
-                       "silhouette volumes or none: cube shadow maps and the GPU cube volume are not implemented yet");
+    if (o.method == ShadowMethod::Hybrid && !explicitHybrid)
+      throw InputError("RenderOptions", "volume", toString(o.volume),
+                       "a point light's hybrid volume is the explicit cube volume (volume explicit): the GPU cube "
+                       "volume is not implemented yet");
+    const bool shadowMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 ||
+                           o.method == ShadowMethod::Pcf5;
+    if (shadowMap && !hasCompute)
+      throw InputError("RenderOptions", "method", toString(o.method),
+                       "a point light's cube shadow map needs OpenGL 4.3 (glCopyImageSubData); this context has " +
+                           context.info().glVersion);
     if (explicitHybrid && o.volumeOptions.refineSteps > 0)
       throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
                        "silhouette refinement is not available for point lights yet");
@@ -1286,6 +1301,35 @@ struct Renderer::Impl {
     return cube;
   }
 
+  /// A point light's cube shadow map: the light pass of each face's spot light (and for midpoint
+  /// the mean's window depth, resolvePass), copied into face f of the cube texture, whose texel
+  /// order is the faces' (cube_map.h), so samplerCubeShadow looks up the texel the face's
+  /// map has. Window depth as the 2D shadow map's; the same projection for all six faces.
+  void cubeShadowPass(int n, CaptureMode mode) {
+    if (n != cubeShadowSize) {
+      cubeShadow = makeTexture();
+      SV_GL(glBindTexture(GL_TEXTURE_CUBE_MAP, cubeShadow.id()));
+      SV_GL(glTexStorage2D(GL_TEXTURE_CUBE_MAP, 1, GL_DEPTH_COMPONENT32F, n, n));
+      SV_GL(glBindTexture(GL_TEXTURE_CUBE_MAP, 0));
+      cubeShadowSize = n;
+    }
+    const Light point = light;
+    for (int f = 0; f < kCubeFaces; ++f) {
+      light = cubeFaceLight(point, f);
+      try {
+        lightPass(n, n, mode, false);
+        if (mode == CaptureMode::Midpoint) resolvePass(mode);
+      } catch (...) {
+        light = point;
+        throw;
+      }
+      light = point;
+      const Texture& face = mode == CaptureMode::Midpoint ? resolvedDepth : layer0;
+      SV_GL(glCopyImageSubData(face.id(), GL_TEXTURE_2D, 0, 0, 0, 0, cubeShadow.id(), GL_TEXTURE_CUBE_MAP, 0, 0, 0, f,
+                               n, n, 1));
+    }
+  }
+
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
     if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
     if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
@@ -1331,6 +1375,11 @@ struct Renderer::Impl {
     const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
     occupancyValid = false;
     const bool point = light.type == LightType::Point;
+    const bool cubeShadowMap = point && !hybrid && !silhouette && o.method != ShadowMethod::None;
+    if (cubeShadowMap) {
+      TimedPass t(timer, "light");
+      cubeShadowPass(o.depthWidth, o.capture);
+    }
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
       TimedPass t(timer, "light");
       lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o) || refinedGpu);
@@ -1412,7 +1461,7 @@ struct Renderer::Impl {
         TimedPass t(timer, "crossings");
         findGpuCrossings(vo, result.biasUsed, *volumeDepth);
       }
-    } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint) {
+    } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !point) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
       resolvePass(o.capture);
     }
@@ -1453,9 +1502,11 @@ struct Renderer::Impl {
       const int mw = taps ? lightW : o.depthWidth, mh = taps ? lightH : o.depthHeight;
       setSceneUniforms(cam, o, taps, mw, mh);
       sceneProgram.set("writeVisibility", o.readVisibility && taps > 0 ? 1 : 0);
-      if (taps) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+      if (taps && !point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+      if (taps && point) bindCube(3, cubeShadow, shadowSampler);
       drawScene();
       bindTexture(2, Texture(), shadowSampler);
+      bindCube(3, Texture(), shadowSampler);
     }
     const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
                                         : stencilShadows                   ? VisibilitySource::FromStencil
