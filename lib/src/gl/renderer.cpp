@@ -1348,6 +1348,20 @@ struct Renderer::Impl {
     return z.safe;
   }
 
+  /// A CPU-built volume into the frame: its stats and bias into `result`, uploaded (timed as
+  /// `upload`), kept when the options ask; returns its triangle count.
+  std::size_t useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer, RenderResult& result) {
+    result.biasUsed = built.stats.biasUsed;
+    result.volumeStats = built.stats;
+    const auto t0 = Clock::now();
+    uploadVolume(built.mesh);
+    glFinish();
+    timer.cpu("upload", msSince(t0));
+    const std::size_t triangles = built.mesh.triangleCount();
+    if (o.keepVolume) result.volume = std::move(built.mesh);
+    return triangles;
+  }
+
   RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
     context.makeCurrent();
     requireScene();
@@ -1394,14 +1408,7 @@ struct Renderer::Impl {
       t0 = Clock::now();
       VolumeBuildResult built = buildCubeVolume(cube, vo);
       timer.cpu("build", msSince(t0));
-      result.biasUsed = built.stats.biasUsed;
-      result.volumeStats = built.stats;
-      t0 = Clock::now();
-      uploadVolume(built.mesh);
-      glFinish();
-      timer.cpu("upload", msSince(t0));
-      explicitTriangles = built.mesh.triangleCount();
-      if (o.keepVolume) result.volume = std::move(built.mesh);
+      explicitTriangles = useBuiltVolume(std::move(built), o, timer, result);  // z-fail: the cap too
     } else if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
       auto t0 = Clock::now();
       result.depthMap = readBack(o.capture);
@@ -1409,15 +1416,9 @@ struct Renderer::Impl {
       t0 = Clock::now();
       VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
       timer.cpu("build", msSince(t0));
-      result.biasUsed = built.stats.biasUsed;
-      result.volumeStats = built.stats;
-      t0 = Clock::now();
-      uploadVolume(built.mesh);
-      glFinish();
-      timer.cpu("upload", msSince(t0));
-      if (o.keepVolume) result.volume = built.mesh;
       // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
-      explicitTriangles = built.mesh.triangleCount() - (zPassFrame ? built.stats.capTrianglesAfter : 0);
+      const std::size_t cap = zPassFrame ? built.stats.capTrianglesAfter : 0;
+      explicitTriangles = useBuiltVolume(std::move(built), o, timer, result) - cap;
     } else if (silhouette) {
       auto t0 = Clock::now();
       if (!occluders) {
