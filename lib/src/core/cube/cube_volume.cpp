@@ -275,6 +275,66 @@ std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec
 
 double defaultCubeBias(const CubeDepthMap& cube) { return defaultBias(cube.faces[0]); }
 
+namespace {
+
+// The far cap: each kept sheet triangle's image, mirrored; with `flatten`, each face's part (its
+// inner cells' images, in its far plane) replaced by its CDT (flattenFace).
+std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet, const Vertices& v, bool flatten) {
+  std::vector<Tri> cap;
+  cap.reserve(sheet.tris.size());
+  std::array<std::vector<Tri>, kCubeFaces> facePart;
+  for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+    const Tri& c = v.cap[k];
+    const Tri mirrored{c[2], c[1], c[0]};
+    const cube::Cell cell = cells[sheet.cell[k]];
+    if (flatten && cell.inner) facePart[cell.face].push_back(mirrored);
+    else cap.push_back(mirrored);
+  }
+  if (!flatten) return cap;
+  std::vector<glm::dvec2> texelOf(v.positions.size());
+  for (int f = 0; f < kCubeFaces; ++f) {
+    if (facePart[f].empty()) continue;
+    // Texel coordinates of this face's cap vertices (its inner cells' corners are its texels).
+    for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+      const cube::Cell cell = cells[sheet.cell[k]];
+      if (!cell.inner || cell.face != f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t id = sheet.tris[k][c] - cube::texelId(n, f, 0, 0);
+        texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
+      }
+    }
+    const std::vector<Tri> flat = flattenFace(facePart[f], texelOf);
+    cap.insert(cap.end(), flat.begin(), flat.end());
+  }
+  return cap;
+}
+
+// The mesh: sheet first, cap last (as buildVolume's), without the vertices no triangle uses (a
+// flattened cap leaves its inner far images out); splitVertices counts the far texels' extra copies.
+void assemble(const Vertices& v, const std::vector<Tri>& cap, VolumeMesh& mesh, VolumeBuildStats& stats) {
+  std::vector<std::uint32_t> remap(v.positions.size(), kNone);
+  for (const auto* tris : {&v.sheet, &cap})
+    for (const Tri& tri : *tris)
+      for (std::uint32_t id : tri) remap[id] = 0;
+  std::uint32_t next = 0;
+  std::unordered_map<std::uint32_t, std::uint32_t> farCopies;
+  for (std::uint32_t id = 0; id < remap.size(); ++id) {
+    if (remap[id] == kNone) continue;
+    remap[id] = next++;
+    if (v.farTexel[id] != kNone) ++farCopies[v.farTexel[id]];
+  }
+  for (const auto& [texel, copies] : farCopies) stats.splitVertices += copies - 1;
+  mesh.positions.resize(next);
+  for (std::uint32_t id = 0; id < remap.size(); ++id)
+    if (remap[id] != kNone) mesh.positions[remap[id]] = v.positions[id];
+  mesh.triangles.resize(v.sheet.size() + cap.size());
+  std::size_t k = 0;
+  for (const auto* tris : {&v.sheet, &cap})
+    for (const Tri& tri : *tris) mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
+}
+
+}  // namespace
+
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options) {
   const auto t0 = Clock::now();
   validate(cube, options);
@@ -294,61 +354,11 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
   stats.capTrianglesBefore = sheet.tris.size();
 
   const auto tCap = Clock::now();
-  std::vector<Tri> cap;
-  cap.reserve(sheet.tris.size());
-  std::array<std::vector<Tri>, kCubeFaces> facePart;
-  for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
-    const Tri& c = v.cap[k];
-    const Tri mirrored{c[2], c[1], c[0]};
-    const cube::Cell cell = cells[sheet.cell[k]];
-    if (options.flattenCap && cell.inner) facePart[cell.face].push_back(mirrored);
-    else cap.push_back(mirrored);
-  }
-  if (options.flattenCap) {
-    std::vector<glm::dvec2> texelOf(v.positions.size());
-    for (int f = 0; f < kCubeFaces; ++f) {
-      // Texel coordinates of this face's vertices (the part's vertices all lie on its texels).
-      for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
-        const cube::Cell cell = cells[sheet.cell[k]];
-        if (!cell.inner || cell.face != f) continue;
-        for (int c = 0; c < 3; ++c) {
-          const std::uint32_t id = sheet.tris[k][c] - cube::texelId(n, f, 0, 0);
-          texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
-        }
-      }
-      if (facePart[f].empty()) continue;
-      const std::vector<Tri> flat = flattenFace(facePart[f], texelOf);
-      cap.insert(cap.end(), flat.begin(), flat.end());
-    }
-  }
+  const std::vector<Tri> cap = capTriangles(n, cells, sheet, v, options.flattenCap);
   stats.msCap = msSince(tCap);
-
-  // The mesh: sheet first, cap last (as buildVolume's), without the vertices no triangle uses
-  // (a flattened cap leaves its inner far images out).
-  std::vector<std::uint32_t> remap(v.positions.size(), kNone);
-  auto use = [&](const Tri& tri) {
-    for (std::uint32_t id : tri) remap[id] = 0;
-  };
-  for (const Tri& tri : v.sheet) use(tri);
-  for (const Tri& tri : cap) use(tri);
-  std::uint32_t next = 0;
-  std::vector<std::uint32_t> copiesPerFarTexel;
-  std::unordered_map<std::uint32_t, std::uint32_t> farCopies;
-  for (std::uint32_t id = 0; id < remap.size(); ++id) {
-    if (remap[id] == kNone) continue;
-    remap[id] = next++;
-    if (v.farTexel[id] != kNone) ++farCopies[v.farTexel[id]];
-  }
-  for (const auto& [texel, copies] : farCopies) stats.splitVertices += copies - 1;
-  r.mesh.origin = cube.faces[0].origin;
-  r.mesh.positions.resize(next);
-  for (std::uint32_t id = 0; id < remap.size(); ++id)
-    if (remap[id] != kNone) r.mesh.positions[remap[id]] = v.positions[id];
-  r.mesh.triangles.resize(v.sheet.size() + cap.size());
-  std::size_t k = 0;
-  for (const Tri& tri : v.sheet) r.mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
-  for (const Tri& tri : cap) r.mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
   stats.capTrianglesAfter = cap.size();
+  r.mesh.origin = cube.faces[0].origin;
+  assemble(v, cap, r.mesh, stats);
   stats.msTotal = msSince(t0);
   return r;
 }
