@@ -621,7 +621,7 @@ struct Renderer::Impl {
   void setSceneUniforms(const CameraSetup& cam, const RenderOptions& o, int shadowTaps, int mapW, int mapH) {
     const double aspect = double(mapW) / double(mapH);
     // A point light has no one projection; its lit region is the shell between its near and far
-    // cubes (scene.frag), and it has no shadow map here (validatePointLight).
+    // cubes (scene.frag), and its cube shadow map compares with its faces' shared projection.
     const glm::dmat4 lp = light.type == LightType::Point ? lightProjection(cubeFaceLight(light, 0), 1.0)
                                                          : lightProjection(light, aspect);
     const glm::dmat4 lv = lightView(light);
@@ -1159,7 +1159,7 @@ struct Renderer::Impl {
   }
 
   /// What a point light's frame can be (docs/gpu.md "Point lights"): the explicit cube volume
-  /// (hybrid, explicit), silhouette volumes or no shadows.
+  /// (hybrid, explicit), silhouette volumes, a cube shadow map (GL 4.3) or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
     if (o.method == ShadowMethod::Hybrid && !explicitHybrid)

@@ -21,8 +21,10 @@
 // Lighting: colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit), N the flat face
 // normal turned toward the camera, L toward the light; lit = 0 outside the light's frustum
 // (a spot light lights only inside its pyramid between its near and far planes; a directional
-// light only inside its box), in shadow (stencil != 0, or the shadow-map test failing), and 1
-// otherwise.
+// light only inside its box; a point light between its near and far cubes), in shadow (stencil
+// != 0, or the shadow-map test failing), and 1 otherwise. A point light's frame (docs/gpu.md
+// "Point lights"): six light passes, then the explicit cube volume, silhouette volumes or a cube
+// shadow map.
 #pragma once
 
 #include <cstdint>
