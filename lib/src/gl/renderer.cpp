@@ -1282,22 +1282,29 @@ struct Renderer::Impl {
   }
 
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
-  /// A point light's six faces (cube_map.h): the light pass and read-back of each face's spot
-  /// light, the renderer's light set back after each.
-  CubeDepthMap captureCube(int n, CaptureMode mode) {
+  /// For each face of a point light's cube (cube_map.h): the light pass of the face's spot light
+  /// at n x n, then `afterPass(f)` while that light is the renderer's; the point light is set back
+  /// after each face, and when a pass throws.
+  template <class AfterPass>
+  void eachCubeFace(int n, CaptureMode mode, AfterPass afterPass) {
     const Light point = light;
-    CubeDepthMap cube = makeCubeDepthMap(point, n, mode);
+    struct Restore {
+      Light& light;
+      const Light& point;
+      ~Restore() { light = point; }
+    } restore{light, point};
     for (int f = 0; f < kCubeFaces; ++f) {
       light = cubeFaceLight(point, f);
-      try {
-        lightPass(n, n, mode, false);
-        cube.faces[f] = readBack(mode);
-      } catch (...) {
-        light = point;
-        throw;
-      }
+      lightPass(n, n, mode, false);
+      afterPass(f);
       light = point;
     }
+  }
+
+  /// A point light's six faces: each face's light pass, read back as captureDepth does.
+  CubeDepthMap captureCube(int n, CaptureMode mode) {
+    CubeDepthMap cube = makeCubeDepthMap(light, n, mode);
+    eachCubeFace(n, mode, [&](int f) { cube.faces[f] = readBack(mode); });
     return cube;
   }
 
@@ -1313,21 +1320,12 @@ struct Renderer::Impl {
       SV_GL(glBindTexture(GL_TEXTURE_CUBE_MAP, 0));
       cubeShadowSize = n;
     }
-    const Light point = light;
-    for (int f = 0; f < kCubeFaces; ++f) {
-      light = cubeFaceLight(point, f);
-      try {
-        lightPass(n, n, mode, false);
-        if (mode == CaptureMode::Midpoint) resolvePass(mode);
-      } catch (...) {
-        light = point;
-        throw;
-      }
-      light = point;
+    eachCubeFace(n, mode, [&](int f) {
+      if (mode == CaptureMode::Midpoint) resolvePass(mode);
       const Texture& face = mode == CaptureMode::Midpoint ? resolvedDepth : layer0;
       SV_GL(glCopyImageSubData(face.id(), GL_TEXTURE_2D, 0, 0, 0, 0, cubeShadow.id(), GL_TEXTURE_CUBE_MAP, 0, 0, 0, f,
                                n, n, 1));
-    }
+    });
   }
 
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
