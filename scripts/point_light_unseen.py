@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""The unseen scenes under a point light: each scene of data/scenes/unseen with its light replaced
+by a point light at the spot light's position (3 units above the camera's target, offset 0.7 and
+0.4 sideways, for lights without a position), written to out/point-unseen/; then `shadowvol
+validate` of the cube volume and of the cube shadow map at the same texels per face.
+
+    bash scripts/fetch_unseen_meshes.sh
+    python3 scripts/point_light_unseen.py [--resolution 128]
+
+Prints per scene whether the frame is consistent, both errors (misclassified %) and their ratio,
+then the count where the volume's error is at most the shadow map's and the median ratio."""
+import argparse
+import glob
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+SHADOWVOL = os.environ.get("SHADOWVOL", "./build/apps/shadowvol")
+
+
+def point_variant(path, out_dir):
+    j = json.load(open(path))
+    for o in j["objects"]:
+        if "file" in o:
+            o["file"] = os.path.abspath(os.path.join(os.path.dirname(path), o["file"]))
+    light = j["light"]
+    if "position" in light:
+        pos = light["position"]
+    else:
+        t = j["camera"]["target"]
+        pos = [t[0] + 0.7, t[1] + 3.0, t[2] + 0.4]
+    j["light"] = {"type": "point", "position": pos}
+    j["description"] = "point-light variant of " + path
+    out = os.path.join(out_dir, os.path.basename(path))
+    json.dump(j, open(out, "w"), indent=1)
+    return out
+
+
+def validate(scene, report, args):
+    p = subprocess.run([SHADOWVOL, "validate", "--json", "--scene", scene, "--report", report] + args,
+                       capture_output=True, text=True)
+    if p.returncode not in (0, 3):
+        sys.exit(f"validate {scene} {args} failed ({p.returncode}): {p.stderr.strip()}")
+    return json.loads(p.stdout)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--resolution", default="128")
+    a = ap.parse_args()
+    out_dir = os.path.join("out", "point-unseen")
+    os.makedirs(out_dir, exist_ok=True)
+    ratios, at_most, consistent = [], 0, 0
+    scenes = sorted(glob.glob("data/scenes/unseen/*.json"))
+    for path in scenes:
+        scene = point_variant(path, out_dir)
+        name = os.path.splitext(os.path.basename(path))[0]
+        hv = validate(scene, os.path.join(out_dir, name, "hybrid"), ["--resolution", a.resolution])
+        sm = validate(scene, os.path.join(out_dir, name, "shadowmap"),
+                      ["--method", "shadowmap", "--resolution", a.resolution])
+        h = 100.0 * hv["againstExact"]["method"]["errorFraction"]
+        s = 100.0 * sm["againstExact"]["method"]["errorFraction"]
+        ok = hv["verdict"]["consistent"] and hv["meshChecks"]["valid"]
+        consistent += ok
+        ratio = h / s if s > 0 else float("inf")
+        ratios.append(ratio)
+        at_most += h <= s
+        print(f"{name:36s} consistent {ok!s:5s} stencil {100 * hv['stencilVsCount']['fraction']:.4f} % "
+              f"hybrid {h:.4f} shadowmap {s:.4f} ratio {ratio:.2f}")
+    print(f"consistent {consistent} of {len(scenes)}; hybrid at most the cube shadow map on {at_most} of "
+          f"{len(scenes)}, median ratio {statistics.median(ratios):.2f}")
+
+
+if __name__ == "__main__":
+    main()
