@@ -223,6 +223,7 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
 std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec2>& texelOf) {
   auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
   std::unordered_map<std::uint64_t, std::uint32_t> third;  // directed edge a -> b: the triangle's third corner
+  third.reserve(3 * part.size());
   for (const Tri& t : part)
     for (int e = 0; e < 3; ++e) third[key(t[e], t[(e + 1) % 3])] = t[(e + 2) % 3];
   auto boundary = [&](std::uint32_t a, std::uint32_t b) { return !third.count(key(b, a)); };
