@@ -110,7 +110,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
                   "fitted to each scene's camera for each resolution; results name the scene <scene>@view)")
       ->delimiter(',')
       ->check(CLI::IsMember({"scene", "view"}));
-  cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N), separated by spaces or commas")
+  cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N; for a point light each cube face is N x N), separated by spaces or commas")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--size", o->size, "Image size WIDTHxHEIGHT")->capture_default_str();

@@ -99,6 +99,30 @@ SweepMethod shadowMap(const std::string& key, gl::ShadowMethod method, CaptureMo
   return m;
 }
 
+// A point light's methods (docs/volume.md "Point lights"): the cube shadow map (one tap, PCF) and
+// the explicit cube volume, each at the resolution of one cube face.
+SweepMethod cubeShadowMap(const std::string& key, gl::ShadowMethod method, const std::string& what) {
+  SweepMethod m = shadowMap(key, method, CaptureMode::Back, what);
+  m.lights = SweepLights::Point;
+  return m;
+}
+
+SweepMethod cubeVolume(CaptureMode capture) {
+  SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Explicit, capture);
+  m.key = std::string("hybrid-cube") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/explicit";
+  m.lights = SweepLights::Point;
+  m.description = "a point light's explicit cube volume from its six face maps (perfect triangulation, far cube "
+                  "cap), " + std::string(toString(capture)) + " capture" +
+                  (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
+bool applies(const SweepMethod& m, LightType light) {
+  if (m.lights == SweepLights::Any) return true;
+  return (m.lights == SweepLights::Point) == (light == LightType::Point);
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   if (v.empty()) return 0.0;
@@ -111,6 +135,15 @@ TimeStat stat(const std::vector<double>& v) {
   s.min = *std::min_element(v.begin(), v.end());
   s.max = *std::max_element(v.begin(), v.end());
   return s;
+}
+
+std::string sceneLabel(const std::filesystem::path& scene) {
+  return scene.empty() ? "default" : scene.stem().string();
+}
+
+// The scene's light type, from the loaded scene (its meshes are read once more for the cells).
+LightType lightTypeOf(const std::filesystem::path& scene) {
+  return scene.empty() ? defaultScene().light.type : loadScene(scene).scene.light.type;
 }
 
 }  // namespace
@@ -162,12 +195,18 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
+    v.push_back(cubeShadowMap("cube-shadowmap", gl::ShadowMethod::ShadowMap,
+                              "a point light's cube shadow map, one hardware depth compare, back-face depths"));
+    v.push_back(cubeShadowMap("cube-pcf3", gl::ShadowMethod::Pcf3,
+                              "a point light's cube shadow map, PCF over 3 x 3 texels of the face, back faces"));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(cubeVolume(c));
     SweepMethod s;
     s.key = "silhouette";
+    s.lights = SweepLights::Any;
     s.family = "silhouette";
     s.options.method = gl::ShadowMethod::Silhouette;
     s.usesResolution = false;
-    s.description = "classic silhouette shadow volumes of the closed objects (exact for closed manifolds)";
+    s.description = "classic silhouette shadow volumes of the closed objects (exact for closed manifolds), any light";
     v.push_back(s);
     return v;
   }();
@@ -249,15 +288,29 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     int resolution;
   };
   std::vector<Cell> cells;
-  for (std::size_t s = 0; s < o.scenes.size(); ++s)
+  for (std::size_t s = 0; s < o.scenes.size(); ++s) {
+    const LightType light = lightTypeOf(o.scenes[s]);
+    std::size_t otherLight = 0;
     for (const LightFit fit : o.fits)
       for (const SweepMethod* m : methods) {
+        if (!applies(*m, light)) {
+          otherLight += fit == o.fits.front();
+          continue;
+        }
+        if (fit == LightFit::View && light == LightType::Point) continue;  // nothing to fit (fitLightToView)
         if (!m->usesResolution) {
           if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: the fit changes nothing
         } else {
           for (int r : resolutions) cells.push_back({s, fit, m, r});
         }
       }
+    if (otherLight > 0)
+      notes.push_back(sceneLabel(o.scenes[s]) + ": " + std::to_string(otherLight) + " of the methods are for " +
+                      (light == LightType::Point ? "spot and directional lights" : "point lights") +
+                      ", not this scene's " + toString(light) + " light: not measured");
+    if (light == LightType::Point && std::count(o.fits.begin(), o.fits.end(), LightFit::View))
+      notes.push_back(sceneLabel(o.scenes[s]) + ": no view-fitted cells (a point light's cube covers every direction)");
+  }
   SweepProgress progress;
   progress.total = cells.size();
   const auto start = std::chrono::steady_clock::now();
@@ -279,8 +332,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   for (const Cell& c : cells) {
     if (stop) break;
     // Names first (cheap), so resumed cells skip without loading anything.
-    const std::string name = (o.scenes[c.scene].empty() ? "default" : o.scenes[c.scene].stem().string()) +
-                             (c.fit == LightFit::View ? kViewFitSuffix : "");
+    const std::string name = sceneLabel(o.scenes[c.scene]) + (c.fit == LightFit::View ? kViewFitSuffix : "");
     SweepRow row;
     row.scene = name;
     row.method = c.method->key;

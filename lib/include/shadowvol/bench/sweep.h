@@ -15,12 +15,19 @@
 
 namespace shadowvol {
 
+/// Which lights a sweep method renders: the spot and directional lights' one depth map, a point
+/// light's cube of six, or both (methods without a depth map). A cell of a method for the other
+/// kind of light is not a cell of the sweep.
+enum class SweepLights { Frustum, Point, Any };
+
 /// A method of the sweep: its key (the CSV's `method`) and how to render it.
 struct SweepMethod {
   std::string key;                  ///< e.g. "pcf3", "hybrid-perfect-blur/gpu", "silhouette"
   std::string family;               ///< shadowmap | pcf3 | pcf5 | hybrid | silhouette
   gl::RenderOptions options;        ///< method, volume source, capture, volume options
-  bool usesResolution = true;       ///< false for silhouette (no depth map): one cell per scene
+  bool usesResolution = true;       ///< false for silhouette (no depth map): one cell per scene;
+                                    ///< for a point light the resolution is each cube face's side
+  SweepLights lights = SweepLights::Frustum;
   std::string description;          ///< one line for --help and the report
 };
 
