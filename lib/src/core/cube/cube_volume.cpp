@@ -171,6 +171,8 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
   Vertices v;
   v.sheet.resize(s.tris.size());
   v.cap.resize(s.tris.size());
+  v.positions.reserve(2 * texelCount);  // a sheet and a cap vertex per texel, far runs aside
+  v.farTexel.reserve(2 * texelCount);
   auto add = [&](const glm::dvec3& p, std::uint32_t farTexel) {
     v.positions.push_back(p);
     v.farTexel.push_back(farTexel);
@@ -216,53 +218,83 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
   return v;
 }
 
+// A part's directed edges grouped by their start, for lookups without hashing: the edges leaving
+// vertex a are the slots begin[a] .. begin[a + 1] - 1, each with its end and its triangle's third
+// corner. Ids are below `vertexCount`.
+struct DirectedEdges {
+  std::vector<std::uint32_t> begin, end, third;
+
+  DirectedEdges(const std::vector<Tri>& part, std::size_t vertexCount)
+      : begin(vertexCount + 1, 0), end(3 * part.size()), third(3 * part.size()) {
+    for (const Tri& t : part)
+      for (std::uint32_t a : t) ++begin[a + 1];
+    std::partial_sum(begin.begin(), begin.end(), begin.begin());
+    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (const Tri& t : part)
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t s = fill[t[e]]++;
+        end[s] = t[(e + 1) % 3];
+        third[s] = t[(e + 2) % 3];
+      }
+  }
+  // The slot of a -> b, or kNone; of repeated edges (a non-manifold part), the last triangle's.
+  std::uint32_t slot(std::uint32_t a, std::uint32_t b) const {
+    for (std::uint32_t s = begin[a + 1]; s-- > begin[a];)
+      if (end[s] == b) return s;
+    return kNone;
+  }
+  bool boundary(std::uint32_t a, std::uint32_t b) const { return slot(b, a) == kNone; }
+  std::uint32_t thirdOf(std::uint32_t a, std::uint32_t b) const {
+    const std::uint32_t s = slot(a, b);
+    SV_CHECK(s != kNone);
+    return third[s];
+  }
+  int boundaryEdgesLeaving(std::uint32_t a) const {
+    int count = 0;
+    for (std::uint32_t s = begin[a]; s < begin[a + 1]; ++s) count += boundary(a, end[s]);
+    return count;
+  }
+};
+
 // Face `face`'s part of the cap, flattened: the CDT of far_cap.h over the boundary of its mirrored
 // triangles, in the face's texel space. A vertex where the part touches itself (two or more
 // wedges of it around one vertex, the cap across the cube's edge between them) enters the CDT
 // once per wedge, as the pinches of one map do, and each wedge's triangles get it back.
 std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec2>& texelOf) {
-  auto key = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t(a) << 32) | b; };
-  std::unordered_map<std::uint64_t, std::uint32_t> third;  // directed edge a -> b: the triangle's third corner
-  third.reserve(3 * part.size());
-  for (const Tri& t : part)
-    for (int e = 0; e < 3; ++e) third[key(t[e], t[(e + 1) % 3])] = t[(e + 2) % 3];
-  auto boundary = [&](std::uint32_t a, std::uint32_t b) { return !third.count(key(b, a)); };
+  const std::uint32_t firstTemp = std::uint32_t(texelOf.size());
+  const DirectedEdges directed(part, firstTemp);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // boundary edges a -> b of the part
-  std::unordered_map<std::uint32_t, int> outCount;
   for (const Tri& t : part)
     for (int e = 0; e < 3; ++e)
-      if (boundary(t[e], t[(e + 1) % 3])) {
-        edges.push_back({t[e], t[(e + 1) % 3]});
-        ++outCount[t[e]];
-      }
+      if (directed.boundary(t[e], t[(e + 1) % 3])) edges.push_back({t[e], t[(e + 1) % 3]});
   // The wedge of an edge a -> v's end v: turn around v inside the part to the boundary edge
   // leaving v; that edge's start v is the same wedge's.
-  const std::uint32_t firstTemp = std::uint32_t(texelOf.size());
   std::vector<std::uint32_t> original;  // temp id - firstTemp -> vertex
-  std::unordered_map<std::uint64_t, std::uint32_t> startId;  // boundary edge -> the id of its start
-  std::unordered_map<std::uint32_t, int> wedgesSeen;
+  std::vector<std::uint32_t> startId(directed.end.size(), kNone);  // boundary edge's slot -> the id of its start
+  std::unordered_map<std::uint32_t, int> wedgesSeen;  // at vertices with two or more wedges
   std::vector<std::uint32_t> endId(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) {
     const auto [a, v] = edges[k];
-    std::uint32_t x = third.at(key(a, v));
-    for (std::size_t steps = 0; !boundary(v, x); ++steps) {
+    std::uint32_t x = directed.thirdOf(a, v);
+    for (std::size_t steps = 0; !directed.boundary(v, x); ++steps) {
       SV_CHECK_LT(steps, part.size());
-      x = third.at(key(x, v));
+      x = directed.thirdOf(x, v);
     }
     std::uint32_t id = v;
-    if (outCount[v] > 1 && wedgesSeen[v]++ > 0) {
+    if (directed.boundaryEdgesLeaving(v) > 1 && wedgesSeen[v]++ > 0) {
       id = firstTemp + std::uint32_t(original.size());
       original.push_back(v);
       texelOf.push_back(texelOf[v]);
     }
     endId[k] = id;
-    startId[key(v, x)] = id;
+    startId[directed.slot(v, x)] = id;
   }
   // The cap's triangles are clockwise in texel space: the region lies right of a -> b, so the
   // CDT's edges (region on the left) run b -> a.
   std::vector<CapEdge> capEdges;
   for (std::size_t k = 0; k < edges.size(); ++k) {
-    const std::uint32_t from = endId[k], to = startId.at(key(edges[k].first, edges[k].second));
+    const std::uint32_t from = endId[k], to = startId[directed.slot(edges[k].first, edges[k].second)];
+    SV_CHECK(to != kNone);
     capEdges.push_back({from, to, texelOf[from], texelOf[to]});
   }
   std::vector<Tri> out;
