@@ -1,4 +1,3 @@
-#version 330 core
 // Shading of the camera pass (docs/gpu.md "Lighting"):
 //   colour = albedo * (ambient + diffuse * max(dot(N, L), 0) * lit)
 // N: the flat face normal (from screen-space derivatives) turned toward the camera; L: toward the
@@ -25,6 +24,7 @@ uniform float diffuse;
 uniform int shadowTaps;           // 0: no shadow test; 1: one tap; 3 or 5: PCF n x n
 uniform sampler2DShadow shadowMap;  // window depth (reversed Z), compare GEQUAL, nearest
 uniform samplerCubeShadow cubeShadowMap;  // a point light's (lightType 2): the same per cube face
+uniform int pointShadowMap;       // a point light's shadow map: 0 the cube map, 1 dual-paraboloid (shadowMap, both maps side by side)
 uniform vec2 shadowMapSize;       // texels
 uniform float biasConstant;       // world units
 uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
@@ -79,6 +79,24 @@ float cubeShadowVisibility(vec3 n) {
   return sum / float((2 * r + 1) * (2 * r + 1));
 }
 
+// A point light's visibility from its dual-paraboloid maps (paraboloid.glsl; shadowMap holds the
+// front map left of the back one): the stored quantity is the distance along the ray, so the
+// slope term uses the receiver's tilt against the ray; texelFootprint is the map's coarsest
+// texel (its centre, 4 / side radians).
+float paraboloidVisibility(vec3 n) {
+  vec3 o = worldPos - lightPosition;
+  float l = length(o);
+  int h = (paraboloidToFront * vec4(o, 0.0)).z >= 0.0 ? 0 : 1;
+  float c = clamp(abs(dot(n, o / max(l, 1e-30))), 1e-4, 1.0);
+  float tanTheta = min(sqrt(max(1.0 - c * c, 0.0)) / c, 10.0);
+  float ref = paraboloidStoredDepth(l - (biasConstant + biasSlope * texelFootprint * l * tanTheta));
+  vec2 uv = paraboloidXy(paraboloidFrameOffset(o, h)) * 0.5 + 0.5;
+  float halfTexel = 0.5 / shadowMapSize.y;  // keep the lookup in its own map
+  uv = clamp(uv, vec2(halfTexel), vec2(1.0 - halfTexel));
+  uv.x = (uv.x + float(h)) * 0.5;
+  return texture(shadowMap, vec3(uv, ref));
+}
+
 void main() {
   ambientOut = vec4(color * ambient, 1.0);
   vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
@@ -92,7 +110,9 @@ void main() {
               : (lc.w > 0.0 && all(lessThanEqual(abs(lc.xyz), vec3(lc.w)))) ? 1.0 : 0.0;
   float test = 1.0;
   if (lit > 0.0 && (ndl > 0.0 || writeVisibility != 0) && shadowTaps > 0)
-    test = lightType == 2 ? cubeShadowVisibility(n) : shadowVisibility(lc, abs(dot(n, lightDirection)));
+    test = lightType != 2          ? shadowVisibility(lc, abs(dot(n, lightDirection)))
+           : pointShadowMap == 1 ? paraboloidVisibility(n)
+                                 : cubeShadowVisibility(n);
   visibilityOut = test;
   if (ndl > 0.0) lit *= test;
   vec3 direct = color * diffuse * max(ndl, 0.0) * lit;

@@ -19,6 +19,8 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"RenderOptions", "gpuVolumeDraw", "--gpu-draw"},
     LibraryFieldFlag{"RenderOptions", "method", "--method"},
     LibraryFieldFlag{"RenderOptions", "volume", "--volume"},
+    LibraryFieldFlag{"RenderOptions", "capture", "--capture"},
+    LibraryFieldFlag{"RenderOptions", "depthWidth", "--resolution"},
     LibraryFieldFlag{"Renderer::captureCube", "n x n", "--resolution"},
     LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},

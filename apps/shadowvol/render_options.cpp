@@ -27,8 +27,10 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   cmd.add_option("--method", o.method,
                  "hybrid (the shadow volume, z-fail stencil), shadowmap (hardware depth compare), pcf3 / pcf5 "
                  "(percentage-closer filtering over 3x3 / 5x5 texels), silhouette (classic object-space shadow "
-                 "volumes of the closed objects; open sheets only receive), none (no shadows)")
-      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "silhouette", "none"}))
+                 "volumes of the closed objects; open sheets only receive), dpsm (a point light's dual-paraboloid "
+                 "shadow map: two maps of round(N * sqrt(3))^2 texels for --resolution N, the cube map's texel "
+                 "count; back or front capture), none (no shadows)")
+      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "silhouette", "dpsm", "none"}))
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production), explicit (depth "

@@ -223,7 +223,7 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
   gl::Renderer renderer;
   SweepOptions o;
   o.scenes = {std::filesystem::path(), std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/point/room.json"};
-  o.methods = {"shadowmap", "cube-shadowmap", "cube-pcf3", "hybrid-cube/explicit", "silhouette"};
+  o.methods = {"shadowmap", "cube-shadowmap", "cube-pcf3", "dpsm", "hybrid-cube/explicit", "silhouette"};
   o.resolutions = {64};
   o.width = 80;
   o.height = 60;
@@ -238,14 +238,14 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
   for (const auto& r : rows) cells.push_back(r.scene + " " + r.method);
   const std::vector<std::string> expected = {"default shadowmap",         "default silhouette",
                                              "default@view shadowmap",    "room cube-shadowmap",
-                                             "room cube-pcf3",            "room hybrid-cube/explicit",
-                                             "room silhouette"};
+                                             "room cube-pcf3",            "room dpsm",
+                                             "room hybrid-cube/explicit", "room silhouette"};
   EXPECT_EQ(cells, expected);
   for (const auto& r : rows) {
     EXPECT_GT(r.pixels, 0u) << r.method;
     EXPECT_LT(r.error, 0.05) << r.scene << " " << r.method;
   }
-  for (const char* note : {"default: 3 of the methods are for point lights", "room: 1 of the methods are for spot",
+  for (const char* note : {"default: 4 of the methods are for point lights", "room: 1 of the methods are for spot",
                            "room: no view-fitted cells"})
     EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.rfind(note, 0) == 0; }))
         << note << " in " << ::testing::PrintToString(notes);

@@ -24,6 +24,8 @@ enum class ShadowMethod {
   Silhouette, ///< classic silhouette shadow volumes (silhouette_volume.h): closed 2-manifold objects
               ///< cast, open sheets only receive (RenderResult::receiversOnly), anything else is an
               ///< InputError naming the object; exact for the casters; stencil z-fail like hybrid
+  Dpsm,       ///< a point light's dual-paraboloid shadow map (dual_paraboloid.h): two maps of
+              ///< dualParaboloidSide(depthWidth)^2 texels, the cube map's texel count; one tap
 };
 const char* toString(ShadowMethod m);
 bool parseShadowMethod(const std::string& text, ShadowMethod& m);

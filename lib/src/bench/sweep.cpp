@@ -99,8 +99,9 @@ SweepMethod shadowMap(const std::string& key, gl::ShadowMethod method, CaptureMo
   return m;
 }
 
-// A point light's methods (docs/volume.md "Point lights"): the cube shadow map (one tap, PCF) and
-// the explicit cube volume, each at the resolution of one cube face.
+// A point light's methods (docs/volume.md "Point lights"): the cube shadow map (one tap, PCF), the
+// dual-paraboloid map and the explicit cube volume, each at the resolution of one cube face (the
+// dual-paraboloid map at the same texel count).
 SweepMethod cubeShadowMap(const std::string& key, gl::ShadowMethod method, const std::string& what) {
   SweepMethod m = shadowMap(key, method, CaptureMode::Back, what);
   m.lights = SweepLights::Point;
@@ -199,6 +200,9 @@ const std::vector<SweepMethod>& sweepMethods() {
                               "a point light's cube shadow map, one hardware depth compare, back-face depths"));
     v.push_back(cubeShadowMap("cube-pcf3", gl::ShadowMethod::Pcf3,
                               "a point light's cube shadow map, PCF over 3 x 3 texels of the face, back faces"));
+    v.push_back(cubeShadowMap("dpsm", gl::ShadowMethod::Dpsm,
+                              "a point light's dual-paraboloid shadow map, two maps of the cube map's texel count "
+                              "(round(N sqrt 3)^2 each for resolution N), one tap, back faces"));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(cubeVolume(c));
     SweepMethod s;
     s.key = "silhouette";

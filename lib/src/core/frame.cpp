@@ -16,6 +16,8 @@ const char* toString(ShadowMethod m) {
       return "none";
     case ShadowMethod::Silhouette:
       return "silhouette";
+    case ShadowMethod::Dpsm:
+      return "dpsm";
   }
   return "?";
 }
@@ -33,6 +35,8 @@ bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
     m = ShadowMethod::None;
   else if (text == "silhouette")
     m = ShadowMethod::Silhouette;
+  else if (text == "dpsm")
+    m = ShadowMethod::Dpsm;
   else
     return false;
   return true;

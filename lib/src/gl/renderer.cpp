@@ -16,6 +16,7 @@
 #include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
 #include "shadowvol/cube_volume.h"
+#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
@@ -25,6 +26,7 @@
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
 #include "refined_gpu_volume.h"
+#include "dual_paraboloid_pass.h"
 #include "silhouette_walk.h"
 
 namespace shadowvol::gl {
@@ -244,6 +246,9 @@ struct Renderer::Impl {
   Program lightTriangleProgram;   // light.vert + light_triangle.frag
   Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
+  DualParaboloidPass paraboloid;  // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
+  DualParaboloid paraboloidFrame;  // of the last paraboloid pass
+  Bounds3 sceneBounds;             // the scene's (setScene): the paraboloid frame looks at its centre
   Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
   Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
   std::optional<RefinedGpuVolume> refined;  // the refined GPU volume's passes, made on its first frame
@@ -268,7 +273,8 @@ struct Renderer::Impl {
     peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
     resolveProgram = Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
-    sceneProgram = Program(shaders, "scene.vert", "scene.frag");
+    sceneProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "paraboloid.glsl", "scene.frag"});
+    paraboloid = DualParaboloidPass(shaders);
     ambientOverProgram = Program(shaders, "fullscreen.vert", "ambient_over.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
     volumeGpuProgram =
@@ -646,6 +652,21 @@ struct Renderer::Impl {
                      float(o.shadowBiasConstant.value_or(defaultBias(light, mapW, mapH, o.capture))));
     sceneProgram.set("biasSlope", float(o.shadowBiasSlope));
     sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
+    sceneProgram.set("pointShadowMap", 0);
+  }
+
+  /// The shade pass's uniforms for the dual-paraboloid maps of the last paraboloidPass, after
+  /// setSceneUniforms: the maps' size, the frame, the coarsest texel's angle (4 / side at a map's
+  /// centre) as the footprint, and the default bias of a cube face whose texels are that coarse
+  /// (side / 2 texels over its 90 degrees).
+  void setParaboloidUniforms(const RenderOptions& o) {
+    const int side = paraboloidFrame.side;
+    sceneProgram.set("pointShadowMap", 1);
+    DualParaboloidPass::setUniforms(sceneProgram, paraboloidFrame);
+    sceneProgram.set("shadowMapSize", glm::vec2(float(2 * side), float(side)));
+    const int coarse = std::max(1, side / 2);
+    sceneProgram.set("biasConstant", float(o.shadowBiasConstant.value_or(defaultBias(light, coarse, coarse, o.capture))));
+    sceneProgram.set("texelFootprint", float(4.0 / side));
   }
 
   /// What the camera pass writes besides the colour (COLOR_ATTACHMENT0).
@@ -1172,6 +1193,16 @@ struct Renderer::Impl {
       throw InputError("RenderOptions", "method", toString(o.method),
                        "a point light's cube shadow map needs OpenGL 4.3 (glCopyImageSubData); this context has " +
                            context.info().glVersion);
+    if (o.method == ShadowMethod::Dpsm && o.capture == CaptureMode::Midpoint)
+      throw InputError("RenderOptions", "capture", "midpoint",
+                       "the dual-paraboloid map takes back or front capture (it has no second layer)");
+    if (o.method == ShadowMethod::Dpsm) {
+      const int side = dualParaboloidSide(o.depthWidth);
+      if (2 * side > std::min(maxTextureSize, maxViewport[0]))
+        throw InputError("RenderOptions", "depthWidth", std::to_string(o.depthWidth),
+                         "its dual-paraboloid maps (2 x " + std::to_string(side) + " texels wide) exceed this "
+                         "context's largest texture or viewport, " + std::to_string(std::min(maxTextureSize, maxViewport[0])));
+    }
     if (explicitHybrid && o.volumeOptions.refineSteps > 0)
       throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
                        "silhouette refinement is not available for point lights yet");
@@ -1200,6 +1231,10 @@ struct Renderer::Impl {
     if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
       throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
     if (light.type == LightType::Point) validatePointLight(o);
+    if (light.type != LightType::Point && o.method == ShadowMethod::Dpsm)
+      throw InputError("RenderOptions", "method", "dpsm",
+                       std::string("dual-paraboloid maps are a point light's; this scene's light is ") +
+                           toString(light.type));
     if (refinedGpuVolume(o)) {
       auto refuse = [&](const std::string& why) {
         throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
@@ -1328,6 +1363,13 @@ struct Renderer::Impl {
     });
   }
 
+  /// A point light's dual-paraboloid maps for a cube face side of n (dual_paraboloid.h).
+  void paraboloidPass(int n, CaptureMode mode) {
+    paraboloidFrame = makeDualParaboloid(light, sceneBounds, dualParaboloidSide(n));
+    resetState();
+    paraboloid.draw(paraboloidFrame, mode, [this] { drawScene(); });
+  }
+
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
     if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
     if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
@@ -1387,10 +1429,15 @@ struct Renderer::Impl {
     const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
     occupancyValid = false;
     const bool point = light.type == LightType::Point;
-    const bool cubeShadowMap = point && !hybrid && !silhouette && o.method != ShadowMethod::None;
+    const bool dpsm = point && o.method == ShadowMethod::Dpsm;
+    const bool cubeShadowMap = point && !hybrid && !silhouette && !dpsm && o.method != ShadowMethod::None;
     if (cubeShadowMap) {
       TimedPass t(timer, "light");
       cubeShadowPass(o.depthWidth, o.capture);
+    }
+    if (dpsm) {
+      TimedPass t(timer, "light");
+      paraboloidPass(o.depthWidth, o.capture);
     }
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
       TimedPass t(timer, "light");
@@ -1493,16 +1540,19 @@ struct Renderer::Impl {
       }
     } else {
       TimedPass t(timer, "shade");
-      const int taps = o.method == ShadowMethod::ShadowMap ? 1
+      const int taps = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Dpsm ? 1
                        : o.method == ShadowMethod::Pcf3    ? 3
                        : o.method == ShadowMethod::Pcf5    ? 5
                                                            : 0;
       beginCamera(cam, o.readVisibility && taps > 0 ? CameraExtra::Visibility : CameraExtra::None);
-      const int mw = taps ? lightW : o.depthWidth, mh = taps ? lightH : o.depthHeight;
+      const int mw = dpsm ? paraboloidFrame.side : taps ? lightW : o.depthWidth;
+      const int mh = dpsm ? paraboloidFrame.side : taps ? lightH : o.depthHeight;
       setSceneUniforms(cam, o, taps, mw, mh);
+      if (dpsm) setParaboloidUniforms(o);
       sceneProgram.set("writeVisibility", o.readVisibility && taps > 0 ? 1 : 0);
       if (taps && !point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
-      if (taps && point) bindCube(3, cubeShadow, shadowSampler);
+      if (taps && point && dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
+      if (taps && point && !dpsm) bindCube(3, cubeShadow, shadowSampler);
       drawScene();
       bindTexture(2, Texture(), shadowSampler);
       bindCube(3, Texture(), shadowSampler);
@@ -1604,6 +1654,7 @@ void Renderer::setScene(const Scene& scene) {
   s.light = scene.light;
   s.camera = scene.camera;
   s.scene = scene;
+  s.sceneBounds = scene.bounds();
   s.occluders.reset();
   s.walk.setScene(&s.scene);
   s.footprint.reset();
@@ -1631,6 +1682,23 @@ CubeDepthMap Renderer::captureCube(int n, CaptureMode mode) {
                      "a cube map is a point light's: capture a spot or directional light with captureDepth");
   s.checkSize("Renderer::captureCube", "n x n", n, n, std::min(s.maxTextureSize, s.maxViewport[0]));
   return s.captureCube(n, mode);
+}
+
+Renderer::DualParaboloidCapture Renderer::captureDualParaboloid(int cubeFaceSide, CaptureMode mode) {
+  Impl& s = *impl_;
+  s.context.makeCurrent();
+  s.requireScene();
+  RenderOptions o;
+  o.method = ShadowMethod::Dpsm;
+  o.capture = mode;
+  o.depthWidth = o.depthHeight = cubeFaceSide;
+  if (s.light.type != LightType::Point)
+    throw InputError(s.scene.source, "/light/type", toString(s.light.type), "dual-paraboloid maps are a point light's");
+  s.checkSize("Renderer::captureDualParaboloid", "n x n", cubeFaceSide, cubeFaceSide,
+              std::min(s.maxTextureSize, s.maxViewport[0]));
+  s.validatePointLight(o);
+  s.paraboloidPass(cubeFaceSide, mode);
+  return {s.paraboloidFrame, s.paraboloid.readDistances(s.paraboloidFrame)};
 }
 
 std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, CaptureMode mode,

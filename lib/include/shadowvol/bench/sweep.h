@@ -23,7 +23,7 @@ enum class SweepLights { Frustum, Point, Any };
 /// A method of the sweep: its key (the CSV's `method`) and how to render it.
 struct SweepMethod {
   std::string key;                  ///< e.g. "pcf3", "hybrid-perfect-blur/gpu", "silhouette"
-  std::string family;               ///< shadowmap | pcf3 | pcf5 | hybrid | silhouette
+  std::string family;               ///< shadowmap | pcf3 | pcf5 | dpsm | hybrid | silhouette
   gl::RenderOptions options;        ///< method, volume source, capture, volume options
   bool usesResolution = true;       ///< false for silhouette (no depth map): one cell per scene;
                                     ///< for a point light the resolution is each cube face's side

@@ -27,6 +27,7 @@
 // shadow map.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -37,6 +38,7 @@
 
 #include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
+#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/frame.h"
 #include "shadowvol/gl/egl_context.h"
 #include "shadowvol/scene.h"
@@ -95,6 +97,16 @@ class Renderer {
   /// A point light's cube map (cube_map.h): six light passes, one per face's spot light
   /// (cubeFaceLight), each read back as captureDepth does. The scene's light must be a point light.
   CubeDepthMap captureCube(int n, CaptureMode mode);
+
+  /// A point light's dual-paraboloid maps as ShadowMethod::Dpsm draws them for a cube face side
+  /// of `cubeFaceSide` (dual_paraboloid.h), read back as distances from the light (world units;
+  /// +infinity where nothing was drawn), map h's texel (i, j) at distance[h][j * side + i].
+  /// Back or front capture; the scene's light must be a point light.
+  struct DualParaboloidCapture {
+    DualParaboloid frame;
+    std::array<std::vector<float>, 2> distance;
+  };
+  DualParaboloidCapture captureDualParaboloid(int cubeFaceSide, CaptureMode mode);
 
   /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
   /// at width x height with `mode` and its triangle record, then the walk's raw answers to
