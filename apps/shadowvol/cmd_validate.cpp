@@ -11,6 +11,8 @@
 #include "shadowvol/version.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
+#include "shadowvol/report_json.h"
+#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "shadowvol/validate/gl_frame.h"
 #include "shadowvol/validate/validation_report.h"
@@ -88,8 +90,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"bias", result.biasUsed},
                       {"cap", o->render.shape.cap},
                       {"refine", o->render.shape.refine},
-                      {"shadowBias", ro.shadowBiasConstant.value_or(defaultBias(
-                                         scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
+                      {"shadowBias", ro.shadowBiasConstant.value_or(
+                                         ro.method == gl::ShadowMethod::Dpsm
+                                             ? dualParaboloidDefaultBias(scene.light, ro.depthWidth, ro.capture)
+                                             : defaultBias(scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
                       {"shadowSlope", o->render.shadowSlope},
                       {"selfIntersections", o->selfIntersections}};
       if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
@@ -102,6 +106,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         j["volumeCount"] = gl::toString(result.volumeCountUsed);
         if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
       }
+      if (ro.method == gl::ShadowMethod::Dpsm) j["dualParaboloid"] = describeDualParaboloid(ro.depthWidth);
       if (ro.method == gl::ShadowMethod::Silhouette) {
         j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
         j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
@@ -153,6 +158,15 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
                     v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
                     100 * v.methodError.falseFraction(), v.methodError.pixels);
+        if (ro.method == gl::ShadowMethod::Dpsm) {
+          const nlohmann::json& d = j["dualParaboloid"];
+          std::printf("  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "
+                      "(x%.2f); the cube map at %d^2: %.3g to %.3g sr (x%.2f); coarsest texel x%.2f the cube's\n",
+                      d["side"].get<int>(), 100 * d["usedFraction"].get<double>(), d["smallestTexelSr"].get<double>(),
+                      d["largestTexelSr"].get<double>(), d["largestOverSmallest"].get<double>(), ro.depthWidth,
+                      d["cubeMap"]["smallestTexelSr"].get<double>(), d["cubeMap"]["largestTexelSr"].get<double>(),
+                      d["cubeMap"]["largestOverSmallest"].get<double>(), d["largestTexelOverCubes"].get<double>());
+        }
         if (ro.method == gl::ShadowMethod::Silhouette && !result.receiversOnly.empty()) {
           std::printf("  cast no silhouette shadow (open, receivers only):");
           for (const auto& name : result.receiversOnly) std::printf(" \"%s\"", name.c_str());

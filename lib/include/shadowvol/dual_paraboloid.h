@@ -27,6 +27,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "shadowvol/depth_map.h"
 #include "shadowvol/light.h"
 #include "shadowvol/triangle_mesh.h"
 
@@ -47,6 +48,11 @@ struct DualParaboloid {
 /// The frame and range of a point light (type Point, planes fitted) over `sceneBounds`, with maps
 /// of `side` texels a side. Throws InputError naming the light for another type.
 DualParaboloid makeDualParaboloid(const Light& point, const Bounds3& sceneBounds, int side);
+
+/// The default shadow-map bias of the maps for a cube face side of `cubeFaceSide`: that of a cube
+/// face (defaultBias) whose texels are as coarse as the maps' coarsest (at a disc's centre, 4 /
+/// side radians: a face of side / 2 texels).
+double dualParaboloidDefaultBias(const Light& point, int cubeFaceSide, CaptureMode capture);
 
 /// World offset -> hemisphere h's frame (0 front, 1 back).
 glm::dvec3 paraboloidFrameOffset(const DualParaboloid& dp, int hemisphere, const glm::dvec3& worldOffset);

@@ -16,4 +16,10 @@ nlohmann::json describeScene(const Scene& scene);
 /// A volume build's counts and times (VolumeBuildStats; the times in milliseconds under "ms").
 nlohmann::json describeVolumeStats(const VolumeBuildStats& s);
 
+/// How a point light's dual-paraboloid maps for a cube face side of `cubeFaceSide` spend their
+/// texels beside the cube map of that side (dual_paraboloid.h): each one's texel count, the
+/// fraction in use, the solid angles (sr) of its smallest and largest texel and their ratio, and
+/// the ratio of the two maps' largest texels (paraboloid over cube).
+nlohmann::json describeDualParaboloid(int cubeFaceSide);
+
 }  // namespace shadowvol

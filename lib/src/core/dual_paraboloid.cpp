@@ -8,6 +8,7 @@
 
 #include "shadowvol/check.h"
 #include "shadowvol/error.h"
+#include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
 
@@ -40,6 +41,11 @@ DualParaboloid makeDualParaboloid(const Light& point, const Bounds3& sceneBounds
   // Rows x, y, axis: glm is column-major, so the matrix is the transpose of the columns x, y, axis.
   dp.toFront = glm::transpose(glm::dmat3(x, y, axis));
   return dp;
+}
+
+double dualParaboloidDefaultBias(const Light& point, int cubeFaceSide, CaptureMode capture) {
+  const int coarse = std::max(1, dualParaboloidSide(cubeFaceSide) / 2);
+  return defaultBias(point, coarse, coarse, capture);
 }
 
 glm::dvec3 paraboloidFrameOffset(const DualParaboloid& dp, int hemisphere, const glm::dvec3& worldOffset) {

@@ -1,5 +1,7 @@
 #include "shadowvol/report_json.h"
 
+#include "shadowvol/dual_paraboloid.h"
+
 #include "shadowvol/light.h"
 
 namespace shadowvol {
@@ -59,6 +61,24 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"bias", s.biasUsed},
           {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};
+}
+
+nlohmann::json describeDualParaboloid(int cubeFaceSide) {
+  const int side = dualParaboloidSide(cubeFaceSide);
+  const TexelSolidAngles p = paraboloidTexelSolidAngles(side), c = cubeTexelSolidAngles(cubeFaceSide);
+  auto angles = [](const TexelSolidAngles& a, double texels) {
+    return nlohmann::json{{"texels", texels},
+                          {"usedFraction", a.usedFraction},
+                          {"smallestTexelSr", a.smallest},
+                          {"largestTexelSr", a.largest},
+                          {"largestOverSmallest", a.largest / a.smallest}};
+  };
+  nlohmann::json j = angles(p, 2.0 * side * side);
+  j["side"] = side;
+  j["cubeMap"] = angles(c, 6.0 * cubeFaceSide * cubeFaceSide);
+  j["cubeMap"]["side"] = cubeFaceSide;
+  j["largestTexelOverCubes"] = p.largest / c.largest;
+  return j;
 }
 
 }  // namespace shadowvol

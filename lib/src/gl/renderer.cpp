@@ -657,15 +657,14 @@ struct Renderer::Impl {
 
   /// The shade pass's uniforms for the dual-paraboloid maps of the last paraboloidPass, after
   /// setSceneUniforms: the maps' size, the frame, the coarsest texel's angle (4 / side at a map's
-  /// centre) as the footprint, and the default bias of a cube face whose texels are that coarse
-  /// (side / 2 texels over its 90 degrees).
+  /// centre) as the footprint, and dualParaboloidDefaultBias.
   void setParaboloidUniforms(const RenderOptions& o) {
     const int side = paraboloidFrame.side;
     sceneProgram.set("pointShadowMap", 1);
     DualParaboloidPass::setUniforms(sceneProgram, paraboloidFrame);
     sceneProgram.set("shadowMapSize", glm::vec2(float(2 * side), float(side)));
-    const int coarse = std::max(1, side / 2);
-    sceneProgram.set("biasConstant", float(o.shadowBiasConstant.value_or(defaultBias(light, coarse, coarse, o.capture))));
+    sceneProgram.set("biasConstant",
+                     float(o.shadowBiasConstant.value_or(dualParaboloidDefaultBias(light, o.depthWidth, o.capture))));
     sceneProgram.set("texelFootprint", float(4.0 / side));
   }
 
