@@ -2,13 +2,15 @@
 """The unseen scenes under a point light: each scene of data/scenes/unseen with its light replaced
 by a point light at the spot light's position (3 units above the camera's target, offset 0.7 and
 0.4 sideways, for lights without a position), written to out/point-unseen/; then `shadowvol
-validate` of the cube volume and of the cube shadow map at the same texels per face.
+validate` of the cube volume, of the cube shadow map at the same texels per face, and of the
+dual-paraboloid map at the same texel count.
 
     bash scripts/fetch_unseen_meshes.sh
     python3 scripts/point_light_unseen.py [--resolution 128]
 
-Prints per scene whether the frame is consistent, both errors (misclassified %) and their ratio,
-then the count where the volume's error is at most the shadow map's and the median ratio."""
+Prints per scene whether the frame is consistent, the three errors (misclassified %) and the ratio
+of the volume's to the cube shadow map's, then the count where the volume's error is at most the
+shadow map's and the median ratio, and the same for the dual-paraboloid map against the cube map."""
 import argparse
 import glob
 import json
@@ -53,6 +55,7 @@ def main():
     out_dir = os.path.join("out", "point-unseen")
     os.makedirs(out_dir, exist_ok=True)
     ratios, at_most, consistent = [], 0, 0
+    dpsm_ratios, dpsm_at_most = [], 0
     scenes = sorted(glob.glob("data/scenes/unseen/*.json"))
     for path in scenes:
         scene = point_variant(path, out_dir)
@@ -60,17 +63,23 @@ def main():
         hv = validate(scene, os.path.join(out_dir, name, "hybrid"), ["--resolution", a.resolution])
         sm = validate(scene, os.path.join(out_dir, name, "shadowmap"),
                       ["--method", "shadowmap", "--resolution", a.resolution])
+        dp = validate(scene, os.path.join(out_dir, name, "dpsm"), ["--method", "dpsm", "--resolution", a.resolution])
         h = 100.0 * hv["againstExact"]["method"]["errorFraction"]
         s = 100.0 * sm["againstExact"]["method"]["errorFraction"]
+        d = 100.0 * dp["againstExact"]["method"]["errorFraction"]
+        dpsm_ratios.append(d / s if s > 0 else float("inf"))
+        dpsm_at_most += d <= s
         ok = hv["verdict"]["consistent"] and hv["meshChecks"]["valid"]
         consistent += ok
         ratio = h / s if s > 0 else float("inf")
         ratios.append(ratio)
         at_most += h <= s
         print(f"{name:36s} consistent {ok!s:5s} stencil {100 * hv['stencilVsCount']['fraction']:.4f} % "
-              f"hybrid {h:.4f} shadowmap {s:.4f} ratio {ratio:.2f}")
+              f"hybrid {h:.4f} shadowmap {s:.4f} dpsm {d:.4f} ratio {ratio:.2f}")
     print(f"consistent {consistent} of {len(scenes)}; hybrid at most the cube shadow map on {at_most} of "
           f"{len(scenes)}, median ratio {statistics.median(ratios):.2f}")
+    print(f"dpsm at most the cube shadow map on {dpsm_at_most} of {len(scenes)}, median ratio "
+          f"{statistics.median(dpsm_ratios):.2f}")
 
 
 if __name__ == "__main__":
