@@ -13,6 +13,7 @@
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/validate/frame_validation.h"
+#include "shadowvol/validate/gl_frame.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -109,13 +110,7 @@ TEST(DualParaboloid, GpuMapsFollowTheirCppMirror) {
 
 FrameValidation shadowFrame(const Scene& scene, gl::RenderOptions ro) {
   ro.readVisibility = true;
-  const gl::RenderResult r = renderer().render(ro);
-  RenderedFrame frame;
-  frame.width = r.width;
-  frame.height = r.height;
-  frame.hybrid = false;
-  for (auto vis : r.visibility) frame.shadowed.push_back(vis < 128);
-  return validateFrame(scene, DepthMap{}, ro.volumeOptions, frame);
+  return validateFrame(scene, DepthMap{}, ro.volumeOptions, toRenderedFrame(renderer().render(ro), ro.method));
 }
 
 TEST(DualParaboloid, FramesFollowTheExactShadow) {
