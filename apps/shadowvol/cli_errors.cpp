@@ -24,6 +24,8 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"Renderer::captureCube", "n x n", "--resolution"},
     LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
+    LibraryFieldFlag{"SweepOptions", "methods", "--methods"},
+    LibraryFieldFlag{"SweepOptions", "resolutions", "--resolutions"},
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},
     LibraryFieldFlag{"volume options", "refine chords", "--chord-points"},

@@ -226,7 +226,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     if (o.methods.empty() || std::count(o.methods.begin(), o.methods.end(), m.key)) methods.push_back(&m);
   for (const auto& key : o.methods)
     if (std::none_of(methods.begin(), methods.end(), [&](const SweepMethod* m) { return m->key == key; }))
-      throw InputError("command line", "--methods", key, "unknown method (see 'shadowvol bench --list-methods')");
+      throw InputError("SweepOptions", "methods", key, "unknown method: see 'shadowvol bench --list-methods' (sweepMethods() in the library)");
   const gl::ContextInfo& gli = renderer.info();
   if (gli.glMajor < 4 || (gli.glMajor == 4 && gli.glMinor < 3))
     std::erase_if(methods, [&](const SweepMethod* m) {
@@ -243,7 +243,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
   for (int r : o.resolutions) {
     if (r < 2 || r > kMaxDepthMapSide)
-      throw InputError("command line", "--resolutions", std::to_string(r), "must be in 2.." + std::to_string(kMaxDepthMapSide));
+      throw InputError("SweepOptions", "resolutions", std::to_string(r), "must be in 2.." + std::to_string(kMaxDepthMapSide));
     const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies
     if (physical > 0 && need > physical / 2) {
       notes.push_back("resolution " + std::to_string(r) + " skipped: needs about " +
