@@ -30,7 +30,7 @@ struct FrameArgs {
 gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   gl::RenderOptions ro;
   if (!gl::parseShadowMethod(a.method, ro.method))
-    throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette or none");
+    throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette, dpsm or none");
   if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected gpu or explicit");
   checkDepthMapSize(a.resolution, a.resolution, "python", "resolution");
   ro.depthWidth = ro.depthHeight = a.resolution;
