@@ -20,6 +20,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"RenderOptions", "method", "--method"},
     LibraryFieldFlag{"RenderOptions", "volume", "--volume"},
     LibraryFieldFlag{"RenderOptions", "capture", "--capture"},
+    LibraryFieldFlag{"RenderOptions", "paraboloidSubdivision", "--dpsm-subdivide"},
     LibraryFieldFlag{"RenderOptions", "depthWidth", "--resolution"},
     LibraryFieldFlag{"Renderer::captureCube", "n x n", "--resolution"},
     LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},

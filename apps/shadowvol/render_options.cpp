@@ -75,6 +75,12 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   cmd.add_option("--shadow-slope", o.shadowSlope,
                  "Shadow maps: slope-scaled bias, in texel footprints x tan(angle to the light)")
       ->capture_default_str();
+  cmd.add_option("--dpsm-subdivide", o.dpsmSubdivide,
+                 "dpsm: cut each triangle into up to SxS in the light pass (S = 1, 2, 4, 8) so that no edge spans more "
+                 "than 0.1 rad seen from the light; 1 = the reference tutorial's pass, whose large triangles bend "
+                 "(docs/gpu.md 'Dual-paraboloid maps')")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->capture_default_str();
   addPlatformOption(cmd, o.platform);
   cmd.add_option("--shader-dir", o.shaderDir,
                  "Load GLSL from this folder instead of the embedded copies (also: $SHADOWVOL_SHADER_DIR)")
@@ -105,6 +111,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   ro.volumeOptions = toVolumeBuildOptions(o.shape);
   ro.shadowBiasConstant = o.shadowBias;
   ro.shadowBiasSlope = o.shadowSlope;
+  ro.paraboloidSubdivision = o.dpsmSubdivide;
   if (!o.size.empty()) {
     const auto [w, h] = parseSize(o.size);
     scene.camera.width = w;

@@ -24,6 +24,7 @@ struct RenderCliOptions {
   std::string size;
   std::optional<double> shadowBias;  ///< unset = the documented default
   double shadowSlope = 1.0;
+  int dpsmSubdivide = 1;  ///< --dpsm-subdivide: 1, 2, 4, 8
   std::string platform = "auto";
   std::string shaderDir;
 };

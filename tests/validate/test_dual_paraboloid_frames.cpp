@@ -76,41 +76,71 @@ double angleToOutline(const glm::dvec3& d) {
 
 TEST(DualParaboloid, GpuMapsFollowTheirCppMirror) {
   renderer().setScene(twoBalls());
-  for (CaptureMode mode : {CaptureMode::Front, CaptureMode::Back}) {
-    const gl::Renderer::DualParaboloidCapture c = renderer().captureDualParaboloid(48, mode);
-    const int side = c.frame.side;
-    ASSERT_EQ(side, dualParaboloidSide(48));
-    const double texelAngle = 4.0 / side;  // the coarsest texel's
-    int hits[2] = {0, 0}, checked = 0;
-    for (int h = 0; h < 2; ++h)
-      for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-          const glm::dvec2 xy = paraboloidTexelCentre(side, i, j);
-          if (glm::length(xy) > 0.98) continue;  // the rim: the clip plane's chords
-          const glm::dvec3 d = paraboloidDirection(c.frame, h, xy);
-          const double want = analyticHit(d, mode == CaptureMode::Back);
-          const float got = c.distance[h][std::size_t(j) * side + i];
-          ++checked;
-          if (std::isinf(want) != std::isinf(got)) {  // coverage differs only at an outline
-            EXPECT_LT(angleToOutline(d), 2.0 * texelAngle) << "map " << h << " texel " << i << "," << j;
-            continue;
+  for (int subdivision : {1, 8}) {
+    for (CaptureMode mode : {CaptureMode::Front, CaptureMode::Back}) {
+      SCOPED_TRACE("subdivision " + std::to_string(subdivision));
+      const gl::Renderer::DualParaboloidCapture c = renderer().captureDualParaboloid(48, mode, subdivision);
+      const int side = c.frame.side;
+      ASSERT_EQ(side, dualParaboloidSide(48));
+      const double texelAngle = 4.0 / side;  // the coarsest texel's
+      int hits[2] = {0, 0}, checked = 0;
+      for (int h = 0; h < 2; ++h)
+        for (int j = 0; j < side; ++j)
+          for (int i = 0; i < side; ++i) {
+            const glm::dvec2 xy = paraboloidTexelCentre(side, i, j);
+            if (glm::length(xy) > 0.98) continue;  // the rim: the clip plane's chords
+            const glm::dvec3 d = paraboloidDirection(c.frame, h, xy);
+            const double want = analyticHit(d, mode == CaptureMode::Back);
+            const float got = c.distance[h][std::size_t(j) * side + i];
+            ++checked;
+            if (std::isinf(want) != std::isinf(got)) {  // coverage differs only at an outline
+              EXPECT_LT(angleToOutline(d), 2.0 * texelAngle) << "map " << h << " texel " << i << "," << j;
+              continue;
+            }
+            if (std::isinf(want)) continue;
+            ++hits[h];
+            // Depths interpolate straight across a triangle in the disc; the icosphere's
+            // triangles span 0.04 rad, so the error stays well under 1 % of the radius but near
+            // the outline, where a texel's ray grazes the sphere.
+            if (angleToOutline(d) > 2.0 * texelAngle) {
+              EXPECT_NEAR(got, want, 0.01) << "map " << h << " texel " << i << "," << j;
+            }
           }
-          if (std::isinf(want)) continue;
-          ++hits[h];
-          // Depths interpolate straight across a triangle in the disc; the icosphere's
-          // triangles span 0.04 rad, so the error stays well under 1 % of the radius but near
-          // the outline, where a texel's ray grazes the sphere.
-          if (angleToOutline(d) > 2.0 * texelAngle) EXPECT_NEAR(got, want, 0.01) << "map " << h << " texel " << i << "," << j;
-        }
-    EXPECT_GT(hits[0], 50) << toString(mode);  // each ball fills part of its own map
-    EXPECT_GT(hits[1], 20) << toString(mode);
-    EXPECT_GT(checked, 2 * side * side / 2);
+      EXPECT_GT(hits[0], 50) << toString(mode);  // each ball fills part of its own map
+      EXPECT_GT(hits[1], 20) << toString(mode);
+      EXPECT_GT(checked, 2 * side * side / 2);
+    }
   }
 }
 
 FrameValidation shadowFrame(const Scene& scene, gl::RenderOptions ro) {
   ro.readVisibility = true;
   return validateFrame(scene, DepthMap{}, ro.volumeOptions, toRenderedFrame(renderer().render(ro), ro.method));
+}
+
+// The room's walls are a few triangles that span up to 90 degrees: cut into 8 x 8 in the light
+// pass, their edges bend far less in the disc, and the frame's error falls (the subdivided pass
+// keeps the triangles' winding: back capture still sees the back faces).
+TEST(DualParaboloid, SubdivisionStraightensLargeTriangles) {
+  Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
+  scene.camera.width = 160;
+  scene.camera.height = 120;
+  renderer().setScene(scene);
+  for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+    gl::RenderOptions ro;
+    ro.method = gl::ShadowMethod::Dpsm;
+    ro.capture = mode;
+    ro.depthWidth = ro.depthHeight = 256;
+    const double tutorial = shadowFrame(scene, ro).methodError.errorFraction();
+    ro.paraboloidSubdivision = 8;
+    const FrameValidation v = shadowFrame(scene, ro);
+    EXPECT_GT(v.exactShadowed, 0u);
+    EXPECT_LT(v.methodError.errorFraction(), tutorial) << toString(mode);
+  }
+  gl::RenderOptions bad;
+  bad.method = gl::ShadowMethod::Dpsm;
+  bad.paraboloidSubdivision = 3;
+  EXPECT_THROW(renderer().render(bad), InputError);
 }
 
 TEST(DualParaboloid, FramesFollowTheExactShadow) {

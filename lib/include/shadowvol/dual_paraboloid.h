@@ -49,6 +49,11 @@ struct DualParaboloid {
 /// of `side` texels a side. Throws InputError naming the light for another type.
 DualParaboloid makeDualParaboloid(const Light& point, const Bounds3& sceneBounds, int side);
 
+/// The widest angle (radians, seen from the light) a triangle's edge may span after the light
+/// pass's subdivision (RenderOptions::paraboloidSubdivision): a straight edge in the disc then
+/// departs from its true arc by at most about angle^2 side / 16 texels (0.28 at side 443).
+inline constexpr double kParaboloidSubdivisionAngle = 0.1;
+
 /// The default shadow-map bias of the maps for a cube face side of `cubeFaceSide`: that of a cube
 /// face (defaultBias) whose texels are as coarse as the maps' coarsest (at a disc's centre, 4 /
 /// side radians: a face of side / 2 texels).

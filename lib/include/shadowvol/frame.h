@@ -105,6 +105,10 @@ struct RenderOptions {
   double shadowBiasSlope = 1.0;                ///< shadow maps: + this x texel footprint (world
                                                ///< units at the receiver) x tan(angle between the
                                                ///< normal and the light axis), tan clamped to 10
+  int paraboloidSubdivision = 1;               ///< dpsm: each triangle cut into up to s x s (1, 2,
+                                               ///< 4 or 8) in its light pass, so none spans more
+                                               ///< than kParaboloidSubdivisionAngle; 1 = the
+                                               ///< tutorial's pass (docs/gpu.md)
   bool readStencil = true;                     ///< hybrid, silhouette: read the stencil counts back
   bool readDepthMap = false;                   ///< read the light depth back into the result
   bool readVisibility = false;                 ///< fill RenderResult::visibility (the method's own

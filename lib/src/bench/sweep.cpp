@@ -203,6 +203,11 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(cubeShadowMap("dpsm", gl::ShadowMethod::Dpsm,
                               "a point light's dual-paraboloid shadow map, two maps of the cube map's texel count "
                               "(round(N sqrt 3)^2 each for resolution N), one tap, back faces"));
+    SweepMethod subdivided = cubeShadowMap("dpsm-subdivided", gl::ShadowMethod::Dpsm,
+                                           "the dual-paraboloid map with each triangle cut into up to 8 x 8 in "
+                                           "its light pass (no edge over 0.1 rad), back faces");
+    subdivided.options.paraboloidSubdivision = 8;
+    v.push_back(subdivided);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(cubeVolume(c));
     SweepMethod s;
     s.key = "silhouette";

@@ -10,15 +10,18 @@
 namespace shadowvol::gl {
 
 DualParaboloidPass::DualParaboloidPass(const ShaderLibrary& shaders)
-    : program_(shaders, {"version_330.glsl", "paraboloid.glsl", "light_paraboloid.vert"}, {"depth_only.frag"}) {}
+    : program_(shaders, {"version_330.glsl", "paraboloid.glsl", "light_paraboloid.vert"},
+               {"version_330.glsl", "paraboloid.glsl", "light_paraboloid.geom"}, {"depth_only.frag"}) {}
 
 void DualParaboloidPass::setUniforms(const Program& program, const DualParaboloid& dp) {
   program.set("paraboloidToFront", glm::mat4(glm::dmat4(dp.toFront)));
   program.set("paraboloidRange", glm::vec2(float(dp.nearDistance), float(dp.farDistance)));
 }
 
-void DualParaboloidPass::draw(const DualParaboloid& dp, CaptureMode mode, const std::function<void()>& drawScene) {
+void DualParaboloidPass::draw(const DualParaboloid& dp, CaptureMode mode, int subdivision,
+                              const std::function<void()>& drawScene) {
   SV_CHECK(mode != CaptureMode::Midpoint);
+  SV_CHECK(subdivision == 1 || subdivision == 2 || subdivision == 4 || subdivision == 8);
   if (dp.side != side_) {
     texture_ = makeTexture();
     SV_GL(glBindTexture(GL_TEXTURE_2D, texture_.id()));
@@ -52,6 +55,8 @@ void DualParaboloidPass::draw(const DualParaboloid& dp, CaptureMode mode, const 
   program_.use();
   setUniforms(program_, dp);
   program_.set("lightPosition", glm::vec3(dp.position));
+  program_.set("maxSubdivision", subdivision);
+  program_.set("subdivisionAngle", float(kParaboloidSubdivisionAngle));
   for (int h = 0; h < 2; ++h) {
     SV_GL(glViewport(h * side_, 0, side_, side_));
     program_.set("hemisphere", h);

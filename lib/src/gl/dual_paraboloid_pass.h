@@ -1,6 +1,6 @@
 // A point light's dual-paraboloid shadow map on the GPU (dual_paraboloid.h): both hemispheres'
 // maps side by side in one DEPTH_COMPONENT32F texture of 2 side x side texels (front on the
-// left), drawn by shaders/light_paraboloid.vert. Internal to the renderer (renderer.cpp owns one
+// left), drawn by shaders/light_paraboloid.vert and .geom. Internal to the renderer (renderer.cpp owns one
 // per context).
 #pragma once
 
@@ -24,7 +24,8 @@ class DualParaboloidPass {
   /// CaptureMode::Front, the nearest back face for Back; Midpoint is the caller's to refuse).
   /// `drawScene` draws the scene's triangles with the current program; the caller has reset the
   /// GL state (reversed Z, depth test GREATER) before.
-  void draw(const DualParaboloid& dp, CaptureMode mode, const std::function<void()>& drawScene);
+  /// `subdivision` (1, 2, 4, 8): light_paraboloid.geom's largest cut per triangle side.
+  void draw(const DualParaboloid& dp, CaptureMode mode, int subdivision, const std::function<void()>& drawScene);
 
   /// The texture (valid after draw) and its side.
   const Texture& texture() const { return texture_; }

@@ -1195,6 +1195,9 @@ struct Renderer::Impl {
     if (o.method == ShadowMethod::Dpsm && o.capture == CaptureMode::Midpoint)
       throw InputError("RenderOptions", "capture", "midpoint",
                        "the dual-paraboloid map takes back or front capture (it has no second layer)");
+    const int s = o.paraboloidSubdivision;
+    if (s != 1 && s != 2 && s != 4 && s != 8)
+      throw InputError("RenderOptions", "paraboloidSubdivision", std::to_string(s), "must be 1, 2, 4 or 8");
     if (o.method == ShadowMethod::Dpsm) {
       const int side = dualParaboloidSide(o.depthWidth);
       if (2 * side > std::min(maxTextureSize, maxViewport[0]))
@@ -1363,10 +1366,10 @@ struct Renderer::Impl {
   }
 
   /// A point light's dual-paraboloid maps for a cube face side of n (dual_paraboloid.h).
-  void paraboloidPass(int n, CaptureMode mode) {
+  void paraboloidPass(int n, CaptureMode mode, int subdivision) {
     paraboloidFrame = makeDualParaboloid(light, sceneBounds, dualParaboloidSide(n));
     resetState();
-    paraboloid.draw(paraboloidFrame, mode, [this] { drawScene(); });
+    paraboloid.draw(paraboloidFrame, mode, subdivision, [this] { drawScene(); });
   }
 
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
@@ -1436,7 +1439,7 @@ struct Renderer::Impl {
     }
     if (dpsm) {
       TimedPass t(timer, "light");
-      paraboloidPass(o.depthWidth, o.capture);
+      paraboloidPass(o.depthWidth, o.capture, o.paraboloidSubdivision);
     }
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
       TimedPass t(timer, "light");
@@ -1683,7 +1686,7 @@ CubeDepthMap Renderer::captureCube(int n, CaptureMode mode) {
   return s.captureCube(n, mode);
 }
 
-Renderer::DualParaboloidCapture Renderer::captureDualParaboloid(int cubeFaceSide, CaptureMode mode) {
+Renderer::DualParaboloidCapture Renderer::captureDualParaboloid(int cubeFaceSide, CaptureMode mode, int subdivision) {
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
@@ -1691,12 +1694,13 @@ Renderer::DualParaboloidCapture Renderer::captureDualParaboloid(int cubeFaceSide
   o.method = ShadowMethod::Dpsm;
   o.capture = mode;
   o.depthWidth = o.depthHeight = cubeFaceSide;
+  o.paraboloidSubdivision = subdivision;
   if (s.light.type != LightType::Point)
     throw InputError(s.scene.source, "/light/type", toString(s.light.type), "dual-paraboloid maps are a point light's");
   s.checkSize("Renderer::captureDualParaboloid", "n x n", cubeFaceSide, cubeFaceSide,
               std::min(s.maxTextureSize, s.maxViewport[0]));
   s.validatePointLight(o);
-  s.paraboloidPass(cubeFaceSide, mode);
+  s.paraboloidPass(cubeFaceSide, mode, subdivision);
   return {s.paraboloidFrame, s.paraboloid.readDistances(s.paraboloidFrame)};
 }
 

@@ -101,12 +101,13 @@ class Renderer {
   /// A point light's dual-paraboloid maps as ShadowMethod::Dpsm draws them for a cube face side
   /// of `cubeFaceSide` (dual_paraboloid.h), read back as distances from the light (world units;
   /// +infinity where nothing was drawn), map h's texel (i, j) at distance[h][j * side + i].
-  /// Back or front capture; the scene's light must be a point light.
+  /// Back or front capture; `subdivision` as RenderOptions::paraboloidSubdivision. The scene's
+  /// light must be a point light.
   struct DualParaboloidCapture {
     DualParaboloid frame;
     std::array<std::vector<float>, 2> distance;
   };
-  DualParaboloidCapture captureDualParaboloid(int cubeFaceSide, CaptureMode mode);
+  DualParaboloidCapture captureDualParaboloid(int cubeFaceSide, CaptureMode mode, int subdivision = 1);
 
   /// Debug path of the silhouette walk (RefineCrossings::GpuWalk, walk_crossings.h): the light pass
   /// at width x height with `mode` and its triangle record, then the walk's raw answers to
