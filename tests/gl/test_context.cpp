@@ -67,7 +67,7 @@ TEST(GlShaders, EmbeddedSourcesArePresent) {
   }
   // volume_common.glsl and the stage bodies after it carry no #version of their own (a
   // version_*.glsl file comes first).
-  for (const char* name : {"resolve.frag", "scene.frag", "paraboloid.glsl", "light_paraboloid.vert", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom", "volume_keep.geom",
+  for (const char* name : {"resolve.frag", "scene.frag", "paraboloid.glsl", "light_paraboloid.vert", "light_paraboloid.geom", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom", "volume_keep.geom",
                            "volume_mesh.comp", "volume_index.frag", "volume_index.vert", "light_mark.frag",
                            "light_mark.glsl", "light_triangle.glsl", "refine_common.glsl", "boundary_edges.comp",
                            "volume_refined.comp", "volume_refined.vert"}) {
