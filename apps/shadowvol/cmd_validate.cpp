@@ -95,6 +95,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                                              ? dualParaboloidDefaultBias(scene.light, ro.depthWidth, ro.capture)
                                              : defaultBias(scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
                       {"shadowSlope", o->render.shadowSlope},
+                      {"dpsmSubdivide", o->render.dpsmSubdivide},
                       {"selfIntersections", o->selfIntersections}};
       if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
       if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)

@@ -499,11 +499,12 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
   // The dual-paraboloid baseline: its maps beside the cube map's in the report.
-  const CliResult d = runCli("validate --json --method dpsm --resolution 32 --size 160x120 --scene " + room +
+  const CliResult d = runCli("validate --json --method dpsm --dpsm-subdivide 4 --resolution 32 --size 160x120 --scene " + room +
                              " --report " + (dir / "dpsm").string());
   ASSERT_EQ(d.code, 0) << d.out;
   const auto jd = nlohmann::json::parse(d.out);
   EXPECT_EQ(jd["dualParaboloid"]["side"], 55);  // round(32 sqrt 3)
+  EXPECT_EQ(jd["options"]["dpsmSubdivide"], 4);
   EXPECT_EQ(jd["dualParaboloid"]["cubeMap"]["texels"].get<double>(), 6.0 * 32 * 32);
   EXPECT_GT(jd["dualParaboloid"]["largestTexelOverCubes"].get<double>(), 1.0);
   const CliResult mid = runCli("validate --method dpsm --capture midpoint --scene " + room + " --report " +
