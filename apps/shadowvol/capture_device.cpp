@@ -34,9 +34,11 @@ gl::Renderer rendererFor(const CaptureDeviceOptions& o, const Scene& scene) {
 }
 #endif
 
+#ifndef SHADOWVOL_WITH_GL
 [[noreturn]] void noGl(const CaptureDeviceOptions& o) {
   throw InputError("command line", "--device", o.device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
 }
+#endif
 
 }  // namespace
 

@@ -74,7 +74,9 @@ Compared compare(const Scene& scene, int n, CaptureMode mode, bool strictSurface
     const WalkResult& w = walked[edges.edges.size() + k];
     const double walkDepth = rule.ofSample(w.nearDepth, false), rayDepth = bisected.centreDepths[k];
     EXPECT_EQ(walkDepth == farPlane, rayDepth == farPlane) << "centre " << centres[k].x << ", " << centres[k].y;
-    if (walkDepth != farPlane && rayDepth != farPlane) EXPECT_NEAR(walkDepth, rayDepth, 1e-4 * farPlane);
+    if (walkDepth != farPlane && rayDepth != farPlane) {
+      EXPECT_NEAR(walkDepth, rayDepth, 1e-4 * farPlane);
+    }
     ++c.centres;
   }
   return c;
@@ -87,7 +89,9 @@ TEST(SilhouetteWalk, PlateCrossingsWhereBisectionPutsThem) {
     const Compared c = compare(scene, 64, mode, true);
     EXPECT_GE(c.edges, 4u * 10u);  // the plate spans more than 10 texels a side
     // Front capture sees the ground around the plate: its edges over the ground are surface edges.
-    if (mode == CaptureMode::Front) EXPECT_GE(c.surface, 4u * 10u);
+    if (mode == CaptureMode::Front) {
+      EXPECT_GE(c.surface, 4u * 10u);
+    }
   }
 }
 
