@@ -189,19 +189,27 @@ TEST(ShadowErrorMetric, DistanceTransformMatchesBruteForce) {
 
 // Both light fits in one run: the view-fitted cells name their scene "<scene>@view"; a method
 // without a depth map is measured once.
-TEST(Sweep, BothLightFitsSideBySide) {
-  const auto dir = test::tempDir();
-  gl::Renderer renderer;
+// A one-frame sweep of `methods` at 64² over `scenes` into `dir`, image w x h, both light fits.
+SweepOptions quickSweep(std::vector<std::filesystem::path> scenes, std::vector<std::string> methods, int w, int h,
+                        const std::filesystem::path& dir) {
   SweepOptions o;
-  o.scenes = {std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/tree-wide-ground.json"};
-  o.methods = {"shadowmap", "silhouette"};
+  o.scenes = std::move(scenes);
+  o.methods = std::move(methods);
   o.resolutions = {64};
-  o.width = 64;
-  o.height = 48;
+  o.width = w;
+  o.height = h;
   o.repeat = 1;
   o.warmup = 0;
   o.out = dir;
   o.fits = {LightFit::Scene, LightFit::View};
+  return o;
+}
+
+TEST(Sweep, BothLightFitsSideBySide) {
+  const auto dir = test::tempDir();
+  gl::Renderer renderer;
+  const SweepOptions o = quickSweep({std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/tree-wide-ground.json"},
+                                    {"shadowmap", "silhouette"}, 64, 48, dir);
   std::atomic<bool> stop{false};
   std::vector<std::string> notes;
   const auto rows = runSweep(renderer, o, stop, nullptr, notes);
@@ -221,16 +229,9 @@ TEST(Sweep, BothLightFitsSideBySide) {
 TEST(Sweep, PointLightScenesGetTheCubeMethods) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;
-  SweepOptions o;
-  o.scenes = {std::filesystem::path(), std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/point/room.json"};
-  o.methods = {"shadowmap", "cube-shadowmap", "cube-pcf3", "dpsm", "hybrid-cube/explicit", "silhouette"};
-  o.resolutions = {64};
-  o.width = 80;
-  o.height = 60;
-  o.repeat = 1;
-  o.warmup = 0;
-  o.out = dir;
-  o.fits = {LightFit::Scene, LightFit::View};
+  const SweepOptions o =
+      quickSweep({std::filesystem::path(), std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/point/room.json"},
+                 {"shadowmap", "cube-shadowmap", "cube-pcf3", "dpsm", "hybrid-cube/explicit", "silhouette"}, 80, 60, dir);
   std::atomic<bool> stop{false};
   std::vector<std::string> notes;
   const auto rows = runSweep(renderer, o, stop, nullptr, notes);

@@ -118,19 +118,31 @@ FrameValidation shadowFrame(const Scene& scene, gl::RenderOptions ro) {
   return validateFrame(scene, DepthMap{}, ro.volumeOptions, toRenderedFrame(renderer().render(ro), ro.method));
 }
 
+// The shipped room at 160 x 120.
+Scene smallRoom() {
+  Scene s = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
+  s.camera.width = 160;
+  s.camera.height = 120;
+  return s;
+}
+
+// The dual-paraboloid frame's options at n texels a cube face.
+gl::RenderOptions dpsmOptions(CaptureMode mode, int n) {
+  gl::RenderOptions ro;
+  ro.method = gl::ShadowMethod::Dpsm;
+  ro.capture = mode;
+  ro.depthWidth = ro.depthHeight = n;
+  return ro;
+}
+
 // The room's walls are a few triangles that span up to 90 degrees: cut into 8 x 8 in the light
 // pass, their edges bend far less in the disc, and the frame's error falls (the subdivided pass
 // keeps the triangles' winding: back capture still sees the back faces).
 TEST(DualParaboloid, SubdivisionStraightensLargeTriangles) {
-  Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
-  scene.camera.width = 160;
-  scene.camera.height = 120;
+  const Scene scene = smallRoom();
   renderer().setScene(scene);
   for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
-    gl::RenderOptions ro;
-    ro.method = gl::ShadowMethod::Dpsm;
-    ro.capture = mode;
-    ro.depthWidth = ro.depthHeight = 256;
+    gl::RenderOptions ro = dpsmOptions(mode, 256);
     const double tutorial = shadowFrame(scene, ro).methodError.errorFraction();
     ro.paraboloidSubdivision = 8;
     const FrameValidation v = shadowFrame(scene, ro);
@@ -144,17 +156,12 @@ TEST(DualParaboloid, SubdivisionStraightensLargeTriangles) {
 }
 
 TEST(DualParaboloid, FramesFollowTheExactShadow) {
-  Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
-  scene.camera.width = 160;
-  scene.camera.height = 120;
+  const Scene scene = smallRoom();
   renderer().setScene(scene);
   for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
     double previous = 1.0;
     for (int n : {16, 128}) {
-      gl::RenderOptions ro;
-      ro.method = gl::ShadowMethod::Dpsm;
-      ro.capture = mode;
-      ro.depthWidth = ro.depthHeight = n;
+      const gl::RenderOptions ro = dpsmOptions(mode, n);
       const FrameValidation v = shadowFrame(scene, ro);
       EXPECT_GT(v.exactShadowed, 0u);
       EXPECT_LT(v.methodError.errorFraction(), previous) << toString(mode) << " " << n;
