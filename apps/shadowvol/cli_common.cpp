@@ -30,7 +30,11 @@ void addLightFitOption(CLI::App& cmd, std::string& fit) {
       ->capture_default_str();
 }
 
-nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution) {
+namespace {
+
+// applyLightFit for the scene's light (Scene::light); `label` names it in the text ("light",
+// "light 1").
+nlohmann::json applyLightFitToOne(Scene& scene, const SceneOptions& o, int resolution, const std::string& label) {
   LightFit fit = LightFit::Scene;
   parseLightFit(o.fit, fit);
   nlohmann::json j = {{"fit", o.fit}};
@@ -44,12 +48,42 @@ nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution
   const auto texel = receiverTexelSize(scene, resolution);
   j["texelOnReceivers"] = texel ? nlohmann::json::array({texel->first, texel->second}) : nlohmann::json();
   if (!o.json) {
-    std::printf("light (--fit %s)%s%s: texel on the receivers ", o.fit.c_str(), j.contains("note") ? ", " : "",
-                j.contains("note") ? j["note"].get<std::string>().c_str() : "");
+    std::printf("%s (--fit %s)%s%s: texel on the receivers ", label.c_str(), o.fit.c_str(),
+                j.contains("note") ? ", " : "", j.contains("note") ? j["note"].get<std::string>().c_str() : "");
     if (texel) std::printf("%.3g to %.3g world units at %d x %d\n", texel->first, texel->second, resolution, resolution);
     else std::printf("unknown (the camera sees none of the lit scene)\n");
   }
   return j;
+}
+
+}  // namespace
+
+nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution) {
+  if (scene.lightCount() == 1) return applyLightFitToOne(scene, o, resolution, "light");
+  nlohmann::json j = {{"fit", o.fit}, {"lights", nlohmann::json::array()}};
+  forEachLight(scene, [&](std::size_t k) {
+    j["lights"].push_back(applyLightFitToOne(scene, o, resolution, "light " + std::to_string(k)));
+  });
+  return j;
+}
+
+void addLightChoiceOption(CLI::App& cmd, int& light) {
+  cmd.add_option("--light", light,
+                 "Which light of a scene with several (its index in the scene's `lights`, from 0): this command "
+                 "works on one light's depth map")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
+void chooseLight(Scene& scene, int light) {
+  if (std::size_t(light) >= scene.lightCount())
+    throw InputError("command line", "--light", std::to_string(light),
+                     "the scene has " + std::to_string(scene.lightCount()) + (scene.lightCount() == 1 ? " light" : " lights") +
+                         " (0 to " + std::to_string(scene.lightCount() - 1) + ")");
+  if (scene.lightCount() > 1 && light == 0)
+    std::fprintf(stderr, "shadowvol: note: %s has %zu lights; this command takes light 0 (--light K picks another)\n",
+                 scene.source.c_str(), scene.lightCount());
+  if (scene.lightCount() > 1) scene = scene.withOnlyLight(std::size_t(light));
 }
 
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {

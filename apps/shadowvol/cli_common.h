@@ -36,7 +36,15 @@ void addLightFitOption(CLI::App& cmd, std::string& fit);
 /// Applies --fit to the loaded scene (after the camera's size is final) for a map of
 /// `resolution` texels, and describes the light as used: the fit, what it changed and the texel
 /// size on the receivers (JSON for --json; the same as one line on stdout otherwise).
+/// With several lights each is fitted, and the JSON is {"fit", "lights": [one per light]}.
 nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution);
+
+/// Adds --light K (build, depth: the commands that work on one light's depth map).
+void addLightChoiceOption(CLI::App& cmd, int& light);
+
+/// Keeps light `light` of the scene alone (Scene::withOnlyLight); an InputError naming --light
+/// when there is no such light. With several lights and K = 0 a note on stderr says so.
+void chooseLight(Scene& scene, int light);
 
 /// Adds --platform (the EGL platform: auto, device, surfaceless, default); `when` prefixes the
 /// help ("With --device gpu, ") where the option does not always apply.

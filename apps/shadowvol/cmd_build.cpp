@@ -25,6 +25,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
     SceneOptions scene;
     std::string depth;
     int resolution = 512;
+    int light = 0;
     std::string capture = "back";
     VolumeCliOptions volume;
     bool noFlatten = false;
@@ -39,6 +40,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                "into a closed, outward-oriented triangle mesh and write it (.ply binary, .obj, .off, .stl, .gltf, .glb)");
   addSceneOptions(*cmd, o->scene);
   addLightFitOption(*cmd, o->scene.fit);
+  addLightChoiceOption(*cmd, o->light);
   auto* depthOpt = cmd->add_option("--depth", o->depth,
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
                                    "capturing one from the scene");
@@ -53,6 +55,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   addCaptureDeviceOptions(*cmd, o->device);
   depthOpt->excludes(resOpt)->excludes(capOpt)->excludes(cmd->get_option("--device"));
   cmd->get_option("--scene")->excludes(depthOpt);
+  cmd->get_option("--light")->excludes(depthOpt);
   addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
   cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off, .stl, .gltf (one JSON file) or .glb (binary glTF)")->required();
@@ -91,6 +94,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         CaptureMode mode{};
         parseCaptureMode(o->capture, mode);
         scene = loadSceneOrDefault(o->scene.scene);
+        chooseLight(scene, o->light);
         j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);
         j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
         const auto t0 = std::chrono::steady_clock::now();

@@ -18,6 +18,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
   struct Options {
     SceneOptions scene;
     int resolution = 512;
+    int light = 0;
     std::string capture = "back";
     std::string out;
     CaptureDeviceOptions device;
@@ -28,6 +29,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                                           "near/far, capture mode)");
   addSceneOptions(*cmd, o->scene);
   addLightFitOption(*cmd, o->scene.fit);
+  addLightChoiceOption(*cmd, o->light);
   cmd->add_option("--resolution", o->resolution, "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
       ->capture_default_str();
   cmd->add_option("--capture", o->capture,
@@ -47,6 +49,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       CaptureMode mode{};
       parseCaptureMode(o->capture, mode);
       Scene scene = loadSceneOrDefault(o->scene.scene);
+      chooseLight(scene, o->light);
       const nlohmann::json lightFit = applyLightFit(scene, o->scene, o->resolution);
       const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);
       const auto t0 = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include "render_options.h"
 #include "shadowvol/version.h"
 #include "shadowvol/error.h"
+#include "shadowvol/image_io.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/report_json.h"
 #include "shadowvol/dual_paraboloid.h"
@@ -19,6 +20,91 @@
 
 namespace shadowvol::cli {
 namespace {
+
+// One light's part of a validated frame: its render result (the frame's for light 0, else
+// otherLights[k - 1]) and its checks.
+struct LightCheck {
+  const gl::RenderResult* result = nullptr;
+  RenderedFrame frame;
+  FrameValidation v;
+};
+
+// The report's fields of one light's checks (all of them at the top level for one light).
+nlohmann::json describeLightCheck(const LightCheck& c, const gl::RenderOptions& ro, const ValidationOptions& vo) {
+  const gl::RenderResult& result = *c.result;
+  nlohmann::json j;
+  if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
+  if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
+    j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
+                          {"crossingFallbacks", result.gpuCrossingFallbacks},
+                          {"volumeTriangles", result.volumeTriangles}};
+  j.update(describeValidation(c.v, vo, ro.method == gl::ShadowMethod::Silhouette));
+  if (c.frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
+    j["volumeCount"] = gl::toString(result.volumeCountUsed);
+    if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
+  }
+  if (ro.method == gl::ShadowMethod::Dpsm) j["dualParaboloid"] = describeDualParaboloid(ro.depthWidth);
+  if (ro.method == gl::ShadowMethod::Silhouette) {
+    j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
+    j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
+  }
+  return j;
+}
+
+// The shadow maps' constant bias for `light` (the option's, or the default).
+double shadowBiasFor(const Light& light, const gl::RenderOptions& ro) {
+  return ro.shadowBiasConstant.value_or(ro.method == gl::ShadowMethod::Dpsm
+                                            ? dualParaboloidDefaultBias(light, ro.depthWidth, ro.capture)
+                                            : defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
+}
+
+// One light's checks as text (`j`: its describeLightCheck).
+void printLightCheck(const LightCheck& c, const gl::RenderOptions& ro, const nlohmann::json& j) {
+  const gl::RenderResult& result = *c.result;
+  const FrameValidation& v = c.v;
+  std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
+              v.facingAway, v.outsideLight, v.background);
+  if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
+    std::printf("  refinement on the GPU: %zu boundary edges walked, %zu without a crossing found; the CPU "
+                "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
+                result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
+                result.volumeStats->crossingFallbacks);
+  else if (result.volumeStats && result.volumeStats->refinedCells > 0)
+    std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
+                result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
+                result.volumeStats->crossingFallbacks, result.volumeStats->msRefine);
+  if (v.meshCheck) {
+    std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
+    if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());
+    std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",
+                gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
+                v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
+                v.stencilVsCount.ties);
+    if (v.zfailVsZpass)
+      std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());
+    else
+      std::printf("  z-fail vs z-pass: not applicable (the eye is inside the volume)\n");
+  }
+  std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
+              v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
+              100 * v.methodError.falseFraction(), v.methodError.pixels);
+  if (ro.method == gl::ShadowMethod::Dpsm) {
+    const nlohmann::json& d = j["dualParaboloid"];
+    std::printf("  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "
+                "(x%.2f); the cube map at %d^2: %.3g to %.3g sr (x%.2f); coarsest texel x%.2f the cube's\n",
+                d["side"].get<int>(), 100 * d["usedFraction"].get<double>(), d["smallestTexelSr"].get<double>(),
+                d["largestTexelSr"].get<double>(), d["largestOverSmallest"].get<double>(), ro.depthWidth,
+                d["cubeMap"]["smallestTexelSr"].get<double>(), d["cubeMap"]["largestTexelSr"].get<double>(),
+                d["cubeMap"]["largestOverSmallest"].get<double>(), d["largestTexelOverCubes"].get<double>());
+  }
+  if (ro.method == gl::ShadowMethod::Silhouette && !result.receiversOnly.empty()) {
+    std::printf("  cast no silhouette shadow (open, receivers only):");
+    for (const auto& name : result.receiversOnly) std::printf(" \"%s\"", name.c_str());
+    std::printf("\n");
+  }
+  if (!v.meshChecksNotApplicable.empty()) std::printf("  not applicable: %s\n", v.meshChecksNotApplicable.c_str());
+  for (const auto& f : v.failures) std::printf("  failed: %s\n", f.c_str());
+}
 
 }  // namespace
 
@@ -70,18 +156,30 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                   renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
       renderer.setScene(scene);
       const gl::RenderResult result = renderer.render(ro);
-      const RenderedFrame frame = toRenderedFrame(result, ro.method);
       ValidationOptions vo;
       vo.selfIntersections = o->selfIntersections;
       vo.maxError = o->maxError;
       vo.maxMissedShare = o->maxMissedShare;
-      const FrameValidation v = validateRender(scene, ro, result, frame, vo);
+      // Each light's checks on a scene with that light alone (the shadows are per light; the
+      // image is the frame's, every light's diffuse term added).
+      std::vector<LightCheck> checks(scene.lightCount());
+      bool passed = true;
+      for (std::size_t k = 0; k < checks.size(); ++k) {
+        LightCheck& c = checks[k];
+        c.result = k == 0 ? &result : &result.otherLights[k - 1];
+        c.frame = toRenderedFrame(*c.result, ro.method);
+        c.frame.rgba = result.rgba;
+        c.v = checks.size() == 1 ? validateRender(scene, ro, *c.result, c.frame, vo)
+                                 : validateRender(scene.withOnlyLight(k), ro, *c.result, c.frame, vo);
+        passed = passed && c.v.passed;
+      }
+      const bool hybrid = checks[0].frame.hybrid;
 
       nlohmann::json j;
       j["scene"] = describeScene(scene);
       j["gl"] = describeContext(renderer.info());
       j["options"] = {{"method", o->render.method},
-                      {"volume", frame.hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
+                      {"volume", hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
                       {"resolution", o->render.resolution},
                       {"capture", o->render.capture},
                       {"triangulation", o->render.shape.triangulation},
@@ -90,37 +188,50 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"bias", result.biasUsed},
                       {"cap", o->render.shape.cap},
                       {"refine", o->render.shape.refine},
-                      {"shadowBias", ro.shadowBiasConstant.value_or(
-                                         ro.method == gl::ShadowMethod::Dpsm
-                                             ? dualParaboloidDefaultBias(scene.light, ro.depthWidth, ro.capture)
-                                             : defaultBias(scene.light, ro.depthWidth, ro.depthHeight, ro.capture))},
+                      {"shadowBias", shadowBiasFor(scene.light, ro)},
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},
                       {"selfIntersections", o->selfIntersections}};
-      if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
-      if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
-        j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
-                              {"crossingFallbacks", result.gpuCrossingFallbacks},
-                              {"volumeTriangles", result.volumeTriangles}};
-      j.update(describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette));
-      if (frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
-        j["volumeCount"] = gl::toString(result.volumeCountUsed);
-        if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
-      }
-      if (ro.method == gl::ShadowMethod::Dpsm) j["dualParaboloid"] = describeDualParaboloid(ro.depthWidth);
-      if (ro.method == gl::ShadowMethod::Silhouette) {
-        j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
-        j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
+      std::vector<std::string> images = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
+      if (!hybrid) images = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};
+      std::vector<nlohmann::json> sections;
+      for (std::size_t k = 0; k < checks.size(); ++k) sections.push_back(describeLightCheck(checks[k], ro, vo));
+      if (checks.size() == 1) {
+        j.update(sections[0]);
+      } else {
+        // Several lights: one section per light (its images in light-K/), the verdict over all.
+        j["lights"] = nlohmann::json::array();
+        for (std::size_t k = 0; k < checks.size(); ++k) {
+          nlohmann::json section = {{"index", k},
+                                    {"pointer", scene.lightPointer(k)},
+                                    {"type", toString(scene.lightAt(k).type)},
+                                    {"bias", checks[k].result->biasUsed},
+                                    {"shadowBias", shadowBiasFor(scene.lightAt(k), ro)},
+                                    {"imageFolder", "light-" + std::to_string(k)}};
+          section.update(sections[k]);
+          j["lights"].push_back(section);
+        }
+        j["passed"] = passed;
+        j["verdict"] = passed ? "every light's frame is consistent and accurate"
+                              : "at least one light's frame failed: see lights[k].verdict";
       }
       j["warnings"] = warnings;
       j["lightFit"] = lightFit;
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
-      j["images"] = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
-      if (!frame.hybrid) j["images"] = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};
+      j["images"] = checks.size() == 1 ? images : std::vector<std::string>{"frame.png"};
 
       // Everything is computed; now write. Images first, the report last (its presence means done).
       std::filesystem::create_directories(dir);
-      writeValidationImages(dir, v, frame);
+      if (checks.size() == 1) {
+        writeValidationImages(dir, checks[0].v, checks[0].frame);
+      } else {
+        writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
+        for (std::size_t k = 0; k < checks.size(); ++k) {
+          const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
+          std::filesystem::create_directories(sub);
+          writeValidationImages(sub, checks[k].v, checks[k].frame);
+        }
+      }
       writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
         std::ofstream out(tmp);
         out << j.dump(2) << '\n';
@@ -131,54 +242,16 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         std::cout << j.dump(2) << '\n';
       } else {
         std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(),
-                    frame.hybrid ? ", " : "", frame.hybrid ? gl::toString(ro.volume) : "",
-                    renderer.info().glRenderer.c_str());
-        std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
-                    v.facingAway, v.outsideLight, v.background);
-        if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
-          std::printf("  refinement on the GPU: %zu boundary edges walked, %zu without a crossing found; the CPU "
-                      "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
-                      result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
-                      result.volumeStats->crossingFallbacks);
-        else if (result.volumeStats && result.volumeStats->refinedCells > 0)
-          std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
-                      result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
-                      result.volumeStats->crossingFallbacks, result.volumeStats->msRefine);
-        if (v.meshCheck) {
-          std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
-          if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());
-          std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",
-                      gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
-                      v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
-                      v.stencilVsCount.ties);
-          if (v.zfailVsZpass)
-            std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());
-          else
-            std::printf("  z-fail vs z-pass: not applicable (the eye is inside the volume)\n");
+                    hybrid ? ", " : "", hybrid ? gl::toString(ro.volume) : "", renderer.info().glRenderer.c_str());
+        for (std::size_t k = 0; k < checks.size(); ++k) {
+          if (checks.size() > 1)
+            std::printf(" light %zu (%s, %s): %s\n", k, toString(scene.lightAt(k).type), scene.lightPointer(k).c_str(),
+                        checks[k].v.passed ? "passed" : "failed");
+          printLightCheck(checks[k], ro, checks.size() == 1 ? j : j["lights"][k]);
         }
-        std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
-                    v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
-                    100 * v.methodError.falseFraction(), v.methodError.pixels);
-        if (ro.method == gl::ShadowMethod::Dpsm) {
-          const nlohmann::json& d = j["dualParaboloid"];
-          std::printf("  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "
-                      "(x%.2f); the cube map at %d^2: %.3g to %.3g sr (x%.2f); coarsest texel x%.2f the cube's\n",
-                      d["side"].get<int>(), 100 * d["usedFraction"].get<double>(), d["smallestTexelSr"].get<double>(),
-                      d["largestTexelSr"].get<double>(), d["largestOverSmallest"].get<double>(), ro.depthWidth,
-                      d["cubeMap"]["smallestTexelSr"].get<double>(), d["cubeMap"]["largestTexelSr"].get<double>(),
-                      d["cubeMap"]["largestOverSmallest"].get<double>(), d["largestTexelOverCubes"].get<double>());
-        }
-        if (ro.method == gl::ShadowMethod::Silhouette && !result.receiversOnly.empty()) {
-          std::printf("  cast no silhouette shadow (open, receivers only):");
-          for (const auto& name : result.receiversOnly) std::printf(" \"%s\"", name.c_str());
-          std::printf("\n");
-        }
-        if (!v.meshChecksNotApplicable.empty())
-          std::printf("  not applicable: %s\n", v.meshChecksNotApplicable.c_str());
-        for (const auto& f : v.failures) std::printf("  failed: %s\n", f.c_str());
-        std::printf("%s: wrote %s\n", v.passed ? "PASSED" : "FAILED", (dir / "report.json").string().c_str());
+        std::printf("%s: wrote %s\n", passed ? "PASSED" : "FAILED", (dir / "report.json").string().c_str());
       }
-      return v.passed ? kOk : kValidationFailed;
+      return passed ? kOk : kValidationFailed;
     };
   });
 }

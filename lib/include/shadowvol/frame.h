@@ -160,7 +160,7 @@ struct RenderResult {
                                       ///< (refined GPU volume: the CPU mesh from its crossings)
   std::optional<VolumeMesh> gpuVolume;  ///< refined GPU volume with keepVolume: the GPU's own
                                         ///< triangles, read back and placed in double (a debug path)
-  std::vector<PassTime> passes;       ///< in execution order
+  std::vector<PassTime> passes;       ///< in execution order, every light's
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes
   std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
@@ -183,6 +183,12 @@ struct RenderResult {
                                            ///< plane) that receive but cast no shadow, by name
   std::vector<std::string> skippedCasters; ///< silhouette: closed objects entirely behind a spot
                                            ///< light's apex plane (they cannot shadow its frustum)
+  /// A scene with several lights: this result's fields other than the image, the passes and
+  /// the timing describe its first light (Scene::light); light k >= 1 has otherLights[k - 1],
+  /// with the same fields but rgba, passes and timing (its passes are in `passes`, named with
+  /// the suffix "#k": "light#1", "volume#1"). `rgba` is the whole frame: every light's diffuse
+  /// term added, each where its own shadow test says lit.
+  std::vector<RenderResult> otherLights;
 };
 
 }  // namespace shadowvol

@@ -30,6 +30,9 @@ struct Light {
                                           ///< 0 = fitted to the scene by fitLightAndCamera,
                                           ///< which also tightens given planes to the scene
   double farPlane = 0.0;                  ///< distance along the light axis (> near); 0 = fitted
+  double intensity = 1.0;                 ///< factor of the diffuse term (>= 0; the renderer's
+                                          ///< RenderOptions::diffuse x this): several lights'
+                                          ///< terms add up, so a scene may scale each down
 };
 
 /// The up vector used for the light's view: Light::up when non-zero, else world +Y, or world -Z

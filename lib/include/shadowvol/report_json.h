@@ -10,7 +10,8 @@
 namespace shadowvol {
 
 /// The scene as used: source, object and triangle counts, local origin (Scene::origin), bounds,
-/// light and camera with their fitted near/far; positions in world units (stored + origin).
+/// light (the first) and camera with their fitted near/far, and with several lights `lights`, one
+/// such description per light in order; positions in world units (stored + origin).
 nlohmann::json describeScene(const Scene& scene);
 
 /// A volume build's counts and times (VolumeBuildStats; the times in milliseconds under "ms").

@@ -1,4 +1,4 @@
-// A scene: world-space triangle meshes, one light, one camera. Loaded from the JSON format
+// A scene: world-space triangle meshes, one or more lights, one camera. Loaded from the JSON format
 // documented in README.md ("Scene files"), or the built-in default scene.
 #pragma once
 
@@ -24,6 +24,9 @@ struct SceneObject {
 /// The default limit on a scene's triangles (parseScene's maxTriangles).
 inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;
 
+/// The most lights a scene may have: each costs a capture, a volume and a stencil pass per frame.
+inline constexpr std::size_t kMaxSceneLights = 16;
+
 struct Scene {
   std::string source = "default";  ///< file path it was loaded from, or "default"
   /// Local origin, world units, double: every position in this struct (objects, light, camera,
@@ -36,13 +39,53 @@ struct Scene {
   /// the origin").
   glm::dvec3 origin{0.0};
   std::vector<SceneObject> objects;
-  Light light;     ///< near/far (and for directional lights position/extent) fitted when not given
+  /// The first light: the file's `light`, or `lights[0]`. Near/far (and for directional lights
+  /// position/extent) fitted when not given. Every one-light tool (build, depth, the sweep) works
+  /// on this one; forEachLight makes each light in turn this one.
+  Light light;
+  /// The lights after the first of a `lights` array, fitted like `light`. Each has its own
+  /// capture, volume and stencil pass; its diffuse term is added where its stencil is 0.
+  std::vector<Light> otherLights;
+  bool lightsArray = false;  ///< the file gave `lights` (error pointers say /lights/k), not `light`
   Camera camera;   ///< near/far fitted when not given
+
+  std::size_t lightCount() const { return 1 + otherLights.size(); }
+  const Light& lightAt(std::size_t k) const { return k == 0 ? light : otherLights.at(k - 1); }
+  Light& lightAt(std::size_t k) { return k == 0 ? light : otherLights.at(k - 1); }
+  /// The JSON pointer of light k in the file: "/light", or "/lights/k" when it gave an array.
+  std::string lightPointer(std::size_t k) const;
+  /// A copy with light k as its one light (`light`, no otherLights): for the per-light checks.
+  Scene withOnlyLight(std::size_t k) const;
 
   std::size_t triangleCount() const;
   Bounds3 bounds() const;        ///< of all objects, world space
   TriangleMesh merged() const;   ///< all objects in one mesh, in object order
 };
+
+/// Calls f(k) for k = 0 .. lightCount() - 1 with light k swapped into scene.light, so that code
+/// written for one light (fitting, capture, validation) runs for each; the lights are back in
+/// their places afterwards, also when f throws.
+template <class F>
+void forEachLight(Scene& scene, F&& f) {
+  struct Restore {
+    Scene& s;
+    std::size_t k = 0;
+    ~Restore() {
+      if (k > 0) std::swap(s.light, s.otherLights[k - 1]);
+    }
+  } restore{scene};
+  for (std::size_t k = 0; k < scene.lightCount(); ++k) {
+    if (k > 0) {
+      restore.k = k;
+      std::swap(scene.light, scene.otherLights[k - 1]);
+    }
+    f(k);
+    if (k > 0) {
+      std::swap(scene.light, scene.otherLights[k - 1]);
+      restore.k = 0;
+    }
+  }
+}
 
 /// Warnings collected while loading (for example a light inside a closed mesh).
 struct SceneLoadResult {

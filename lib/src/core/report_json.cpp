@@ -10,18 +10,23 @@ nlohmann::json describeScene(const Scene& s) {
   // Positions in world units (stored + origin); directions need no origin.
   auto v3 = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
   auto w3 = [&](const glm::dvec3& v) { return v3(v + s.origin); };
-  nlohmann::json light = {{"type", toString(s.light.type)},
-                          {"position", w3(s.light.position)},
-                          {"near", s.light.nearPlane},
-                          {"far", s.light.farPlane}};
-  if (s.light.type != LightType::Point) {  // a point light has neither
-    light["direction"] = v3(s.light.direction);
-    light["up"] = v3(lightUp(s.light));
-  }
-  if (s.light.type == LightType::Spot) light["fov"] = s.light.fovYDegrees;
-  if (s.light.type == LightType::Directional) light["extent"] = s.light.halfExtent;
+  auto describeLight = [&](const Light& l) {
+    nlohmann::json light = {{"type", toString(l.type)},
+                            {"position", w3(l.position)},
+                            {"near", l.nearPlane},
+                            {"far", l.farPlane},
+                            {"intensity", l.intensity}};
+    if (l.type != LightType::Point) {  // a point light has neither
+      light["direction"] = v3(l.direction);
+      light["up"] = v3(lightUp(l));
+    }
+    if (l.type == LightType::Spot) light["fov"] = l.fovYDegrees;
+    if (l.type == LightType::Directional) light["extent"] = l.halfExtent;
+    return light;
+  };
+  const nlohmann::json light = describeLight(s.light);
   const Bounds3 b = s.bounds();
-  return {{"source", s.source},
+  nlohmann::json j = {{"source", s.source},
           {"objects", s.objects.size()},
           {"triangles", s.triangleCount()},
           {"origin", v3(s.origin)},
@@ -36,6 +41,11 @@ nlohmann::json describeScene(const Scene& s) {
             {"height", s.camera.height},
             {"near", s.camera.nearPlane},
             {"far", s.camera.farPlane}}}};
+  if (s.lightCount() > 1) {
+    j["lights"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < s.lightCount(); ++k) j["lights"].push_back(describeLight(s.lightAt(k)));
+  }
+  return j;
 }
 
 nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {

@@ -367,6 +367,7 @@ void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std
     world[k] = {};
   }
   scene.light.position -= scene.origin;
+  for (Light& l : scene.otherLights) l.position -= scene.origin;
   scene.camera.eye -= scene.origin;
   scene.camera.target -= scene.origin;
 }
@@ -390,8 +391,14 @@ void readLightPlanes(ObjectReader& r, Light& light) {
   }
 }
 
-Light readLight(const json& v, const std::string& source) {
-  ObjectReader r(v, "/light", source);
+void readIntensity(ObjectReader& r, Light& light) {
+  light.intensity = r.number("intensity", 1.0);
+  if (!(light.intensity >= 0.0 && light.intensity <= 1e3))
+    r.fail("intensity", json(light.intensity), "a light's intensity (its diffuse factor) must be in [0, 1000]");
+}
+
+Light readLight(const json& v, const std::string& pointer, const std::string& source) {
+  ObjectReader r(v, pointer, source);
   Light light;
   const std::string type = r.string("type");
   if (type == "spot") light.type = LightType::Spot;
@@ -406,6 +413,7 @@ Light readLight(const json& v, const std::string& source) {
         r.fail(field, r.raw(field), "a point light shines every way from its position: it has no direction, up, "
                                     "fov or extent (its six cube faces are fixed, README \"Point lights\")");
     readLightPlanes(r, light);
+    readIntensity(r, light);
     r.finish();
     return light;
   }
@@ -437,6 +445,7 @@ Light readLight(const json& v, const std::string& source) {
     light.halfExtent = r.positive("extent");
   }
   readLightPlanes(r, light);
+  readIntensity(r, light);
   r.finish();
   return light;
 }
@@ -507,7 +516,70 @@ bool isClosed(const TriangleMesh& m) {
   return true;
 }
 
+// The file's `light` or `lights` (one of them, not both): at most kMaxSceneLights.
+void readLights(ObjectReader& top, Scene& scene, const std::string& source) {
+  if (top.has("light") && top.has("lights"))
+    top.fail("lights", top.raw("lights"), "give either `light` (one light) or `lights` (an array), not both");
+  if (!top.has("light") && !top.has("lights"))
+    top.fail("light", json(), "required field is missing (or `lights`, an array of lights)");
+  if (top.has("light")) {
+    scene.light = readLight(top.raw("light"), "/light", source);
+    return;
+  }
+  const json& lights = top.raw("lights");
+  if (!lights.is_array() || lights.empty() || lights.size() > kMaxSceneLights)
+    top.fail("lights", lights.is_array() ? json(std::to_string(lights.size()) + " lights") : lights,
+             "expected an array of 1 to " + std::to_string(kMaxSceneLights) + " lights");
+  scene.lightsArray = true;
+  for (std::size_t k = 0; k < lights.size(); ++k) {
+    Light l = readLight(lights[k], "/lights/" + std::to_string(k), source);
+    if (k == 0) scene.light = l;
+    else scene.otherLights.push_back(l);
+  }
+}
+
+// Light k (as scene.light, forEachLight) fitted to the loaded scene: the fit's notes as warnings,
+// their "/light/" pointers made the light's own.
+void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings) {
+  const Light given = scene.light;
+  const std::string pointer = scene.lightPointer(k);
+  for (auto& note : fitLightAndCamera(scene)) {
+    if (note.rfind("/light/", 0) == 0) note = pointer + note.substr(6);
+    warnings.push_back(std::move(note));
+  }
+  if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
+    throw InputError(source, pointer + "/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
+}
+
+// The warnings about light k (as scene.light): inside a closed mesh; a directional light's plane
+// through the scene.
+void warnAboutLight(const Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings) {
+  const std::string pointer = scene.lightPointer(k);
+  for (const auto& o : scene.objects)
+    if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
+      warnings.push_back(source + ": " + pointer + "/position: the " + toString(scene.light.type) +
+                         " light is inside the closed mesh \"" + o.name + "\": everything it lights will be in shadow");
+  if (scene.light.type == LightType::Directional &&
+      detail::depthRange(scene.bounds(), scene.light.position, scene.light.direction).first < 0.0)
+    warnings.push_back(source + ": " + pointer + "/position: the plane through the directional light's position cuts "
+                                                 "the scene's bounds: what lies behind it is neither lit nor casts a shadow");
+}
+
 }  // namespace
+
+std::string Scene::lightPointer(std::size_t k) const {
+  return lightsArray ? "/lights/" + std::to_string(k) : "/light";
+}
+
+Scene Scene::withOnlyLight(std::size_t k) const {
+  Scene s;
+  s.source = source;
+  s.origin = origin;
+  s.objects = objects;
+  s.light = lightAt(k);
+  s.camera = camera;
+  return s;
+}
 
 std::size_t Scene::triangleCount() const {
   std::size_t n = 0;
@@ -547,34 +619,23 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
     scene.objects.push_back(std::move(read.obj));
     world.push_back(std::move(read.world));
   }
-  if (!top.has("light")) top.fail("light", json(), "required field is missing");
-  scene.light = readLight(top.raw("light"), source);
+  readLights(top, scene, source);
   if (!top.has("camera")) top.fail("camera", json(), "required field is missing");
   scene.camera = readCamera(top.raw("camera"), source);
   top.finish();
 
   if (scene.triangleCount() == 0) throw InputError(source, "/objects", "", "the scene has no triangles");
   rebase(scene, world, source);
-  const Light given = scene.light;
-  for (auto& note : fitLightAndCamera(scene)) result.warnings.push_back(std::move(note));
-  if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
-    throw InputError(source, "/light/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
-  if (!splitSceneAcrossEyePlanes(scene, maxTriangles).complete)
+  forEachLight(scene, [&](std::size_t k) { fitLoadedLight(scene, k, source, result.warnings); });
+  bool splitComplete = true;
+  forEachLight(scene, [&](std::size_t) { splitComplete = splitSceneAcrossEyePlanes(scene, maxTriangles).complete && splitComplete; });
+  if (!splitComplete)
     result.warnings.push_back(source + ": /objects: triangles crossing the camera's or light's eye plane are more than " +
                               std::to_string(int(kEyePlaneEdgeRatio)) +
                               " near planes long, and splitting them all would pass the triangle budget: the GPU "
                               "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
                               "or shrink the largest objects (README \"Known limits\")");
-  for (const auto& o : scene.objects)
-    if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
-      result.warnings.push_back(source + ": /light/position: the " +
-                                toString(scene.light.type) +
-                                " light is inside the closed mesh \"" + o.name +
-                                "\": everything it lights will be in shadow");
-  if (scene.light.type == LightType::Directional && detail::depthRange(scene.bounds(), scene.light.position,
-                                                               scene.light.direction).first < 0.0)
-    result.warnings.push_back(source + ": /light/position: the plane through the directional light's position cuts "
-                                       "the scene's bounds: what lies behind it is neither lit nor casts a shadow");
+  forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, k, source, result.warnings); });
   return result;
 }
 

@@ -82,8 +82,11 @@ class PassTimer {
  public:
   PassTimer(std::vector<Query>& pool, bool gpu) : pool_(pool), gpu_(gpu) {}
 
+  /// Appended to the names of the passes begun from now on ("#1": the scene's second light).
+  void setSuffix(std::string suffix) { suffix_ = std::move(suffix); }
+
   void begin(const char* name) {
-    entries_.push_back({name, -1, 0.0});
+    entries_.push_back({name + suffix_, -1, 0.0});
     if (gpu_) {
       const std::size_t k = used_++;
       if (k >= pool_.size()) pool_.push_back(makeQuery());
@@ -103,7 +106,7 @@ class PassTimer {
     }
   }
   /// A CPU step measured by the caller (read-back, build, upload): always wall clock.
-  void cpu(const char* name, double ms) { entries_.push_back({name, -1, ms}); }
+  void cpu(const char* name, double ms) { entries_.push_back({name + suffix_, -1, ms}); }
 
   std::vector<PassTime> results() {
     std::vector<PassTime> out;
@@ -130,6 +133,7 @@ class PassTimer {
   std::size_t used_ = 0;
   std::vector<Entry> entries_;
   Clock::time_point t0_;
+  std::string suffix_;
 };
 
 /// RAII begin/end of one timed pass.
@@ -209,7 +213,8 @@ struct Renderer::Impl {
   bool hasScene = false;
   Scene scene;                                  // kept for the silhouette method's connectivity
   std::optional<SilhouetteOccluders> occluders;  // built on the first silhouette frame
-  Light light;
+  std::vector<Light> lights;  // the scene's, first to last
+  Light light;                // the one whose passes run now (lights[0] between frames)
   Camera camera;
   VertexArray sceneVao;
   Buffer sceneVbo, sceneEbo;
@@ -642,7 +647,7 @@ struct Renderer::Impl {
     sceneProgram.set("worldToLightView", toFloat(lv));
     sceneProgram.set("lightDepthParams", depthParams(reversedZ(lp)));
     sceneProgram.set("ambient", float(o.ambient));
-    sceneProgram.set("diffuse", float(o.diffuse));
+    sceneProgram.set("diffuse", float(o.diffuse * light.intensity));
     sceneProgram.set("shadowTaps", shadowTaps);
     sceneProgram.set("writeVisibility", 0);
     sceneProgram.set("shadowMap", 2);
@@ -748,6 +753,55 @@ struct Renderer::Impl {
     const GLint x1 = GLint(std::clamp(std::ceil(hi.x) + 1.0, 0.0, double(cam.w)));
     const GLint y1 = GLint(std::clamp(std::ceil(hi.y) + 1.0, 0.0, double(cam.h)));
     return {x0, y0, x1 - x0, y1 - y0};
+  }
+
+  /// A further light's start (render()): the camera's colour and depth kept, the stencil cleared
+  /// for its volume, and with `visibility` its shadow test's attachment cleared to lit.
+  void beginAddedLight(const CameraSetup& cam, bool visibility) {
+    resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, visibility ? GL_COLOR_ATTACHMENT1 : GLenum(GL_NONE)};
+    SV_GL(glDrawBuffers(2, buffers));
+    SV_GL(glClearStencil(0));
+    SV_GL(glClear(GL_STENCIL_BUFFER_BIT));
+    if (visibility) {
+      const GLfloat lit[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+      SV_GL(glClearBufferfv(GL_COLOR, 1, lit));
+    }
+  }
+
+  /// State of a further light's shade draw: the scene again at the depth the camera pass left
+  /// (GL_EQUAL: the same program and vertices give the same depth), its colour added to the
+  /// image (the shadow test's attachment written, not added), and with `stencilLit` only where
+  /// this light's stencil is 0. The caller sets ambient 0 after setSceneUniforms.
+  void addDiffuseState(bool stencilLit) {
+    sceneProgram.set("ambient", 0.0f);
+    SV_GL(glEnable(GL_BLEND));
+    SV_GL(glBlendEquation(GL_FUNC_ADD));
+    SV_GL(glBlendFunc(GL_ONE, GL_ONE));
+    SV_GL(glDisablei(GL_BLEND, 1));
+    SV_GL(glDepthFunc(GL_EQUAL));
+    SV_GL(glDepthMask(GL_FALSE));
+    if (stencilLit) {
+      SV_GL(glEnable(GL_STENCIL_TEST));
+      SV_GL(glStencilFunc(GL_EQUAL, 0, 0xFF));
+      SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP));
+    }
+  }
+
+  /// A further light's diffuse term where its stencil is 0 (stencil methods), scissored to its
+  /// frustum's rectangle on the image (lightFrustumOnImage): outside it the light adds nothing.
+  void addDiffusePass(const CameraSetup& cam, const RenderOptions& o, int frustumW, int frustumH) {
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+    const std::array<GLint, 4> r = lightFrustumOnImage(cam, double(frustumW) / double(frustumH));
+    SV_GL(glEnable(GL_SCISSOR_TEST));
+    SV_GL(glScissor(r[0], r[1], r[2], r[3]));
+    setSceneUniforms(cam, o, 0, frustumW, frustumH);
+    addDiffuseState(true);
+    drawScene();
+    resetState();
   }
 
   /// The ambient term over the lit colour where stencil != 0: one full-screen triangle instead of
@@ -1132,8 +1186,8 @@ struct Renderer::Impl {
     result.volumeTriangles = triangles;
   }
 
-  /// Colour (always), stencil counts (when `stencil`), and the visibility mask: from the stencil
-  /// (`visibility` == FromStencil), from COLOR_ATTACHMENT1 (FromAttachment), or all lit (AllLit).
+  /// Stencil counts (when `stencil`), and the visibility mask: from the stencil (`visibility` ==
+  /// FromStencil), from COLOR_ATTACHMENT1 (FromAttachment), or all lit (AllLit).
   enum class VisibilitySource { NotRead, FromStencil, FromAttachment, AllLit };
 
   /// GL row 0 is the bottom; images start at the top. Flips `rows` rows of `rowBytes` in place.
@@ -1146,16 +1200,23 @@ struct Renderer::Impl {
 
   // Read straight into the result's vectors and flipped in place, without the staging copies of
   // the colour and visibility images (the stencil counts still go through one vector).
-  void readImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
+  /// The frame's colour (after every light's passes).
+  void readColour(const CameraSetup& cam, RenderResult& r) {
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    r.rgba.resize(std::size_t(cam.w) * std::size_t(cam.h) * 4);
+    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+    SV_GL(glReadPixels(0, 0, cam.w, cam.h, GL_RGBA, GL_UNSIGNED_BYTE, r.rgba.data()));
+    flipRows(r.rgba, std::size_t(cam.w) * 4, cam.h);
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  /// One light's stencil counts and shadow test, read before the next light's passes.
+  void readShadowImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
     const int w = cam.w, h = cam.h;
     r.width = w;
     r.height = h;
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     const std::size_t pixels = std::size_t(w) * std::size_t(h);
-    r.rgba.resize(pixels * 4);
-    SV_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
-    SV_GL(glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, r.rgba.data()));
-    flipRows(r.rgba, std::size_t(w) * 4, h);
     if (stencil || visibility == VisibilitySource::FromStencil) {
       std::vector<std::uint8_t> counts(pixels);
       SV_GL(glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, counts.data()));
@@ -1404,19 +1465,72 @@ struct Renderer::Impl {
     return triangles;
   }
 
+  /// Light k of the scene as the renderer's light while `f` runs; lights[0] again afterwards.
+  template <class F>
+  void withLight(std::size_t k, F&& f) {
+    struct Restore {
+      Impl& impl;
+      ~Restore() { impl.light = impl.lights.front(); }
+    } restore{*this};
+    light = lights[k];
+    f();
+  }
+
+  /// One frame: every light's passes into the same image (docs/gpu.md "Several lights"). Light 0
+  /// draws the camera pass; each further light clears the stencil, draws its volume or shadow
+  /// map, and adds its diffuse term where its own test says lit (additive blending on the RGBA8
+  /// image, so a channel's sum saturates at 1).
   RenderResult render(const RenderOptions& o, const VolumeMesh* givenVolume) {
     context.makeCurrent();
     requireScene();
     const CameraSetup cam = cameraSetup(o);
-    validate(o, cam);
+    if (givenVolume && lights.size() > 1)
+      throw InputError("Renderer", "renderWithVolume", std::to_string(lights.size()) + " lights",
+                       "a caller-built volume is one light's: give a scene with one light");
+    if (lights.size() > 1 && o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit &&
+        o.volumeOptions.refineSteps > 0 && o.refineCrossings == RefineCrossings::Rays)
+      throw InputError("RenderOptions", "refineCrossings", "rays",
+                       "the depth oracle (volumeOptions.depthOracle) answers for one light, and this scene has " +
+                           std::to_string(lights.size()) +
+                           ": refine by the GPU's walk (refineCrossings gpu-walk, or the GPU volume) instead");
+    for (std::size_t k = 0; k < lights.size(); ++k) withLight(k, [&] { validateForLight(o, cam, k); });
+    const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
+    PassTimer timer(queryPool, gpuTimer);
+    RenderResult result = renderLight(o, cam, givenVolume, timer, false);
+    for (std::size_t k = 1; k < lights.size(); ++k) {
+      std::string suffix = "#";  // (not "#" + to_string: GCC 12's false -Wrestrict on that)
+      suffix += std::to_string(k);
+      timer.setSuffix(suffix);
+      withLight(k, [&] { result.otherLights.push_back(renderLight(o, cam, nullptr, timer, true)); });
+    }
+    readColour(cam, result);
+    result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
+    result.passes = timer.results();
+    for (const auto& p : result.passes) result.totalMs += p.ms;
+    return result;
+  }
+
+  /// validate() for light k (the renderer's light now), its errors naming the light.
+  void validateForLight(const RenderOptions& o, const CameraSetup& cam, std::size_t k) const {
+    if (lights.size() == 1) return validate(o, cam);
+    try {
+      validate(o, cam);
+    } catch (const InputError& e) {
+      throw InputError(e.source(), e.field(), e.value(),
+                       e.problem() + " (for light " + std::to_string(k) + " of the scene's " +
+                           std::to_string(lights.size()) + ")");
+    }
+  }
+
+  /// The passes of the renderer's light. `added`: a further light of the frame (render()): no
+  /// camera pass, its diffuse term added to the image.
+  RenderResult renderLight(const RenderOptions& o, const CameraSetup& cam, const VolumeMesh* givenVolume,
+                           PassTimer& timer, bool added) {
     volumeTrianglesPending = false;  // a frame that threw may have left it set
     volumeReadsWindowDepth = false;
     RenderResult result;
     zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
     result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
-    const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
-    result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
-    PassTimer timer(queryPool, gpuTimer);
     const bool silhouette = !givenVolume && o.method == ShadowMethod::Silhouette;
     const bool hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
     const bool stencilShadows = hybrid || silhouette;
@@ -1518,7 +1632,9 @@ struct Renderer::Impl {
       // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
       const int frustumW = silhouette ? o.depthWidth : std::max(lightW, 2);
       const int frustumH = silhouette ? o.depthHeight : std::max(lightH, 2);
-      {
+      if (added) {
+        beginAddedLight(cam, false);
+      } else {
         TimedPass t(timer, "camera");
         beginCamera(cam, CameraExtra::Ambient);
         setSceneUniforms(cam, o, 0, frustumW, frustumH);
@@ -1538,7 +1654,8 @@ struct Renderer::Impl {
       }
       {
         TimedPass t(timer, "lighting");
-        lightingPass(cam, double(frustumW) / double(frustumH));
+        if (added) addDiffusePass(cam, o, frustumW, frustumH);
+        else lightingPass(cam, double(frustumW) / double(frustumH));
       }
     } else {
       TimedPass t(timer, "shade");
@@ -1546,24 +1663,28 @@ struct Renderer::Impl {
                        : o.method == ShadowMethod::Pcf3    ? 3
                        : o.method == ShadowMethod::Pcf5    ? 5
                                                            : 0;
-      beginCamera(cam, o.readVisibility && taps > 0 ? CameraExtra::Visibility : CameraExtra::None);
+      const bool writeVisibility = o.readVisibility && taps > 0;
+      if (added) beginAddedLight(cam, writeVisibility);
+      else beginCamera(cam, writeVisibility ? CameraExtra::Visibility : CameraExtra::None);
       const int mw = dpsm ? paraboloidFrame.side : taps ? lightW : o.depthWidth;
       const int mh = dpsm ? paraboloidFrame.side : taps ? lightH : o.depthHeight;
       setSceneUniforms(cam, o, taps, mw, mh);
       if (dpsm) setParaboloidUniforms(o);
-      sceneProgram.set("writeVisibility", o.readVisibility && taps > 0 ? 1 : 0);
+      sceneProgram.set("writeVisibility", writeVisibility ? 1 : 0);
+      if (added) addDiffuseState(false);
       if (taps && !point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
       if (taps && point && dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
       if (taps && point && !dpsm) bindCube(3, cubeShadow, shadowSampler);
       drawScene();
       bindTexture(2, Texture(), shadowSampler);
       bindCube(3, Texture(), shadowSampler);
+      resetState();
     }
     const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
                                         : stencilShadows                   ? VisibilitySource::FromStencil
                                         : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
                                                                            : VisibilitySource::FromAttachment;
-    readImages(cam, stencilShadows && o.readStencil, visibility, result);
+    readShadowImages(cam, stencilShadows && o.readStencil, visibility, result);
     if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
       GLuint64 n = 0;
       SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
@@ -1592,8 +1713,6 @@ struct Renderer::Impl {
     }
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette && !point)
       result.depthMap = readBack(o.capture);
-    result.passes = timer.results();
-    for (const auto& p : result.passes) result.totalMs += p.ms;
     return result;
   }
 };
@@ -1619,12 +1738,16 @@ const ContextInfo& Renderer::info() const {
 void Renderer::setScene(const Scene& scene) {
   Impl& s = *impl_;
   s.context.makeCurrent();
-  if (!(scene.light.farPlane > scene.light.nearPlane) || !(scene.camera.farPlane > scene.camera.nearPlane) ||
-      !(scene.camera.nearPlane > 0.0))
-    throw InputError(scene.source, "/light or /camera", "", "near and far planes are not set (fitLightAndCamera)");
-  if (scene.light.type != LightType::Directional && !(scene.light.nearPlane > 0.0))
-    throw InputError(scene.source, "/light/near", std::to_string(scene.light.nearPlane),
-                     std::string("a ") + toString(scene.light.type) + " light needs near > 0");
+  if (!(scene.camera.farPlane > scene.camera.nearPlane) || !(scene.camera.nearPlane > 0.0))
+    throw InputError(scene.source, "/camera", "", "near and far planes are not set (fitLightAndCamera)");
+  for (std::size_t k = 0; k < scene.lightCount(); ++k) {
+    const Light& l = scene.lightAt(k);
+    if (!(l.farPlane > l.nearPlane))
+      throw InputError(scene.source, scene.lightPointer(k), "", "near and far planes are not set (fitLightAndCamera)");
+    if (l.type != LightType::Directional && !(l.nearPlane > 0.0))
+      throw InputError(scene.source, scene.lightPointer(k) + "/near", std::to_string(l.nearPlane),
+                       std::string("a ") + toString(l.type) + " light needs near > 0");
+  }
   using Vertex = SceneVertex;
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
@@ -1653,6 +1776,8 @@ void Renderer::setScene(const Scene& scene) {
   SV_GL(glBindVertexArray(0));
   SV_GL(glBindBuffer(GL_ARRAY_BUFFER, 0));
   s.sceneIndexCount = GLsizei(indices.size());
+  s.lights.assign(1, scene.light);
+  s.lights.insert(s.lights.end(), scene.otherLights.begin(), scene.otherLights.end());
   s.light = scene.light;
   s.camera = scene.camera;
   s.scene = scene;
