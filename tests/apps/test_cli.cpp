@@ -515,6 +515,42 @@ TEST(CliGl, PointLightBuildsAndValidates) {
 }
 
 // Regression: `--resolutions 256,2048` failed; lists take commas as well as spaces.
+TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string scene = (test::sourceDir() / "data/scenes/lights/spot-and-point.json").string();
+  const CliResult v = runCli("validate --json --resolution 64 --size 160x120 --scene " + scene + " --report " +
+                             (dir / "rep").string());
+  ASSERT_EQ(v.code, 0) << v.out;
+  const auto j = nlohmann::json::parse(v.out);
+  EXPECT_EQ(j["options"]["volume"], "explicit");  // auto: the point light's cube volume
+  ASSERT_EQ(j["lights"].size(), 2u);
+  EXPECT_EQ(j["scene"]["lights"].size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const auto& l = j["lights"][k];
+    EXPECT_EQ(l["pointer"], "/lights/" + std::to_string(k));
+    EXPECT_EQ(l["type"], k == 0 ? "spot" : "point");
+    EXPECT_GE(l["stencilVsCount"]["fraction"].get<double>(), 0.9999) << k;
+    EXPECT_TRUE(l["passed"].get<bool>()) << k;
+    EXPECT_TRUE(std::filesystem::exists(dir / "rep" / ("light-" + std::to_string(k)) / "overlay.png")) << k;
+  }
+  EXPECT_TRUE(j["passed"].get<bool>());
+  EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "frame.png"));
+  // build and depth take one light: --light picks it, and a light that is not there is refused.
+  const CliResult b = runCli("build --json --resolution 16 --light 1 --scene " + scene + " --out " +
+                             (dir / "v.ply").string());
+  ASSERT_EQ(b.code, 0) << b.out;
+  EXPECT_EQ(nlohmann::json::parse(b.out)["cubeFaces"], 6);
+  const CliResult none = runCli("build --resolution 16 --light 2 --scene " + scene + " --out " + (dir / "w.ply").string());
+  EXPECT_EQ(none.code, 1);
+  EXPECT_TRUE(contains(none.out, "--light")) << none.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "w.ply"));
+  const CliResult gpu = runCli("render --volume gpu --scene " + scene + " --out " + (dir / "f.png").string());
+  EXPECT_EQ(gpu.code, 1);
+  EXPECT_TRUE(contains(gpu.out, "light 1")) << gpu.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+}
+
 TEST(CliGl, BenchListsTakeCommas) {
   const auto dir = test::tempDir();
   const CliResult r = runCli("bench --scenes default --methods shadowmap,pcf3 --resolutions 32,48 --size 32x24 "
