@@ -21,16 +21,9 @@
 namespace shadowvol::cli {
 namespace {
 
-// One light's part of a validated frame: its render result (the frame's for light 0, else
-// otherLights[k - 1]) and its checks.
-struct LightCheck {
-  const gl::RenderResult* result = nullptr;
-  RenderedFrame frame;
-  FrameValidation v;
-};
-
 // The report's fields of one light's checks (all of them at the top level for one light).
-nlohmann::json describeLightCheck(const LightCheck& c, const gl::RenderOptions& ro, const ValidationOptions& vo) {
+nlohmann::json describeLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
+                                       const ValidationOptions& vo) {
   const gl::RenderResult& result = *c.result;
   nlohmann::json j;
   if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
@@ -38,7 +31,7 @@ nlohmann::json describeLightCheck(const LightCheck& c, const gl::RenderOptions& 
     j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
                           {"crossingFallbacks", result.gpuCrossingFallbacks},
                           {"volumeTriangles", result.volumeTriangles}};
-  j.update(describeValidation(c.v, vo, ro.method == gl::ShadowMethod::Silhouette));
+  j.update(describeValidation(c.validation, vo, ro.method == gl::ShadowMethod::Silhouette));
   if (c.frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
     j["volumeCount"] = gl::toString(result.volumeCountUsed);
     if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
@@ -58,10 +51,10 @@ double shadowBiasFor(const Light& light, const gl::RenderOptions& ro) {
                                             : defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
 }
 
-// One light's checks as text (`j`: its describeLightCheck).
-void printLightCheck(const LightCheck& c, const gl::RenderOptions& ro, const nlohmann::json& j) {
+// One light's checks as text (`j`: its describeLightValidation).
+void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro, const nlohmann::json& j) {
   const gl::RenderResult& result = *c.result;
-  const FrameValidation& v = c.v;
+  const FrameValidation& v = c.validation;
   std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
               v.facingAway, v.outsideLight, v.background);
   if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
@@ -162,17 +155,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       vo.maxMissedShare = o->maxMissedShare;
       // Each light's checks on a scene with that light alone (the shadows are per light; the
       // image is the frame's, every light's diffuse term added).
-      std::vector<LightCheck> checks(scene.lightCount());
+      const std::vector<LightValidation> checks = validateEveryLight(scene, ro, result, vo);
       bool passed = true;
-      for (std::size_t k = 0; k < checks.size(); ++k) {
-        LightCheck& c = checks[k];
-        c.result = k == 0 ? &result : &result.otherLights[k - 1];
-        c.frame = toRenderedFrame(*c.result, ro.method);
-        c.frame.rgba = result.rgba;
-        c.v = checks.size() == 1 ? validateRender(scene, ro, *c.result, c.frame, vo)
-                                 : validateRender(scene.withOnlyLight(k), ro, *c.result, c.frame, vo);
-        passed = passed && c.v.passed;
-      }
+      for (const LightValidation& c : checks) passed = passed && c.validation.passed;
       const bool hybrid = checks[0].frame.hybrid;
 
       nlohmann::json j;
@@ -195,7 +180,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       std::vector<std::string> images = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
       if (!hybrid) images = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};
       std::vector<nlohmann::json> sections;
-      for (std::size_t k = 0; k < checks.size(); ++k) sections.push_back(describeLightCheck(checks[k], ro, vo));
+      for (std::size_t k = 0; k < checks.size(); ++k) sections.push_back(describeLightValidation(checks[k], ro, vo));
       if (checks.size() == 1) {
         j.update(sections[0]);
       } else {
@@ -223,13 +208,13 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       // Everything is computed; now write. Images first, the report last (its presence means done).
       std::filesystem::create_directories(dir);
       if (checks.size() == 1) {
-        writeValidationImages(dir, checks[0].v, checks[0].frame);
+        writeValidationImages(dir, checks[0].validation, checks[0].frame);
       } else {
         writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
         for (std::size_t k = 0; k < checks.size(); ++k) {
           const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
           std::filesystem::create_directories(sub);
-          writeValidationImages(sub, checks[k].v, checks[k].frame);
+          writeValidationImages(sub, checks[k].validation, checks[k].frame);
         }
       }
       writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
@@ -246,8 +231,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         for (std::size_t k = 0; k < checks.size(); ++k) {
           if (checks.size() > 1)
             std::printf(" light %zu (%s, %s): %s\n", k, toString(scene.lightAt(k).type), scene.lightPointer(k).c_str(),
-                        checks[k].v.passed ? "passed" : "failed");
-          printLightCheck(checks[k], ro, checks.size() == 1 ? j : j["lights"][k]);
+                        checks[k].validation.passed ? "passed" : "failed");
+          printLightValidation(checks[k], ro, checks.size() == 1 ? j : j["lights"][k]);
         }
         std::printf("%s: wrote %s\n", passed ? "PASSED" : "FAILED", (dir / "report.json").string().c_str());
       }

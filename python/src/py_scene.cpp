@@ -26,7 +26,7 @@ py::tuple sceneMesh(const PyScene& s) {
 
 void registerScene(py::module_& m) {
   py::class_<PyScene>(m, "Scene",
-                      "A scene: world-space triangle meshes, one light, one camera (README 'Scene files'). Positions "
+                      "A scene: world-space triangle meshes, one or more lights, one camera (README 'Scene files'). Positions "
                       "are kept relative to `origin` (rebased when the scene lies far from the world origin).")
       .def_property_readonly("source", [](const PyScene& s) { return s.scene.source; }, "file it was loaded from, or 'default'")
       .def_property_readonly("triangle_count", [](const PyScene& s) { return s.scene.triangleCount(); })

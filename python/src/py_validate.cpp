@@ -88,6 +88,10 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   py::dict d;
   d["image"] = imageArray(result.rgba, result.width, result.height, 4);
   if (!result.stencil.empty()) d["stencil"] = imageArray(result.stencil, result.width, result.height, 1);
+  py::list others;  // a scene with several lights: the stencil of each light after the first
+  for (const auto& l : result.otherLights)
+    if (!l.stencil.empty()) others.append(imageArray(l.stencil, result.width, result.height, 1));
+  if (!result.otherLights.empty()) d["other_stencils"] = others;
   py::dict passes;
   for (const auto& p : result.passes) passes[py::str(p.name)] = p.ms;
   d["passes_ms"] = passes;
@@ -115,9 +119,24 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     py::gil_scoped_release release;
     FrameRenderer r(scene, ro, a.platform);
     const gl::RenderResult result = r.renderer.render(ro);
-    const RenderedFrame frame = toRenderedFrame(result, ro.method);
-    const FrameValidation v = validateRender(scene, ro, result, frame, vo);
-    j = describeValidation(v, vo, ro.method == gl::ShadowMethod::Silhouette);
+    const std::vector<LightValidation> lights = validateEveryLight(scene, ro, result, vo);
+    const bool silhouette = ro.method == gl::ShadowMethod::Silhouette;
+    if (lights.size() == 1) {
+      j = describeValidation(lights[0].validation, vo, silhouette);
+    } else {  // as validate's report.json: one section per light, the verdict over all
+      bool passed = true;
+      j["lights"] = nlohmann::json::array();
+      for (std::size_t k = 0; k < lights.size(); ++k) {
+        nlohmann::json l = describeValidation(lights[k].validation, vo, silhouette);
+        l["index"] = k;
+        l["pointer"] = scene.lightPointer(k);
+        l["type"] = toString(scene.lightAt(k).type);
+        l["volumeCount"] = gl::toString(lights[k].result->volumeCountUsed);
+        passed = passed && lights[k].validation.passed;
+        j["lights"].push_back(l);
+      }
+      j["passed"] = passed;
+    }
     j["scene"] = describeScene(scene);
     j["glRenderer"] = r.renderer.info().glRenderer;
     j["volumeCount"] = gl::toString(result.volumeCountUsed);
@@ -125,7 +144,11 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
     if (reportDir) {
       std::filesystem::create_directories(*reportDir);
-      writeValidationImages(*reportDir, v, frame);
+      for (std::size_t k = 0; k < lights.size(); ++k) {
+        const std::filesystem::path sub = lights.size() == 1 ? *reportDir : *reportDir / ("light-" + std::to_string(k));
+        std::filesystem::create_directories(sub);
+        writeValidationImages(sub, lights[k].validation, lights[k].frame);
+      }
     }
   }
   return toPython(j).cast<py::dict>();
@@ -168,7 +191,8 @@ void registerValidate(py::module_& m) {
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
       "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail), gl_renderer, volume (explicit volume's "
-      "build stats). size=(W, H); count: auto, zfail or zpass (`--count`).");
+      "build stats), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
+      "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`).");
   m.def(
       "validate",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
@@ -186,8 +210,9 @@ void registerValidate(py::module_& m) {
       py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
       py::arg("report_dir") = py::none(),
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
-      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume). "
-      "report_dir: also write the PNGs there (exact, stencil, count, overlay, frame).");
+      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume); with "
+      "several lights those checks are per light in `lights` (index, pointer, type, ...) and `passed` is over all. "
+      "report_dir: also write the PNGs there (exact, stencil, count, overlay, frame; light-K/ per light).");
 #else
   m.def(
       "validate", [](py::args, py::kwargs) -> py::dict {

@@ -196,6 +196,18 @@ def test_render_returns_image_and_stencil(scene):
     assert sv.render(scene, resolution=64, size=(40, 30), count="zfail")["volume_count"] == "z-fail"
 
 
+@needs_gl
+def test_several_lights_are_validated_one_by_one(tmp_path):
+    both = sv.load_scene(SCENES / "lights" / "spot-and-point.json")
+    frame = sv.render(both, volume="explicit", resolution=32, size=(40, 30))
+    assert len(frame["other_stencils"]) == 1 and frame["other_stencils"][0].shape == (30, 40)
+    report = sv.validate(both, volume="explicit", resolution=32, size=(80, 60), report_dir=tmp_path / "r")
+    assert report["passed"] is True and len(report["lights"]) == 2
+    assert [l["type"] for l in report["lights"]] == ["spot", "point"]
+    assert all(l["stencilVsCount"]["fraction"] >= 0.9999 for l in report["lights"])
+    assert (tmp_path / "r" / "light-1" / "overlay.png").is_file()
+
+
 def test_example_runs(tmp_path):
     example = SOURCE_DIR / "python" / "examples" / "volume_to_open3d.py"
     run = subprocess.run([sys.executable, str(example), str(SCENES / "tree.json"), str(tmp_path / "v.ply")],

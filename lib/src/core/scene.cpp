@@ -543,8 +543,9 @@ void readLights(ObjectReader& top, Scene& scene, const std::string& source) {
 void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings) {
   const Light given = scene.light;
   const std::string pointer = scene.lightPointer(k);
-  for (auto& note : fitLightAndCamera(scene)) {
-    if (note.rfind("/light/", 0) == 0) note = pointer + note.substr(6);
+  for (auto& note : fitLightAndCamera(scene)) {  // "<source>: /light/far: ..."
+    const std::string prefix = source + ": /light/";
+    if (note.rfind(prefix, 0) == 0) note = source + ": " + pointer + "/" + note.substr(prefix.size());
     warnings.push_back(std::move(note));
   }
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)

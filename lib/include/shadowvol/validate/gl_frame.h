@@ -4,6 +4,8 @@
 #pragma once
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/validate/frame_validation.h"
@@ -43,6 +45,33 @@ inline FrameValidation validateRender(const Scene& scene, const gl::RenderOption
   if (frame.hybrid && !result.depthMap && !result.volume)
     throw std::runtime_error("the renderer returned no depth map and no volume");
   return validateFrame(scene, result.depthMap ? *result.depthMap : DepthMap{}, ro.volumeOptions, frame, options);
+}
+
+/// One light's part of a validated frame (validateEveryLight).
+struct LightValidation {
+  const gl::RenderResult* result = nullptr;  ///< the frame's for light 0, else otherLights[k - 1]
+  RenderedFrame frame;                       ///< its stencil and shadow test, the frame's image
+  FrameValidation validation;                ///< against the scene with light k alone
+};
+
+/// validateRender for every light of the scene (Scene::withOnlyLight: each light's shadows are
+/// its own); `result` must outlive the answer.
+inline std::vector<LightValidation> validateEveryLight(const Scene& scene, const gl::RenderOptions& ro,
+                                                       const gl::RenderResult& result,
+                                                       const ValidationOptions& options) {
+  if (result.otherLights.size() + 1 != scene.lightCount())
+    throw std::runtime_error("the frame has " + std::to_string(result.otherLights.size() + 1) + " lights' results, the scene " +
+                             std::to_string(scene.lightCount()) + " lights");
+  std::vector<LightValidation> out(scene.lightCount());
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    LightValidation& l = out[k];
+    l.result = k == 0 ? &result : &result.otherLights[k - 1];
+    l.frame = toRenderedFrame(*l.result, ro.method);
+    l.frame.rgba = result.rgba;
+    l.validation = out.size() == 1 ? validateRender(scene, ro, *l.result, l.frame, options)
+                                   : validateRender(scene.withOnlyLight(k), ro, *l.result, l.frame, options);
+  }
+  return out;
 }
 
 }  // namespace shadowvol
