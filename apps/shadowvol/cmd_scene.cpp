@@ -38,7 +38,12 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
           std::printf("  %-16s %-10s %8zu triangles\n", o.name.c_str(), o.type.c_str(), o.mesh.triangleCount());
         std::printf("bounds %s\norigin %s%s\n", j["bounds"].dump().c_str(), j["origin"].dump().c_str(),
                     scene.origin == glm::dvec3(0.0) ? "" : " (stored and exported coordinates are relative to it)");
-        std::printf("light  %s\ncamera %s\n", j["light"].dump().c_str(), j["camera"].dump().c_str());
+        if (j.contains("lights"))
+          for (std::size_t k = 0; k < j["lights"].size(); ++k)
+            std::printf("light %zu %s\n", k, j["lights"][k].dump().c_str());
+        else
+          std::printf("light  %s\n", j["light"].dump().c_str());
+        std::printf("camera %s\n", j["camera"].dump().c_str());
         if (!exportPath->empty()) std::printf("wrote %s\n", exportPath->c_str());
       }
       return kOk;

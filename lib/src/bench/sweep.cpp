@@ -143,8 +143,15 @@ std::string sceneLabel(const std::filesystem::path& scene) {
 }
 
 // The scene's light type, from the loaded scene (its meshes are read once more for the cells).
+// The sweep scores one light's shadow: a scene with several is refused (validate checks each).
 LightType lightTypeOf(const std::filesystem::path& scene) {
-  return scene.empty() ? defaultScene().light.type : loadScene(scene).scene.light.type;
+  if (scene.empty()) return defaultScene().light.type;
+  const Scene s = loadScene(scene).scene;
+  if (s.lightCount() > 1)
+    throw InputError(scene.string(), "/lights", std::to_string(s.lightCount()) + " lights",
+                     "the sweep measures one light's shadows against its exact shadow; validate checks a scene with "
+                     "several lights light by light, and render times its frame");
+  return s.light.type;
 }
 
 }  // namespace
