@@ -1476,7 +1476,7 @@ struct Renderer::Impl {
     f();
   }
 
-  /// One frame: every light's passes into the same image (docs/gpu.md "Several lights"). Light 0
+  /// One frame: every light's passes into the same image (README "Several lights"). Light 0
   /// draws the camera pass; each further light clears the stencil, draws its volume or shadow
   /// map, and adds its diffuse term where its own test says lit (additive blending on the RGBA8
   /// image, so a channel's sum saturates at 1).
