@@ -1,9 +1,10 @@
 // Shared by the GPU volume's stages (volume_gpu.geom, volume_keep.geom, volume_mesh.comp,
-// volume_index.frag, volume_index.vert, and the refined GPU volume's with refine_common.glsl after
-// this file: boundary_edges.comp, boundary_unfold.comp, walk_slots.comp, silhouette_walk.comp,
-// volume_refined.comp, volume_refined.vert; each program's sources are version_330.glsl or
-// version_430.glsl, light_window_depth.glsl, this file, then the stage's body): the sheet vertex
-// of a texel, the quads the exact cap drops and the diagonal rule, mirroring buildVolume.
+// volume_index.frag, volume_index.vert; the GPU cube volume's volume_cube.geom; and the refined
+// GPU volume's with refine_common.glsl after this file: boundary_edges.comp, boundary_unfold.comp,
+// walk_slots.comp, silhouette_walk.comp, volume_refined.comp, volume_refined.vert; each program's
+// sources are version_330.glsl or version_430.glsl, light_window_depth.glsl, this file, then the
+// stage's body): the sheet vertex of a texel, the quads the exact cap drops and the diagonal rule,
+// mirroring buildVolume.
 //
 // Quad q = (i, j), i in [0, W-2], j in [0, H-2], corners (triangulation.h):
 //   A = (i, j), B = (i+1, j), C = (i+1, j+1), D = (i, j+1).
@@ -31,13 +32,19 @@ const ivec2 kCornerOffset[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), i
 
 bool onRing(ivec2 t) { return t.x == 0 || t.y == 0 || t.x == size.x - 1 || t.y == size.y - 1; }
 
+// Steps 1 (without the ring) and 3 for a texel's light-view depth (blurred already, blur.frag,
+// when the volume blurs): the far plane when invalid, else the clamped depth, snapped.
+float sheetDepthOfTexel(float d) {
+  if (!(d < farSnap)) return farPlane;
+  d = clamp(d + bias, nearPlane, farPlane);
+  return d < farSnap ? d : farPlane;
+}
+
 float sheetDepth(ivec2 t) {
   if (onRing(t)) return farPlane;
   float d = texelFetch(lightDepth, t, 0).r;
   if (windowDepthInput != 0) d = capturedDepth(d, farPlane);
-  if (!(d < farSnap)) return farPlane;
-  d = clamp(d + bias, nearPlane, farPlane);
-  return d < farSnap ? d : farPlane;
+  return sheetDepthOfTexel(d);
 }
 
 // Texel (i, j) of corner A of quad q (q = j * (W - 1) + i).

@@ -231,7 +231,8 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
   gl::Renderer renderer;
   const SweepOptions o =
       quickSweep({std::filesystem::path(), std::filesystem::path(SV_SOURCE_DIR) / "data/scenes/point/room.json"},
-                 {"shadowmap", "cube-shadowmap", "cube-pcf3", "dpsm", "hybrid-cube/explicit", "silhouette"}, 80, 60, dir);
+                 {"shadowmap", "cube-shadowmap", "cube-pcf3", "dpsm", "hybrid-cube/explicit", "hybrid-cube/gpu", "silhouette"},
+                 80, 60, dir);
   std::atomic<bool> stop{false};
   std::vector<std::string> notes;
   const auto rows = runSweep(renderer, o, stop, nullptr, notes);
@@ -240,13 +241,14 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
   const std::vector<std::string> expected = {"default shadowmap",         "default silhouette",
                                              "default@view shadowmap",    "room cube-shadowmap",
                                              "room cube-pcf3",            "room dpsm",
-                                             "room hybrid-cube/explicit", "room silhouette"};
+                                             "room hybrid-cube/explicit", "room hybrid-cube/gpu",
+                                             "room silhouette"};
   EXPECT_EQ(cells, expected);
   for (const auto& r : rows) {
     EXPECT_GT(r.pixels, 0u) << r.method;
     EXPECT_LT(r.error, 0.05) << r.scene << " " << r.method;
   }
-  for (const char* note : {"default: 4 of the methods are for point lights", "room: 1 of the methods are for spot",
+  for (const char* note : {"default: 5 of the methods are for point lights", "room: 1 of the methods are for spot",
                            "room: no view-fitted cells"})
     EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.rfind(note, 0) == 0; }))
         << note << " in " << ::testing::PrintToString(notes);

@@ -1,6 +1,8 @@
 // Point lights (cube_map.h, cube_volume.h) through the renderer: the explicit cube volume's
 // stencil against Embree's crossing counts in every option combination, on the shipped room and
-// on a lamp above objects (far texels on every face); the GPU's cube capture against Embree's;
+// on a lamp above objects (far texels on every face); the GPU cube volume (cube_gpu_volume.h) the
+// same way, through its CPU mirror, and its shadow against the explicit volume's; the GPU's cube
+// capture against Embree's;
 // silhouette volumes extruded from the point; cube shadow maps; what a point light's frame cannot be.
 #include <algorithm>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/primitives.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "test_util.h"
 
@@ -58,15 +61,18 @@ FrameValidation renderAndValidate(const Scene& scene, gl::RenderOptions ro) {
   return validateFrame(scene, DepthMap{}, ro.volumeOptions, frame);
 }
 
-TEST(PointLight, CubeVolumeMatchesCrossingCountsInEveryCombination) {
+// Every capture mode, triangulation and blur at two face sizes, of the volume `source`: the
+// stencil against the crossing counts of the explicit cube volume of the same faces (for the GPU
+// volume, its CPU mirror: RenderOptions::keepVolume).
+void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initializer_list<int> sizes) {
   int frames = 0;
   for (const Scene& scene : {room(), lampOverSphere()})
-    for (int n : {24, 64})
+    for (int n : sizes)
       for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
         for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
           for (bool blur : {false, true}) {
             gl::RenderOptions ro;
-            ro.volume = gl::VolumeSource::Explicit;
+            ro.volume = source;
             ro.depthWidth = ro.depthHeight = n;
             ro.capture = mode;
             ro.volumeOptions.triangulation = t;
@@ -82,7 +88,58 @@ TEST(PointLight, CubeVolumeMatchesCrossingCountsInEveryCombination) {
             EXPECT_EQ(v.outsideLight, 0u) << "the far cube holds the whole scene";
             ++frames;
           }
-  EXPECT_EQ(frames, 2 * 2 * 3 * 2 * 2);
+  EXPECT_EQ(frames, 2 * int(sizes.size()) * 3 * 2 * 2);
+}
+
+TEST(PointLight, CubeVolumeMatchesCrossingCountsInEveryCombination) {
+  expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Explicit, {24, 64});
+}
+
+// The GPU cube volume at an even and an odd face size (the seam cells' pairing, the corners).
+TEST(PointLight, GpuCubeVolumeMatchesCrossingCountsInEveryCombination) {
+  expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Gpu, {24, 37});
+}
+
+// The GPU draws the explicit volume's triangles before the cap's flattening, in float: the same
+// shadow up to the pixels where a float sheet vertex falls on the other side of a surface, and
+// the same number of triangles as the explicit sheet and its unflattened cap, plus twice the
+// all-far triangles of cells it keeps (drawn on the sheet and the cap, where they cancel).
+TEST(PointLight, GpuCubeVolumeCastsTheExplicitVolumesShadow) {
+  for (const Scene& scene : {room(), lampOverSphere()})
+    for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+      gl::RenderOptions ro;
+      ro.depthWidth = ro.depthHeight = 64;
+      ro.capture = mode;
+      ro.volume = gl::VolumeSource::Explicit;
+      const FrameValidation e = renderAndValidate(scene, ro);
+      ro.volume = gl::VolumeSource::Gpu;
+      const FrameValidation g = renderAndValidate(scene, ro);
+      SCOPED_TRACE(scene.source + " " + toString(mode));
+      ASSERT_EQ(e.methodError.pixels, g.methodError.pixels);
+      const auto differ = [](std::size_t a, std::size_t b) { return a > b ? a - b : b - a; };
+      EXPECT_LE(differ(e.methodError.missed, g.methodError.missed) + differ(e.methodError.falseShadow, g.methodError.falseShadow),
+                e.methodError.pixels / 5000)
+          << "explicit " << e.methodError.missed << "/" << e.methodError.falseShadow << ", gpu "
+          << g.methodError.missed << "/" << g.methodError.falseShadow;
+    }
+  // The cells drawn, at N = 16, for a lamp inside a closed box: back capture sees the box's inner
+  // faces from every texel, so no cell is dropped.
+  Scene box = defaultScene();
+  box.objects.assign(1, SceneObject{"box", "box", makeBox(6.0, 6.0, 6.0)});
+  box.light = Light{};
+  box.light.type = LightType::Point;
+  box.light.position = {0.4, -0.3, 0.2};
+  fitLightAndCamera(box);
+  gl::RenderOptions ro;
+  ro.depthWidth = ro.depthHeight = 16;
+  ro.volume = gl::VolumeSource::Gpu;
+  renderer().setScene(box);
+  const gl::RenderResult r = renderer().render(ro);
+  const std::size_t cells = 6 * 15 * 15 + 12 * 15 + 8;
+  EXPECT_EQ(r.gpuVolumeQuads, cells);
+  EXPECT_EQ(r.gpuVolumeQuadsDrawn, cells);
+  EXPECT_EQ(r.volumeTriangles, 2 * (12 * 16 * 16 - 4)) << "every sheet triangle and its cap image";
+  EXPECT_EQ(r.volumeCountUsed, gl::VolumeCount::ZFail);
 }
 
 // The shadow follows the exact one more closely as the cube's texels shrink.
@@ -166,8 +223,16 @@ TEST(PointLight, RefusesWhatItsFrameCannotBe) {
   renderer().setScene(room());
   gl::RenderOptions ro;
   ro.depthWidth = ro.depthHeight = 32;
-  ro.volume = gl::VolumeSource::Gpu;  // the GPU cube volume is not there yet
+  ro.volume = gl::VolumeSource::Gpu;
+  ro.volumeOptions.refineSteps = 4;  // not for point lights yet, on the GPU or the CPU
   EXPECT_THROW(renderer().render(ro), InputError);
+  ro.volumeOptions.refineSteps = 0;
+  ro.volumeOptions.cap = FarCap::Quad;  // the cube has no border ring for the quad cap to close
+  EXPECT_THROW(renderer().render(ro), InputError);
+  ro.volumeOptions.cap = FarCap::Exact;
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::Indexed;  // the cube volume draws every cell
+  EXPECT_THROW(renderer().render(ro), InputError);
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::Auto;
   ro.volume = gl::VolumeSource::Explicit;
   ro.volumeOptions.refineSteps = 4;
   EXPECT_THROW(renderer().render(ro), InputError);

@@ -3,7 +3,7 @@
 //
 // Sheet: one vertex per texel of the six faces, at the texel centre's ray and the sheet depth
 // of the rule of one map (sheet_depth.h) without its border ring (the cube has no border: the
-// faces' sheets are joined across the cube's edges and corners, cube/cube_grid.h); with blur,
+// faces' sheets are joined across the cube's edges and corners, shadowvol/cube_grid.h); with blur,
 // each face blurs its own map (clamp-to-edge at its border: the blur does not reach across a
 // cube edge). Triangulation, fixed or perfect, per cell as in one map (evaluated in light-view
 // space, world axes with the light at the origin). Cells whose triangles have three far

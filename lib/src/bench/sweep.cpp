@@ -108,13 +108,16 @@ SweepMethod cubeShadowMap(const std::string& key, gl::ShadowMethod method, const
   return m;
 }
 
-SweepMethod cubeVolume(CaptureMode capture) {
-  SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Explicit, capture);
+SweepMethod cubeVolume(CaptureMode capture, gl::VolumeSource source) {
+  SweepMethod m = hybrid(Triangulation::Perfect, false, source, capture);
+  const bool gpu = source == gl::VolumeSource::Gpu;
   m.key = std::string("hybrid-cube") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
-          "/explicit";
+          (gpu ? "/gpu" : "/explicit");
   m.lights = SweepLights::Point;
-  m.description = "a point light's explicit cube volume from its six face maps (perfect triangulation, far cube "
-                  "cap), " + std::string(toString(capture)) + " capture" +
+  m.description = std::string("a point light's ") +
+                  (gpu ? "GPU cube volume drawn straight from its six face maps (no read-back)"
+                       : "explicit cube volume from its six face maps") +
+                  " (perfect triangulation, far cube cap), " + toString(capture) + " capture" +
                   (capture == CaptureMode::Front ? " (default bias)" : "");
   return m;
 }
@@ -215,7 +218,10 @@ const std::vector<SweepMethod>& sweepMethods() {
                                            "its light pass (no edge over 0.1 rad), back faces");
     subdivided.options.paraboloidSubdivision = 8;
     v.push_back(subdivided);
-    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(cubeVolume(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
+      v.push_back(cubeVolume(c, gl::VolumeSource::Explicit));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
+      v.push_back(cubeVolume(c, gl::VolumeSource::Gpu));
     SweepMethod s;
     s.key = "silhouette";
     s.lights = SweepLights::Any;

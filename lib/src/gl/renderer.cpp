@@ -26,6 +26,7 @@
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
 #include "refined_gpu_volume.h"
+#include "cube_gpu_volume.h"
 #include "dual_paraboloid_pass.h"
 #include "silhouette_walk.h"
 
@@ -252,6 +253,7 @@ struct Renderer::Impl {
   Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
   DualParaboloidPass paraboloid;  // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
+  CubeGpuVolume cubeVolume;       // a point light's GPU cube volume (GL 4.3: glCopyImageSubData)
   DualParaboloid paraboloidFrame;  // of the last paraboloid pass
   Bounds3 sceneBounds;             // the scene's (setScene): the paraboloid frame looks at its centre
   Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
@@ -295,6 +297,7 @@ struct Renderer::Impl {
                     ci.glVersion + " on " + ci.glRenderer);
     hasCompute = ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 3);
     if (hasCompute) {
+      cubeVolume = CubeGpuVolume(shaders);
       volumeMeshProgram = Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_mesh.comp"});
       volumeMeshDrawProgram = Program(shaders, "volume_mesh.vert", "depth_only.frag");
       volumeIndexProgram =
@@ -1243,10 +1246,7 @@ struct Renderer::Impl {
   /// (hybrid, explicit), silhouette volumes, a cube shadow map (GL 4.3) or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
-    if (o.method == ShadowMethod::Hybrid && !explicitHybrid)
-      throw InputError("RenderOptions", "volume", toString(o.volume),
-                       "a point light's hybrid volume is the explicit cube volume (volume explicit): the GPU cube "
-                       "volume is not implemented yet");
+    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
     const bool shadowMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 ||
                            o.method == ShadowMethod::Pcf5;
     if (shadowMap && !hasCompute)
@@ -1273,6 +1273,25 @@ struct Renderer::Impl {
       throw InputError("RenderOptions", "depthWidth x depthHeight",
                        std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
                        "a point light's cube faces are square");
+  }
+
+  /// What the GPU cube volume (cube_gpu_volume.h) takes: GL 4.3, no refinement, the exact cap, one
+  /// way of drawing.
+  void validateGpuCubeVolume(const RenderOptions& o) const {
+    if (!hasCompute)
+      throw InputError("RenderOptions", "volume", "gpu",
+                       "a point light's GPU cube volume needs OpenGL 4.3 (glCopyImageSubData); this context has " +
+                           context.info().glVersion + ": use volume explicit");
+    if (o.volumeOptions.refineSteps > 0)
+      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                       "silhouette refinement is not available for point lights yet");
+    if (o.volumeOptions.cap != FarCap::Exact)
+      throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap),
+                       "a point light's volume has the exact cap only (the quad cap closes one map's border ring, "
+                       "and the cube has none)");
+    if (o.gpuVolumeDraw != GpuVolumeDraw::Auto && o.gpuVolumeDraw != GpuVolumeDraw::AllQuads)
+      throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
+                       "a point light's GPU cube volume draws every cell (all-quads): leave it at auto");
   }
 
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
@@ -1406,6 +1425,46 @@ struct Renderer::Impl {
     return cube;
   }
 
+  /// The GPU cube volume's input (cube_gpu_volume.h): each face's light pass, resolved (and with
+  /// blur blurred) and copied into the cube volume's layer, all timed as `light`. With keepVolume
+  /// each face is also read back and the explicit cube volume built from the six maps with the
+  /// same options (result.volume: the CPU mirror that validation counts the crossings of; the GPU
+  /// draws the same triangles before the cap's flattening).
+  void cubeVolumeDepthPass(const RenderOptions& o, PassTimer& timer, RenderResult& result) {
+    const int n = o.depthWidth;
+    const VolumeBuildOptions& vo = o.volumeOptions;
+    std::optional<CubeDepthMap> faces;
+    if (o.keepVolume) faces = makeCubeDepthMap(light, n, o.capture);
+    {
+      TimedPass t(timer, "light");
+      cubeVolume.resize(n);
+      eachCubeFace(n, o.capture, [&](int f) {
+        if (faces) faces->faces[f] = readBack(o.capture);
+        resolvePass(o.capture);
+        if (vo.blur) blurPass(vo.blurOffset);
+        cubeVolume.storeFace(f, vo.blur ? blurredDepth : linearDepth);
+      });
+    }
+    result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, n, n, o.capture);
+    result.gpuVolumeQuads = result.gpuVolumeQuadsDrawn = cubeVolume.cells();
+    result.gpuVolumeDrawUsed = GpuVolumeDraw::AllQuads;
+    if (faces) {
+      VolumeBuildOptions mirror = vo;
+      mirror.bias = result.biasUsed;
+      VolumeBuildResult built = buildCubeVolume(*faces, mirror);
+      result.volumeStats = built.stats;
+      result.volume = std::move(built.mesh);
+    }
+  }
+
+  /// The GPU cube volume of the faces cubeVolumeDepthPass stored (stencil state set).
+  void drawCubeGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias) {
+    const glm::dmat4 lightToClip = cam.proj * cam.view * glm::translate(glm::dmat4(1.0), light.position);
+    cubeVolume.draw(lightToClip, {light.nearPlane, light.farPlane, bias, vo.triangulation == Triangulation::Perfect},
+                    primitivesQuery.id());
+    volumeTrianglesPending = true;
+  }
+
   /// A point light's cube shadow map: the light pass of each face's spot light (and for midpoint
   /// the mean's window depth, resolvePass), copied into face f of the cube texture, whose texel
   /// order is the faces' (cube_map.h), so samplerCubeShadow looks up the texel the face's
@@ -1536,7 +1595,9 @@ struct Renderer::Impl {
     const bool stencilShadows = hybrid || silhouette;
     const VolumeBuildOptions& vo = o.volumeOptions;
 
-    const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu;
+    const bool point = light.type == LightType::Point;
+    const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && !point;
+    const bool cubeGpu = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point;
     const bool refinedGpu = gpuVolume && refinedGpuVolume(o);
     const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
                                   : refinedGpu             ? GpuVolumeDraw::Refined
@@ -1544,7 +1605,6 @@ struct Renderer::Impl {
     // The refined GPU volume lists its unrefined quads as the indexed way does.
     const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
     occupancyValid = false;
-    const bool point = light.type == LightType::Point;
     const bool dpsm = point && o.method == ShadowMethod::Dpsm;
     const bool cubeShadowMap = point && !hybrid && !silhouette && !dpsm && o.method != ShadowMethod::None;
     if (cubeShadowMap) {
@@ -1562,7 +1622,9 @@ struct Renderer::Impl {
 
     std::size_t explicitTriangles = 0;
     const Texture* volumeDepth = nullptr;
-    if (hybrid && !givenVolume && point) {
+    if (cubeGpu) {
+      cubeVolumeDepthPass(o, timer, result);
+    } else if (hybrid && !givenVolume && point) {
       auto t0 = Clock::now();
       const CubeDepthMap cube = captureCube(o.depthWidth, o.capture);
       timer.cpu("light", msSince(t0));  // six light passes and their read-backs
@@ -1648,6 +1710,8 @@ struct Renderer::Impl {
           drawRefinedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
         else if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
+        else if (cubeGpu)
+          drawCubeGpuVolume(cam, vo, result.biasUsed);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();

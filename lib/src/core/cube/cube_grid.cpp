@@ -1,4 +1,4 @@
-#include "cube/cube_grid.h"
+#include "shadowvol/cube_grid.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -12,7 +12,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "cube/cube_grid.h"
+#include "shadowvol/cube_grid.h"
 #include "shadowvol/check.h"
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/error.h"
