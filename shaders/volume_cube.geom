@@ -1,6 +1,7 @@
-// (volume_common.glsl comes first.) The GPU cube volume of a point light (docs/gpu.md "The GPU
-// cube volume"): the cells of cube::Grid (shadowvol/cube_grid.h) drawn straight from the six
-// faces' light-view depths, as buildCubeVolume (cube_volume.h) places them, with no read-back.
+// (volume_common.glsl and cube_common.glsl come first.) The GPU cube volume of a point light, its
+// geometry-shader way (GpuVolumeDraw::AllQuads; docs/gpu.md "The GPU cube volume"): the cells of
+// cube::Grid (shadowvol/cube_grid.h) drawn straight from the six faces' light-view depths, as
+// buildCubeVolume (cube_volume.h) places them, with no read-back.
 // One point per cell in, up to two triangle strips out:
 //   - the sheet: each corner texel at its sheet depth (volume_common.glsl's sheetDepthOfTexel: no
 //     border ring, the cube has none) on its texel centre's ray, light + d (D + x R + y U) as
@@ -16,28 +17,11 @@
 layout(points) in;
 layout(triangle_strip, max_vertices = 8) out;
 flat in ivec4 vCell[];
-uniform sampler2DArray cubeDepth;  // layer f: face f's light-view depth (R32F; blurred with blur)
-uniform int cubeSize;              // N
-uniform vec3 faceDirection[6];     // D of cube_map.h's table, face by face
-uniform vec3 faceRight[6];         // R = D x U
-uniform vec3 faceUp[6];            // U
 uniform mat4 lightToClip;
 
 void emit(vec3 lightRelative) {
   gl_Position = lightToClip * vec4(lightRelative, 1.0);
   EmitVertex();
-}
-
-ivec3 texelOfId(int id) {
-  int nn = cubeSize * cubeSize;
-  int face = id / nn, r = id - face * nn;
-  int j = r / cubeSize;
-  return ivec3(r - j * cubeSize, j, face);
-}
-
-vec3 direction(ivec3 t) {
-  vec2 ndc = (vec2(t.xy) + 0.5) / float(cubeSize) * 2.0 - 1.0;
-  return faceDirection[t.z] + ndc.x * faceRight[t.z] + ndc.y * faceUp[t.z];
 }
 
 void main() {
@@ -49,9 +33,9 @@ void main() {
   bool allFar = true;
   for (int k = 0; k < 4; ++k) {
     if (k >= corners) break;
-    ivec3 t = texelOfId(id[k]);
-    d[k] = sheetDepthOfTexel(texelFetch(cubeDepth, t, 0).r);
-    vec3 dir = direction(t);
+    ivec3 t = cubeTexel(id[k]);
+    d[k] = cubeSheetDepth(t);
+    vec3 dir = cubeDirection(t);
     p[k] = d[k] * dir;
     // A far sheet vertex and its cap copy must be bit-identical: reuse the sheet point.
     f[k] = d[k] < farPlane ? farPlane * dir : p[k];

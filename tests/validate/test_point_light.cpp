@@ -64,7 +64,8 @@ FrameValidation renderAndValidate(const Scene& scene, gl::RenderOptions ro) {
 // Every capture mode, triangulation and blur at two face sizes, of the volume `source`: the
 // stencil against the crossing counts of the explicit cube volume of the same faces (for the GPU
 // volume, its CPU mirror: RenderOptions::keepVolume).
-void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initializer_list<int> sizes) {
+void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initializer_list<int> sizes,
+                                           gl::GpuVolumeDraw draw = gl::GpuVolumeDraw::Auto) {
   int frames = 0;
   for (const Scene& scene : {room(), lampOverSphere()})
     for (int n : sizes)
@@ -73,6 +74,7 @@ void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initial
           for (bool blur : {false, true}) {
             gl::RenderOptions ro;
             ro.volume = source;
+            ro.gpuVolumeDraw = draw;
             ro.depthWidth = ro.depthHeight = n;
             ro.capture = mode;
             ro.volumeOptions.triangulation = t;
@@ -95,9 +97,11 @@ TEST(PointLight, CubeVolumeMatchesCrossingCountsInEveryCombination) {
   expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Explicit, {24, 64});
 }
 
-// The GPU cube volume at an even and an odd face size (the seam cells' pairing, the corners).
+// The GPU cube volume at an even and an odd face size (the seam cells' pairing, the corners),
+// both ways of drawing it (cube_gpu_volume.h).
 TEST(PointLight, GpuCubeVolumeMatchesCrossingCountsInEveryCombination) {
   expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Gpu, {24, 37});
+  expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Gpu, {24, 37}, gl::GpuVolumeDraw::AllQuads);
 }
 
 // The GPU draws the explicit volume's triangles before the cap's flattening, in float: the same
@@ -130,16 +134,31 @@ TEST(PointLight, GpuCubeVolumeCastsTheExplicitVolumesShadow) {
   box.light.type = LightType::Point;
   box.light.position = {0.4, -0.3, 0.2};
   fitLightAndCamera(box);
-  gl::RenderOptions ro;
-  ro.depthWidth = ro.depthHeight = 16;
-  ro.volume = gl::VolumeSource::Gpu;
   renderer().setScene(box);
+  for (gl::GpuVolumeDraw how : {gl::GpuVolumeDraw::Auto, gl::GpuVolumeDraw::AllQuads}) {
+    gl::RenderOptions ro;
+    ro.depthWidth = ro.depthHeight = 16;
+    ro.volume = gl::VolumeSource::Gpu;
+    ro.gpuVolumeDraw = how;
+    const gl::RenderResult r = renderer().render(ro);
+    const std::size_t cells = 6 * 15 * 15 + 12 * 15 + 8;
+    EXPECT_EQ(r.gpuVolumeDrawUsed, how == gl::GpuVolumeDraw::Auto ? gl::GpuVolumeDraw::Indexed : how);
+    EXPECT_EQ(r.gpuVolumeQuads, cells);
+    EXPECT_EQ(r.gpuVolumeQuadsDrawn, cells);
+    EXPECT_EQ(r.volumeTriangles, 2 * (12 * 16 * 16 - 4)) << "every sheet triangle and its cap image";
+    EXPECT_EQ(r.volumeCountUsed, gl::VolumeCount::ZFail);
+  }
+  // With far texels (the room, back capture: its walls face the lamp), the indexed way leaves
+  // out the all-far sheet triangles as buildCubeVolume does: twice its kept sheet triangles.
+  renderer().setScene(room());
+  gl::RenderOptions ro;
+  ro.depthWidth = ro.depthHeight = 48;
+  ro.volume = gl::VolumeSource::Gpu;
+  ro.keepVolume = true;
   const gl::RenderResult r = renderer().render(ro);
-  const std::size_t cells = 6 * 15 * 15 + 12 * 15 + 8;
-  EXPECT_EQ(r.gpuVolumeQuads, cells);
-  EXPECT_EQ(r.gpuVolumeQuadsDrawn, cells);
-  EXPECT_EQ(r.volumeTriangles, 2 * (12 * 16 * 16 - 4)) << "every sheet triangle and its cap image";
-  EXPECT_EQ(r.volumeCountUsed, gl::VolumeCount::ZFail);
+  ASSERT_TRUE(r.volumeStats.has_value());
+  EXPECT_EQ(r.volumeTriangles, 2 * r.volumeStats->capTrianglesBefore);
+  EXPECT_LT(r.gpuVolumeQuadsDrawn, r.gpuVolumeQuads / 2) << "most of the room's cells are all far";
 }
 
 // The shadow follows the exact one more closely as the cube's texels shrink.
@@ -230,7 +249,7 @@ TEST(PointLight, RefusesWhatItsFrameCannotBe) {
   ro.volumeOptions.cap = FarCap::Quad;  // the cube has no border ring for the quad cap to close
   EXPECT_THROW(renderer().render(ro), InputError);
   ro.volumeOptions.cap = FarCap::Exact;
-  ro.gpuVolumeDraw = gl::GpuVolumeDraw::Indexed;  // the cube volume draws every cell
+  ro.gpuVolumeDraw = gl::GpuVolumeDraw::KeptQuads;  // the cube volume is drawn indexed or per cell
   EXPECT_THROW(renderer().render(ro), InputError);
   ro.gpuVolumeDraw = gl::GpuVolumeDraw::Auto;
   ro.volume = gl::VolumeSource::Explicit;

@@ -1,5 +1,6 @@
 #include "cube_gpu_volume.h"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -33,11 +34,24 @@ void setFaceBases(const Program& p) {
 }  // namespace
 
 CubeGpuVolume::CubeGpuVolume(const ShaderLibrary& shaders)
-    : program_(shaders, {"version_330.glsl", "volume_cube.vert"},
-               {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_cube.geom"},
+    : points_(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "cube_common.glsl", "volume_cube.vert"},
+              {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "cube_common.glsl", "volume_cube.geom"},
+              {"depth_only.frag"}),
+      list_(Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl",
+                                       "cube_common.glsl", "volume_cube_list.comp"})),
+      indexed_(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "cube_common.glsl",
+                         "volume_cube_indexed.vert"},
                {"depth_only.frag"}),
+      command_(makeBuffer()),
+      indices_(makeBuffer()),
       seamVao_(makeVertexArray()),
-      emptyVao_(makeVertexArray()) {}
+      emptyVao_(makeVertexArray()),
+      indexedVao_(makeVertexArray()),
+      primitives_(makeQuery()) {
+  SV_GL(glBindVertexArray(indexedVao_.id()));
+  SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id()));
+  SV_GL(glBindVertexArray(0));
+}
 
 void CubeGpuVolume::resize(int n) {
   SV_CHECK_GE(n, 2);
@@ -75,32 +89,94 @@ void CubeGpuVolume::storeFace(int face, const Texture& depth) {
 
 std::size_t CubeGpuVolume::cells() const { return n_ < 2 ? 0 : innerQuads(n_) + 12u * std::size_t(n_ - 1) + 8u; }
 
-void CubeGpuVolume::draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GLuint primitivesQuery) const {
+void CubeGpuVolume::setUniforms(const Program& p, const CubeVolumeRule& rule) const {
+  p.use();
+  p.set("cubeDepth", 0);
+  p.set("cubeSize", n_);
+  p.set("farPlane", float(rule.farPlane));
+  p.set("nearPlane", float(rule.nearPlane));
+  p.set("farSnap", float(rule.farPlane * (1.0 - kFarSnap)));
+  p.set("bias", float(rule.bias));
+  p.set("perfect", rule.perfect ? 1 : 0);
+  p.set("drawCap", 1);
+  p.set("planarTolerance", float(kPlanarTolerance));
+  setFaceBases(p);
+}
+
+GpuVolumeDraw CubeGpuVolume::draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GpuVolumeDraw how) {
   SV_CHECK_GE(n_, 2);
-  program_.use();
-  program_.set("cubeDepth", 0);
-  program_.set("cubeSize", n_);
-  program_.set("farPlane", float(rule.farPlane));
-  program_.set("nearPlane", float(rule.nearPlane));
-  program_.set("farSnap", float(rule.farPlane * (1.0 - kFarSnap)));
-  program_.set("bias", float(rule.bias));
-  program_.set("perfect", rule.perfect ? 1 : 0);
-  program_.set("drawCap", 1);
-  program_.set("planarTolerance", float(kPlanarTolerance));
-  program_.set("lightToClip", glm::mat4(lightToClip));
-  setFaceBases(program_);
+  const bool indexed = how != GpuVolumeDraw::AllQuads && 12u * cells() <= kMaxCubeIndices;
   SV_GL(glActiveTexture(GL_TEXTURE0));
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, depth_.id()));
-  SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitivesQuery));
-  program_.set("seamCells", 0);
+  SV_GL(glBindSampler(0, 0));
+  if (indexed)
+    drawIndexed(lightToClip, rule);
+  else
+    drawPoints(lightToClip, rule);
+  SV_GL(glBindVertexArray(0));
+  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
+  lastWay_ = indexed ? GpuVolumeDraw::Indexed : GpuVolumeDraw::AllQuads;
+  return lastWay_;
+}
+
+void CubeGpuVolume::drawPoints(const glm::dmat4& lightToClip, const CubeVolumeRule& rule) {
+  setUniforms(points_, rule);
+  points_.set("lightToClip", glm::mat4(lightToClip));
+  SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_.id()));
+  points_.set("seamCells", 0);
   SV_GL(glBindVertexArray(emptyVao_.id()));
   SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(innerQuads(n_))));
-  program_.set("seamCells", 1);
+  points_.set("seamCells", 1);
   SV_GL(glBindVertexArray(seamVao_.id()));
   SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(cells() - innerQuads(n_))));
   SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
-  SV_GL(glBindVertexArray(0));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
+}
+
+void CubeGpuVolume::drawIndexed(const glm::dmat4& lightToClip, const CubeVolumeRule& rule) {
+  const std::size_t worst = 12u * cells();
+  if (capacity_ != worst) {
+    SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id()));
+    SV_GL(glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(worst * sizeof(GLuint)), nullptr, GL_DYNAMIC_DRAW));
+    SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0));
+    capacity_ = worst;
+  }
+  // DrawElementsIndirectCommand {count 0, one instance, first 0, base vertex 0, base instance 0}
+  // and the cells kept.
+  const std::array<GLuint, 6> command{0, 1, 0, 0, 0, 0};
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, command_.id()));
+  SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(sizeof command), command.data(), GL_DYNAMIC_DRAW));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+  setUniforms(list_, rule);
+  const std::size_t groups = (cells() + 255) / 256, x = std::min<std::size_t>(groups, 65535), y = (groups + x - 1) / x;
+  list_.set("cellCount", int(cells()));
+  list_.set("rowLength", int(x * 256));
+  SV_GL(glUniform1ui(list_.location("capacity"), GLuint(capacity_)));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, command_.id()));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices_.id()));
+  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, seamCells_.id()));
+  SV_GL(glDispatchCompute(GLuint(x), GLuint(y), 1));
+  SV_GL(glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
+  for (GLuint b = 0; b < 3; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
+  setUniforms(indexed_, rule);
+  indexed_.set("lightToClip", glm::mat4(lightToClip));
+  SV_GL(glBindVertexArray(indexedVao_.id()));
+  SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_.id()));
+  SV_GL(glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr));
+  SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0));
+}
+
+std::pair<std::size_t, std::size_t> CubeGpuVolume::lastCounts() const {
+  if (lastWay_ == GpuVolumeDraw::AllQuads) {
+    GLuint64 triangles = 0;
+    SV_GL(glGetQueryObjectui64v(primitives_.id(), GL_QUERY_RESULT, &triangles));
+    return {std::size_t(triangles), cells()};
+  }
+  SV_CHECK(lastWay_ == GpuVolumeDraw::Indexed);
+  std::array<GLuint, 6> command{};
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, command_.id()));
+  SV_GL(glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(sizeof command), command.data()));
+  SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
+  return {std::size_t(command[0] / 3), std::size_t(command[5])};
 }
 
 }  // namespace shadowvol::gl

@@ -1,17 +1,26 @@
 // A point light's GPU cube volume (`volume gpu` for a point light; docs/gpu.md "The GPU cube
 // volume"): the cells of cube::Grid (shadowvol/cube_grid.h) drawn straight from the six faces'
-// light-view depths by shaders/volume_cube.vert and .geom, without a read-back. The faces' depths
-// (each face's resolved, and with blur blurred, R32F map) are copied into the layers of one
-// N x N x 6 array texture (glCopyImageSubData: GL 4.3); the seam cells' texel ids sit in a vertex
-// buffer made once per N. The triangles are buildCubeVolume's (cube_volume.h) before its far-cap
-// flattening, with the all-far triangles drawn on the sheet and the cap where they cancel.
-// Internal to the renderer (renderer.cpp owns one per context).
+// light-view depths, without a read-back. The faces' depths (each face's resolved, and with blur
+// blurred, R32F map) are copied into the layers of one N x N x 6 array texture
+// (glCopyImageSubData: GL 4.3); the seam cells' texel ids sit in a buffer made once per N. Two
+// ways to draw, the same surface:
+//   - Indexed (the default): volume_cube_list.comp lists each cell's triangles as vertex indices
+//     into a buffer sized for the worst case, with the count in an indirect draw command;
+//     volume_cube_indexed.vert places the vertices, each once per use in the vertex cache. It
+//     leaves out the all-far sheet triangles and their cap images, as buildCubeVolume does;
+//   - AllQuads: one point per cell through volume_cube.geom, which emits a kept cell's triangles
+//     all (an all-far one on the sheet and the cap, where the two cancel in the stencil). Used
+//     as well where the indexed way's worst case exceeds kMaxCubeIndices.
+// Either gives buildCubeVolume's (cube_volume.h) triangles before its far-cap flattening, in
+// float. Internal to the renderer (renderer.cpp owns one per context).
 #pragma once
 
 #include <cstddef>
+#include <utility>
 
 #include <glm/mat4x4.hpp>
 
+#include "shadowvol/frame.h"
 #include "shadowvol/gl/gl_objects.h"
 #include "shadowvol/gl/shader_program.h"
 
@@ -22,6 +31,10 @@ struct CubeVolumeRule {
   double nearPlane = 0.0, farPlane = 1.0, bias = 0.0;
   bool perfect = true;
 };
+
+/// The indexed way's largest index buffer (512 MiB, as the one-map indexed way's): faces of up to
+/// 1,365 texels a side.
+inline constexpr std::size_t kMaxCubeIndices = std::size_t(128) << 20;
 
 class CubeGpuVolume {
  public:
@@ -35,16 +48,26 @@ class CubeGpuVolume {
   /// The cells of the faces stored: 6 (N-1)^2 + 12 (N-1) + 8.
   std::size_t cells() const;
   /// Draws the volume (stencil state and depth clamp are the caller's); `lightToClip` maps
-  /// light-relative world positions to the camera's clip space. Counts the triangles emitted in
-  /// `primitivesQuery` (GL_PRIMITIVES_GENERATED).
-  void draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GLuint primitivesQuery) const;
+  /// light-relative world positions to the camera's clip space. `how`: Indexed or AllQuads (any
+  /// other is Indexed); returns the way used (AllQuads where Indexed would not fit).
+  GpuVolumeDraw draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GpuVolumeDraw how);
+  /// The last draw's triangles and the cells that drew any (AllQuads: every cell), read back
+  /// (call after the frame's passes: it waits for the draw).
+  std::pair<std::size_t, std::size_t> lastCounts() const;
 
  private:
-  Program program_;
+  void setUniforms(const Program& p, const CubeVolumeRule& rule) const;
+  void drawIndexed(const glm::dmat4& lightToClip, const CubeVolumeRule& rule);
+  void drawPoints(const glm::dmat4& lightToClip, const CubeVolumeRule& rule);
+
+  Program points_, list_, indexed_;
   Texture depth_;
-  Buffer seamCells_;
-  VertexArray seamVao_, emptyVao_;
+  Buffer seamCells_, command_, indices_;
+  VertexArray seamVao_, emptyVao_, indexedVao_;
+  Query primitives_;
   int n_ = 0;
+  std::size_t capacity_ = 0;  // indices_'s size in indices
+  GpuVolumeDraw lastWay_ = GpuVolumeDraw::Auto;
 };
 
 }  // namespace shadowvol::gl

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
@@ -1275,8 +1276,8 @@ struct Renderer::Impl {
                        "a point light's cube faces are square");
   }
 
-  /// What the GPU cube volume (cube_gpu_volume.h) takes: GL 4.3, no refinement, the exact cap, one
-  /// way of drawing.
+  /// What the GPU cube volume (cube_gpu_volume.h) takes: GL 4.3, no refinement, the exact cap, and
+  /// its two ways of drawing.
   void validateGpuCubeVolume(const RenderOptions& o) const {
     if (!hasCompute)
       throw InputError("RenderOptions", "volume", "gpu",
@@ -1289,9 +1290,10 @@ struct Renderer::Impl {
       throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap),
                        "a point light's volume has the exact cap only (the quad cap closes one map's border ring, "
                        "and the cube has none)");
-    if (o.gpuVolumeDraw != GpuVolumeDraw::Auto && o.gpuVolumeDraw != GpuVolumeDraw::AllQuads)
-      throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
-                       "a point light's GPU cube volume draws every cell (all-quads): leave it at auto");
+    const GpuVolumeDraw d = o.gpuVolumeDraw;
+    if (d != GpuVolumeDraw::Auto && d != GpuVolumeDraw::Indexed && d != GpuVolumeDraw::AllQuads)
+      throw InputError("RenderOptions", "gpuVolumeDraw", toString(d),
+                       "a point light's GPU cube volume is drawn indexed (auto) or one point per cell (all-quads)");
   }
 
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
@@ -1446,8 +1448,7 @@ struct Renderer::Impl {
       });
     }
     result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, n, n, o.capture);
-    result.gpuVolumeQuads = result.gpuVolumeQuadsDrawn = cubeVolume.cells();
-    result.gpuVolumeDrawUsed = GpuVolumeDraw::AllQuads;
+    result.gpuVolumeQuads = cubeVolume.cells();
     if (faces) {
       VolumeBuildOptions mirror = vo;
       mirror.bias = result.biasUsed;
@@ -1457,12 +1458,13 @@ struct Renderer::Impl {
     }
   }
 
-  /// The GPU cube volume of the faces cubeVolumeDepthPass stored (stencil state set).
-  void drawCubeGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias) {
+  /// The GPU cube volume of the faces cubeVolumeDepthPass stored (stencil state set); its counts
+  /// are read after the frame (cubeVolume.lastCounts).
+  void drawCubeGpuVolume(const CameraSetup& cam, const RenderOptions& o, double bias, RenderResult& result) {
     const glm::dmat4 lightToClip = cam.proj * cam.view * glm::translate(glm::dmat4(1.0), light.position);
-    cubeVolume.draw(lightToClip, {light.nearPlane, light.farPlane, bias, vo.triangulation == Triangulation::Perfect},
-                    primitivesQuery.id());
-    volumeTrianglesPending = true;
+    const CubeVolumeRule rule{light.nearPlane, light.farPlane, bias,
+                              o.volumeOptions.triangulation == Triangulation::Perfect};
+    result.gpuVolumeDrawUsed = cubeVolume.draw(lightToClip, rule, o.gpuVolumeDraw);
   }
 
   /// A point light's cube shadow map: the light pass of each face's spot light (and for midpoint
@@ -1711,7 +1713,7 @@ struct Renderer::Impl {
         else if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
         else if (cubeGpu)
-          drawCubeGpuVolume(cam, vo, result.biasUsed);
+          drawCubeGpuVolume(cam, o, result.biasUsed, result);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();
@@ -1749,6 +1751,7 @@ struct Renderer::Impl {
                                         : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
                                                                            : VisibilitySource::FromAttachment;
     readShadowImages(cam, stencilShadows && o.readStencil, visibility, result);
+    if (cubeGpu) std::tie(result.volumeTriangles, result.gpuVolumeQuadsDrawn) = cubeVolume.lastCounts();
     if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
       GLuint64 n = 0;
       SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
