@@ -34,8 +34,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production), explicit (depth "
-                 "read back, the CPU-built mesh uploaded) or auto (gpu; explicit for a scene with a point light, whose "
-                 "explicit cube volume renders faster than its GPU cube volume on llvmpipe: README 'Point lights')")
+                 "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume)")
       ->check(CLI::IsMember({"auto", "gpu", "explicit"}))
       ->capture_default_str();
   cmd.add_option("--gpu-draw", o.gpuDraw,
@@ -95,10 +94,8 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
-  bool pointLight = false;  // auto: gpu, but explicit for a point light (faster on llvmpipe)
-  for (std::size_t k = 0; k < scene.lightCount(); ++k) pointLight = pointLight || scene.lightAt(k).type == LightType::Point;
   if (o.volume == "auto")
-    ro.volume = pointLight ? gl::VolumeSource::Explicit : gl::VolumeSource::Gpu;
+    ro.volume = gl::VolumeSource::Gpu;
   else
     gl::parseVolumeSource(o.volume, ro.volume);
   ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed

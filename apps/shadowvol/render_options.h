@@ -14,7 +14,7 @@ namespace shadowvol::cli {
 struct RenderCliOptions {
   SceneOptions scene;
   std::string method = "hybrid";
-  std::string volume = "auto";  ///< --volume: auto (gpu; explicit for a point light) | gpu | explicit
+  std::string volume = "auto";  ///< --volume: auto (gpu) | gpu | explicit
   std::string gpuDraw = "auto";
   std::string count = "auto";  ///< --count: auto | zfail | zpass
   std::string crossings = "auto";  ///< --crossings: auto | rays | gpu-walk

@@ -487,15 +487,16 @@ TEST(CliGl, PointLightBuildsAndValidates) {
                              (dir / "rep").string());
   ASSERT_EQ(v.code, 0) << v.out;
   const auto jv = nlohmann::json::parse(v.out);
-  EXPECT_EQ(jv["options"]["volume"], "explicit");
+  EXPECT_EQ(jv["options"]["volume"], "gpu");  // auto: the GPU cube volume
   EXPECT_GE(jv["stencilVsCount"]["fraction"].get<double>(), 0.9999);
+  EXPECT_TRUE(jv["passed"].get<bool>());
   const CliResult depth = runCli("depth --scene " + room + " --out " + (dir / "d.pfm").string());
   EXPECT_EQ(depth.code, 1);
   EXPECT_TRUE(contains(depth.out, "/light/type")) << depth.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));
-  const CliResult map = runCli("render --volume gpu --scene " + room + " --out " + (dir / "f.png").string());
+  const CliResult map = runCli("render --gpu-draw kept-quads --scene " + room + " --out " + (dir / "f.png").string());
   EXPECT_EQ(map.code, 1);
-  EXPECT_TRUE(contains(map.out, "--volume")) << map.out;
+  EXPECT_TRUE(contains(map.out, "--gpu-draw")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
   // The dual-paraboloid baseline: its maps beside the cube map's in the report.
@@ -523,7 +524,7 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
                              (dir / "rep").string());
   ASSERT_EQ(v.code, 0) << v.out;
   const auto j = nlohmann::json::parse(v.out);
-  EXPECT_EQ(j["options"]["volume"], "explicit");  // auto: the point light's cube volume
+  EXPECT_EQ(j["options"]["volume"], "gpu");  // auto: the spot's GPU volume, the point light's GPU cube volume
   ASSERT_EQ(j["lights"].size(), 2u);
   EXPECT_EQ(j["scene"]["lights"].size(), 2u);
   for (int k = 0; k < 2; ++k) {
@@ -545,9 +546,9 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_EQ(none.code, 1);
   EXPECT_TRUE(contains(none.out, "--light")) << none.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "w.ply"));
-  const CliResult gpu = runCli("render --volume gpu --scene " + scene + " --out " + (dir / "f.png").string());
+  const CliResult gpu = runCli("render --refine 4 --scene " + scene + " --out " + (dir / "f.png").string());
   EXPECT_EQ(gpu.code, 1);
-  EXPECT_TRUE(contains(gpu.out, "light 1")) << gpu.out;
+  EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--refine")) << gpu.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
 }
 

@@ -74,7 +74,8 @@ TEST(SweepCsv, HeaderAndRowHaveTheSameColumnsAndRoundTrip) {
 TEST(SweepCsv, ResultsOfEarlierVersionsStillRead) {
   const auto dir = test::tempDir();
   const auto csv = dir / "results.csv";
-  // Versions 0-2: no crossings_ms column; 2 without the last column of 3, 1 and 0 without more.
+  // Version 3: no list_ms column; versions 0-2 no crossings_ms either; 2 without the last column
+  // of 3, 1 and 0 without more.
   auto splitCsvLine = [](const std::string& line) {  // the sample has no quoted field
     std::vector<std::string> f(1);
     for (char c : line)
@@ -83,33 +84,50 @@ TEST(SweepCsv, ResultsOfEarlierVersionsStillRead) {
     return f;
   };
   const std::vector<std::string> header = splitCsvLine(sweepCsvHeader());
-  const std::size_t crossings = std::size_t(std::find(header.begin(), header.end(), "crossings_ms") - header.begin());
+  const auto columnOf = [&](const char* name) {
+    return std::size_t(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t crossings = columnOf("crossings_ms"), list = columnOf("list_ms");
   ASSERT_LT(crossings, header.size());
-  auto olderVersion = [&](const std::string& line, int dropped) {
+  ASSERT_EQ(list, crossings + 1);
+  auto olderVersion = [&](const std::string& line, bool withCrossings, int dropped) {
     std::vector<std::string> f = splitCsvLine(line);
-    f.erase(f.begin() + std::ptrdiff_t(crossings));
+    f.erase(f.begin() + std::ptrdiff_t(list));
+    if (!withCrossings) f.erase(f.begin() + std::ptrdiff_t(crossings));
     f.resize(f.size() - std::size_t(dropped));
     std::string out;
     for (const auto& x : f) out += (out.empty() ? "" : ",") + x;
     return out;
   };
+  const auto hasPhase = [](const SweepRow& r, const char* name) {
+    return std::any_of(r.phases.begin(), r.phases.end(), [&](const auto& p) { return p.first == name; });
+  };
   SweepRow sample = sampleRow();
   sample.volumeCount = "z-pass";
   sample.phases.push_back({"crossings", TimeStat{2.5, 2.5, 2.5}});
+  sample.phases.push_back({"list", TimeStat{1.5, 1.5, 1.5}});
   test::writeText(csv, sweepCsvHeader() + "\n" + toCsv(sample) + "\n");
   const auto now = readSweepCsv(csv);
   ASSERT_EQ(now.size(), 1u);
   EXPECT_EQ(now[0].volumeCount, "z-pass");
-  EXPECT_TRUE(std::any_of(now[0].phases.begin(), now[0].phases.end(), [](const auto& p) { return p.first == "crossings"; }));
+  EXPECT_TRUE(hasPhase(now[0], "crossings"));
+  EXPECT_TRUE(hasPhase(now[0], "list"));
+  test::writeText(csv, olderVersion(sweepCsvHeader(), true, 0) + "\n" + olderVersion(toCsv(sample), true, 0) + "\n");
+  const auto three = readSweepCsv(csv);
+  ASSERT_EQ(three.size(), 1u);
+  EXPECT_TRUE(hasPhase(three[0], "crossings"));
+  EXPECT_FALSE(hasPhase(three[0], "list"));
   for (int dropped : {0, 1, 3}) {
     SCOPED_TRACE(dropped);
-    test::writeText(csv, olderVersion(sweepCsvHeader(), dropped) + "\n" + olderVersion(toCsv(sample), dropped) + "\n");
+    test::writeText(csv, olderVersion(sweepCsvHeader(), false, dropped) + "\n" +
+                             olderVersion(toCsv(sample), false, dropped) + "\n");
     const auto rows = readSweepCsv(csv);
     ASSERT_EQ(rows.size(), 1u);
     EXPECT_EQ(rows[0].volumeTriangles, 123456u);
     EXPECT_EQ(rows[0].volumeQuads, dropped <= 1 ? 65025u : 0u);
     EXPECT_EQ(rows[0].volumeCount, dropped == 0 ? "z-pass" : "");
-    EXPECT_TRUE(std::none_of(rows[0].phases.begin(), rows[0].phases.end(), [](const auto& p) { return p.first == "crossings"; }));
+    EXPECT_FALSE(hasPhase(rows[0], "crossings"));
+    EXPECT_FALSE(hasPhase(rows[0], "list"));
   }
   EXPECT_EQ(readSweepCsv(test::sourceDir() / "docs/results/main/results.csv").empty(), false);
 }

@@ -54,7 +54,9 @@ enum class TimingMethod {
 const char* toString(TimingMethod t);
 
 /// How the GPU volume is drawn. With the exact cap, quads whose four corners lie on the far plane
-/// contribute nothing and can be skipped; with the quad cap every quad's sheet is needed.
+/// contribute nothing and can be skipped; with the quad cap every quad's sheet is needed. A point
+/// light's GPU cube volume takes Auto or Indexed (a compute pass lists its cells' triangles, GL
+/// 4.3) and AllQuads (one point per cell through a geometry shader); cube_gpu_volume.h.
 enum class GpuVolumeDraw {
   Auto,         ///< Indexed with GL 4.3 (the fastest measured on llvmpipe), else KeptQuads;
                 ///< AllQuads with the quad cap
@@ -116,7 +118,9 @@ struct RenderOptions {
   bool keepVolume = false;                     ///< explicit volume: return the mesh drawn (RenderResult::volume);
                                                ///< refined GPU volume: the CPU builder's mesh from the
                                                ///< GPU's own boundary edges and crossings, and the
-                                               ///< GPU's triangles (RenderResult::gpuVolume; debug read-backs)
+                                               ///< GPU's triangles (RenderResult::gpuVolume; debug read-backs);
+                                               ///< GPU cube volume: the explicit cube volume of the six
+                                               ///< faces read back (its CPU mirror)
   bool forceWallClock = false;                 ///< time with glFinish even if timer queries exist
   /// hybrid/gpu: how the volume is drawn from the depth texture (docs/gpu.md "Skipping the far
   /// quads"). All give the same stencil. The refined GPU volume (refineSteps > 0) takes only Auto.
@@ -157,7 +161,8 @@ struct RenderResult {
   std::vector<std::uint8_t> visibility;
   std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
   std::optional<VolumeMesh> volume;   ///< the explicit volume drawn, when RenderOptions::keepVolume
-                                      ///< (refined GPU volume: the CPU mesh from its crossings)
+                                      ///< (refined GPU volume: the CPU mesh from its crossings;
+                                      ///< GPU cube volume: the explicit one of the same faces)
   std::optional<VolumeMesh> gpuVolume;  ///< refined GPU volume with keepVolume: the GPU's own
                                         ///< triangles, read back and placed in double (a debug path)
   std::vector<PassTime> passes;       ///< in execution order, every light's

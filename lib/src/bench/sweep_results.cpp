@@ -32,12 +32,16 @@ std::vector<std::string> split(const std::string& line) {
 }
 
 // The phases a file of `version` has a column for: the crossings pass (the refined GPU volume)
-// from version 3 on.
-bool phaseIn(const std::string& phase, int version) { return version >= 3 || phase != "crossings"; }
+// from version 3 on, the list pass (the GPU cube volume's) from version 4.
+bool phaseIn(const std::string& phase, int version) {
+  if (phase == "crossings") return version >= 3;
+  if (phase == "list") return version >= 4;
+  return true;
+}
 
 // The columns of each version of the file, all still read: 0 before the GPU volume reported its
 // quads (docs/results/main), 1 before the stencil count (z-pass or z-fail) was recorded, 2 before
-// the crossings pass, 3 now.
+// the crossings pass, 3 before the list pass, 4 now.
 std::vector<std::string> columns(int version = kSweepCsvVersion) {
   std::vector<std::string> c = {"scene", "triangles", "method", "family", "capture", "resolution", "width", "height",
                                 "timing", "frames", "frame_ms", "frame_ms_min", "frame_ms_max"};
@@ -61,8 +65,9 @@ std::string headerOf(const std::vector<std::string>& cols) {
 }  // namespace
 
 const std::vector<std::string>& sweepPhases() {
-  static const std::vector<std::string> p = {"light",  "resolve", "blur",     "crossings", "readback", "build",
-                                             "upload", "camera",  "volume",   "lighting",  "shade",    "silhouette"};
+  static const std::vector<std::string> p = {"light",  "resolve", "blur",   "crossings", "list",
+                                             "readback", "build", "upload", "camera",    "volume",
+                                             "lighting", "shade", "silhouette"};
   return p;
 }
 

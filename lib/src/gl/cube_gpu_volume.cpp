@@ -103,24 +103,46 @@ void CubeGpuVolume::setUniforms(const Program& p, const CubeVolumeRule& rule) co
   setFaceBases(p);
 }
 
-GpuVolumeDraw CubeGpuVolume::draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GpuVolumeDraw how) {
+GpuVolumeDraw CubeGpuVolume::list(const CubeVolumeRule& rule, GpuVolumeDraw how) {
   SV_CHECK_GE(n_, 2);
-  const bool indexed = how != GpuVolumeDraw::AllQuads && 12u * cells() <= kMaxCubeIndices;
-  SV_GL(glActiveTexture(GL_TEXTURE0));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, depth_.id()));
-  SV_GL(glBindSampler(0, 0));
-  if (indexed)
-    drawIndexed(lightToClip, rule);
-  else
-    drawPoints(lightToClip, rule);
-  SV_GL(glBindVertexArray(0));
-  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
-  lastWay_ = indexed ? GpuVolumeDraw::Indexed : GpuVolumeDraw::AllQuads;
+  rule_ = rule;
+  lastWay_ = how != GpuVolumeDraw::AllQuads && 12u * cells() <= kMaxCubeIndices ? GpuVolumeDraw::Indexed
+                                                                                 : GpuVolumeDraw::AllQuads;
+  if (lastWay_ == GpuVolumeDraw::Indexed) {
+    bindDepth();
+    listIndexed(rule);
+    unbindDepth();
+  }
   return lastWay_;
 }
 
-void CubeGpuVolume::drawPoints(const glm::dmat4& lightToClip, const CubeVolumeRule& rule) {
-  setUniforms(points_, rule);
+void CubeGpuVolume::draw(const glm::dmat4& lightToClip) {
+  SV_CHECK(lastWay_ == GpuVolumeDraw::Indexed || lastWay_ == GpuVolumeDraw::AllQuads);
+  bindDepth();
+  if (lastWay_ == GpuVolumeDraw::Indexed) {
+    setUniforms(indexed_, rule_);
+    indexed_.set("lightToClip", glm::mat4(lightToClip));
+    SV_GL(glBindVertexArray(indexedVao_.id()));
+    SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_.id()));
+    SV_GL(glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr));
+    SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0));
+  } else {
+    drawPoints(lightToClip);
+  }
+  SV_GL(glBindVertexArray(0));
+  unbindDepth();
+}
+
+void CubeGpuVolume::bindDepth() const {
+  SV_GL(glActiveTexture(GL_TEXTURE0));
+  SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, depth_.id()));
+  SV_GL(glBindSampler(0, 0));
+}
+
+void CubeGpuVolume::unbindDepth() const { SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0)); }
+
+void CubeGpuVolume::drawPoints(const glm::dmat4& lightToClip) {
+  setUniforms(points_, rule_);
   points_.set("lightToClip", glm::mat4(lightToClip));
   SV_GL(glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_.id()));
   points_.set("seamCells", 0);
@@ -132,7 +154,7 @@ void CubeGpuVolume::drawPoints(const glm::dmat4& lightToClip, const CubeVolumeRu
   SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
 }
 
-void CubeGpuVolume::drawIndexed(const glm::dmat4& lightToClip, const CubeVolumeRule& rule) {
+void CubeGpuVolume::listIndexed(const CubeVolumeRule& rule) {
   const std::size_t worst = 12u * cells();
   if (capacity_ != worst) {
     SV_GL(glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.id()));
@@ -157,12 +179,6 @@ void CubeGpuVolume::drawIndexed(const glm::dmat4& lightToClip, const CubeVolumeR
   SV_GL(glDispatchCompute(GLuint(x), GLuint(y), 1));
   SV_GL(glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
   for (GLuint b = 0; b < 3; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
-  setUniforms(indexed_, rule);
-  indexed_.set("lightToClip", glm::mat4(lightToClip));
-  SV_GL(glBindVertexArray(indexedVao_.id()));
-  SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, command_.id()));
-  SV_GL(glDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr));
-  SV_GL(glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0));
 }
 
 std::pair<std::size_t, std::size_t> CubeGpuVolume::lastCounts() const {

@@ -47,18 +47,23 @@ class CubeGpuVolume {
   void storeFace(int face, const Texture& depth);
   /// The cells of the faces stored: 6 (N-1)^2 + 12 (N-1) + 8.
   std::size_t cells() const;
-  /// Draws the volume (stencil state and depth clamp are the caller's); `lightToClip` maps
-  /// light-relative world positions to the camera's clip space. `how`: Indexed or AllQuads (any
-  /// other is Indexed); returns the way used (AllQuads where Indexed would not fit).
-  GpuVolumeDraw draw(const glm::dmat4& lightToClip, const CubeVolumeRule& rule, GpuVolumeDraw how);
+  /// Lists the triangles for the faces stored (the indexed way's compute pass; nothing for the
+  /// geometry-shader way). `how`: Indexed or AllQuads (any other is Indexed); returns the way the
+  /// next draw takes (AllQuads where Indexed would not fit).
+  GpuVolumeDraw list(const CubeVolumeRule& rule, GpuVolumeDraw how);
+  /// Draws the volume listed (stencil state and depth clamp are the caller's); `lightToClip` maps
+  /// light-relative world positions to the camera's clip space.
+  void draw(const glm::dmat4& lightToClip);
   /// The last draw's triangles and the cells that drew any (AllQuads: every cell), read back
   /// (call after the frame's passes: it waits for the draw).
   std::pair<std::size_t, std::size_t> lastCounts() const;
 
  private:
   void setUniforms(const Program& p, const CubeVolumeRule& rule) const;
-  void drawIndexed(const glm::dmat4& lightToClip, const CubeVolumeRule& rule);
-  void drawPoints(const glm::dmat4& lightToClip, const CubeVolumeRule& rule);
+  void listIndexed(const CubeVolumeRule& rule);
+  void bindDepth() const;
+  void unbindDepth() const;
+  void drawPoints(const glm::dmat4& lightToClip);
 
   Program points_, list_, indexed_;
   Texture depth_;
@@ -68,6 +73,7 @@ class CubeGpuVolume {
   int n_ = 0;
   std::size_t capacity_ = 0;  // indices_'s size in indices
   GpuVolumeDraw lastWay_ = GpuVolumeDraw::Auto;
+  CubeVolumeRule rule_;  // the last list's
 };
 
 }  // namespace shadowvol::gl

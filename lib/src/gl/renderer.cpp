@@ -1428,7 +1428,8 @@ struct Renderer::Impl {
   }
 
   /// The GPU cube volume's input (cube_gpu_volume.h): each face's light pass, resolved (and with
-  /// blur blurred) and copied into the cube volume's layer, all timed as `light`. With keepVolume
+  /// blur blurred) and copied into the cube volume's layer, all timed as `light`; then its
+  /// triangles listed (timed as `list`). With keepVolume
   /// each face is also read back and the explicit cube volume built from the six maps with the
   /// same options (result.volume: the CPU mirror that validation counts the crossings of; the GPU
   /// draws the same triangles before the cap's flattening).
@@ -1449,6 +1450,12 @@ struct Renderer::Impl {
     }
     result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, n, n, o.capture);
     result.gpuVolumeQuads = cubeVolume.cells();
+    {
+      TimedPass t(timer, "list");  // the indexed way's compute pass
+      const CubeVolumeRule rule{light.nearPlane, light.farPlane, result.biasUsed,
+                                vo.triangulation == Triangulation::Perfect};
+      result.gpuVolumeDrawUsed = cubeVolume.list(rule, o.gpuVolumeDraw);
+    }
     if (faces) {
       VolumeBuildOptions mirror = vo;
       mirror.bias = result.biasUsed;
@@ -1458,13 +1465,10 @@ struct Renderer::Impl {
     }
   }
 
-  /// The GPU cube volume of the faces cubeVolumeDepthPass stored (stencil state set); its counts
-  /// are read after the frame (cubeVolume.lastCounts).
-  void drawCubeGpuVolume(const CameraSetup& cam, const RenderOptions& o, double bias, RenderResult& result) {
-    const glm::dmat4 lightToClip = cam.proj * cam.view * glm::translate(glm::dmat4(1.0), light.position);
-    const CubeVolumeRule rule{light.nearPlane, light.farPlane, bias,
-                              o.volumeOptions.triangulation == Triangulation::Perfect};
-    result.gpuVolumeDrawUsed = cubeVolume.draw(lightToClip, rule, o.gpuVolumeDraw);
+  /// The GPU cube volume of the faces cubeVolumeDepthPass stored and listed (stencil state set);
+  /// its counts are read after the frame (cubeVolume.lastCounts).
+  void drawCubeGpuVolume(const CameraSetup& cam) {
+    cubeVolume.draw(cam.proj * cam.view * glm::translate(glm::dmat4(1.0), light.position));
   }
 
   /// A point light's cube shadow map: the light pass of each face's spot light (and for midpoint
@@ -1713,7 +1717,7 @@ struct Renderer::Impl {
         else if (volumeDepth)
           drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
         else if (cubeGpu)
-          drawCubeGpuVolume(cam, o, result.biasUsed, result);
+          drawCubeGpuVolume(cam);
         else
           drawExplicitVolume(cam, explicitTriangles, result);
         endVolume();

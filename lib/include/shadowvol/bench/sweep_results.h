@@ -57,10 +57,10 @@ std::string sweepCsvHeader();
 /// One CSV line (no newline).
 std::string toCsv(const SweepRow& row);
 /// Parses one CSV line; throws InputError naming `source`, the line number and the column on bad input.
-/// The version of the file this code writes: 3 added crossings_ms, 2 volume_count, 1 volume_quads and
-/// volume_quads_drawn. `version` < kSweepCsvVersion reads a file of an earlier version (the
+/// The version of the file this code writes: 4 added list_ms, 3 crossings_ms, 2 volume_count, 1
+/// volume_quads and volume_quads_drawn. `version` < kSweepCsvVersion reads a file of an earlier version (the
 /// columns it lacks stay empty or 0); readSweepCsv picks it from the header.
-inline constexpr int kSweepCsvVersion = 3;
+inline constexpr int kSweepCsvVersion = 4;
 SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber,
                        int version = kSweepCsvVersion);
 
