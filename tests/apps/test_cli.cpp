@@ -550,6 +550,13 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_EQ(gpu.code, 1);
   EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--refine")) << gpu.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+  // bench scores one light: refused before anything is written (it once left a header-only
+  // results.csv behind).
+  const CliResult bench = runCli("bench --scenes " + scene + " --methods shadowmap --resolutions 16 --out " +
+                                 (dir / "b").string());
+  EXPECT_EQ(bench.code, 1);
+  EXPECT_TRUE(contains(bench.out, "/lights")) << bench.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "b"));
 }
 
 TEST(CliGl, BenchListsTakeCommas) {

@@ -272,6 +272,37 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     resolutions.push_back(r);
   }
 
+  // The cells (every scene loaded first, so that a scene refused or broken leaves no output).
+  struct Cell {
+    std::size_t scene;
+    LightFit fit;
+    const SweepMethod* method;
+    int resolution;
+  };
+  std::vector<Cell> cells;
+  for (std::size_t s = 0; s < o.scenes.size(); ++s) {
+    const LightType light = lightTypeOf(o.scenes[s]);
+    std::size_t otherLight = 0;
+    for (const LightFit fit : o.fits)
+      for (const SweepMethod* m : methods) {
+        if (!applies(*m, light)) {
+          otherLight += fit == o.fits.front();
+          continue;
+        }
+        if (fit == LightFit::View && light == LightType::Point) continue;  // nothing to fit (fitLightToView)
+        if (!m->usesResolution) {
+          if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: the fit changes nothing
+        } else {
+          for (int r : resolutions) cells.push_back({s, fit, m, r});
+        }
+      }
+    if (otherLight > 0)
+      notes.push_back(sceneLabel(o.scenes[s]) + ": " + std::to_string(otherLight) + " of the methods are for " +
+                      (light == LightType::Point ? "spot and directional lights" : "point lights") +
+                      ", not this scene's " + toString(light) + " light: not measured");
+    if (light == LightType::Point && std::count(o.fits.begin(), o.fits.end(), LightFit::View))
+      notes.push_back(sceneLabel(o.scenes[s]) + ": no view-fitted cells (a point light's cube covers every direction)");
+  }
   // The results file: resume what is there.
   std::filesystem::create_directories(o.out);
   const auto csv = o.out / "results.csv";
@@ -303,37 +334,6 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   }
   std::ofstream append(csv, std::ios::app);
 
-  // The cells.
-  struct Cell {
-    std::size_t scene;
-    LightFit fit;
-    const SweepMethod* method;
-    int resolution;
-  };
-  std::vector<Cell> cells;
-  for (std::size_t s = 0; s < o.scenes.size(); ++s) {
-    const LightType light = lightTypeOf(o.scenes[s]);
-    std::size_t otherLight = 0;
-    for (const LightFit fit : o.fits)
-      for (const SweepMethod* m : methods) {
-        if (!applies(*m, light)) {
-          otherLight += fit == o.fits.front();
-          continue;
-        }
-        if (fit == LightFit::View && light == LightType::Point) continue;  // nothing to fit (fitLightToView)
-        if (!m->usesResolution) {
-          if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: the fit changes nothing
-        } else {
-          for (int r : resolutions) cells.push_back({s, fit, m, r});
-        }
-      }
-    if (otherLight > 0)
-      notes.push_back(sceneLabel(o.scenes[s]) + ": " + std::to_string(otherLight) + " of the methods are for " +
-                      (light == LightType::Point ? "spot and directional lights" : "point lights") +
-                      ", not this scene's " + toString(light) + " light: not measured");
-    if (light == LightType::Point && std::count(o.fits.begin(), o.fits.end(), LightFit::View))
-      notes.push_back(sceneLabel(o.scenes[s]) + ": no view-fitted cells (a point light's cube covers every direction)");
-  }
   SweepProgress progress;
   progress.total = cells.size();
   const auto start = std::chrono::steady_clock::now();
