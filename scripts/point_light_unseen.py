@@ -6,7 +6,7 @@ validate` of the cube volume, of the cube shadow map at the same texels per face
 dual-paraboloid map at the same texel count.
 
     bash scripts/fetch_unseen_meshes.sh
-    python3 scripts/point_light_unseen.py [--resolution 128]
+    python3 scripts/point_light_unseen.py [--resolution 128] [--volume auto|gpu|explicit]
 
 Prints per scene whether the frame is consistent, the three errors (misclassified %) and the ratio
 of the volume's to the cube shadow map's, then the count where the volume's error is at most the
@@ -51,6 +51,8 @@ def validate(scene, report, args):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--resolution", default="128")
+    ap.add_argument("--volume", default="auto", choices=["auto", "gpu", "explicit"],
+                    help="the hybrid cube volume: auto (gpu), gpu or explicit")
     a = ap.parse_args()
     out_dir = os.path.join("out", "point-unseen")
     os.makedirs(out_dir, exist_ok=True)
@@ -60,7 +62,7 @@ def main():
     for path in scenes:
         scene = point_variant(path, out_dir)
         name = os.path.splitext(os.path.basename(path))[0]
-        hv = validate(scene, os.path.join(out_dir, name, "hybrid"), ["--resolution", a.resolution])
+        hv = validate(scene, os.path.join(out_dir, name, "hybrid"), ["--resolution", a.resolution, "--volume", a.volume])
         sm = validate(scene, os.path.join(out_dir, name, "shadowmap"),
                       ["--method", "shadowmap", "--resolution", a.resolution])
         dp = validate(scene, os.path.join(out_dir, name, "dpsm"), ["--method", "dpsm", "--resolution", a.resolution])
