@@ -30,65 +30,71 @@ uniform uint capacity;  // indices the buffer holds
 // from a shared counter, one invocation takes the share from the command's.
 shared uint groupCount, groupCells, groupBase;
 
-// The cell's triangles: `count` indices (0 for an all-far cell), its corners' texel ids, which
-// corners are far, and its sheet triangles (corner numbers) with which of them are kept.
+// The cell's sheet and cap triangles as index triples (volume_cube.geom's strips' vertex order:
+// fixed sheet ABD, DBC and cap ADB, BDC; flipped sheet BCA, ACD and cap BAC, CAD; a corner's
+// sheet ABD and cap ADB), and which are kept. Written out case by case, without indexing arrays
+// by variables (llvmpipe spills those to memory).
 struct CellTriangles {
-  uint count;
-  int id[4];
-  bool far[4];
-  ivec3 tri[2];
-  bool kept[2];
-  int triangles;
+  uvec3 sheet0, cap0, sheet1, cap1;
+  bool kept0, kept1;
 };
+
+uint cellIndexCount(CellTriangles t) { return (t.kept0 ? 6u : 0u) + (t.kept1 ? 6u : 0u); }
 
 CellTriangles cellTriangles(int c) {
   CellTriangles t;
-  t.count = 0u;
-  t.triangles = 0;
+  t.kept0 = t.kept1 = false;
   if (c >= cellCount) return t;
   int inner = cubeInnerCells();
   ivec4 cell = c < inner ? cubeInnerCell(c) : seamCells[c - inner];
   bool triangle = cell.z < 0;
-  int corners = triangle ? 3 : 4;
-  t.id = int[4](cell.x, cell.y, triangle ? cell.w : cell.z, cell.w);
-  float d[4];
-  bool allFar = true;
-  for (int k = 0; k < 4; ++k) {
-    if (k >= corners) break;
-    d[k] = cubeSheetDepth(cubeTexel(t.id[k]));
-    t.far[k] = !(d[k] < farPlane);
-    allFar = allFar && t.far[k];
-  }
-  if (allFar) return t;
-  vec3 p[4];
-  for (int k = 0; k < 4; ++k) {
-    if (k >= corners) break;
-    p[k] = d[k] * cubeDirection(cubeTexel(t.id[k]));
-  }
-  // Corners of each sheet triangle, in volume_cube.geom's strips' order.
+  // A corner triangle's A, B, D as corners 0, 1, 2 (and 3, a copy of D, unused).
+  ivec4 id = triangle ? ivec4(cell.x, cell.y, cell.w, cell.w) : cell;
+  ivec3 ta = cubeTexel(id.x), tb = cubeTexel(id.y), tc = cubeTexel(id.z), td = cubeTexel(id.w);
+  vec4 d = vec4(cubeSheetDepth(ta), cubeSheetDepth(tb), cubeSheetDepth(tc), cubeSheetDepth(td));
+  bvec4 far = not(lessThan(d, vec4(farPlane)));
+  if (all(far)) return t;
+  uvec4 s = 2u * uvec4(id);
+  uvec4 f = s + uvec4(not(far));  // a far texel is its own cap copy
   if (triangle) {
-    t.tri[t.triangles++] = ivec3(0, 1, 2);
-  } else if (perfect != 0 && flipDiagonal(p[0], p[1], p[2], p[3])) {
-    t.tri[t.triangles++] = ivec3(1, 2, 0);
-    t.tri[t.triangles++] = ivec3(0, 2, 3);
-  } else {
-    t.tri[t.triangles++] = ivec3(0, 1, 3);
-    t.tri[t.triangles++] = ivec3(3, 1, 2);
+    t.sheet0 = s.xyz;
+    t.cap0 = f.xzy;
+    t.kept0 = true;  // not all far: the copy of D repeats corner 2
+    return t;
   }
-  for (int k = 0; k < t.triangles; ++k) {
-    t.kept[k] = !(t.far[t.tri[k].x] && t.far[t.tri[k].y] && t.far[t.tri[k].z]);
-    if (t.kept[k]) t.count += 6u;
+  bool flip = perfect != 0 && flipDiagonal(d.x * cubeDirection(ta), d.y * cubeDirection(tb), d.z * cubeDirection(tc),
+                                           d.w * cubeDirection(td));
+  if (flip) {
+    t.sheet0 = s.yzx;  // BCA
+    t.cap0 = f.yxz;    // BAC
+    t.sheet1 = s.xzw;  // ACD
+    t.cap1 = f.zxw;    // CAD
+    t.kept0 = !(far.y && far.z && far.x);
+    t.kept1 = !(far.x && far.z && far.w);
+  } else {
+    t.sheet0 = s.xyw;  // ABD
+    t.cap0 = f.xwy;    // ADB
+    t.sheet1 = s.wyz;  // DBC
+    t.cap1 = f.ywz;    // BDC
+    t.kept0 = !(far.x && far.y && far.w);
+    t.kept1 = !(far.w && far.y && far.z);
   }
   return t;
+}
+
+void put(inout uint at, uvec3 sheet, uvec3 cap) {
+  indices[at] = sheet.x; indices[at + 1u] = sheet.y; indices[at + 2u] = sheet.z;
+  indices[at + 3u] = cap.x; indices[at + 4u] = cap.y; indices[at + 5u] = cap.z;
+  at += 6u;
 }
 
 void main() {
   if (gl_LocalInvocationIndex == 0u) groupCount = groupCells = 0u;
   barrier();
   CellTriangles t = cellTriangles(int(gl_GlobalInvocationID.y) * rowLength + int(gl_GlobalInvocationID.x));
-  uint local = 0u;
-  if (t.count > 0u) {
-    local = atomicAdd(groupCount, t.count);
+  uint count = cellIndexCount(t), local = 0u;
+  if (count > 0u) {
+    local = atomicAdd(groupCount, count);
     atomicAdd(groupCells, 1u);
   }
   barrier();
@@ -97,25 +103,9 @@ void main() {
     atomicAdd(cellsKept, groupCells);
   }
   barrier();
-  if (t.count == 0u) return;
+  if (count == 0u) return;
   uint at = groupBase + local;
-  if (at + t.count > capacity) return;
-  for (int k = 0; k < t.triangles; ++k) {
-    if (!t.kept[k]) continue;
-    uint s[3], f[3];
-    for (int v = 0; v < 3; ++v) {
-      int corner = t.tri[k][v];
-      s[v] = 2u * uint(t.id[corner]);
-      f[v] = t.far[corner] ? s[v] : s[v] + 1u;
-    }
-    // The cap's vertex order of volume_cube.geom's strips: ADB, BDC for ABD, DBC; BAC, CAD for
-    // BCA, ACD; ADB for a corner's ABD: the sheet triangle's vertices 0, 2, 1 for a cell's first
-    // triangle, 1, 0, 2 for a quad's second.
-    indices[at++] = s[0]; indices[at++] = s[1]; indices[at++] = s[2];
-    if (k == 1) {
-      indices[at++] = f[1]; indices[at++] = f[0]; indices[at++] = f[2];
-    } else {
-      indices[at++] = f[0]; indices[at++] = f[2]; indices[at++] = f[1];
-    }
-  }
+  if (at + count > capacity) return;
+  if (t.kept0) put(at, t.sheet0, t.cap0);
+  if (t.kept1) put(at, t.sheet1, t.cap1);
 }
