@@ -18,7 +18,7 @@ namespace {
 
 std::size_t innerQuads(int n) { return std::size_t(kCubeFaces) * std::size_t(n - 1) * std::size_t(n - 1); }
 
-// Face f's D, R, U of cube_map.h's table, as volume_cube.geom's uniform arrays.
+// Face f's D, R, U of cube_map.h's table, as cube_common.glsl's uniform arrays.
 void setFaceBases(const Program& p) {
   std::array<glm::vec3, kCubeFaces> d{}, r{}, u{};
   for (int f = 0; f < kCubeFaces; ++f) {

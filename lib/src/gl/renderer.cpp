@@ -1244,7 +1244,8 @@ struct Renderer::Impl {
   }
 
   /// What a point light's frame can be (docs/gpu.md "Point lights"): the explicit cube volume
-  /// (hybrid, explicit), silhouette volumes, a cube shadow map (GL 4.3) or no shadows.
+  /// (hybrid, explicit), the GPU cube volume (hybrid, gpu; GL 4.3), silhouette volumes, a cube
+  /// shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
     if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
@@ -1429,10 +1430,10 @@ struct Renderer::Impl {
 
   /// The GPU cube volume's input (cube_gpu_volume.h): each face's light pass, resolved (and with
   /// blur blurred) and copied into the cube volume's layer, all timed as `light`; then its
-  /// triangles listed (timed as `list`). With keepVolume
-  /// each face is also read back and the explicit cube volume built from the six maps with the
-  /// same options (result.volume: the CPU mirror that validation counts the crossings of; the GPU
-  /// draws the same triangles before the cap's flattening).
+  /// triangles listed (timed as `list`). With keepVolume each face is also read back and the
+  /// explicit cube volume built from the six maps with the same options (result.volume: the CPU
+  /// mirror that validation counts the crossings of; the GPU draws the same triangles before the
+  /// cap's flattening).
   void cubeVolumeDepthPass(const RenderOptions& o, PassTimer& timer, RenderResult& result) {
     const int n = o.depthWidth;
     const VolumeBuildOptions& vo = o.volumeOptions;
