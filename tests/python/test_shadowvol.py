@@ -206,6 +206,10 @@ def test_several_lights_are_validated_one_by_one(tmp_path):
     assert [l["type"] for l in report["lights"]] == ["spot", "point"]
     assert all(l["stencilVsCount"]["fraction"] >= 0.9999 for l in report["lights"])
     assert (tmp_path / "r" / "light-1" / "overlay.png").is_file()
+    # The GPU volume of every light: the spot's from its map, the point light's GPU cube volume.
+    gpu = sv.validate(both, volume="gpu", resolution=32, size=(80, 60), report_dir=tmp_path / "g")
+    assert gpu["passed"] is True
+    assert all(l["stencilVsCount"]["fraction"] >= 0.9999 for l in gpu["lights"])
 
 
 def test_example_runs(tmp_path):
