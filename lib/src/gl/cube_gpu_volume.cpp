@@ -169,14 +169,19 @@ void CubeGpuVolume::listIndexed(const CubeVolumeRule& rule) {
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(sizeof command), command.data(), GL_DYNAMIC_DRAW));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
   setUniforms(list_, rule);
-  const std::size_t groups = (cells() + 255) / 256, x = std::min<std::size_t>(groups, 65535), y = (groups + x - 1) / x;
   list_.set("cellCount", int(cells()));
-  list_.set("rowLength", int(x * 256));
   SV_GL(glUniform1ui(list_.location("capacity"), GLuint(capacity_)));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, command_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, indices_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, seamCells_.id()));
-  SV_GL(glDispatchCompute(GLuint(x), GLuint(y), 1));
+  // The inner quads in blocks of 16 x 16 per work group (at most 1,024 a side: N <= 16,384), then
+  // the seam cells, 256 a group (at most 768 groups).
+  const GLuint blocks = GLuint((n_ - 1 + 15) / 16);
+  list_.set("blockMode", 1);
+  SV_GL(glDispatchCompute(blocks, blocks, GLuint(kCubeFaces)));
+  SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT));
+  list_.set("blockMode", 0);
+  SV_GL(glDispatchCompute(GLuint((cells() - innerQuads(n_) + 255) / 256), 1, 1));
   SV_GL(glMemoryBarrier(GL_ELEMENT_ARRAY_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
   for (GLuint b = 0; b < 3; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
 }

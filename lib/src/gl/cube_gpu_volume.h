@@ -7,12 +7,13 @@
 //   - Indexed (the default): volume_cube_list.comp lists each cell's triangles as vertex indices
 //     into a buffer sized for the worst case, with the count in an indirect draw command;
 //     volume_cube_indexed.vert places the vertices, each once per use in the vertex cache. It
-//     leaves out the all-far sheet triangles and their cap images, as buildCubeVolume does;
+//     leaves out the all-far sheet triangles and their cap images, as buildCubeVolume does, and
+//     draws the cap of each whole quadrant of 8 x 8 inner cells as one fan;
 //   - AllQuads: one point per cell through volume_cube.geom, which emits a kept cell's triangles
 //     all (an all-far one on the sheet and the cap, where the two cancel in the stencil). Used
 //     as well where the indexed way's worst case exceeds kMaxCubeIndices.
-// Either gives buildCubeVolume's (cube_volume.h) triangles before its far-cap flattening, in
-// float. Internal to the renderer (renderer.cpp owns one per context).
+// Either gives the surface of buildCubeVolume (cube_volume.h), in float, its cap triangulated
+// otherwise. Internal to the renderer (renderer.cpp owns one per context).
 #pragma once
 
 #include <cstddef>

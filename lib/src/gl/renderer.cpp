@@ -1432,8 +1432,8 @@ struct Renderer::Impl {
   /// blur blurred) and copied into the cube volume's layer, all timed as `light`; then its
   /// triangles listed (timed as `list`). With keepVolume each face is also read back and the
   /// explicit cube volume built from the six maps with the same options (result.volume: the CPU
-  /// mirror that validation counts the crossings of; the GPU draws the same triangles before the
-  /// cap's flattening).
+  /// mirror that validation counts the crossings of; the GPU draws the same surface, its cap
+  /// triangulated otherwise).
   void cubeVolumeDepthPass(const RenderOptions& o, PassTimer& timer, RenderResult& result) {
     const int n = o.depthWidth;
     const VolumeBuildOptions& vo = o.volumeOptions;
