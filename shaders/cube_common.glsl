@@ -24,12 +24,17 @@ vec3 cubeDirection(ivec3 t) {
 
 float cubeSheetDepth(ivec3 t) { return sheetDepthOfTexel(texelFetch(cubeDepth, t, 0).r); }
 
+// The corners A, B, C, D of face f's inner quad (i, j).
+ivec4 cubeQuadAt(int face, int i, int j) {
+  int a = (face * cubeSize + j) * cubeSize + i;
+  return ivec4(a, a + 1, a + cubeSize + 1, a + cubeSize);
+}
+
 // The inner quads come first in cube::Grid, face by face and row by row.
 int cubeInnerCells() { return 6 * (cubeSize - 1) * (cubeSize - 1); }
 ivec4 cubeInnerCell(int c) {
   int q = cubeSize - 1;
   int face = c / (q * q), r = c - face * q * q;
-  int j = r / q, i = r - j * q;
-  int a = (face * cubeSize + j) * cubeSize + i;
-  return ivec4(a, a + 1, a + cubeSize + 1, a + cubeSize);
+  int j = r / q;
+  return cubeQuadAt(face, r - j * q, j);
 }

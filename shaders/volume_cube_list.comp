@@ -117,8 +117,7 @@ void main() {
   ivec4 cell;
   if (blockMode != 0) {
     inRange = cellAt.x < cubeSize - 1 && cellAt.y < cubeSize - 1;
-    int a = (face * cubeSize + cellAt.y) * cubeSize + cellAt.x;
-    cell = ivec4(a, a + 1, a + cubeSize + 1, a + cubeSize);
+    cell = cubeQuadAt(face, cellAt.x, cellAt.y);
   } else {
     int c = cubeInnerCells() + int(gl_GlobalInvocationID.x);
     inRange = c < cellCount;

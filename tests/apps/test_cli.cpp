@@ -499,6 +499,17 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_TRUE(contains(map.out, "--gpu-draw")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
+  for (const char* v : {"gpu", "explicit"}) {  // the cube has no border ring for the quad cap: named as --cap
+    const CliResult quad = runCli(std::string("render --cap quad --volume ") + v + " --scene " + room + " --out " +
+                                  (dir / "q.png").string());
+    EXPECT_EQ(quad.code, 1) << v;
+    EXPECT_TRUE(contains(quad.out, "--cap")) << quad.out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
+  }
+  const CliResult quadBuild = runCli("build --cap quad --resolution 16 --scene " + room + " --out " +
+                                     (dir / "q.ply").string());
+  EXPECT_EQ(quadBuild.code, 1);
+  EXPECT_TRUE(contains(quadBuild.out, "--cap")) << quadBuild.out;
   // The dual-paraboloid baseline: its maps beside the cube map's in the report.
   const CliResult d = runCli("validate --json --method dpsm --dpsm-subdivide 4 --resolution 32 --size 160x120 --scene " + room +
                              " --report " + (dir / "dpsm").string());

@@ -35,6 +35,11 @@ namespace shadowvol {
 /// refinement or the quad cap.
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options);
 
+/// Why a point light's volume refuses the quad cap (the InputError's problem, the CPU's and GPU's).
+inline constexpr const char* kCubeVolumeCapRule =
+    "a point light's volume has the exact cap only (the quad cap closes one map's border ring, and the cube has "
+    "none)";
+
 /// The bias a cube build uses when options.bias is unset: defaultBias of one face.
 double defaultCubeBias(const CubeDepthMap& cube);
 

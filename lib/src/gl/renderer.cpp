@@ -1247,8 +1247,14 @@ struct Renderer::Impl {
   /// (hybrid, explicit), the GPU cube volume (hybrid, gpu; GL 4.3), silhouette volumes, a cube
   /// shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
-    const bool explicitHybrid = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit;
-    if (o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
+    if (o.method == ShadowMethod::Hybrid) {  // either cube volume
+      if (o.volumeOptions.refineSteps > 0)
+        throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                         "silhouette refinement is not available for point lights yet");
+      if (o.volumeOptions.cap != FarCap::Exact)
+        throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
+      if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
+    }
     const bool shadowMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 ||
                            o.method == ShadowMethod::Pcf5;
     if (shadowMap && !hasCompute)
@@ -1268,29 +1274,19 @@ struct Renderer::Impl {
                          "its dual-paraboloid maps (2 x " + std::to_string(side) + " texels wide) exceed this "
                          "context's largest texture or viewport, " + std::to_string(std::min(maxTextureSize, maxViewport[0])));
     }
-    if (explicitHybrid && o.volumeOptions.refineSteps > 0)
-      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                       "silhouette refinement is not available for point lights yet");
     if (o.depthWidth != o.depthHeight)
       throw InputError("RenderOptions", "depthWidth x depthHeight",
                        std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
                        "a point light's cube faces are square");
   }
 
-  /// What the GPU cube volume (cube_gpu_volume.h) takes: GL 4.3, no refinement, the exact cap, and
-  /// its two ways of drawing.
+  /// What the GPU cube volume (cube_gpu_volume.h) takes beyond the explicit one: GL 4.3 and its two
+  /// ways of drawing.
   void validateGpuCubeVolume(const RenderOptions& o) const {
     if (!hasCompute)
       throw InputError("RenderOptions", "volume", "gpu",
                        "a point light's GPU cube volume needs OpenGL 4.3 (glCopyImageSubData); this context has " +
                            context.info().glVersion + ": use volume explicit");
-    if (o.volumeOptions.refineSteps > 0)
-      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                       "silhouette refinement is not available for point lights yet");
-    if (o.volumeOptions.cap != FarCap::Exact)
-      throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap),
-                       "a point light's volume has the exact cap only (the quad cap closes one map's border ring, "
-                       "and the cube has none)");
     const GpuVolumeDraw d = o.gpuVolumeDraw;
     if (d != GpuVolumeDraw::Auto && d != GpuVolumeDraw::Indexed && d != GpuVolumeDraw::AllQuads)
       throw InputError("RenderOptions", "gpuVolumeDraw", toString(d),

@@ -50,9 +50,7 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "silhouette refinement is not available for point lights yet: use refine steps 0");
   if (o.cap != FarCap::Exact)
-    throw InputError("volume options", "cap", toString(o.cap),
-                     "a point light's volume has the exact cap only (the quad cap closes one map's border ring, "
-                     "and the cube has none)");
+    throw InputError("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
   for (int f = 0; f < kCubeFaces; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
