@@ -164,10 +164,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       options.refineSteps, refineSubEdgeSteps(options.refineSteps, options.refineSubdivisions),
                       s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.raysCast);
         else if (options.refineSteps > 0)
-          std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far plane), %zu refined quads (%zu "
+          std::printf("  refinement (%d steps): %zu boundary edges (%zu to the far %s), %zu refined %s (%zu "
                       "decided by a centre ray, %zu chord points), %zu rays\n",
-                      options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, s.refinedCells, s.ambiguousCells,
-                      s.chordPoints, s.raysCast);
+                      options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, cube ? "cube" : "plane",
+                      s.refinedCells, cube ? "cells" : "quads", s.ambiguousCells, s.chordPoints, s.raysCast);
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);

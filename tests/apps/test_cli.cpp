@@ -498,7 +498,20 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_EQ(map.code, 1);
   EXPECT_TRUE(contains(map.out, "--gpu-draw")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
-  EXPECT_EQ(runCli("build --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string()).code, 1);
+  // Refined by the scene's rays (the explicit volume; the GPU cube volume refuses it, naming --volume).
+  const CliResult refined =
+      runCli("build --json --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string());
+  ASSERT_EQ(refined.code, 0) << refined.out;
+  EXPECT_GT(nlohmann::json::parse(refined.out)["boundaryEdges"].get<int>(), 0) << refined.out;
+  const CliResult refinedGpu =
+      runCli("render --refine 4 --volume gpu --scene " + room + " --out " + (dir / "rg.png").string());
+  EXPECT_EQ(refinedGpu.code, 1);
+  EXPECT_TRUE(contains(refinedGpu.out, "--volume")) << refinedGpu.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "rg.png"));
+  const CliResult refinedExplicit = runCli("validate --refine 4 --volume explicit --resolution 32 --scene " + room +
+                                           " --report " + (dir / "rv").string());
+  EXPECT_EQ(refinedExplicit.code, 0) << refinedExplicit.out;
+  EXPECT_TRUE(contains(refinedExplicit.out, "refinement:")) << refinedExplicit.out;
   for (const char* v : {"gpu", "explicit"}) {  // the cube has no border ring for the quad cap: named as --cap
     const CliResult quad = runCli(std::string("render --cap quad --volume ") + v + " --scene " + room + " --out " +
                                   (dir / "q.png").string());
@@ -559,7 +572,7 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_FALSE(std::filesystem::exists(dir / "w.ply"));
   const CliResult gpu = runCli("render --refine 4 --scene " + scene + " --out " + (dir / "f.png").string());
   EXPECT_EQ(gpu.code, 1);
-  EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--refine")) << gpu.out;
+  EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--volume")) << gpu.out;  // the point light's GPU volume
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   // bench scores one light: refused before anything is written (it once left a header-only
   // results.csv behind).

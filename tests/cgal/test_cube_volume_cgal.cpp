@@ -2,6 +2,7 @@
 // of zero-area triangles on the shipped point-light scene in every option combination, and on
 // random cube maps whose far texels make every pinch and cut the vertex rule has to split;
 // points inside it are the points behind the sheet.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -11,6 +12,7 @@
 #include "shadowvol/cgal/mesh_check.h"
 #include "shadowvol/cube_volume.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/scene.h"
 #include "test_util.h"
@@ -43,7 +45,11 @@ void expectValid(const CubeDepthMap& cube, const VolumeBuildOptions& o, const st
   const MeshCheckReport rep = checkMesh(r.mesh, co);
   EXPECT_TRUE(rep.valid()) << what << ": " << rep.summary();
   EXPECT_EQ(rep.coincidentVertices, r.stats.splitVertices) << what << ": " << rep.summary();
-  EXPECT_EQ(r.mesh.triangleCount(), r.stats.capTrianglesBefore + r.stats.capTrianglesAfter) << what;
+  if (o.refineSteps == 0) {  // refined: the walls come on top (they have no far image)
+    EXPECT_EQ(r.mesh.triangleCount(), r.stats.capTrianglesBefore + r.stats.capTrianglesAfter) << what;
+  } else if (r.stats.boundaryEdges > 0) {
+    EXPECT_GT(r.mesh.triangleCount(), r.stats.capTrianglesBefore + r.stats.capTrianglesAfter) << what;
+  }
   if (!r.mesh.triangles.empty()) {  // the orientation test is not fooled by the far vertices' contacts
     VolumeMesh reversed = r.mesh;
     for (auto& t : reversed.triangles) std::swap(t[1], t[2]);
@@ -74,6 +80,75 @@ TEST(CubeVolumeCgal, ClosedOnThePointRoomInEveryCombination) {
                         n == 8);
           }
     }
+}
+
+// Refinement (cube_refinement.h) with the scene's rays: closed in every combination, with walls.
+TEST(CubeVolumeCgal, RefinedClosedOnThePointRoomInEveryCombination) {
+  const Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
+  const EmbreeDepthOracle oracle(scene);
+  for (int n : {8, 17})
+    for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
+      const CubeDepthMap cube = captureCubeEmbree(scene, n, mode);
+      for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
+        for (bool blur : {false, true})
+          for (bool flatten : {false, true}) {
+            VolumeBuildOptions o;
+            o.triangulation = t;
+            o.blur = blur;
+            o.blurOffset = blur ? 0.01 : 0.0;
+            o.flattenCap = flatten;
+            o.refineSteps = 3;
+            o.depthOracle = oracle.oracle();
+            const std::string what = std::to_string(n) + " " + toString(mode) + " " + toString(t) +
+                                     (blur ? " blur" : "") + (flatten ? " flattened" : " mirrored") + " refined";
+            expectValid(cube, o, what, n == 8);
+            const VolumeBuildResult r = buildCubeVolume(cube, o);
+            EXPECT_GT(r.stats.boundaryEdges, 0u) << what;
+            EXPECT_GT(r.stats.refinedCells, 0u) << what;
+            EXPECT_EQ(r.stats.raysCast, 3 * r.stats.boundaryEdges + r.stats.ambiguousCells) << what;
+          }
+    }
+}
+
+// An oracle for a synthetic cube map: the depth of the texel nearest the point, on the face
+// whose pyramid holds it (a step function; its crossings land on the texels' borders).
+DepthOracle nearestTexelOracle(const CubeDepthMap& cube) {
+  return [&cube](const DepthMap& m, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+    const TexelUnprojector unproject(m);
+    for (std::size_t k = 0; k < ndc.size(); ++k) {
+      const double i = (ndc[k].x + 1.0) * 0.5 * m.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * m.height - 0.5;
+      const CubeLookup l = cubeLookup(unproject.ray(i, j).direction, cube.size());
+      const int ti = std::clamp(int(std::lround(l.texel.x)), 0, cube.size() - 1);
+      const int tj = std::clamp(int(std::lround(l.texel.y)), 0, cube.size() - 1);
+      depth[k] = cube.faces[l.face].at(ti, tj);
+    }
+  };
+}
+
+// Refined on random cube maps: far texels and depths far apart (surface edges everywhere, cells
+// with three and four boundary sides, across the cube's edges and corners).
+TEST(CubeVolumeCgal, RefinedClosedOnRandomPatterns) {
+  std::mt19937 rng(11);
+  for (int n : {2, 3, 5, 9})
+    for (double pFar : {0.0, 0.3, 0.6, 0.9})
+      for (int trial = 0; trial < 4; ++trial) {
+        CubeDepthMap cube = makeCubeDepthMap(pointLight(), n, CaptureMode::Back);
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        for (DepthMap& f : cube.faces)
+          for (float& d : f.depth) d = u(rng) < pFar ? DepthMap::kNoHit : float(1.0 + 4.0 * u(rng));
+        for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
+          for (bool flatten : {false, true}) {
+            VolumeBuildOptions o;
+            o.triangulation = t;
+            o.flattenCap = flatten;
+            o.refineSteps = 2;
+            o.depthOracle = nearestTexelOracle(cube);
+            expectValid(cube, o,
+                        "refined n " + std::to_string(n) + " far " + std::to_string(pFar) + " trial " +
+                            std::to_string(trial) + " " + toString(t) + (flatten ? " flattened" : " mirrored"),
+                        n <= 5);
+          }
+      }
 }
 
 // Random far texels at several densities: isolated far texels (a closed fan), slits between two

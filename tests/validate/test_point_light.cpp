@@ -2,7 +2,7 @@
 // stencil against Embree's crossing counts in every option combination, on the shipped room and
 // on a lamp above objects (far texels on every face); the GPU cube volume (cube_gpu_volume.h) the
 // same way, through its CPU mirror, and its shadow against the explicit volume's; the GPU's cube
-// capture against Embree's;
+// capture against Embree's; the explicit volume refined by rays;
 // silhouette volumes extruded from the point; cube shadow maps; what a point light's frame cannot be.
 #include <algorithm>
 #include <cmath>
@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/primitives.h"
@@ -64,10 +65,12 @@ FrameValidation renderAndValidate(const Scene& scene, gl::RenderOptions ro) {
 // Every capture mode, triangulation and blur at two face sizes, of the volume `source`: the
 // stencil against the crossing counts of the explicit cube volume of the same faces (for the GPU
 // volume, its CPU mirror: RenderOptions::keepVolume).
+// With `refineSteps`, the explicit volume refined by the scene's rays (cube_volume.h).
 void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initializer_list<int> sizes,
-                                           gl::GpuVolumeDraw draw = gl::GpuVolumeDraw::Auto) {
+                                           gl::GpuVolumeDraw draw = gl::GpuVolumeDraw::Auto, int refineSteps = 0) {
   int frames = 0;
-  for (const Scene& scene : {room(), lampOverSphere()})
+  for (const Scene& scene : {room(), lampOverSphere()}) {
+    const EmbreeDepthOracle oracle(scene);
     for (int n : sizes)
       for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
         for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
@@ -79,8 +82,10 @@ void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initial
             ro.capture = mode;
             ro.volumeOptions.triangulation = t;
             ro.volumeOptions.blur = blur;
+            ro.volumeOptions.refineSteps = refineSteps;
+            if (refineSteps > 0) ro.volumeOptions.depthOracle = oracle.oracle();
             SCOPED_TRACE(scene.source + " " + std::to_string(n) + " " + toString(mode) + " " + toString(t) +
-                         (blur ? " blur" : ""));
+                         (blur ? " blur" : "") + (refineSteps > 0 ? " refined" : ""));
             const FrameValidation v = renderAndValidate(scene, ro);
             ASSERT_TRUE(v.meshCheck && v.meshCheck->valid()) << v.meshCheck->summary();
             EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement)
@@ -90,11 +95,40 @@ void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initial
             EXPECT_EQ(v.outsideLight, 0u) << "the far cube holds the whole scene";
             ++frames;
           }
+  }
   EXPECT_EQ(frames, 2 * int(sizes.size()) * 3 * 2 * 2);
 }
 
 TEST(PointLight, CubeVolumeMatchesCrossingCountsInEveryCombination) {
   expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Explicit, {24, 64});
+}
+
+// Refined by rays (cube_refinement.h), at an even and an odd face size.
+TEST(PointLight, RefinedCubeVolumeMatchesCrossingCountsInEveryCombination) {
+  expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Explicit, {24, 37}, gl::GpuVolumeDraw::Auto, 3);
+}
+
+// The walls on the light's rays through the silhouette instead of slanting across a texel: on
+// the room at 128 texels a face, 4 rays per boundary edge miss or add fewer than a third of the
+// pixels that the unrefined volume does (measured: 32 against 587 of 301,690, README "Point
+// lights").
+TEST(PointLight, RefinementCutsTheCubeVolumesError) {
+  const Scene scene = room();
+  const EmbreeDepthOracle oracle(scene);
+  for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+    gl::RenderOptions ro;
+    ro.volume = gl::VolumeSource::Explicit;
+    ro.depthWidth = ro.depthHeight = 128;
+    ro.capture = mode;
+    const FrameValidation plain = renderAndValidate(scene, ro);
+    ro.volumeOptions.refineSteps = 4;
+    ro.volumeOptions.depthOracle = oracle.oracle();
+    const FrameValidation refined = renderAndValidate(scene, ro);
+    EXPECT_TRUE(refined.consistent) << (refined.failures.empty() ? "" : refined.failures.front());
+    EXPECT_LT(3 * (refined.methodError.missed + refined.methodError.falseShadow),
+              plain.methodError.missed + plain.methodError.falseShadow)
+        << toString(mode);
+  }
 }
 
 // The GPU cube volume at an even and an odd face size (the seam cells' pairing, the corners),
@@ -249,7 +283,7 @@ TEST(PointLight, RefusesWhatItsFrameCannotBe) {
   gl::RenderOptions ro;
   ro.depthWidth = ro.depthHeight = 32;
   ro.volume = gl::VolumeSource::Gpu;
-  ro.volumeOptions.refineSteps = 4;  // not for point lights yet, on the GPU or the CPU
+  ro.volumeOptions.refineSteps = 4;  // the GPU cube volume is not refined
   EXPECT_THROW(renderer().render(ro), InputError);
   ro.volumeOptions.refineSteps = 0;
   ro.volumeOptions.cap = FarCap::Quad;  // the cube has no border ring for the quad cap to close
@@ -259,8 +293,20 @@ TEST(PointLight, RefusesWhatItsFrameCannotBe) {
   EXPECT_THROW(renderer().render(ro), InputError);
   ro.gpuVolumeDraw = gl::GpuVolumeDraw::Auto;
   ro.volume = gl::VolumeSource::Explicit;
-  ro.volumeOptions.refineSteps = 4;
+  ro.volumeOptions.refineSteps = 4;  // without a depth oracle
   EXPECT_THROW(renderer().render(ro), InputError);
+  const EmbreeDepthOracle oracle(room());
+  ro.volumeOptions.depthOracle = oracle.oracle();
+  ro.refineCrossings = gl::RefineCrossings::GpuWalk;  // rays only
+  EXPECT_THROW(renderer().render(ro), InputError);
+  ro.refineCrossings = gl::RefineCrossings::Rays;
+  ro.volumeOptions.refineChords = true;
+  EXPECT_THROW(renderer().render(ro), InputError);
+  ro.volumeOptions.refineChords = false;
+  ro.volumeOptions.refineSubdivisions = 2;
+  EXPECT_THROW(renderer().render(ro), InputError);
+  ro.volumeOptions.refineSubdivisions = 1;
+  EXPECT_NO_THROW(renderer().render(ro));
   ro.volumeOptions.refineSteps = 0;
   ro.volumeCount = gl::VolumeCount::ZPass;
   EXPECT_THROW(renderer().render(ro), InputError);

@@ -164,9 +164,9 @@ TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
   };
-  gl::RenderOptions refined;  // the spot light's refined GPU volume; the point light has no refinement
+  gl::RenderOptions refined;  // the spot light's refined GPU volume; the point light's GPU volume is not refined
   refined.volumeOptions.refineSteps = 4;
-  expectRefused(refined, "volumeOptions.refineSteps", "light 1 of the scene's 2");
+  expectRefused(refined, "volume", "light 1 of the scene's 2");
   gl::RenderOptions dpsm;
   dpsm.method = gl::ShadowMethod::Dpsm;  // the spot light has no paraboloid maps
   expectRefused(dpsm, "method", "light 0 of the scene's 2");

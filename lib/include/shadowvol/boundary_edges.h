@@ -74,8 +74,11 @@ struct BoundaryEdges {
 /// Row-parallel, deterministic. When splitBits is given (one byte per texel), bit 0 / bit 1 of
 /// texel (i, j) are set when its edge along +i / +j is a boundary edge, and every other bit is
 /// cleared. Quads whose two boundary sides would give a folded wall are made continuous, in rounds
-/// independent of the quads' order (see the implementation's keepWallsUnfolded).
+/// independent of the quads' order (see the implementation's keepWallsUnfolded). Without `ring`
+/// the border texels keep their own depths (a point light's cube face, which has no ring:
+/// cube_refinement.h); blurredSheetDepths then holds the final depths without the ring too.
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
-                                std::span<const double> blurredSheetDepths = {}, std::uint8_t* splitBits = nullptr);
+                                std::span<const double> blurredSheetDepths = {}, std::uint8_t* splitBits = nullptr,
+                                bool ring = true);
 
 }  // namespace shadowvol

@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 namespace shadowvol::cube {
 
 /// Texel id of face f's texel (i, j): f N^2 + j N + i.
@@ -28,7 +30,13 @@ struct Cell {
   bool triangle = false;
   int face = 0;                      ///< the face it lies in (inner quads) or is listed from
   bool inner = false;                ///< inside one face (its far images lie in that face's far plane)
+  int cornerCount() const { return triangle ? 3 : 4; }
+  /// Corner k of its loop: A B C D, or A B D of a corner triangle.
+  std::uint32_t corner(int k) const { return triangle && k == 2 ? v[3] : v[std::size_t(k)]; }
 };
+
+/// The direction of texel `id`'s centre from the light, at its face's depth 1 (cubeTexelDirection).
+glm::dvec3 texelDirection(int n, std::uint32_t id);
 
 /// Every cell once, deterministically: the inner quads face by face, row by row (computed when
 /// asked for: there are 6 (N-1)^2 of them); then the edge quads and corner triangles (kept) in the

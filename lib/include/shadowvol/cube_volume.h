@@ -19,8 +19,12 @@
 // the lossless CDT of far_cap.h over its boundary; the cells across the cube's edges keep their
 // mirrored cap triangles.
 //
-// Not (yet) for point lights: silhouette refinement (refineSteps > 0) and the quad cap: both are
-// InputErrors.
+// Silhouette refinement (refineSteps > 0, a depthOracle that answers for each face's map): the
+// walls at the boundary edges stand on the light's rays through their crossings, found by
+// bisection rays, inside each face and across the cube's edges and corners (the source file
+// cube/cube_refinement.h says how). Its crossings' far vertices are the far vertices of the rule
+// above; the cap takes the kept triangles that are not walls. Not for point lights: chord points,
+// the sub-grid, a crossing source (the GPU walk) and the quad cap (InputErrors).
 #pragma once
 
 #include "shadowvol/cube_map.h"
@@ -32,8 +36,14 @@ namespace shadowvol {
 /// that lost every triangle, capTrianglesBefore the kept sheet triangles, capTrianglesAfter what
 /// the cap has, splitVertices the extra copies of far vertices in the result). Throws InputError
 /// for a NaN or negative depth (naming the face and texel), a non-finite bias or blur offset,
-/// refinement or the quad cap.
+/// refinement without a depth oracle or with what it refuses (kCubeRefinementRule), or the quad
+/// cap. With refinement, the refinement stats of buildVolume.
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options);
+
+/// What a point light's refinement refuses (the InputError's problem, the CPU's and GPU's).
+inline constexpr const char* kCubeRefinementRule =
+    "a point light's volume is refined by bisection rays alone (refine steps with a depth oracle): no chord "
+    "points, sub-grid or crossing source";
 
 /// Why a point light's volume refuses the quad cap (the InputError's problem, the CPU's and GPU's).
 inline constexpr const char* kCubeVolumeCapRule =

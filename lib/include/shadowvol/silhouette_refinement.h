@@ -83,6 +83,17 @@ struct RayBudget {
   double ms = 0.0;
 };
 
+/// Where bisection samples: depth[k] = what the map's capture stores (depth_map.h) at parameter
+/// s[k] of segment k, for every segment; `step` counts the batches from 0.
+using SegmentSampler = std::function<void(int step, std::span<const double> s, std::span<float> depth)>;
+
+/// The bisection of the header comment on any segments: `steps` >= 1 batches of `sample`; the
+/// segments' points are not read (the sampler places the parameters). bisectSegments samples
+/// texel points of one map with its oracle; a point light's cube samples directions
+/// (cube_refinement.h).
+std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, const SheetDepthRule& rule, bool blur,
+                                 int steps, const SegmentSampler& sample);
+
 /// Bisects every segment with `steps` >= 1 rays (one oracle batch per step for all of them); the
 /// crossings' s run from nearPoint to farPoint. The `extra` points (texel coordinates) are sampled
 /// in the first batch, their sheet depths (the far plane where nothing short of it is hit) written

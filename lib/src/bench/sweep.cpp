@@ -122,6 +122,20 @@ SweepMethod cubeVolume(CaptureMode capture, gl::VolumeSource source) {
   return m;
 }
 
+// The explicit cube volume refined by kSweepRefineSteps rays per boundary edge (cube_volume.h;
+// the depth oracle attached per scene by runSweep, its rays part of the frame's build pass).
+SweepMethod cubeRefined(CaptureMode capture) {
+  SweepMethod m = cubeVolume(capture, gl::VolumeSource::Explicit);
+  m.key = std::string("hybrid-cube-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+          "/explicit";
+  m.options.volumeOptions.refineSteps = kSweepRefineSteps;
+  m.description = "a point light's explicit cube volume with sub-texel silhouette refinement (" +
+                  std::to_string(kSweepRefineSteps) + " rays per boundary edge, inside the faces and across the cube's "
+                  "edges; perfect triangulation, far cube cap), " + toString(capture) + " capture" +
+                  (capture == CaptureMode::Front ? " (default bias)" : "");
+  return m;
+}
+
 bool applies(const SweepMethod& m, LightType light) {
   if (m.lights == SweepLights::Any) return true;
   return (m.lights == SweepLights::Point) == (light == LightType::Point);
@@ -222,6 +236,7 @@ const std::vector<SweepMethod>& sweepMethods() {
       v.push_back(cubeVolume(c, gl::VolumeSource::Explicit));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
       v.push_back(cubeVolume(c, gl::VolumeSource::Gpu));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(cubeRefined(c));
     SweepMethod s;
     s.key = "silhouette";
     s.lights = SweepLights::Any;

@@ -123,7 +123,7 @@ std::size_t BoundaryEdges::find(int i, int j, int axis) const {
 }
 
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
-                                std::span<const double> blurredSheetDepths, std::uint8_t* splitBits) {
+                                std::span<const double> blurredSheetDepths, std::uint8_t* splitBits, bool ring) {
   const int w = map.width, h = map.height;
   SV_CHECK(!blur || blurredSheetDepths.size() == std::size_t(w) * std::size_t(h));
   const double farPlane = rule.farPlane;
@@ -146,14 +146,15 @@ BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule,
     }
     const float* src = map.depth.data() + std::size_t(j) * w;
     double* u = r.u.data();
-    if (j == 0 || j == h - 1) {
+    const int b = ring ? 1 : 0, e = ring ? w - 1 : w;  // the texels off the ring
+    if (ring && (j == 0 || j == h - 1)) {
       std::fill(r.u.begin(), r.u.end(), farPlane);
     } else if (blur) {
-      for (int i = 1; i + 1 < w; ++i) u[i] = rule.ofSample(src[i], true);
+      for (int i = b; i < e; ++i) u[i] = rule.ofSample(src[i], true);
     } else {
-      volume::sheetDepthSpan(src, u, 1, w - 1, rule);  // the builder's row kernel (vectorised)
+      volume::sheetDepthSpan(src, u, b, e, rule);  // the builder's row kernel (vectorised)
     }
-    u[0] = u[w - 1] = farPlane;
+    if (ring) u[0] = u[w - 1] = farPlane;
     volume::farFlags(blur ? blurredSheetDepths.data() + std::size_t(j) * w : u, r.far.data(), w, farPlane);
     std::tie(r.first, r.last) = volume::nearSpan(r.far.data(), w);
   };

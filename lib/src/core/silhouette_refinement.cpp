@@ -1,5 +1,6 @@
 #include "shadowvol/silhouette_refinement.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include <tbb/blocked_range.h>
@@ -15,12 +16,9 @@ glm::dvec2 Crossing::texel(const BoundaryEdge& e, double s) {
   return {e.i + (e.axis == 0 ? t : 0.0), e.j + (e.axis == 1 ? t : 0.0)};
 }
 
-std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
-                                     const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
-                                     RayBudget& budget, std::span<const glm::dvec2> extra,
-                                     std::vector<double>* extraDepths) {
+std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, const SheetDepthRule& rule, bool blur,
+                                 int steps, const SegmentSampler& sample) {
   SV_CHECK_GE(steps, 1);
-  SV_CHECK(bool(oracle));
   const std::size_t n = segments.size();
   const double farPlane = rule.farPlane;
   // Per segment: the bracket [lo, hi] of the parameter from the near point, and its ends' depths.
@@ -32,27 +30,15 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
     brackets[k].dLo = segments[k].nearDepth;
     brackets[k].dHi = segments[k].surface ? segments[k].farDepth : farPlane;
   }
-  if (extraDepths) extraDepths->assign(extra.size(), farPlane);
-  auto at = [](const BisectionSegment& g, double s) { return g.nearPoint + s * (g.farPoint - g.nearPoint); };
-  std::vector<glm::dvec2> ndc;
+  std::vector<double> middle(n);
   std::vector<float> depth;
   for (int step = 0; step < steps; ++step) {
-    const std::size_t more = step == 0 ? extra.size() : 0;
-    ndc.resize(n + more);
-    depth.assign(n + more, DepthMap::kNoHit);
-    for (std::size_t k = 0; k < n; ++k) {
-      const glm::dvec2 t = at(segments[k], 0.5 * (brackets[k].lo + brackets[k].hi));
-      ndc[k] = map.texelNdc(t.x, t.y);
-    }
-    for (std::size_t c = 0; c < more; ++c) ndc[n + c] = map.texelNdc(extra[c].x, extra[c].y);
-    if (ndc.empty()) break;
-    const auto t0 = std::chrono::steady_clock::now();
-    oracle(map, ndc, depth);
-    budget.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    budget.rays += ndc.size();
+    for (std::size_t k = 0; k < n; ++k) middle[k] = 0.5 * (brackets[k].lo + brackets[k].hi);
+    depth.assign(n, DepthMap::kNoHit);
+    sample(step, middle, depth);
     for (std::size_t k = 0; k < n; ++k) {
       Bracket& b = brackets[k];
-      const double m = 0.5 * (b.lo + b.hi);
+      const double m = middle[k];
       const double d = rule.ofSample(depth[k], blur);
       const bool hit = d != farPlane;
       const bool nearSide = hit && (!segments[k].surface || d < 0.5 * (b.dLo + b.dHi));
@@ -63,7 +49,6 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
         if (hit && segments[k].surface) b.dHi = d;
       }
     }
-    for (std::size_t c = 0; c < more; ++c) (*extraDepths)[c] = rule.ofSample(depth[n + c], blur);
   }
   std::vector<Crossing> out(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -78,6 +63,41 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
     SV_CHECK_LT(c.nearDepth, c.farDepth);
   }
   return out;
+}
+
+std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
+                                     const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
+                                     RayBudget& budget, std::span<const glm::dvec2> extra,
+                                     std::vector<double>* extraDepths) {
+  SV_CHECK(bool(oracle));
+  const std::size_t n = segments.size();
+  if (extraDepths) extraDepths->assign(extra.size(), rule.farPlane);
+  std::vector<glm::dvec2> ndc;
+  std::vector<float> depth;
+  // The oracle at the segments' texel points, and at the extra points in the first batch.
+  auto sample = [&](int step, std::span<const double> s, std::span<float> out) {
+    const std::size_t more = step == 0 ? extra.size() : 0;
+    ndc.resize(n + more);
+    depth.assign(n + more, DepthMap::kNoHit);
+    for (std::size_t k = 0; k < n; ++k) {
+      const BisectionSegment& g = segments[k];
+      const glm::dvec2 t = g.nearPoint + s[k] * (g.farPoint - g.nearPoint);
+      ndc[k] = map.texelNdc(t.x, t.y);
+    }
+    for (std::size_t c = 0; c < more; ++c) ndc[n + c] = map.texelNdc(extra[c].x, extra[c].y);
+    if (ndc.empty()) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    oracle(map, ndc, depth);
+    budget.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    budget.rays += ndc.size();
+    std::copy(depth.begin(), depth.begin() + std::ptrdiff_t(n), out.begin());
+    for (std::size_t c = 0; c < more; ++c) (*extraDepths)[c] = rule.ofSample(depth[n + c], blur);
+  };
+  if (n == 0 && !extra.empty()) {  // the extra points alone, in one batch
+    sample(0, {}, {});
+    return {};
+  }
+  return bisectWith(segments, rule, blur, steps, sample);
 }
 
 BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,

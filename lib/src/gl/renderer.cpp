@@ -1248,9 +1248,12 @@ struct Renderer::Impl {
   /// shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     if (o.method == ShadowMethod::Hybrid) {  // either cube volume
-      if (o.volumeOptions.refineSteps > 0)
-        throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                         "silhouette refinement is not available for point lights yet");
+      if (o.volumeOptions.refineSteps > 0 && o.volume == VolumeSource::Gpu)
+        throw InputError("RenderOptions", "volume", toString(o.volume),
+                         "a point light's GPU cube volume is not refined (yet): refine its explicit volume (volume "
+                         "explicit, rays)");
+      if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays)
+        throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
       if (o.volumeOptions.cap != FarCap::Exact)
         throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
       if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);

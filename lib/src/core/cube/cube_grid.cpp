@@ -25,6 +25,11 @@ struct Extended {
 
 }  // namespace
 
+glm::dvec3 texelDirection(int n, std::uint32_t id) {
+  const std::uint32_t nn = std::uint32_t(n) * std::uint32_t(n), r = id % nn;
+  return cubeTexelDirection(n, int(id / nn), double(r % std::uint32_t(n)), double(r / std::uint32_t(n)));
+}
+
 Grid::Grid(int n) : n_(n), inner_(std::size_t(6) * std::size_t(n - 1) * std::size_t(n - 1)) {
   SV_CHECK_GE(n, 2);
   std::vector<Cell>& out = seams_;

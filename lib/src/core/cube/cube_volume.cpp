@@ -1,9 +1,11 @@
 #include "shadowvol/cube_volume.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <unordered_map>
@@ -12,6 +14,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "cube/cube_refinement.h"
 #include "shadowvol/cube_grid.h"
 #include "shadowvol/check.h"
 #include "shadowvol/depth_blur.h"
@@ -46,9 +49,19 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
   };
   finite("blur offset", o.blurOffset);
   if (o.bias) finite("bias", *o.bias);
-  if (o.refineSteps != 0)
+  if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
-                     "silhouette refinement is not available for point lights yet: use refine steps 0");
+                     "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+  if (o.refineSteps > 0 && !o.depthOracle)
+    throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
+                     "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
+                     "command line)");
+  if (o.refineSteps > 0 && o.crossingSource)
+    throw InputError("volume options", "crossing source", "set", kCubeRefinementRule);
+  if (o.refineChords) throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+  if (o.refineSubdivisions != 1)
+    throw InputError("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
+                     kCubeRefinementRule);
   if (o.cap != FarCap::Exact)
     throw InputError("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
   for (int f = 0; f < kCubeFaces; ++f)
@@ -64,18 +77,21 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
       }
 }
 
-// The sheet depth of every texel (ids of cube_grid.h); its sheet point and far image on the
-// texel centre's ray (cube_map.h: exact for the 90-degree faces), computed when asked for.
+// The sheet points: every texel (ids of cube_grid.h) and, with refinement, each crossing's near
+// and far vertex (ids from crossingBase(), cube_refinement.h). Their sheet depths; their sheet
+// points and far images on their rays (a texel's: its centre's, cube_map.h, exact for the
+// 90-degree faces), computed when asked for.
 struct Texels {
   int n = 0;
   glm::dvec3 light{0.0};  // relative to the maps' origin, as the points
   double farPlane = 0.0;
-  std::vector<double> depth;
+  std::vector<double> depth;             // texels, then two per crossing
+  std::vector<glm::dvec3> crossingRays;  // per crossing, at cube depth 1
   std::size_t size() const { return depth.size(); }
+  std::uint32_t crossingBase() const { return std::uint32_t(kCubeFaces) * std::uint32_t(n) * std::uint32_t(n); }
   bool far(std::uint32_t id) const { return depth[id] == farPlane; }
   glm::dvec3 direction(std::uint32_t id) const {
-    const std::uint32_t nn = std::uint32_t(n) * std::uint32_t(n), r = id % nn;
-    return cubeTexelDirection(n, int(id / nn), double(r % std::uint32_t(n)), double(r / std::uint32_t(n)));
+    return id < crossingBase() ? cube::texelDirection(n, id) : crossingRays[(id - crossingBase()) / 2];
   }
   glm::dvec3 sheet(std::uint32_t id) const { return light + depth[id] * direction(id); }
   glm::dvec3 farImage(std::uint32_t id) const { return light + farPlane * direction(id); }
@@ -83,7 +99,7 @@ struct Texels {
 
 Texels texels(const CubeDepthMap& cube, const SheetDepthRule& rule, bool blur) {
   const int n = cube.size();
-  Texels t{n, cube.lightPosition(), cube.farPlane(), std::vector<double>(std::size_t(kCubeFaces) * n * n)};
+  Texels t{n, cube.lightPosition(), cube.farPlane(), std::vector<double>(std::size_t(kCubeFaces) * n * n), {}};
   for (int f = 0; f < kCubeFaces; ++f) {
     const DepthMap& map = cube.faces[f];
     tbb::parallel_for(0, n, [&](int j) {
@@ -100,17 +116,66 @@ Texels texels(const CubeDepthMap& cube, const SheetDepthRule& rule, bool blur) {
 }
 
 struct Sheet {
-  std::vector<Tri> tris;          // kept sheet triangles, texel ids, counter-clockwise from the light
+  std::vector<Tri> tris;          // kept sheet triangles, point ids, counter-clockwise from the light
   std::vector<std::uint32_t> cell;  // the cell of each
-  std::vector<std::uint8_t> boundary;  // per texel: a dropped triangle has it as a corner
+  std::vector<std::uint8_t> footprint;  // per triangle: not a wall (its far image is part of the cap)
+  std::vector<std::uint8_t> boundary;  // per point: a dropped triangle has it as a corner
 };
 
+// A refined cell's triangles (cube_refinement.h), kept by one map's rule: those with three far
+// vertices dropped.
+void triangulateRefined(const cube::Cell& cell, std::uint32_t c, std::uint8_t sides, const cube::CubeRefinement& r,
+                        const Texels& t, double centre, bool perfect, Sheet& s, std::vector<volume::LocalTri>& local) {
+  const cube::CubeCell loop = cube::assembleCubeCell(cell, sides, r, t.farPlane, t.n, t.crossingBase(),
+                                                     [&](std::uint32_t id) { return t.depth[id]; });
+  local.clear();
+  volume::CellTriangulator(perfect, local)
+      .run(loop.corners, loop.a, loop.b, sides, centre, t.farPlane, nullptr, nullptr, loop.count);
+  for (const volume::LocalTri& tri : local) {
+    if (tri.v[0]->far && tri.v[1]->far && tri.v[2]->far) {
+      for (const volume::CellVertex* v : tri.v) s.boundary[v->id] = 1;
+      continue;
+    }
+    s.tris.push_back({tri.v[0]->id, tri.v[1]->id, tri.v[2]->id});
+    s.cell.push_back(c);
+    s.footprint.push_back(tri.footprint ? 1 : 0);
+  }
+}
+
+// The centre depths of the refined cells with 3 or 4 boundary sides, by cell (one batch of rays).
+std::unordered_map<std::uint32_t, double> centreDepths(const CubeDepthMap& cube, const cube::Grid& cells,
+                                                       const cube::CubeRefinement& r, const SheetDepthRule& rule,
+                                                       bool blur, const DepthOracle& oracle, RayBudget& budget) {
+  std::vector<std::uint32_t> which;
+  std::vector<glm::dvec3> rays;
+  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+    const cube::Cell cell = cells[c];
+    if (std::popcount(unsigned(cube::boundarySides(cell, r))) < 3) continue;
+    which.push_back(c);
+    rays.push_back(cube::cellCentreDirection(cell, cube.size()));
+  }
+  std::vector<float> depth(rays.size(), DepthMap::kNoHit);
+  cube::sampleDirections(cube, rays, oracle, depth, budget);
+  std::unordered_map<std::uint32_t, double> out;
+  for (std::size_t k = 0; k < which.size(); ++k) out[which[k]] = rule.ofSample(depth[k], blur);
+  return out;
+}
+
 Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& light, bool perfect,
+                  const cube::CubeRefinement* refinement, const std::unordered_map<std::uint32_t, double>& centres,
                   VolumeBuildStats& stats) {
   Sheet s;
   s.boundary.assign(t.size(), 0);
+  std::vector<volume::LocalTri> local;
   for (std::uint32_t c = 0; c < cells.size(); ++c) {
     const cube::Cell cell = cells[c];
+    if (const std::uint8_t sides = refinement ? cube::boundarySides(cell, *refinement) : 0) {
+      const auto centre = centres.find(c);
+      triangulateRefined(cell, c, sides, *refinement, t, centre != centres.end() ? centre->second : t.farPlane, perfect,
+                         s, local);
+      ++stats.refinedCells;
+      continue;
+    }
     const auto [a, b, cc, d] = cell.v;
     Tri cand[2];
     int k = 0;
@@ -133,6 +198,7 @@ Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& li
       }
       s.tris.push_back(tri);
       s.cell.push_back(c);
+      s.footprint.push_back(1);
       ++kept;
     }
     if (kept == 0) ++stats.droppedQuads;
@@ -147,11 +213,41 @@ struct Vertices {
   std::vector<std::uint32_t> farTexel;  // per vertex: its texel when it is a far vertex, else kNone
 };
 
+// A crossing's two vertices lie on one ray, so they share one far image: a far edge's near vertex
+// takes its far vertex (on the far cube) as its cap vertex, the one of the run that holds their
+// wall; a surface edge's far vertex takes its near vertex's cap vertex. The unused copies are left
+// out of the mesh (assemble).
+void shareCrossingCaps(const Sheet& s, const cube::CubeRefinement& r, std::uint32_t base,
+                       const std::vector<std::uint32_t>& offset,
+                       const std::vector<std::pair<std::uint32_t, std::uint8_t>>& corners, Vertices& v) {
+  for (std::uint32_t e = 0; e < r.edges.size(); ++e) {
+    const std::uint32_t nearId = base + 2 * e, farId = nearId + 1;
+    const auto fan = [&](std::uint32_t x) {
+      return std::span(corners.data() + offset[x], offset[x + 1] - offset[x]);
+    };
+    const auto nearFan = fan(nearId), farFan = fan(farId);
+    SV_CHECK(!nearFan.empty() && !farFan.empty());  // every crossing is in its two cells' walls
+    if (r.edges[e].surface) {
+      const std::uint32_t cap = v.cap[nearFan[0].first][nearFan[0].second];
+      for (auto [k, c] : farFan) v.cap[k][c] = cap;
+      continue;
+    }
+    std::uint32_t cap = kNone;
+    for (auto [k, c] : farFan)
+      if (std::find(s.tris[k].begin(), s.tris[k].end(), nearId) != s.tris[k].end()) {
+        cap = v.sheet[k][c];
+        break;
+      }
+    SV_CHECK(cap != kNone);
+    for (auto [k, c] : nearFan) v.cap[k][c] = cap;
+  }
+}
+
 // Far vertex rule (cube_volume.h): at a far texel with a dropped triangle around it, runs of kept
 // triangles joined across edges that are not gaps or cuts (an edge to a far texel that also has a
 // dropped triangle around it) share one vertex, sheet and cap alike; at a far texel without one,
 // the sheet keeps one vertex and the cap gets another.
-Vertices numberVertices(const Sheet& s, const Texels& t) {
+Vertices numberVertices(const Sheet& s, const Texels& t, const cube::CubeRefinement* refinement) {
   const std::size_t texelCount = t.size();
   // The kept triangles around each texel (triangle, corner), in triangle order: one array with
   // an offset per texel.
@@ -213,6 +309,7 @@ Vertices numberVertices(const Sheet& s, const Texels& t) {
       v.sheet[fan[a].first][fan[a].second] = v.cap[fan[a].first][fan[a].second] = runId[r];
     }
   }
+  if (refinement) shareCrossingCaps(s, *refinement, t.crossingBase(), offset, corners, v);
   return v;
 }
 
@@ -310,11 +407,13 @@ namespace {
 
 // The far cap: each kept sheet triangle's image, mirrored; with `flatten`, each face's part (its
 // inner cells' images, in its far plane) replaced by its CDT (flattenFace).
-std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet, const Vertices& v, bool flatten) {
+std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet, const Vertices& v, bool flatten,
+                              const cube::CubeRefinement* refinement) {
   std::vector<Tri> cap;
   cap.reserve(sheet.tris.size());
   std::array<std::vector<Tri>, kCubeFaces> facePart;
   for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+    if (!sheet.footprint[k]) continue;  // a wall: its far image has no area
     const Tri& c = v.cap[k];
     const Tri mirrored{c[2], c[1], c[0]};
     const cube::Cell cell = cells[sheet.cell[k]];
@@ -323,14 +422,21 @@ std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet
   }
   if (!flatten) return cap;
   std::vector<glm::dvec2> texelOf(v.positions.size());
+  const std::uint32_t crossingBase = std::uint32_t(kCubeFaces) * std::uint32_t(n) * std::uint32_t(n);
   for (int f = 0; f < kCubeFaces; ++f) {
     if (facePart[f].empty()) continue;
-    // Texel coordinates of this face's cap vertices (its inner cells' corners are its texels).
+    // Texel coordinates of this face's cap vertices (its inner cells' corners are its texels and
+    // the crossings on its edges).
     for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
       const cube::Cell cell = cells[sheet.cell[k]];
-      if (!cell.inner || cell.face != f) continue;
+      if (!sheet.footprint[k] || !cell.inner || cell.face != f) continue;
       for (int c = 0; c < 3; ++c) {
-        const std::uint32_t id = sheet.tris[k][c] - cube::texelId(n, f, 0, 0);
+        const std::uint32_t point = sheet.tris[k][c];
+        if (point >= crossingBase) {
+          texelOf[v.cap[k][c]] = refinement->faceTexel[(point - crossingBase) / 2];
+          continue;
+        }
+        const std::uint32_t id = point - cube::texelId(n, f, 0, 0);
         texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
       }
     }
@@ -364,6 +470,28 @@ void assemble(const Vertices& v, const std::vector<Tri>& cap, VolumeMesh& mesh, 
     for (const Tri& tri : *tris) mesh.triangles[k++] = {remap[tri[0]], remap[tri[1]], remap[tri[2]]};
 }
 
+// Refinement (cube_refinement.h): the boundary edges, their crossings as points of `t` and the
+// centre depths of the cells with 3 or 4 boundary sides; its counts into `stats`.
+cube::CubeRefinement refine(const CubeDepthMap& cube, const cube::Grid& cells, const SheetDepthRule& rule,
+                            const VolumeBuildOptions& o, Texels& t, std::unordered_map<std::uint32_t, double>& centres,
+                            VolumeBuildStats& stats) {
+  cube::CubeRefinement r = cube::refineCube(cube, cells, rule, o.blur, t.depth, o.depthOracle, o.refineSteps);
+  centres = centreDepths(cube, cells, r, rule, o.blur, o.depthOracle, r.budget);
+  t.depth.reserve(t.depth.size() + 2 * r.edges.size());
+  t.crossingRays = r.directions;
+  for (const Crossing& x : r.crossings) {
+    t.depth.push_back(x.nearDepth);
+    t.depth.push_back(x.farDepth);
+  }
+  stats.boundaryEdges = r.edges.size();
+  stats.farBoundaryEdges = std::size_t(
+      std::count_if(r.edges.begin(), r.edges.end(), [](const cube::BoundaryEdge& e) { return !e.surface; }));
+  stats.ambiguousCells = centres.size();
+  stats.raysCast = r.budget.rays;
+  stats.msRays = r.budget.ms;
+  return r;
+}
+
 }  // namespace
 
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options) {
@@ -378,14 +506,22 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
   stats.quads = cells.size();
 
   const auto tSheet = Clock::now();
-  const Texels t = texels(cube, rule, options.blur);
-  const Sheet sheet = triangulate(cells, t, cube.lightPosition(), options.triangulation == Triangulation::Perfect, stats);
-  const Vertices v = numberVertices(sheet, t);
-  stats.msSheet = msSince(tSheet);
-  stats.capTrianglesBefore = sheet.tris.size();
+  Texels t = texels(cube, rule, options.blur);
+  std::optional<cube::CubeRefinement> refinement;
+  std::unordered_map<std::uint32_t, double> centres;  // refined cells with 3 or 4 boundary sides
+  if (options.refineSteps > 0) {
+    const auto tRefine = Clock::now();
+    refinement = refine(cube, cells, rule, options, t, centres, stats);
+    stats.msRefine = msSince(tRefine);
+  }
+  const Sheet sheet = triangulate(cells, t, cube.lightPosition(), options.triangulation == Triangulation::Perfect,
+                                  refinement ? &*refinement : nullptr, centres, stats);
+  const Vertices v = numberVertices(sheet, t, refinement ? &*refinement : nullptr);
+  stats.msSheet = msSince(tSheet) - stats.msRefine;
+  stats.capTrianglesBefore = std::size_t(std::count(sheet.footprint.begin(), sheet.footprint.end(), 1));
 
   const auto tCap = Clock::now();
-  const std::vector<Tri> cap = capTriangles(n, cells, sheet, v, options.flattenCap);
+  const std::vector<Tri> cap = capTriangles(n, cells, sheet, v, options.flattenCap, refinement ? &*refinement : nullptr);
   stats.msCap = msSince(tCap);
   stats.capTrianglesAfter = cap.size();
   r.mesh.origin = cube.faces[0].origin;

@@ -69,10 +69,15 @@ class CellTriangulator {
   // and corner k + 1's side (unused where side k has no boundary edge); `centre`: the sheet depth at
   // the quad's centre (3 or 4 boundary edges).
   // `chordNear`, `chordFar`: the chord point's two vertices (n = 2 only; null: a straight wall).
+  // `cornerCount` 3: a triangular cell A B C (a point light's cube corner, cube_refinement.h),
+  // by the same rules: side k from corner k to corner k + 1 (mod 3), no chord point.
   void run(const CellVertex* corners, const CellVertex* a, const CellVertex* b, std::uint8_t sides, double centre,
-           double farPlane, const CellVertex* chordNear = nullptr, const CellVertex* chordFar = nullptr) {
+           double farPlane, const CellVertex* chordNear = nullptr, const CellVertex* chordFar = nullptr,
+           int cornerCount = 4) {
+    SV_CHECK(cornerCount == 4 || (cornerCount == 3 && !chordNear));
+    m_ = cornerCount;
     int split[4], n = 0;
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < m_; ++k)
       if (sides >> k & 1) split[n++] = k;
     SV_CHECK_GE(n, 1);
     if (n == 1) return taper(corners, a[split[0]], b[split[0]], split[0]);
@@ -83,7 +88,7 @@ class CellTriangulator {
       const CellVertex* poly[5];
       int count = 0;
       poly[count++] = &b[s];
-      for (int c = (s + 1) % 4;; c = (c + 1) % 4) {
+      for (int c = (s + 1) % m_;; c = (c + 1) % m_) {
         poly[count++] = &corners[c];
         if (c == s2) break;
       }
@@ -176,7 +181,16 @@ class CellTriangulator {
   // One boundary side k (a surface edge whose jump fades inside the quad): the loop is
   // [b, c1, c2, c3, c4, a] with c1 = corner k + 1 ... c4 = corner k; the wall tapers from the
   // crossing to c3, the corner diagonally opposite c1.
+  // A triangular cell tapers to its third corner: [b, c1, apex, a] with c1 = corner k + 1 and the
+  // apex corner k + 2.
   void taper(const CellVertex* corners, const CellVertex& a, const CellVertex& b, int k) {
+    if (m_ == 3) {
+      const CellVertex* apex = &corners[(k + 2) % 3];
+      add(&b, &corners[(k + 1) % 3], apex, true);
+      add(&b, apex, &a, false);
+      add(&a, apex, &corners[k], true);
+      return;
+    }
     const CellVertex* c1 = &corners[(k + 1) % 4];
     const CellVertex* c2 = &corners[(k + 2) % 4];
     const CellVertex* c3 = &corners[(k + 3) % 4];
@@ -196,6 +210,7 @@ class CellTriangulator {
 
   bool perfect_;
   std::vector<LocalTri>& tris_;
+  int m_ = 4;  // corners of the cell being triangulated
 };
 
 
