@@ -6,11 +6,14 @@ validate` of the cube volume, of the cube shadow map at the same texels per face
 dual-paraboloid map at the same texel count.
 
     bash scripts/fetch_unseen_meshes.sh
-    python3 scripts/point_light_unseen.py [--resolution 128] [--volume auto|gpu|explicit]
+    python3 scripts/point_light_unseen.py [--resolution 128] [--volume auto|gpu|explicit] [--refine K]
+        [--capture back|front|midpoint]
 
 Prints per scene whether the frame is consistent, the three errors (misclassified %) and the ratio
 of the volume's to the cube shadow map's, then the count where the volume's error is at most the
-shadow map's and the median ratio, and the same for the dual-paraboloid map against the cube map."""
+shadow map's and the median ratio, and the same for the dual-paraboloid map against the cube map.
+With --refine K the cube volume is the explicit one refined by K rays per boundary edge; --capture
+sets the cube volume's capture mode (the shadow maps keep back capture)."""
 import argparse
 import glob
 import json
@@ -53,7 +56,15 @@ def main():
     ap.add_argument("--resolution", default="128")
     ap.add_argument("--volume", default="auto", choices=["auto", "gpu", "explicit"],
                     help="the hybrid cube volume: auto (gpu), gpu or explicit")
+    ap.add_argument("--refine", default="0", help="rays per boundary edge (0: off; needs --volume explicit or auto)")
+    ap.add_argument("--capture", default="back", choices=["back", "front", "midpoint"],
+                    help="the cube volume's capture mode")
     a = ap.parse_args()
+    hybrid_args = ["--resolution", a.resolution, "--volume", a.volume, "--capture", a.capture]
+    if a.refine != "0":
+        if a.volume == "gpu":
+            sys.exit("--refine refines the explicit cube volume: use --volume explicit")
+        hybrid_args = ["--resolution", a.resolution, "--volume", "explicit", "--refine", a.refine, "--capture", a.capture]
     out_dir = os.path.join("out", "point-unseen")
     os.makedirs(out_dir, exist_ok=True)
     ratios, at_most, consistent = [], 0, 0
@@ -62,7 +73,7 @@ def main():
     for path in scenes:
         scene = point_variant(path, out_dir)
         name = os.path.splitext(os.path.basename(path))[0]
-        hv = validate(scene, os.path.join(out_dir, name, "hybrid"), ["--resolution", a.resolution, "--volume", a.volume])
+        hv = validate(scene, os.path.join(out_dir, name, "hybrid"), hybrid_args)
         sm = validate(scene, os.path.join(out_dir, name, "shadowmap"),
                       ["--method", "shadowmap", "--resolution", a.resolution])
         dp = validate(scene, os.path.join(out_dir, name, "dpsm"), ["--method", "dpsm", "--resolution", a.resolution])

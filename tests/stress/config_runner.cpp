@@ -14,18 +14,22 @@ std::optional<nlohmann::json> parseJson(const std::string& text) {
   return j;
 }
 
+bool pointLight(const StressConfig& c) {
+  return c.scene.contains("light") && c.scene["light"].is_object() && c.scene["light"].value("type", "") == "point";
+}
+
 std::vector<RunKind> runsOf(const StressConfig& c) {
   std::vector<RunKind> runs = {RunKind::Explicit};
   if (c.gpu && !c.refused) runs.push_back(RunKind::Gpu);
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
   if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
-  if (c.refined && !c.refused) runs.push_back(RunKind::Walk);
-  if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);
+  if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::Walk);  // rays only for the cube
+  if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::GpuRefined);
   runs.push_back(RunKind::Build);
   return runs;
 }
 
-RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, const RunSettings& s) {
+RunOutcome runOne(RunKind kind, const fs::path& scene, bool point, const fs::path& dir, const RunSettings& s) {
   fs::create_directories(dir);
   RunOutcome r;
   r.kind = kind;
@@ -44,7 +48,9 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, const fs::path& dir, cons
       r.argv.push_back("--capture");
       r.argv.push_back("front");
     }
-    if (kind == RunKind::Refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
+    if (kind == RunKind::Refined && point)  // the cube volume's refinement: rays alone
+      for (const char* a : {"--refine", "6"}) r.argv.push_back(a);
+    else if (kind == RunKind::Refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
       for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
     if (kind == RunKind::Walk)  // refinement with the crossings from the GPU's walk over the triangles
       for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
@@ -110,7 +116,7 @@ ConfigOutcome runConfig(const StressConfig& c, const fs::path& sceneFile, const 
   fs::remove_all(dir);
   ConfigOutcome out;
   for (RunKind k : runsOf(c)) {
-    out.runs.push_back(runOne(k, sceneFile, dir / runName(k), s));
+    out.runs.push_back(runOne(k, sceneFile, pointLight(c), dir / runName(k), s));
     out.seconds += out.runs.back().process.seconds;
   }
   return out;

@@ -31,7 +31,8 @@ struct StressConfig {
   bool gpu = true;                ///< also validate with --volume gpu (legal configurations)
   bool front = false;             ///< also validate with --capture front
   bool refined = false;           ///< also validate with --refine 6 --refine-grid 4 and with --refine 6
-                                  ///< --crossings gpu-walk (explicit volume)
+                                  ///< --crossings gpu-walk (explicit volume); a point light's with
+                                  ///< --refine 6 alone (its cube volume takes rays only)
   bool quick = false;             ///< part of the --quick subset (its twin is added automatically)
   std::optional<bool> eyeInside;  ///< where the geometry is clear: whether the eye lies in the shadow volume
 };

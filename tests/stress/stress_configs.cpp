@@ -219,8 +219,6 @@ std::vector<StressConfig> generateConfigs() {
     if (!c.refused) {
       c.front = index[c.category] % 3 == 0;
       c.refined = index[c.category]++ % 3 == 1;
-      if (c.scene.contains("light") && c.scene["light"].value("type", "") == "point")
-        c.refined = false;  // point lights have no refinement yet (refused)
     }
     if (c.refused) c.gpu = false;
     if (!names.insert(c.name).second) throw std::logic_error("duplicate stress config name " + c.name);
