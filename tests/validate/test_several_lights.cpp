@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/renderer.h"
 #include "shadowvol/validate/frame_validation.h"
@@ -111,25 +112,31 @@ TEST(SeveralLights, EachLightIsTheFrameOfThatLightAloneAndTheImageTheirSum) {
   }
 }
 
+// With refinement too: one depth oracle answers for every light, each map carrying its light's
+// matrices (depth_oracle.h); the spot light's volume and the lamp's cube volume are refined.
 TEST(SeveralLights, EveryLightIsConsistentWithItsCountsAndExactShadows) {
   const Scene scene = spotAndPoint();
+  const EmbreeDepthOracle oracle(scene);
   for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
-    for (bool blur : {false, true}) {
-      gl::RenderOptions ro;
-      ro.volume = gl::VolumeSource::Explicit;
-      ro.depthWidth = ro.depthHeight = 96;
-      ro.capture = mode;
-      ro.volumeOptions.blur = blur;
-      SCOPED_TRACE(std::string(toString(mode)) + (blur ? " blur" : ""));
-      const gl::RenderResult frame = renderFrame(scene, ro);
-      for (std::size_t k = 0; k < scene.lightCount(); ++k) {
-        const FrameValidation v = validateLight(scene, ro, frame, k);
-        ASSERT_TRUE(v.meshCheck && v.meshCheck->valid()) << k << ": " << v.meshCheck->summary();
-        EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement) << k;
-        EXPECT_TRUE(v.passed) << k << ": " << (v.failures.empty() ? "" : v.failures.front());
-        EXPECT_GT(v.exactShadowed, 100u) << k;
+    for (bool blur : {false, true})
+      for (int refine : {0, 4}) {
+        gl::RenderOptions ro;
+        ro.volume = gl::VolumeSource::Explicit;
+        ro.depthWidth = ro.depthHeight = 96;
+        ro.capture = mode;
+        ro.volumeOptions.blur = blur;
+        ro.volumeOptions.refineSteps = refine;
+        if (refine > 0) ro.volumeOptions.depthOracle = oracle.oracle();
+        SCOPED_TRACE(std::string(toString(mode)) + (blur ? " blur" : "") + (refine > 0 ? " refined" : ""));
+        const gl::RenderResult frame = renderFrame(scene, ro);
+        for (std::size_t k = 0; k < scene.lightCount(); ++k) {
+          const FrameValidation v = validateLight(scene, ro, frame, k);
+          ASSERT_TRUE(v.meshCheck && v.meshCheck->valid()) << k << ": " << v.meshCheck->summary();
+          EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement) << k;
+          EXPECT_TRUE(v.passed) << k << ": " << (v.failures.empty() ? "" : v.failures.front());
+          EXPECT_GT(v.exactShadowed, 100u) << k;
+        }
       }
-    }
 }
 
 // The production path, the GPU volume, plain and refined by the walk, under two spot lights.
@@ -172,10 +179,6 @@ TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
   expectRefused(dpsm, "method", "light 0 of the scene's 2");
   const Scene spots = twoSpots();
   renderer().setScene(spots);
-  gl::RenderOptions rays;  // one depth oracle answers for one light
-  rays.volume = gl::VolumeSource::Explicit;
-  rays.volumeOptions.refineSteps = 4;
-  expectRefused(rays, "refineCrossings", "one light");
   try {
     renderer().renderWithVolume(gl::RenderOptions{}, VolumeMesh{});
     ADD_FAILURE() << "a caller-built volume with two lights";

@@ -1552,12 +1552,6 @@ struct Renderer::Impl {
     if (givenVolume && lights.size() > 1)
       throw InputError("Renderer", "renderWithVolume", std::to_string(lights.size()) + " lights",
                        "a caller-built volume is one light's: give a scene with one light");
-    if (lights.size() > 1 && o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit &&
-        o.volumeOptions.refineSteps > 0 && o.refineCrossings == RefineCrossings::Rays)
-      throw InputError("RenderOptions", "refineCrossings", "rays",
-                       "the depth oracle (volumeOptions.depthOracle) answers for one light, and this scene has " +
-                           std::to_string(lights.size()) +
-                           ": refine by the GPU's walk (refineCrossings gpu-walk, or the GPU volume) instead");
     for (std::size_t k = 0; k < lights.size(); ++k) withLight(k, [&] { validateForLight(o, cam, k); });
     const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
     PassTimer timer(queryPool, gpuTimer);
