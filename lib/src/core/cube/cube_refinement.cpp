@@ -1,11 +1,13 @@
 #include "cube/cube_refinement.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <set>
 
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/check.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol::cube {
 
@@ -97,18 +99,62 @@ void addSeamEdges(const CubeDepthMap& cube, const Grid& cells, const SheetDepthR
   }
 }
 
-// The unfolding rounds of the header comment, on the cells that have a surface side.
-void unfoldWalls(const Grid& cells, CubeRefinement& r) {
-  std::vector<std::uint32_t> candidates;
-  for (std::uint32_t c = 0; c < cells.size(); ++c) {
-    const Cell cell = cells[c];
-    const std::uint8_t sides = boundarySides(cell, r);
-    for (int k = 0; k < cell.cornerCount(); ++k)
-      if (sides >> k & 1 && r.edges[r.find(cell.corner(k), cell.corner((k + 1) % cell.cornerCount()))].surface) {
-        candidates.push_back(c);
-        break;
-      }
+// The two cells on either side of a grid edge, found without looking at every cell: inner quads
+// from the texel coordinates, seam cells (12 (N - 1) quads and 8 triangles) from their sides.
+class EdgeCells {
+ public:
+  explicit EdgeCells(const Grid& cells, int n) : n_(n) {
+    const std::size_t inner = std::size_t(kCubeFaces) * std::size_t(n - 1) * std::size_t(n - 1);
+    for (std::size_t c = inner; c < cells.size(); ++c) {
+      const Cell cell = cells[c];
+      for (int k = 0; k < cell.cornerCount(); ++k)
+        seamSides_.push_back({key(cell.corner(k), cell.corner((k + 1) % cell.cornerCount())), std::uint32_t(c)});
+    }
+    std::sort(seamSides_.begin(), seamSides_.end());
   }
+  /// Appends the cells with the edge between texels a and b as a side (two: the grid is closed).
+  void append(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out) const {
+    const std::size_t before = out.size();
+    const std::uint32_t nn = std::uint32_t(n_) * std::uint32_t(n_), q = std::uint32_t(n_ - 1);
+    if (a / nn == b / nn) {  // inner quads of the face on either side, where they exist
+      const std::uint32_t f = a / nn, lo = std::min(a, b) % nn, hi = std::max(a, b) % nn;
+      const int i = int(lo % std::uint32_t(n_)), j = int(lo / std::uint32_t(n_));
+      const bool alongI = hi == lo + 1;  // else along j
+      const int qi[2] = {alongI ? i : i - 1, i}, qj[2] = {alongI ? j - 1 : j, j};
+      for (int k = 0; k < 2; ++k)
+        if (qi[k] >= 0 && qj[k] >= 0 && qi[k] < int(q) && qj[k] < int(q))
+          out.push_back(f * q * q + std::uint32_t(qj[k]) * q + std::uint32_t(qi[k]));
+    }
+    const auto [first, last] = std::equal_range(seamSides_.begin(), seamSides_.end(), std::pair{key(a, b), 0u},
+                                                [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (auto it = first; it != last; ++it) out.push_back(it->second);
+    SV_CHECK_EQ(out.size() - before, 2u);
+  }
+
+ private:
+  static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+  }
+  int n_;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> seamSides_;
+};
+
+// The cells with edge e (of `edges`, where `select` holds) as a side, sorted, once each.
+template <class Select>
+std::vector<std::uint32_t> cellsOfEdges(const EdgeCells& lookup, const std::vector<BoundaryEdge>& edges,
+                                        const Select& select) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    if (select(e)) lookup.append(edges[e].nearTexel, edges[e].farTexel, out);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// The unfolding rounds of the header comment, on the cells that have a surface side.
+void unfoldWalls(const Grid& cells, const EdgeCells& lookup, CubeRefinement& r) {
+  const std::vector<std::uint32_t> candidates =
+      cellsOfEdges(lookup, r.edges, [&](std::size_t e) { return r.edges[e].surface; });
   std::vector<std::uint8_t> keep(r.edges.size(), 1);
   bool any = false;
   for (int round = 0; round < kMaxUnfoldRounds; ++round) {
@@ -147,7 +193,15 @@ CubeRefinement refineCube(const CubeDepthMap& cube, const Grid& cells, const She
   r.touched.assign(finalDepths.size(), 0);
   addFaceEdges(cube, rule, blur, finalDepths, r);
   addSeamEdges(cube, cells, rule, blur, finalDepths, r);
-  unfoldWalls(cells, r);
+  const EdgeCells lookup(cells, n);
+  unfoldWalls(cells, lookup, r);
+  r.cells = cellsOfEdges(lookup, r.edges, [](std::size_t) { return true; });
+  // Point ids: texels, then two per crossing; the volume's vertices at most two per point.
+  if (2 * (std::uint64_t(finalDepths.size()) + 2 * std::uint64_t(r.edges.size())) >= std::uint64_t(UINT32_MAX))
+    throw InputError("volume options", "refine steps", std::to_string(steps),
+                     "the refined cube volume of " + std::to_string(n) + " texels a side with " +
+                         std::to_string(r.edges.size()) + " boundary edges would need more vertices than 32-bit "
+                         "indices address: use a smaller cube map");
 
   // The segments, as edgeSegment's of one map: the ends' depths without the blur's averaging, the
   // near end's final depth standing in where the blur offset puts its sample on the far plane.

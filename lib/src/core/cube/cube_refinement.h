@@ -65,6 +65,8 @@ struct CubeRefinement {
   }
   /// Texels that end a boundary edge (one byte per texel id): cells without one are not looked up.
   std::vector<std::uint8_t> touched;
+  /// The cells with a boundary side (Grid indices, sorted): the refined cells.
+  std::vector<std::uint32_t> cells;
 
   void add(const BoundaryEdge& e);
   /// Keeps only the edges with keep[e] set, in order.
@@ -78,7 +80,8 @@ struct CubeRefinement {
 };
 
 /// The boundary edges and their crossings (`steps` >= 1 bisection rays each). `finalDepths` are
-/// the texels' sheet depths (ring-free, blurred when `blur`), by texel id.
+/// the texels' sheet depths (ring-free, blurred when `blur`), by texel id. InputError (naming the
+/// refine steps) when the volume's vertices would not fit 32-bit indices.
 CubeRefinement refineCube(const CubeDepthMap& cube, const Grid& cells, const SheetDepthRule& rule, bool blur,
                           std::span<const double> finalDepths, const DepthOracle& oracle, int steps);
 

@@ -148,7 +148,7 @@ std::unordered_map<std::uint32_t, double> centreDepths(const CubeDepthMap& cube,
                                                        bool blur, const DepthOracle& oracle, RayBudget& budget) {
   std::vector<std::uint32_t> which;
   std::vector<glm::dvec3> rays;
-  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+  for (std::uint32_t c : r.cells) {
     const cube::Cell cell = cells[c];
     if (std::popcount(unsigned(cube::boundarySides(cell, r))) < 3) continue;
     which.push_back(c);
