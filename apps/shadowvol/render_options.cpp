@@ -34,7 +34,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production), explicit (depth "
-                 "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume)")
+                 "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume; with "
+                 "--refine, explicit when the scene has a point light, whose GPU cube volume is not refined)")
       ->check(CLI::IsMember({"auto", "gpu", "explicit"}))
       ->capture_default_str();
   cmd.add_option("--gpu-draw", o.gpuDraw,
@@ -86,6 +87,16 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->check(CLI::ExistingDirectory);
 }
 
+namespace {
+
+bool hasPointLight(const Scene& scene) {
+  for (std::size_t k = 0; k < scene.lightCount(); ++k)
+    if (scene.lightAt(k).type == LightType::Point) return true;
+  return false;
+}
+
+}  // namespace
+
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   checkResolution("--resolution", o.resolution);
   if (o.shadowBias && !std::isfinite(*o.shadowBias))
@@ -94,8 +105,10 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
-  if (o.volume == "auto")
-    ro.volume = gl::VolumeSource::Gpu;
+  if (o.volume == "auto")  // the GPU volume; refined, the explicit one where a light is a point light (its
+                            // GPU cube volume is not refined), refined by rays
+    ro.volume = o.shape.refine > 0 && o.method == "hybrid" && hasPointLight(scene) ? gl::VolumeSource::Explicit
+                                                                                   : gl::VolumeSource::Gpu;
   else
     gl::parseVolumeSource(o.volume, ro.volume);
   ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed
@@ -127,7 +140,9 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
 }
 
 void checkRenderOptionConflicts(const RenderCliOptions& o) {
-  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit";  // auto: gpu but for point lights, which refuse --refine
+  // Before the scene is read, auto counts as gpu here (toRenderOptions makes it explicit for a
+  // scene with a point light): rays, chord points and the sub-grid need --volume explicit.
+  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit";
   if (refinedGpu && o.crossings == "rays")
     throw CLI::ValidationError("--crossings", "the refined GPU volume finds its crossings with the GPU's walk: use "
                                               "--crossings gpu-walk (or auto), or --volume explicit for rays");

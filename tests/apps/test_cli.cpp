@@ -570,10 +570,16 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_EQ(none.code, 1);
   EXPECT_TRUE(contains(none.out, "--light")) << none.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "w.ply"));
-  const CliResult gpu = runCli("render --refine 4 --scene " + scene + " --out " + (dir / "f.png").string());
+  // --refine with --volume auto: the explicit volumes, refined by rays (the point light's GPU cube
+  // volume is not refined), and with --volume gpu the point light's refusal, naming the light.
+  const CliResult refined = runCli("render --refine 4 --scene " + scene + " --out " + (dir / "f.png").string());
+  EXPECT_EQ(refined.code, 0) << refined.out;
+  EXPECT_TRUE(contains(refined.out, "explicit volume")) << refined.out;
+  const CliResult gpu =
+      runCli("render --refine 4 --volume gpu --scene " + scene + " --out " + (dir / "g.png").string());
   EXPECT_EQ(gpu.code, 1);
   EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--volume")) << gpu.out;  // the point light's GPU volume
-  EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "g.png"));
   // bench scores one light: refused before anything is written (it once left a header-only
   // results.csv behind).
   const CliResult bench = runCli("bench --scenes " + scene + " --methods shadowmap --resolutions 16 --out " +
