@@ -176,6 +176,13 @@ Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& li
       ++stats.refinedCells;
       continue;
     }
+    bool allFar = true;
+    for (int corner = 0; corner < cell.cornerCount(); ++corner) allFar = allFar && t.far(cell.corner(corner));
+    if (allFar) {  // every triangle dropped whichever the diagonal (no flip counted, as in one map's codes)
+      for (int corner = 0; corner < cell.cornerCount(); ++corner) s.boundary[cell.corner(corner)] = 1;
+      ++stats.droppedQuads;
+      continue;
+    }
     const auto [a, b, cc, d] = cell.v;
     Tri cand[2];
     int k = 0;
