@@ -89,6 +89,19 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 
 namespace {
 
+constexpr const char* kGpuWalksOnly = "the refined GPU volume finds its crossings with the GPU's walk: use "
+                                      "--crossings gpu-walk (or auto), or --volume explicit for rays";
+constexpr const char* kGpuCrossingsOnly = "needs rays (--volume explicit --crossings rays): the refined GPU volume "
+                                          "refines the boundary edges' crossings alone";
+
+// The flag of the refined GPU volume's refusals (kGpuWalksOnly, kGpuCrossingsOnly) that `o` sets, or null.
+const char* refinedGpuConflict(const RenderCliOptions& o) {
+  if (o.crossings == "rays") return "--crossings";
+  if (o.shape.chordPoints) return "--chord-points";
+  if (o.shape.refineGrid > 1) return "--refine-grid";
+  return nullptr;
+}
+
 bool hasPointLight(const Scene& scene) {
   for (std::size_t k = 0; k < scene.lightCount(); ++k)
     if (scene.lightAt(k).type == LightType::Point) return true;
@@ -105,12 +118,20 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
-  if (o.volume == "auto")  // the GPU volume; refined, the explicit one where a light is a point light (its
-                            // GPU cube volume is not refined), refined by rays
-    ro.volume = o.shape.refine > 0 && o.method == "hybrid" && hasPointLight(scene) ? gl::VolumeSource::Explicit
-                                                                                   : gl::VolumeSource::Gpu;
-  else
+  const bool refined = o.shape.refine > 0 && o.method == "hybrid";
+  if (o.volume == "auto") {  // the GPU volume; refined, the explicit one where a light is a point light (its
+                             // GPU cube volume is not refined), refined by rays
+    ro.volume = refined && hasPointLight(scene) ? gl::VolumeSource::Explicit : gl::VolumeSource::Gpu;
+    if (const char* flag = refined && ro.volume == gl::VolumeSource::Gpu ? refinedGpuConflict(o) : nullptr) {
+      const std::string f = flag;
+      throw InputError("command line", f,
+                       f == "--crossings" ? "rays" : f == "--chord-points" ? "set" : std::to_string(o.shape.refineGrid),
+                       std::string("--volume auto is the GPU volume for this scene, and ") +
+                           (f == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly));
+    }
+  } else {
     gl::parseVolumeSource(o.volume, ro.volume);
+  }
   ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed
                      : o.gpuDraw == "kept-quads"   ? gl::GpuVolumeDraw::KeptQuads
                      : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
@@ -140,16 +161,11 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
 }
 
 void checkRenderOptionConflicts(const RenderCliOptions& o) {
-  // Before the scene is read, auto counts as gpu here (toRenderOptions makes it explicit for a
-  // scene with a point light): rays, chord points and the sub-grid need --volume explicit.
-  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume != "explicit";
-  if (refinedGpu && o.crossings == "rays")
-    throw CLI::ValidationError("--crossings", "the refined GPU volume finds its crossings with the GPU's walk: use "
-                                              "--crossings gpu-walk (or auto), or --volume explicit for rays");
-  if (refinedGpu && (o.shape.chordPoints || o.shape.refineGrid > 1))
-    throw CLI::ValidationError(o.shape.chordPoints ? "--chord-points" : "--refine-grid",
-                               "needs rays (--volume explicit --crossings rays): the refined GPU volume refines the "
-                               "boundary edges' crossings alone");
+  // --volume gpu here, before the scene is read; --volume auto in toRenderOptions, which makes it
+  // explicit for a scene with a point light (exit 1 there).
+  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume == "gpu";
+  if (const char* flag = refinedGpu ? refinedGpuConflict(o) : nullptr)
+    throw CLI::ValidationError(flag, std::string(flag) == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly);
   if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))
     throw CLI::ValidationError("--crossings", "gpu-walk refines a hybrid volume: add --method hybrid --refine K");
   if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))

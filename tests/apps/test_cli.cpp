@@ -650,11 +650,23 @@ TEST(CliGl, FitViewNarrowsTheLightAndLowersTheError) {
 TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();
-  const CliResult rays = runCli("validate --refine 4 --crossings rays --resolution 32 --size 64x48 --report " +
-                                (dir / "g").string());
+  const CliResult rays = runCli("validate --refine 4 --volume gpu --crossings rays --resolution 32 --size 64x48 "
+                                "--report " + (dir / "g").string());
   EXPECT_EQ(rays.code, 2) << rays.out;
   EXPECT_TRUE(contains(rays.out, "--crossings")) << rays.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "g"));
+  // With --volume auto the scene decides (after it is read, exit 1): gpu for the default spot
+  // light, which refuses rays; explicit for a point light, which takes them.
+  const CliResult autoRays = runCli("validate --refine 4 --crossings rays --resolution 32 --size 64x48 --report " +
+                                    (dir / "a").string());
+  EXPECT_EQ(autoRays.code, 1) << autoRays.out;
+  EXPECT_TRUE(contains(autoRays.out, "--crossings")) << autoRays.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "a" / "report.json"));
+  const CliResult pointRays =
+      runCli("validate --refine 4 --crossings rays --resolution 24 --size 64x48 --scene " +
+             (test::sourceDir() / "data" / "scenes" / "point" / "room.json").string() + " --report " +
+             (dir / "p").string());
+  EXPECT_EQ(pointRays.code, 0) << pointRays.out;
   const CliResult gpu = runCli("validate --json --refine 4 --resolution 64 --size 160x120 --scene " + scene("plate.json") +
                                " --report " + (dir / "gpu").string());
   ASSERT_EQ(gpu.code, 0) << gpu.out;

@@ -33,7 +33,8 @@
 namespace shadowvol {
 
 /// Builds the volume; stats as buildVolume's (quads counts the cube's cells, droppedQuads those
-/// that lost every triangle, capTrianglesBefore the kept sheet triangles, capTrianglesAfter what
+/// that lost every triangle, capTrianglesBefore the kept sheet triangles that are not walls (the
+/// mirrored cap's triangles: all kept ones without refinement), capTrianglesAfter what
 /// the cap has, splitVertices the extra copies of far vertices in the result). Throws InputError
 /// for a NaN or negative depth (naming the face and texel), a non-finite bias or blur offset,
 /// refinement without a depth oracle or with what it refuses (kCubeRefinementRule), or the quad

@@ -124,7 +124,8 @@ struct VolumeBuildStats {
   std::size_t droppedQuads = 0;       ///< quads that lost both triangles (all four corners far)
   std::size_t flippedQuads = 0;       ///< quads that took the A-C diagonal (0 for fixed; all-far
                                       ///< quads are not evaluated and count as not flipped)
-  std::size_t capTrianglesBefore = 0; ///< cap triangles without flattening (= kept sheet triangles)
+  std::size_t capTrianglesBefore = 0; ///< cap triangles without flattening (= kept sheet triangles;
+                                      ///< with refinement, those that are not walls)
   std::size_t capTrianglesAfter = 0;  ///< cap triangles in the result
   std::size_t splitVertices = 0;      ///< extra vertex copies at pinches and cuts (see above)
   std::size_t boundaryEdges = 0;      ///< refinement: grid edges across a discontinuity (split by a wall;

@@ -52,16 +52,16 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+  if (o.refineSteps > 0 && o.crossingSource)
+    throw InputError("volume options", "crossing source", "set", kCubeRefinementRule);
+  if (o.refineSteps > 0 && o.refineChords) throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+  if (o.refineSteps > 0 && o.refineSubdivisions != 1)
+    throw InputError("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
+                     kCubeRefinementRule);
   if (o.refineSteps > 0 && !o.depthOracle)
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
-  if (o.refineSteps > 0 && o.crossingSource)
-    throw InputError("volume options", "crossing source", "set", kCubeRefinementRule);
-  if (o.refineChords) throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
-  if (o.refineSubdivisions != 1)
-    throw InputError("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
-                     kCubeRefinementRule);
   if (o.cap != FarCap::Exact)
     throw InputError("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
   for (int f = 0; f < kCubeFaces; ++f)
@@ -256,8 +256,8 @@ void shareCrossingCaps(const Sheet& s, const cube::CubeRefinement& r, std::uint3
 // the sheet keeps one vertex and the cap gets another.
 Vertices numberVertices(const Sheet& s, const Texels& t, const cube::CubeRefinement* refinement) {
   const std::size_t texelCount = t.size();
-  // The kept triangles around each texel (triangle, corner), in triangle order: one array with
-  // an offset per texel.
+  // The kept triangles around each sheet point, texel or crossing vertex (triangle, corner), in
+  // triangle order: one array with an offset per point.
   using Corner = std::pair<std::uint32_t, std::uint8_t>;
   std::vector<std::uint32_t> offset(texelCount + 1, 0);
   for (const Tri& tri : s.tris)
@@ -412,8 +412,9 @@ double defaultCubeBias(const CubeDepthMap& cube) { return defaultBias(cube.faces
 
 namespace {
 
-// The far cap: each kept sheet triangle's image, mirrored; with `flatten`, each face's part (its
-// inner cells' images, in its far plane) replaced by its CDT (flattenFace).
+// The far cap: each kept sheet triangle's image, mirrored, but the walls' (their images have no
+// area); with `flatten`, each face's part (its inner cells' images, in its far plane) replaced by
+// its CDT (flattenFace).
 std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet, const Vertices& v, bool flatten,
                               const cube::CubeRefinement* refinement) {
   std::vector<Tri> cap;
