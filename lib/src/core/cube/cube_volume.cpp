@@ -1,6 +1,7 @@
 #include "shadowvol/cube_volume.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -124,8 +125,22 @@ struct Sheet {
 
 // A refined cell's triangles (cube_refinement.h), kept by one map's rule: those with three far
 // vertices dropped.
+// A chunk's share of the sheet (triangulate): its kept triangles, their cells and footprint flags,
+// and its counts. The boundary flags go straight to the shared array (atomic stores of 1).
+struct SheetPart {
+  std::vector<Tri> tris;
+  std::vector<std::uint32_t> cell;
+  std::vector<std::uint8_t> footprint;
+  std::size_t refined = 0, dropped = 0, flipped = 0;
+};
+
+void markBoundary(std::vector<std::uint8_t>& boundary, std::uint32_t point) {
+  std::atomic_ref<std::uint8_t>(boundary[point]).store(1, std::memory_order_relaxed);
+}
+
 void triangulateRefined(const cube::Cell& cell, std::uint32_t c, std::uint8_t sides, const cube::CubeRefinement& r,
-                        const Texels& t, double centre, bool perfect, Sheet& s, std::vector<volume::LocalTri>& local) {
+                        const Texels& t, double centre, bool perfect, SheetPart& out,
+                        std::vector<std::uint8_t>& boundary, std::vector<volume::LocalTri>& local) {
   const cube::CubeCell loop = cube::assembleCubeCell(cell, sides, r, t.farPlane, t.n, t.crossingBase(),
                                                      [&](std::uint32_t id) { return t.depth[id]; });
   local.clear();
@@ -133,12 +148,12 @@ void triangulateRefined(const cube::Cell& cell, std::uint32_t c, std::uint8_t si
       .run(loop.corners, loop.a, loop.b, sides, centre, t.farPlane, nullptr, nullptr, loop.count);
   for (const volume::LocalTri& tri : local) {
     if (tri.v[0]->far && tri.v[1]->far && tri.v[2]->far) {
-      for (const volume::CellVertex* v : tri.v) s.boundary[v->id] = 1;
+      for (const volume::CellVertex* v : tri.v) markBoundary(boundary, v->id);
       continue;
     }
-    s.tris.push_back({tri.v[0]->id, tri.v[1]->id, tri.v[2]->id});
-    s.cell.push_back(c);
-    s.footprint.push_back(tri.footprint ? 1 : 0);
+    out.tris.push_back({tri.v[0]->id, tri.v[1]->id, tri.v[2]->id});
+    out.cell.push_back(c);
+    out.footprint.push_back(tri.footprint ? 1 : 0);
   }
 }
 
@@ -161,26 +176,26 @@ std::unordered_map<std::uint32_t, double> centreDepths(const CubeDepthMap& cube,
   return out;
 }
 
-Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& light, bool perfect,
-                  const cube::CubeRefinement* refinement, const std::unordered_map<std::uint32_t, double>& centres,
-                  VolumeBuildStats& stats) {
-  Sheet s;
-  s.boundary.assign(t.size(), 0);
+// The cells [c0, c1) into `out` (see triangulate).
+void triangulateCells(const cube::Grid& cells, std::uint32_t c0, std::uint32_t c1, const Texels& t,
+                      const glm::dvec3& light, bool perfect, const cube::CubeRefinement* refinement,
+                      const std::unordered_map<std::uint32_t, double>& centres, SheetPart& out,
+                      std::vector<std::uint8_t>& boundary) {
   std::vector<volume::LocalTri> local;
-  for (std::uint32_t c = 0; c < cells.size(); ++c) {
+  for (std::uint32_t c = c0; c < c1; ++c) {
     const cube::Cell cell = cells[c];
     if (const std::uint8_t sides = refinement ? cube::boundarySides(cell, *refinement) : 0) {
       const auto centre = centres.find(c);
       triangulateRefined(cell, c, sides, *refinement, t, centre != centres.end() ? centre->second : t.farPlane, perfect,
-                         s, local);
-      ++stats.refinedCells;
+                         out, boundary, local);
+      ++out.refined;
       continue;
     }
     bool allFar = true;
     for (int corner = 0; corner < cell.cornerCount(); ++corner) allFar = allFar && t.far(cell.corner(corner));
     if (allFar) {  // every triangle dropped whichever the diagonal (no flip counted, as in one map's codes)
-      for (int corner = 0; corner < cell.cornerCount(); ++corner) s.boundary[cell.corner(corner)] = 1;
-      ++stats.droppedQuads;
+      for (int corner = 0; corner < cell.cornerCount(); ++corner) markBoundary(boundary, cell.corner(corner));
+      ++out.dropped;
       continue;
     }
     const auto [a, b, cc, d] = cell.v;
@@ -191,7 +206,7 @@ Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& li
     } else if (perfect && flipDiagonal(t.sheet(a) - light, t.sheet(b) - light, t.sheet(cc) - light, t.sheet(d) - light)) {
       cand[k++] = {a, b, cc};
       cand[k++] = {a, cc, d};
-      ++stats.flippedQuads;
+      ++out.flipped;
     } else {
       cand[k++] = {a, b, d};
       cand[k++] = {b, cc, d};
@@ -200,15 +215,46 @@ Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& li
     for (int q = 0; q < k; ++q) {
       const Tri& tri = cand[q];
       if (t.far(tri[0]) && t.far(tri[1]) && t.far(tri[2])) {
-        for (std::uint32_t v : tri) s.boundary[v] = 1;
+        for (std::uint32_t v : tri) markBoundary(boundary, v);
         continue;
       }
-      s.tris.push_back(tri);
-      s.cell.push_back(c);
-      s.footprint.push_back(1);
+      out.tris.push_back(tri);
+      out.cell.push_back(c);
+      out.footprint.push_back(1);
       ++kept;
     }
-    if (kept == 0) ++stats.droppedQuads;
+    if (kept == 0) ++out.dropped;
+  }
+}
+
+// Every cell's kept triangles, in cell order: chunks of cells in parallel, joined in chunk order
+// (the same mesh for any number of threads).
+Sheet triangulate(const cube::Grid& cells, const Texels& t, const glm::dvec3& light, bool perfect,
+                  const cube::CubeRefinement* refinement, const std::unordered_map<std::uint32_t, double>& centres,
+                  VolumeBuildStats& stats) {
+  Sheet s;
+  s.boundary.assign(t.size(), 0);
+  constexpr std::uint32_t kChunk = 1u << 14;
+  const auto count = std::uint32_t(cells.size());
+  std::vector<SheetPart> parts((count + kChunk - 1) / kChunk);
+  tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t k) {
+    const auto c0 = std::uint32_t(k) * kChunk;
+    triangulateCells(cells, c0, std::min(count, c0 + kChunk), t, light, perfect, refinement, centres, parts[k],
+                     s.boundary);
+  });
+  std::size_t total = 0;
+  for (const SheetPart& part : parts) total += part.tris.size();
+  s.tris.reserve(total);
+  s.cell.reserve(total);
+  s.footprint.reserve(total);
+  for (SheetPart& part : parts) {
+    s.tris.insert(s.tris.end(), part.tris.begin(), part.tris.end());
+    s.cell.insert(s.cell.end(), part.cell.begin(), part.cell.end());
+    s.footprint.insert(s.footprint.end(), part.footprint.begin(), part.footprint.end());
+    stats.refinedCells += part.refined;
+    stats.droppedQuads += part.dropped;
+    stats.flippedQuads += part.flipped;
+    part = {};
   }
   return s;
 }
