@@ -8,6 +8,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "shadowvol/cgal/mesh_check.h"
 #include "shadowvol/cube_volume.h"
@@ -108,6 +109,30 @@ TEST(CubeVolumeCgal, RefinedClosedOnThePointRoomInEveryCombination) {
             EXPECT_EQ(r.stats.raysCast, 3 * r.stats.boundaryEdges + r.stats.ambiguousCells) << what;
           }
     }
+}
+
+// The cells are triangulated in parallel chunks (and refinement's rays batched): the mesh is the
+// same with one thread, refined or not, front capture keeping every cell.
+TEST(CubeVolumeCgal, TheSameMeshWithOneThread) {
+  const Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
+  const EmbreeDepthOracle oracle(scene);
+  for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front}) {
+    const CubeDepthMap cube = captureCubeEmbree(scene, 64, mode);
+    for (int refine : {0, 4}) {
+      VolumeBuildOptions o;
+      o.refineSteps = refine;
+      if (refine > 0) o.depthOracle = oracle.oracle();
+      const VolumeBuildResult parallel = buildCubeVolume(cube, o);
+      VolumeBuildResult serial;
+      {
+        tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        serial = buildCubeVolume(cube, o);
+      }
+      EXPECT_EQ(parallel.mesh.positions, serial.mesh.positions) << toString(mode) << " " << refine;
+      EXPECT_EQ(parallel.mesh.triangles, serial.mesh.triangles) << toString(mode) << " " << refine;
+      EXPECT_GT(parallel.stats.flippedQuads, 0u);
+    }
+  }
 }
 
 // An oracle for a synthetic cube map: the depth of the texel nearest the point, on the face
