@@ -61,10 +61,13 @@ void expectValid(const CubeDepthMap& cube, const VolumeBuildOptions& o, const st
   }
 }
 
-TEST(CubeVolumeCgal, ClosedOnThePointRoomInEveryCombination) {
+// The shipped room at the face sizes `sizes` in every capture mode, triangulation, blur and cap;
+// with `refineSteps`, refined by the scene's rays (cube_refinement.h), with walls.
+void expectValidOnTheRoom(std::initializer_list<int> sizes, int refineSteps) {
   const Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
   ASSERT_EQ(scene.light.type, LightType::Point);
-  for (int n : {8, 17, 32})
+  const EmbreeDepthOracle oracle(scene);
+  for (int n : sizes)
     for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
       const CubeDepthMap cube = captureCubeEmbree(scene, n, mode);
       for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
@@ -75,41 +78,25 @@ TEST(CubeVolumeCgal, ClosedOnThePointRoomInEveryCombination) {
             o.blur = blur;
             o.blurOffset = blur ? 0.01 : 0.0;
             o.flattenCap = flatten;
-            expectValid(cube, o,
-                        std::to_string(n) + " " + toString(mode) + " " + toString(t) + (blur ? " blur" : "") +
-                            (flatten ? " flattened" : " mirrored"),
-                        n == 8);
+            o.refineSteps = refineSteps;
+            if (refineSteps > 0) o.depthOracle = oracle.oracle();
+            const std::string what = std::to_string(n) + " " + toString(mode) + " " + toString(t) +
+                                     (blur ? " blur" : "") + (flatten ? " flattened" : " mirrored") +
+                                     (refineSteps > 0 ? " refined" : "");
+            expectValid(cube, o, what, n == 8);
+            if (refineSteps == 0) continue;
+            const VolumeBuildResult r = buildCubeVolume(cube, o);
+            EXPECT_GT(r.stats.boundaryEdges, 0u) << what;
+            EXPECT_GT(r.stats.refinedCells, 0u) << what;
+            EXPECT_EQ(r.stats.raysCast, std::size_t(refineSteps) * r.stats.boundaryEdges + r.stats.ambiguousCells)
+                << what;
           }
     }
 }
 
-// Refinement (cube_refinement.h) with the scene's rays: closed in every combination, with walls.
-TEST(CubeVolumeCgal, RefinedClosedOnThePointRoomInEveryCombination) {
-  const Scene scene = loadScene(test::sourceDir() / "data" / "scenes" / "point" / "room.json").scene;
-  const EmbreeDepthOracle oracle(scene);
-  for (int n : {8, 17})
-    for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
-      const CubeDepthMap cube = captureCubeEmbree(scene, n, mode);
-      for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
-        for (bool blur : {false, true})
-          for (bool flatten : {false, true}) {
-            VolumeBuildOptions o;
-            o.triangulation = t;
-            o.blur = blur;
-            o.blurOffset = blur ? 0.01 : 0.0;
-            o.flattenCap = flatten;
-            o.refineSteps = 3;
-            o.depthOracle = oracle.oracle();
-            const std::string what = std::to_string(n) + " " + toString(mode) + " " + toString(t) +
-                                     (blur ? " blur" : "") + (flatten ? " flattened" : " mirrored") + " refined";
-            expectValid(cube, o, what, n == 8);
-            const VolumeBuildResult r = buildCubeVolume(cube, o);
-            EXPECT_GT(r.stats.boundaryEdges, 0u) << what;
-            EXPECT_GT(r.stats.refinedCells, 0u) << what;
-            EXPECT_EQ(r.stats.raysCast, 3 * r.stats.boundaryEdges + r.stats.ambiguousCells) << what;
-          }
-    }
-}
+TEST(CubeVolumeCgal, ClosedOnThePointRoomInEveryCombination) { expectValidOnTheRoom({8, 17, 32}, 0); }
+
+TEST(CubeVolumeCgal, RefinedClosedOnThePointRoomInEveryCombination) { expectValidOnTheRoom({8, 17}, 3); }
 
 // The cells are triangulated in parallel chunks (and refinement's rays batched): the mesh is the
 // same with one thread, refined or not, front capture keeping every cell.
@@ -150,13 +137,14 @@ DepthOracle nearestTexelOracle(const CubeDepthMap& cube) {
   };
 }
 
-// Refined on random cube maps: far texels and depths far apart (surface edges everywhere, cells
-// with three and four boundary sides, across the cube's edges and corners).
-TEST(CubeVolumeCgal, RefinedClosedOnRandomPatterns) {
-  std::mt19937 rng(11);
+// Random cube maps at N = 2 to 9: each texel far with probability pFar, else at a depth from 1 to
+// 5; with `refineSteps`, refined by the nearest-texel oracle.
+void expectValidOnRandomMaps(std::uint32_t seed, std::initializer_list<double> densities, int trials,
+                             int refineSteps) {
+  std::mt19937 rng(seed);
   for (int n : {2, 3, 5, 9})
-    for (double pFar : {0.0, 0.3, 0.6, 0.9})
-      for (int trial = 0; trial < 4; ++trial) {
+    for (double pFar : densities)
+      for (int trial = 0; trial < trials; ++trial) {
         CubeDepthMap cube = makeCubeDepthMap(pointLight(), n, CaptureMode::Back);
         std::uniform_real_distribution<double> u(0.0, 1.0);
         for (DepthMap& f : cube.faces)
@@ -166,39 +154,24 @@ TEST(CubeVolumeCgal, RefinedClosedOnRandomPatterns) {
             VolumeBuildOptions o;
             o.triangulation = t;
             o.flattenCap = flatten;
-            o.refineSteps = 2;
-            o.depthOracle = nearestTexelOracle(cube);
+            o.refineSteps = refineSteps;
+            if (refineSteps > 0) o.depthOracle = nearestTexelOracle(cube);
             expectValid(cube, o,
-                        "refined n " + std::to_string(n) + " far " + std::to_string(pFar) + " trial " +
-                            std::to_string(trial) + " " + toString(t) + (flatten ? " flattened" : " mirrored"),
+                        std::string(refineSteps > 0 ? "refined " : "") + "n " + std::to_string(n) + " far " +
+                            std::to_string(pFar) + " trial " + std::to_string(trial) + " " + toString(t) +
+                            (flatten ? " flattened" : " mirrored"),
                         n <= 5);
           }
       }
 }
 
+// Refined on random cube maps: far texels and depths far apart (surface edges everywhere, cells
+// with three and four boundary sides, across the cube's edges and corners).
+TEST(CubeVolumeCgal, RefinedClosedOnRandomPatterns) { expectValidOnRandomMaps(11, {0.0, 0.3, 0.6, 0.9}, 4, 2); }
+
 // Random far texels at several densities: isolated far texels (a closed fan), slits between two
 // of them, pinches where regions touch at a vertex, whole far faces, cube edges and corners.
-TEST(CubeVolumeCgal, ClosedOnRandomFarPatterns) {
-  std::mt19937 rng(7);
-  for (int n : {2, 3, 5, 9})
-    for (double pFar : {0.05, 0.3, 0.5, 0.7, 0.95})
-      for (int trial = 0; trial < 6; ++trial) {
-        CubeDepthMap cube = makeCubeDepthMap(pointLight(), n, CaptureMode::Back);
-        std::uniform_real_distribution<double> u(0.0, 1.0);
-        for (DepthMap& f : cube.faces)
-          for (float& d : f.depth) d = u(rng) < pFar ? DepthMap::kNoHit : float(1.0 + 4.0 * u(rng));
-        for (Triangulation t : {Triangulation::Fixed, Triangulation::Perfect})
-          for (bool flatten : {false, true}) {
-            VolumeBuildOptions o;
-            o.triangulation = t;
-            o.flattenCap = flatten;
-            expectValid(cube, o,
-                        "n " + std::to_string(n) + " far " + std::to_string(pFar) + " trial " + std::to_string(trial) +
-                            " " + toString(t) + (flatten ? " flattened" : " mirrored"),
-                        n <= 5);
-          }
-      }
-}
+TEST(CubeVolumeCgal, ClosedOnRandomFarPatterns) { expectValidOnRandomMaps(7, {0.05, 0.3, 0.5, 0.7, 0.95}, 6, 0); }
 
 TEST(CubeVolumeCgal, AllFarIsEmptyAndNoFarIsAShell) {
   CubeDepthMap cube = makeCubeDepthMap(pointLight(), 6, CaptureMode::Back);
