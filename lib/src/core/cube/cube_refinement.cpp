@@ -12,7 +12,7 @@
 namespace shadowvol::cube {
 
 void CubeRefinement::add(const BoundaryEdge& e) {
-  const auto [it, inserted] = index_.emplace(key(e.nearTexel, e.farTexel), std::uint32_t(edges.size()));
+  const auto [it, inserted] = index_.emplace(edgeKey(e.nearTexel, e.farTexel), std::uint32_t(edges.size()));
   SV_CHECK(inserted);
   edges.push_back(e);
   touched[e.nearTexel] = touched[e.farTexel] = 1;
@@ -85,7 +85,7 @@ void addSeamEdges(const CubeDepthMap& cube, const Grid& cells, const SheetDepthR
     for (int k = 0; k < count; ++k) {
       const std::uint32_t p = cell.corner(k), q = cell.corner((k + 1) % count);
       if (p / nn == q / nn) continue;  // in one face: its own finder's
-      if (!seen.insert(p < q ? (std::uint64_t(p) << 32 | q) : (std::uint64_t(q) << 32 | p)).second) continue;
+      if (!seen.insert(edgeKey(p, q)).second) continue;
       const bool farP = finalDepths[p] == farPlane, farQ = finalDepths[q] == farPlane;
       if (farP && farQ) continue;
       if (farP != farQ) {
@@ -108,7 +108,7 @@ class EdgeCells {
     for (std::size_t c = inner; c < cells.size(); ++c) {
       const Cell cell = cells[c];
       for (int k = 0; k < cell.cornerCount(); ++k)
-        seamSides_.push_back({key(cell.corner(k), cell.corner((k + 1) % cell.cornerCount())), std::uint32_t(c)});
+        seamSides_.push_back({edgeKey(cell.corner(k), cell.corner((k + 1) % cell.cornerCount())), std::uint32_t(c)});
     }
     std::sort(seamSides_.begin(), seamSides_.end());
   }
@@ -125,16 +125,13 @@ class EdgeCells {
         if (qi[k] >= 0 && qj[k] >= 0 && qi[k] < int(q) && qj[k] < int(q))
           out.push_back(f * q * q + std::uint32_t(qj[k]) * q + std::uint32_t(qi[k]));
     }
-    const auto [first, last] = std::equal_range(seamSides_.begin(), seamSides_.end(), std::pair{key(a, b), 0u},
+    const auto [first, last] = std::equal_range(seamSides_.begin(), seamSides_.end(), std::pair{edgeKey(a, b), 0u},
                                                 [](const auto& x, const auto& y) { return x.first < y.first; });
     for (auto it = first; it != last; ++it) out.push_back(it->second);
     SV_CHECK_EQ(out.size() - before, 2u);
   }
 
  private:
-  static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
-    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
-  }
   int n_;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> seamSides_;
 };
@@ -228,11 +225,13 @@ CubeRefinement refineCube(const CubeDepthMap& cube, const Grid& cells, const She
   r.crossings = bisectWith(segments, rule, blur, steps, sample);
   r.directions.resize(m);
   r.faceTexel.assign(m, glm::dvec2(0.0));
+  auto texel = [&](std::uint32_t id) {  // texel coordinates on its face
+    return glm::dvec2(double(id % nn % std::uint32_t(n)), double(id % nn / std::uint32_t(n)));
+  };
   for (std::size_t e = 0; e < m; ++e) {
     const glm::dvec3 ray = dNear[e] + r.crossings[e].s * (dFar[e] - dNear[e]);
     r.directions[e] = ray / cubeDepth(ray);
     if (!r.edges[e].inFace) continue;
-    auto texel = [&](std::uint32_t id) { return glm::dvec2(double(id % nn % std::uint32_t(n)), double(id % nn / std::uint32_t(n))); };
     const glm::dvec2 a = texel(r.edges[e].nearTexel), b = texel(r.edges[e].farTexel);
     r.faceTexel[e] = a + r.crossings[e].s * (b - a);
   }

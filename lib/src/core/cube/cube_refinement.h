@@ -51,6 +51,11 @@ struct BoundaryEdge {
 void sampleDirections(const CubeDepthMap& cube, std::span<const glm::dvec3> directions, const DepthOracle& oracle,
                       std::span<float> depth, RayBudget& budget);
 
+/// The key of the grid edge between texels a and b, either order.
+inline std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+  return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+}
+
 struct CubeRefinement {
   static constexpr std::uint32_t kNoEdge = UINT32_MAX;
   std::vector<BoundaryEdge> edges;      ///< each face's in findBoundaryEdges' order, then the seams' in cell order
@@ -60,7 +65,7 @@ struct CubeRefinement {
   RayBudget budget;                     ///< the oracle's rays and time
   /// The boundary edge between texels a and b (either order), or kNoEdge.
   std::uint32_t find(std::uint32_t a, std::uint32_t b) const {
-    const auto it = index_.find(key(a, b));
+    const auto it = index_.find(edgeKey(a, b));
     return it == index_.end() ? kNoEdge : it->second;
   }
   /// Texels that end a boundary edge (one byte per texel id): cells without one are not looked up.
@@ -73,9 +78,6 @@ struct CubeRefinement {
   void keepOnly(const std::vector<std::uint8_t>& keep);
 
  private:
-  static std::uint64_t key(std::uint32_t a, std::uint32_t b) {
-    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
-  }
   std::unordered_map<std::uint64_t, std::uint32_t> index_;
 };
 

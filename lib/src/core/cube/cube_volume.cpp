@@ -55,7 +55,8 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
   if (o.refineSteps > 0 && o.crossingSource)
     throw InputError("volume options", "crossing source", "set", kCubeRefinementRule);
-  if (o.refineSteps > 0 && o.refineChords) throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+  if (o.refineSteps > 0 && o.refineChords)
+    throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
   if (o.refineSteps > 0 && o.refineSubdivisions != 1)
     throw InputError("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
                      kCubeRefinementRule);
@@ -575,7 +576,8 @@ VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOpt
   stats.capTrianglesBefore = std::size_t(std::count(sheet.footprint.begin(), sheet.footprint.end(), 1));
 
   const auto tCap = Clock::now();
-  const std::vector<Tri> cap = capTriangles(n, cells, sheet, v, options.flattenCap, refinement ? &*refinement : nullptr);
+  const std::vector<Tri> cap =
+      capTriangles(n, cells, sheet, v, options.flattenCap, refinement ? &*refinement : nullptr);
   stats.msCap = msSince(tCap);
   stats.capTrianglesAfter = cap.size();
   r.mesh.origin = cube.faces[0].origin;
