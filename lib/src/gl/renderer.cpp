@@ -1244,8 +1244,8 @@ struct Renderer::Impl {
   }
 
   /// What a point light's frame can be (docs/gpu.md "Point lights"): the explicit cube volume
-  /// (hybrid, explicit), the GPU cube volume (hybrid, gpu; GL 4.3), silhouette volumes, a cube
-  /// shadow map (GL 4.3), dual-paraboloid maps or no shadows.
+  /// (hybrid, explicit; refined by rays alone), the GPU cube volume (hybrid, gpu; GL 4.3; not
+  /// refined), silhouette volumes, a cube shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     if (o.method == ShadowMethod::Hybrid) {  // either cube volume
       if (o.volumeOptions.refineSteps > 0 && o.volume == VolumeSource::Gpu)
