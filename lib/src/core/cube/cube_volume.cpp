@@ -406,10 +406,29 @@ struct DirectedEdges {
 };
 
 // Face `face`'s part of the cap, flattened: the CDT of far_cap.h over the boundary of its mirrored
-// triangles, in the face's texel space. A vertex where the part touches itself (two or more
-// wedges of it around one vertex, the cap across the cube's edge between them) enters the CDT
-// once per wedge, as the pinches of one map do, and each wedge's triangles get it back.
-std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec2>& texelOf) {
+// triangles, in the face's texel space (texelOf, by vertex). A vertex where the part touches itself
+// (two or more wedges of it around one vertex, the cap across the cube's edge between them) enters
+// the CDT once per wedge, as the pinches of one map do, and each wedge's triangles get it back. The
+// part is numbered on its own (localOf: a scratch array by vertex, kNone where unused, restored on
+// return; the faces' parts have no vertex in common, so they may share it at once).
+std::vector<Tri> flattenFace(const std::vector<Tri>& globalPart, const std::vector<glm::dvec2>& texelOfVertex,
+                             std::vector<std::uint32_t>& localOf) {
+  std::vector<std::uint32_t> global;  // local id -> vertex
+  std::vector<Tri> part(globalPart.size());
+  for (std::size_t k = 0; k < part.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      std::uint32_t& local = localOf[globalPart[k][c]];
+      if (local == kNone) {
+        local = std::uint32_t(global.size());
+        global.push_back(globalPart[k][c]);
+      }
+      part[k][c] = local;
+    }
+  std::vector<glm::dvec2> texelOf(global.size());
+  for (std::size_t i = 0; i < global.size(); ++i) {
+    texelOf[i] = texelOfVertex[global[i]];
+    localOf[global[i]] = kNone;
+  }
   const std::uint32_t firstTemp = std::uint32_t(texelOf.size());
   const DirectedEdges directed(part, firstTemp);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // boundary edges a -> b of the part
@@ -447,9 +466,8 @@ std::vector<Tri> flattenFace(const std::vector<Tri>& part, std::vector<glm::dvec
     capEdges.push_back({from, to, texelOf[from], texelOf[to]});
   }
   std::vector<Tri> out;
-  auto back = [&](std::uint32_t id) { return id < firstTemp ? id : original[id - firstTemp]; };
+  auto back = [&](std::uint32_t id) { return global[id < firstTemp ? id : original[id - firstTemp]]; };
   for (const auto& t : triangulateCapLoops(capEdges)) out.push_back({back(t[2]), back(t[1]), back(t[0])});
-  texelOf.resize(firstTemp);
   return out;
 }
 
@@ -476,28 +494,29 @@ std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet
     else cap.push_back(mirrored);
   }
   if (!flatten) return cap;
+  // Texel coordinates of the faces' cap vertices, each in its face (an inner cell's corners are
+  // its face's texels and the crossings on its edges).
   std::vector<glm::dvec2> texelOf(v.positions.size());
   const std::uint32_t crossingBase = std::uint32_t(kCubeFaces) * std::uint32_t(n) * std::uint32_t(n);
-  for (int f = 0; f < kCubeFaces; ++f) {
-    if (facePart[f].empty()) continue;
-    // Texel coordinates of this face's cap vertices (its inner cells' corners are its texels and
-    // the crossings on its edges).
-    for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
-      const cube::Cell cell = cells[sheet.cell[k]];
-      if (!sheet.footprint[k] || !cell.inner || cell.face != f) continue;
-      for (int c = 0; c < 3; ++c) {
-        const std::uint32_t point = sheet.tris[k][c];
-        if (point >= crossingBase) {
-          texelOf[v.cap[k][c]] = refinement->faceTexel[(point - crossingBase) / 2];
-          continue;
-        }
-        const std::uint32_t id = point - cube::texelId(n, f, 0, 0);
-        texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
+  for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
+    const cube::Cell cell = cells[sheet.cell[k]];
+    if (!sheet.footprint[k] || !cell.inner) continue;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t point = sheet.tris[k][c];
+      if (point >= crossingBase) {
+        texelOf[v.cap[k][c]] = refinement->faceTexel[(point - crossingBase) / 2];
+        continue;
       }
+      const std::uint32_t id = point - cube::texelId(n, cell.face, 0, 0);
+      texelOf[v.cap[k][c]] = {double(id % std::uint32_t(n)), double(id / std::uint32_t(n))};
     }
-    const std::vector<Tri> flat = flattenFace(facePart[f], texelOf);
-    cap.insert(cap.end(), flat.begin(), flat.end());
   }
+  std::vector<std::uint32_t> localOf(v.positions.size(), kNone);
+  std::array<std::vector<Tri>, kCubeFaces> flat;
+  tbb::parallel_for(0, kCubeFaces, [&](int f) {
+    if (!facePart[f].empty()) flat[f] = flattenFace(facePart[f], texelOf, localOf);
+  });
+  for (const std::vector<Tri>& face : flat) cap.insert(cap.end(), face.begin(), face.end());
   return cap;
 }
 
