@@ -25,6 +25,18 @@ inline std::uint32_t texelId(int n, int face, int i, int j) {
          std::uint32_t(i);
 }
 
+/// Texels of an N x N cube map, 6 N^2: the first id after the last texel's.
+inline std::uint32_t texelCount(int n) { return texelId(n, 6, 0, 0); }
+
+/// Inner quads of an N x N cube map, 6 (N-1)^2: they come first in Grid's order.
+inline std::size_t innerQuadCount(int n) { return std::size_t(6) * std::size_t(n - 1) * std::size_t(n - 1); }
+
+/// Grid's index of face f's inner quad (i, j) (corners (i, j) to (i+1, j+1)).
+inline std::size_t innerQuadIndex(int n, int face, int i, int j) {
+  const std::size_t q = std::size_t(n - 1);
+  return (std::size_t(face) * q + std::size_t(j)) * q + std::size_t(i);
+}
+
 struct Cell {
   std::array<std::uint32_t, 4> v{};  ///< texel ids A, B, C, D; a corner triangle is A, B, D (C unused)
   bool triangle = false;

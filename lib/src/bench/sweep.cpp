@@ -18,10 +18,20 @@
 namespace shadowvol {
 namespace {
 
+// A method key's capture: "-front", "-midpoint", nothing for back capture (the default).
+std::string captureSuffix(CaptureMode capture) {
+  return capture == CaptureMode::Back ? "" : std::string("-") + toString(capture);
+}
+
+// A method description's capture: "back capture", "front capture (default bias)", ...
+std::string captureWords(CaptureMode capture) {
+  return std::string(toString(capture)) + " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+}
+
 SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureMode capture = CaptureMode::Back) {
   SweepMethod m;
   const std::string variant = std::string(t == Triangulation::Perfect ? "perfect" : "fixed") + (blur ? "-blur" : "") +
-                              (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture));
+                              captureSuffix(capture);
   m.key = "hybrid-" + variant + "/" + gl::toString(source);
   m.family = "hybrid";
   m.options.method = gl::ShadowMethod::Hybrid;
@@ -31,7 +41,7 @@ SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureM
   m.options.volumeOptions.blur = blur;
   m.options.volumeOptions.cap = FarCap::Exact;
   m.description = "shadow volume from the depth map, " + variant + ", " + gl::toString(source) + " volume, " +
-                  toString(capture) + " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+                  captureWords(capture);
   return m;
 }
 
@@ -40,12 +50,11 @@ SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureM
 // frame's build pass).
 SweepMethod refined(CaptureMode capture) {
   SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Explicit, capture);
-  m.key = std::string("hybrid-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-refined") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSteps = kSweepRefineSteps;
   m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
-                  " rays per boundary edge, perfect triangulation), " + toString(capture) + " capture" +
-                  (capture == CaptureMode::Front ? " (default bias)" : "");
+                  " rays per boundary edge, perfect triangulation), " + captureWords(capture);
   return m;
 }
 
@@ -53,12 +62,11 @@ SweepMethod refined(CaptureMode capture) {
 // (RefineCrossings::GpuWalk; the walk's time, with its read-back, is part of the build pass).
 SweepMethod refinedWalk(CaptureMode capture) {
   SweepMethod m = refined(capture);
-  m.key = std::string("hybrid-refined-walk") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-refined-walk") + captureSuffix(capture) +
           "/explicit";
   m.options.refineCrossings = gl::RefineCrossings::GpuWalk;
   m.description = "explicit volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the "
-                  "scene's triangles (no rays), perfect triangulation, " + std::string(toString(capture)) + " capture" +
-                  (capture == CaptureMode::Front ? " (default bias)" : "");
+                  "scene's triangles (no rays), perfect triangulation, " + captureWords(capture);
   return m;
 }
 
@@ -66,12 +74,11 @@ SweepMethod refinedWalk(CaptureMode capture) {
 // refined cells in compute passes, no read-back; the walk's passes are the frame's "crossings" pass).
 SweepMethod refinedGpu(CaptureMode capture) {
   SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, capture);
-  m.key = std::string("hybrid-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-refined") + captureSuffix(capture) +
           "/gpu";
   m.options.volumeOptions.refineSteps = kSweepRefineSteps;  // only switches it on: the walk is exact
   m.description = "GPU volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the scene's "
-                  "triangles, all on the GPU without a read-back; perfect triangulation, " + std::string(toString(capture)) +
-                  " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+                  "triangles, all on the GPU without a read-back; perfect triangulation, " + captureWords(capture);
   return m;
 }
 
@@ -79,13 +86,12 @@ SweepMethod refinedGpu(CaptureMode capture) {
 // boundary edge), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
   SweepMethod m = refined(capture);
-  m.key = std::string("hybrid-refined-grid") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-refined-grid") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSubdivisions = kSweepRefineSubdivisions;
   m.description = "explicit volume with sub-texel silhouette refinement on a " + std::to_string(kSweepRefineSubdivisions) +
                   "x" + std::to_string(kSweepRefineSubdivisions) + " adaptive sub-grid in the quads with a boundary edge (" +
-                  std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + toString(capture) + " capture" +
-                  (capture == CaptureMode::Front ? " (default bias)" : "");
+                  std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + captureWords(capture);
   return m;
 }
 
@@ -111,14 +117,13 @@ SweepMethod cubeShadowMap(const std::string& key, gl::ShadowMethod method, const
 SweepMethod cubeVolume(CaptureMode capture, gl::VolumeSource source) {
   SweepMethod m = hybrid(Triangulation::Perfect, false, source, capture);
   const bool gpu = source == gl::VolumeSource::Gpu;
-  m.key = std::string("hybrid-cube") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-cube") + captureSuffix(capture) +
           (gpu ? "/gpu" : "/explicit");
   m.lights = SweepLights::Point;
   m.description = std::string("a point light's ") +
                   (gpu ? "GPU cube volume drawn straight from its six face maps (no read-back)"
                        : "explicit cube volume from its six face maps") +
-                  " (perfect triangulation, far cube cap), " + toString(capture) + " capture" +
-                  (capture == CaptureMode::Front ? " (default bias)" : "");
+                  " (perfect triangulation, far cube cap), " + captureWords(capture);
   return m;
 }
 
@@ -126,13 +131,12 @@ SweepMethod cubeVolume(CaptureMode capture, gl::VolumeSource source) {
 // the depth oracle attached per scene by runSweep, its rays part of the frame's build pass).
 SweepMethod cubeRefined(CaptureMode capture) {
   SweepMethod m = cubeVolume(capture, gl::VolumeSource::Explicit);
-  m.key = std::string("hybrid-cube-refined") + (capture == CaptureMode::Back ? "" : std::string("-") + toString(capture)) +
+  m.key = std::string("hybrid-cube-refined") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSteps = kSweepRefineSteps;
   m.description = "a point light's explicit cube volume with sub-texel silhouette refinement (" +
                   std::to_string(kSweepRefineSteps) + " rays per boundary edge, inside the faces and across the cube's "
-                  "edges; perfect triangulation, far cube cap), " + toString(capture) + " capture" +
-                  (capture == CaptureMode::Front ? " (default bias)" : "");
+                  "edges; perfect triangulation, far cube cap), " + captureWords(capture);
   return m;
 }
 

@@ -16,7 +16,7 @@
 namespace shadowvol::gl {
 namespace {
 
-std::size_t innerQuads(int n) { return std::size_t(kCubeFaces) * std::size_t(n - 1) * std::size_t(n - 1); }
+std::size_t innerQuads(int n) { return cube::innerQuadCount(n); }
 
 // Face f's D, R, U of cube_map.h's table, as cube_common.glsl's uniform arrays.
 void setFaceBases(const Program& p) {

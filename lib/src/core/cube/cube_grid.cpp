@@ -30,7 +30,7 @@ glm::dvec3 texelDirection(int n, std::uint32_t id) {
   return cubeTexelDirection(n, int(id / nn), double(r % std::uint32_t(n)), double(r / std::uint32_t(n)));
 }
 
-Grid::Grid(int n) : n_(n), inner_(std::size_t(6) * std::size_t(n - 1) * std::size_t(n - 1)) {
+Grid::Grid(int n) : n_(n), inner_(innerQuadCount(n)) {
   SV_CHECK_GE(n, 2);
   std::vector<Cell>& out = seams_;
   out.reserve(12u * std::size_t(n - 1) + 8u);

@@ -78,8 +78,7 @@ void addSeamEdges(const CubeDepthMap& cube, const Grid& cells, const SheetDepthR
   const TexelFootprint footprint = TexelFootprint::of(cube.faces[0]);
   auto stored = [&](std::uint32_t id) { return double(cube.faces[id / nn].depth[id % nn]); };
   std::set<std::uint64_t> seen;
-  const std::size_t inner = std::size_t(kCubeFaces) * std::size_t(n - 1) * std::size_t(n - 1);
-  for (std::size_t c = inner; c < cells.size(); ++c) {
+  for (std::size_t c = innerQuadCount(n); c < cells.size(); ++c) {
     const Cell cell = cells[c];
     const int count = cell.cornerCount();
     for (int k = 0; k < count; ++k) {
@@ -104,8 +103,7 @@ void addSeamEdges(const CubeDepthMap& cube, const Grid& cells, const SheetDepthR
 class EdgeCells {
  public:
   explicit EdgeCells(const Grid& cells, int n) : n_(n) {
-    const std::size_t inner = std::size_t(kCubeFaces) * std::size_t(n - 1) * std::size_t(n - 1);
-    for (std::size_t c = inner; c < cells.size(); ++c) {
+    for (std::size_t c = innerQuadCount(n); c < cells.size(); ++c) {
       const Cell cell = cells[c];
       for (int k = 0; k < cell.cornerCount(); ++k)
         seamSides_.push_back({edgeKey(cell.corner(k), cell.corner((k + 1) % cell.cornerCount())), std::uint32_t(c)});
@@ -123,7 +121,7 @@ class EdgeCells {
       const int qi[2] = {alongI ? i : i - 1, i}, qj[2] = {alongI ? j - 1 : j, j};
       for (int k = 0; k < 2; ++k)
         if (qi[k] >= 0 && qj[k] >= 0 && qi[k] < int(q) && qj[k] < int(q))
-          out.push_back(f * q * q + std::uint32_t(qj[k]) * q + std::uint32_t(qi[k]));
+          out.push_back(std::uint32_t(innerQuadIndex(n_, int(f), qi[k], qj[k])));
     }
     const auto [first, last] = std::equal_range(seamSides_.begin(), seamSides_.end(), std::pair{edgeKey(a, b), 0u},
                                                 [](const auto& x, const auto& y) { return x.first < y.first; });

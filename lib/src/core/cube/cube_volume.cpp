@@ -90,7 +90,7 @@ struct Texels {
   std::vector<double> depth;             // texels, then two per crossing
   std::vector<glm::dvec3> crossingRays;  // per crossing, at cube depth 1
   std::size_t size() const { return depth.size(); }
-  std::uint32_t crossingBase() const { return std::uint32_t(kCubeFaces) * std::uint32_t(n) * std::uint32_t(n); }
+  std::uint32_t crossingBase() const { return cube::texelCount(n); }
   bool far(std::uint32_t id) const { return depth[id] == farPlane; }
   glm::dvec3 direction(std::uint32_t id) const {
     return id < crossingBase() ? cube::texelDirection(n, id) : crossingRays[(id - crossingBase()) / 2];
@@ -497,7 +497,7 @@ std::vector<Tri> capTriangles(int n, const cube::Grid& cells, const Sheet& sheet
   // Texel coordinates of the faces' cap vertices, each in its face (an inner cell's corners are
   // its face's texels and the crossings on its edges).
   std::vector<glm::dvec2> texelOf(v.positions.size());
-  const std::uint32_t crossingBase = std::uint32_t(kCubeFaces) * std::uint32_t(n) * std::uint32_t(n);
+  const std::uint32_t crossingBase = cube::texelCount(n);  // the crossings' points follow the texels
   for (std::size_t k = 0; k < sheet.tris.size(); ++k) {
     const cube::Cell cell = cells[sheet.cell[k]];
     if (!sheet.footprint[k] || !cell.inner) continue;
