@@ -178,27 +178,16 @@ class CellTriangulator {
     add(p[2], p[4], p[0], true);
     add(p[2], p[0], p[1], true);
   }
-  // One boundary side k (a surface edge whose jump fades inside the quad): the loop is
-  // [b, c1, c2, c3, c4, a] with c1 = corner k + 1 ... c4 = corner k; the wall tapers from the
-  // crossing to c3, the corner diagonally opposite c1.
-  // A triangular cell tapers to its third corner: [b, c1, apex, a] with c1 = corner k + 1 and the
-  // apex corner k + 2.
+  // One boundary side k (a surface edge whose jump fades inside the cell): the loop is
+  // [b, corner k + 1, ..., corner k, a]; the wall tapers from the crossing to the apex, the
+  // corner before corner k (corner k + 3 of a quad, diagonally opposite corner k + 1; corner
+  // k + 2 of a triangle): a fan from b over the corners up to the apex, the wall b, apex, a, and
+  // the triangle a, apex, corner k.
   void taper(const CellVertex* corners, const CellVertex& a, const CellVertex& b, int k) {
-    if (m_ == 3) {
-      const CellVertex* apex = &corners[(k + 2) % 3];
-      add(&b, &corners[(k + 1) % 3], apex, true);
-      add(&b, apex, &a, false);
-      add(&a, apex, &corners[k], true);
-      return;
-    }
-    const CellVertex* c1 = &corners[(k + 1) % 4];
-    const CellVertex* c2 = &corners[(k + 2) % 4];
-    const CellVertex* c3 = &corners[(k + 3) % 4];
-    const CellVertex* c4 = &corners[k];
-    add(&b, c1, c2, true);
-    add(&b, c2, c3, true);
-    add(&b, c3, &a, false);
-    add(&a, c3, c4, true);
+    const int apex = (k + m_ - 1) % m_;
+    for (int c = (k + 1) % m_; c != apex; c = (c + 1) % m_) add(&b, &corners[c], &corners[(c + 1) % m_], true);
+    add(&b, &corners[apex], &a, false);
+    add(&a, &corners[apex], &corners[k], true);
   }
   // The middle polygon's vertex of one crossing (a, b on its two sides).
   static const CellVertex* pick(const CellVertex& a, const CellVertex& b, double centre, double farPlane) {
