@@ -31,6 +31,7 @@ nlohmann::json describeLightValidation(const LightValidation& c, const gl::Rende
     j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
                           {"crossingFallbacks", result.gpuCrossingFallbacks},
                           {"volumeTriangles", result.volumeTriangles}};
+  if (!result.faceVolumes.empty()) j["gpuRefinement"]["faceVolumes"] = result.faceVolumes.size();  // a point light's
   j.update(describeValidation(c.validation, vo, ro.method == gl::ShadowMethod::Silhouette));
   if (c.frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
     j["volumeCount"] = gl::toString(result.volumeCountUsed);
@@ -62,6 +63,9 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
                 "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
                 result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
                 result.volumeStats->crossingFallbacks);
+  else if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)  // a point light's six face volumes
+    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges walked, %zu without a crossing found\n",
+                result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks);
   else if (result.volumeStats && result.volumeStats->refinedCells > 0)
     std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
                 result.volumeStats->boundaryEdges, result.volumeStats->raysCast,

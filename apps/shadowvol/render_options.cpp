@@ -34,8 +34,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production), explicit (depth "
-                 "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume; with "
-                 "--refine, explicit when the scene has a point light, whose GPU cube volume is not refined)")
+                 "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume, with "
+                 "--refine its six refined face volumes)")
       ->check(CLI::IsMember({"auto", "gpu", "explicit"}))
       ->capture_default_str();
   cmd.add_option("--gpu-draw", o.gpuDraw,
@@ -102,12 +102,6 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
   return nullptr;
 }
 
-bool hasPointLight(const Scene& scene) {
-  for (std::size_t k = 0; k < scene.lightCount(); ++k)
-    if (scene.lightAt(k).type == LightType::Point) return true;
-  return false;
-}
-
 }  // namespace
 
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
@@ -118,20 +112,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
-  const bool refined = o.shape.refine > 0 && o.method == "hybrid";
-  if (o.volume == "auto") {  // the GPU volume; refined, the explicit one where a light is a point light (its
-                             // GPU cube volume is not refined), refined by rays
-    ro.volume = refined && hasPointLight(scene) ? gl::VolumeSource::Explicit : gl::VolumeSource::Gpu;
-    if (const char* flag = refined && ro.volume == gl::VolumeSource::Gpu ? refinedGpuConflict(o) : nullptr) {
-      const std::string f = flag;
-      throw InputError("command line", f,
-                       f == "--crossings" ? "rays" : f == "--chord-points" ? "set" : std::to_string(o.shape.refineGrid),
-                       std::string("--volume auto is the GPU volume for this scene, and ") +
-                           (f == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly));
-    }
-  } else {
-    gl::parseVolumeSource(o.volume, ro.volume);
-  }
+  gl::parseVolumeSource(o.volume == "auto" ? "gpu" : o.volume, ro.volume);  // auto: the GPU volume
   ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed
                      : o.gpuDraw == "kept-quads"   ? gl::GpuVolumeDraw::KeptQuads
                      : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
@@ -161,9 +142,8 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
 }
 
 void checkRenderOptionConflicts(const RenderCliOptions& o) {
-  // --volume gpu here, before the scene is read; --volume auto in toRenderOptions, which makes it
-  // explicit for a scene with a point light (exit 1 there).
-  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && o.volume == "gpu";
+  // Before the scene is read: --volume auto is the GPU volume for every scene.
+  const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && (o.volume == "gpu" || o.volume == "auto");
   if (const char* flag = refinedGpu ? refinedGpuConflict(o) : nullptr)
     throw CLI::ValidationError(flag, std::string(flag) == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly);
   if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))

@@ -498,15 +498,23 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_EQ(map.code, 1);
   EXPECT_TRUE(contains(map.out, "--gpu-draw")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
-  // Refined by the scene's rays (the explicit volume; the GPU cube volume refuses it, naming --volume).
+  // Refined by the scene's rays (build: the explicit volume) and on the GPU (the six refined face
+  // volumes, each checked and counted by validate; midpoint capture refused, naming --refine).
   const CliResult refined =
       runCli("build --json --refine 4 --resolution 16 --scene " + room + " --out " + (dir / "r.ply").string());
   ASSERT_EQ(refined.code, 0) << refined.out;
   EXPECT_GT(nlohmann::json::parse(refined.out)["boundaryEdges"].get<int>(), 0) << refined.out;
-  const CliResult refinedGpu =
-      runCli("render --refine 4 --volume gpu --scene " + room + " --out " + (dir / "rg.png").string());
-  EXPECT_EQ(refinedGpu.code, 1);
-  EXPECT_TRUE(contains(refinedGpu.out, "--volume")) << refinedGpu.out;
+  const CliResult refinedGpu = runCli("validate --json --refine 4 --resolution 32 --size 160x120 --scene " + room +
+                                      " --report " + (dir / "rg").string());
+  ASSERT_EQ(refinedGpu.code, 0) << refinedGpu.out;
+  const auto jg = nlohmann::json::parse(refinedGpu.out);
+  EXPECT_EQ(jg["options"]["volume"], "gpu");
+  EXPECT_GT(jg["gpuRefinement"]["boundaryEdges"].get<int>(), 0) << refinedGpu.out;
+  EXPECT_TRUE(jg["passed"].get<bool>()) << refinedGpu.out;
+  const CliResult midGpu = runCli("render --refine 4 --capture midpoint --scene " + room + " --out " +
+                                  (dir / "rg.png").string());
+  EXPECT_EQ(midGpu.code, 1);
+  EXPECT_TRUE(contains(midGpu.out, "--refine")) << midGpu.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "rg.png"));
   const CliResult refinedExplicit = runCli("validate --refine 4 --volume explicit --resolution 32 --scene " + room +
                                            " --report " + (dir / "rv").string());
@@ -570,16 +578,18 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_EQ(none.code, 1);
   EXPECT_TRUE(contains(none.out, "--light")) << none.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "w.ply"));
-  // --refine with --volume auto: the explicit volumes, refined by rays (the point light's GPU cube
-  // volume is not refined), and with --volume gpu the point light's refusal, naming the light.
+  // --refine with --volume auto and gpu: both lights' refined GPU volumes (the point light's six
+  // face volumes); a refusal of the point light's names the light.
   const CliResult refined = runCli("render --refine 4 --scene " + scene + " --out " + (dir / "f.png").string());
   EXPECT_EQ(refined.code, 0) << refined.out;
-  EXPECT_TRUE(contains(refined.out, "explicit volume")) << refined.out;
   const CliResult gpu =
       runCli("render --refine 4 --volume gpu --scene " + scene + " --out " + (dir / "g.png").string());
-  EXPECT_EQ(gpu.code, 1);
-  EXPECT_TRUE(contains(gpu.out, "light 1") && contains(gpu.out, "--volume")) << gpu.out;  // the point light's GPU volume
-  EXPECT_FALSE(std::filesystem::exists(dir / "g.png"));
+  EXPECT_EQ(gpu.code, 0) << gpu.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "g.png"));
+  const CliResult quad = runCli("render --cap quad --scene " + scene + " --out " + (dir / "q.png").string());
+  EXPECT_EQ(quad.code, 1);
+  EXPECT_TRUE(contains(quad.out, "light 1") && contains(quad.out, "--cap")) << quad.out;  // the cube has no quad cap
+  EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
   // bench scores one light: refused before anything is written (it once left a header-only
   // results.csv behind).
   const CliResult bench = runCli("bench --scenes " + scene + " --methods shadowmap --resolutions 16 --out " +
@@ -655,17 +665,18 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   EXPECT_EQ(rays.code, 2) << rays.out;
   EXPECT_TRUE(contains(rays.out, "--crossings")) << rays.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "g"));
-  // With --volume auto the scene decides (after it is read, exit 1): gpu for the default spot
-  // light, which refuses rays; explicit for a point light, which takes them.
-  const CliResult autoRays = runCli("validate --refine 4 --crossings rays --resolution 32 --size 64x48 --report " +
-                                    (dir / "a").string());
-  EXPECT_EQ(autoRays.code, 1) << autoRays.out;
-  EXPECT_TRUE(contains(autoRays.out, "--crossings")) << autoRays.out;
-  EXPECT_FALSE(std::filesystem::exists(dir / "a" / "report.json"));
-  const CliResult pointRays =
-      runCli("validate --refine 4 --crossings rays --resolution 24 --size 64x48 --scene " +
-             (test::sourceDir() / "data" / "scenes" / "point" / "room.json").string() + " --report " +
-             (dir / "p").string());
+  // --volume auto is the GPU volume for every scene (a point light's: its refined face volumes):
+  // the same refusal, before the scene is read; rays with --volume explicit.
+  const std::string room = (test::sourceDir() / "data" / "scenes" / "point" / "room.json").string();
+  for (const std::string& s : {std::string(), " --scene " + room}) {
+    const CliResult autoRays =
+        runCli("validate --refine 4 --crossings rays --resolution 24 --size 64x48" + s + " --report " + (dir / "a").string());
+    EXPECT_EQ(autoRays.code, 2) << autoRays.out;
+    EXPECT_TRUE(contains(autoRays.out, "--crossings")) << autoRays.out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a"));
+  }
+  const CliResult pointRays = runCli("validate --refine 4 --volume explicit --crossings rays --resolution 24 --size "
+                                     "64x48 --scene " + room + " --report " + (dir / "p").string());
   EXPECT_EQ(pointRays.code, 0) << pointRays.out;
   const CliResult gpu = runCli("validate --json --refine 4 --resolution 64 --size 160x120 --scene " + scene("plate.json") +
                                " --report " + (dir / "gpu").string());

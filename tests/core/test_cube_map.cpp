@@ -1,6 +1,7 @@
 // The point light's cube map conventions (cube_map.h): faces as OpenGL's cube-map table, texel
 // lookup, the pairing of border texels across cube edges, the faces' matrices.
 #include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,26 @@ TEST(CubeMap, FaceLightsShareThePointLightsPlanes) {
   EXPECT_THROW(makeCubeDepthMap(point(), 1, CaptureMode::Back), InputError);
   // A point light's own view is a translation; it has no single projection.
   EXPECT_EQ(lightView(point())[3], glm::dvec4(-1.0, -2.0, 3.0, 1.0));
+}
+
+// A guarded face's map (the refined GPU cube volume's faces): its texel (i + g, j + g) has the
+// face's texel (i, j) centre, and its border texels lie g texels past the face's edge.
+TEST(CubeMap, GuardedFaceLightsKeepTheFacesTexelCentres) {
+  for (int n : {5, 64})
+    for (int g : {0, 4})
+      for (int f = 0; f < kCubeFaces; ++f) {
+        const Light l = guardedCubeFaceLight(point(), f, n, g);
+        EXPECT_EQ(l.type, LightType::Spot);
+        EXPECT_EQ(l.direction, cubeFaceDirection(f));
+        const DepthMap map = makeDepthMap(l, n + 2 * g, n + 2 * g, CaptureMode::Back);
+        const TexelUnprojector unproject(map);
+        for (auto [i, j] : {std::pair{0, 0}, std::pair{n - 1, 0}, std::pair{2, n - 1}, std::pair{n / 2, n / 3}}) {
+          const glm::dvec3 p = unproject.worldPoint(i + g, j + g, 3.0) - point().position;
+          const glm::dvec3 want = 3.0 * cubeTexelDirection(n, f, i, j);
+          EXPECT_NEAR(glm::length(p - want), 0.0, 1e-9) << n << " " << g << " " << f << " " << i << " " << j;
+        }
+        EXPECT_NEAR(guardedCubeFaceLight(point(), f, n, 0).fovYDegrees, 90.0, 1e-12);
+      }
 }
 
 }  // namespace

@@ -159,6 +159,29 @@ TEST(SeveralLights, GpuVolumesOfTwoSpotLights) {
   }
 }
 
+// The GPU volumes of a spot light and a point light, plain and refined (the spot light's refined GPU
+// volume, the lamp's refined GPU cube volume: six face volumes), back and front capture.
+TEST(SeveralLights, GpuVolumesOfASpotAndAPointLight) {
+  const Scene scene = spotAndPoint();
+  for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front})
+    for (int refine : {0, 4}) {
+      gl::RenderOptions ro;
+      ro.depthWidth = ro.depthHeight = 64;
+      ro.capture = mode;
+      ro.volumeOptions.refineSteps = refine;
+      SCOPED_TRACE(std::string(toString(mode)) + (refine > 0 ? " refined" : ""));
+      const gl::RenderResult frame = renderFrame(scene, ro);
+      ASSERT_EQ(frame.otherLights.size(), 1u);
+      EXPECT_EQ(frame.otherLights[0].faceVolumes.size(), refine > 0 ? 6u : 0u);
+      for (std::size_t k = 0; k < 2; ++k) {
+        const FrameValidation v = validateLight(scene, ro, frame, k);
+        EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement) << k;
+        EXPECT_TRUE(v.passed) << k << ": " << (v.failures.empty() ? "" : v.failures.front());
+        EXPECT_GT(v.exactShadowed, 100u) << k;
+      }
+    }
+}
+
 TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
   const Scene scene = spotAndPoint();
   renderer().setScene(scene);
@@ -171,9 +194,9 @@ TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
   };
-  gl::RenderOptions refined;  // the spot light's refined GPU volume; the point light's GPU volume is not refined
-  refined.volumeOptions.refineSteps = 4;
-  expectRefused(refined, "volume", "light 1 of the scene's 2");
+  gl::RenderOptions quadCap;  // the spot light's GPU volume; the point light's cube has no quad cap
+  quadCap.volumeOptions.cap = FarCap::Quad;
+  expectRefused(quadCap, "volumeOptions.cap", "light 1 of the scene's 2");
   gl::RenderOptions dpsm;
   dpsm.method = gl::ShadowMethod::Dpsm;  // the spot light has no paraboloid maps
   expectRefused(dpsm, "method", "light 0 of the scene's 2");

@@ -43,6 +43,12 @@ glm::dvec3 cubeFaceUp(int face);         ///< U of the table above
 /// and up of the table, a 90-degree opening.
 Light cubeFaceLight(const Light& point, int face);
 
+/// Face `face`'s spot light widened by `guard` texels on every side for an N x N face: an
+/// (N + 2 guard)^2 map of it has the face's texel centres, texel (i, j) of the face being its
+/// texel (i + guard, j + guard), and guard more texels of the same size beyond each border
+/// (opening 2 atan((N + 2 guard) / N)). The refined GPU cube volume's faces (docs/gpu.md).
+Light guardedCubeFaceLight(const Light& point, int face, int n, int guard);
+
 /// The direction of face `face`'s texel (i, j) of an N x N cube map, scaled to face depth 1:
 /// D + x R + y U with x, y the texel centre's NDC ((i + 0.5) / N * 2 - 1; i, j may be
 /// fractional), so light position + d times it is the texel's point at face depth d.

@@ -147,6 +147,8 @@ struct RenderResult {
   std::vector<std::uint8_t> stencil;  ///< width * height stencil counts (8-bit, wrapping),
                                       ///< rows top first; empty unless hybrid or silhouette,
                                       ///< and readStencil
+  int stencilBits = 8;                ///< the bits of `stencil` that count: 7 for the refined GPU
+                                      ///< cube volume (counts modulo 128; its bit 7 masks the faces)
   /// The method's own shadow test per pixel when RenderOptions::readVisibility, else empty:
   /// width * height bytes, rows top first, 255 = lit by the test, 0 = shadowed. Only the shadow
   /// test: not multiplied by N.L nor by the light frustum.
@@ -165,6 +167,11 @@ struct RenderResult {
                                       ///< GPU cube volume: the explicit one of the same faces)
   std::optional<VolumeMesh> gpuVolume;  ///< refined GPU volume with keepVolume: the GPU's own
                                         ///< triangles, read back and placed in double (a debug path)
+  /// Refined GPU cube volume with keepVolume: face f's volume (cube_map.h's order), the CPU mesh
+  /// from its crossings and the GPU's own triangles, as `volume` and `gpuVolume` are for one map.
+  /// Each pixel is counted against the face its surface point lies on (cubeLookup); `volume`,
+  /// `gpuVolume` and `depthMap` stay empty.
+  std::vector<VolumeMesh> faceVolumes, faceGpuVolumes;
   std::vector<PassTime> passes;       ///< in execution order, every light's
   TimingMethod timing = TimingMethod::WallClock;
   double totalMs = 0.0;             ///< sum of passes

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "shadowvol/check.h"
 
@@ -38,6 +39,13 @@ Light cubeFaceLight(const Light& point, int face) {
   l.up = cubeFaceUp(face);
   l.fovYDegrees = 90.0;
   l.fitPosition = false;
+  return l;
+}
+
+Light guardedCubeFaceLight(const Light& point, int face, int n, int guard) {
+  SV_CHECK(n >= 1 && guard >= 0);
+  Light l = cubeFaceLight(point, face);
+  l.fovYDegrees = 2.0 * glm::degrees(std::atan(double(n + 2 * guard) / double(n)));
   return l;
 }
 

@@ -188,6 +188,10 @@ constexpr int kSceneVertexFloats = int(sizeof(SceneVertex) / sizeof(float));
 // frame is refused with an InputError); its other buffers hold 68 bytes per texel (flags, work
 // lists, crossing records).
 constexpr std::int64_t kMaxRefinedGpuTexels = std::int64_t(2048) * 2048;
+// The refined GPU cube volume's guard band (guardedCubeFaceLight): each face's map reaches this
+// many texels past the face's borders, so that the map's border ring (on the far plane) and the
+// blur's reach (2.5 texels) stay outside the face's pyramid (docs/gpu.md).
+constexpr int kCubeGuardTexels = 4;
 
 struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
@@ -654,6 +658,7 @@ struct Renderer::Impl {
     sceneProgram.set("diffuse", float(o.diffuse * light.intensity));
     sceneProgram.set("shadowTaps", shadowTaps);
     sceneProgram.set("writeVisibility", 0);
+    sceneProgram.set("skipCubeFace", -1);
     sceneProgram.set("shadowMap", 2);
     sceneProgram.set("cubeShadowMap", 3);
     sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
@@ -1244,14 +1249,11 @@ struct Renderer::Impl {
   }
 
   /// What a point light's frame can be (docs/gpu.md "Point lights"): the explicit cube volume
-  /// (hybrid, explicit; refined by rays alone), the GPU cube volume (hybrid, gpu; GL 4.3; not
-  /// refined), silhouette volumes, a cube shadow map (GL 4.3), dual-paraboloid maps or no shadows.
+  /// (hybrid, explicit; refined by rays alone), the GPU cube volume (hybrid, gpu; GL 4.3; refined:
+  /// six face volumes, drawRefinedCubeFaces, with the refined GPU volume's rules of validate()),
+  /// silhouette volumes, a cube shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     if (o.method == ShadowMethod::Hybrid) {  // either cube volume
-      if (o.volumeOptions.refineSteps > 0 && o.volume == VolumeSource::Gpu)
-        throw InputError("RenderOptions", "volume", toString(o.volume),
-                         "a point light's GPU cube volume is not refined (yet): refine its explicit volume (volume "
-                         "explicit, rays)");
       if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays)
         throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
       if (o.volumeOptions.cap != FarCap::Exact)
@@ -1333,11 +1335,18 @@ struct Renderer::Impl {
       if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
         refuse("finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
                "with rays");
-      if (std::int64_t(o.depthWidth) * o.depthHeight > kMaxRefinedGpuTexels)
+      // A point light's faces are drawn with their guard band (drawRefinedCubeFaces).
+      const std::int64_t side = light.type == LightType::Point ? o.depthWidth + 2 * kCubeGuardTexels : o.depthWidth;
+      if (side * (light.type == LightType::Point ? side : o.depthHeight) > kMaxRefinedGpuTexels)
         throw InputError("RenderOptions", "depthWidth x depthHeight",
                          std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
-                         "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
-                         "under 512 MiB)");
+                         light.type == LightType::Point
+                             ? "the refined GPU cube volume takes faces of up to " +
+                                   std::to_string(2048 - 2 * kCubeGuardTexels) + " texels a side (with its guard band " +
+                                   "of " + std::to_string(kCubeGuardTexels) + " texels, 2048; the index list is kept "
+                                   "under 512 MiB)"
+                             : "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
+                               "under 512 MiB)");
       if (o.gpuVolumeDraw != GpuVolumeDraw::Auto)
         throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
                          "the refined GPU volume lists its triangles its own way: leave it at auto");
@@ -1398,6 +1407,146 @@ struct Renderer::Impl {
     in.height = triangleIdsH;
     in.worldToLightView = toFloat(lightView(light));
     return in;
+  }
+
+  /// The refined GPU volume's debug read-back of the map just drawn (`volumeDepth` its final sheet
+  /// depths): the map (result.depthMap), the CPU mesh from the GPU's crossings (result.volume and
+  /// volumeStats) and the GPU's own triangles placed in double (result.gpuVolume).
+  void refinedGpuDebugMeshes(const CameraSetup& cam, const RenderOptions& o, const Texture& volumeDepth,
+                             RenderResult& result) {
+    const VolumeBuildOptions& vo = o.volumeOptions;
+    result.depthMap = readBack(o.capture);
+    VolumeBuildOptions v = vo;
+    v.crossingSource = gpuCrossingSource();
+    VolumeBuildResult built = buildVolume(*result.depthMap, v);
+    result.volume = std::move(built.mesh);
+    result.volumeStats = built.stats;
+    const SheetDepthRule rule(*result.depthMap, result.biasUsed, vo.blurOffset);
+    // The list again, with the cap where the frame (z-pass) drew none: the closed mesh. (The
+    // frame is drawn: zPassFrame = false only makes setVolumeUniforms set drawCap = 1.)
+    zPassFrame = false;
+    for (const Program* p : refined->programs()) setVolumeUniforms(*p, vo, result.biasUsed);
+    bindTexture(3, vo.blur ? linearDepth : volumeDepth, fetchSampler);
+    std::array<GLuint, 2> listed{};
+    SV_CHECK(listIndexedGpuVolume(cam, vo, result.biasUsed, volumeDepth, std::int64_t(lightW - 1) * (lightH - 1),
+                                  listed, &*refined));
+    bindTexture(3, Texture(), fetchSampler);
+    const std::vector<std::uint32_t> indices = readIndexList(listed[0]);
+    result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, indices, refined->readRecords());
+  }
+
+  /// The GPU volume's input depths for this frame's light pass: the light pass's window depth
+  /// where the indexed volume converts the few texels it reads itself, else the resolved depth
+  /// (timed as `resolve`); with blur the blurred (timed as `blur`). Midpoint and blur need the
+  /// resolved depth (docs/gpu.md).
+  const Texture* gpuVolumeDepth(const RenderOptions& o, bool indexedVolume, PassTimer& timer) {
+    const VolumeBuildOptions& vo = o.volumeOptions;
+    volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;  // refined too
+    const Texture* depth = &layer0;
+    if (!volumeReadsWindowDepth) {
+      TimedPass t(timer, "resolve");
+      resolvePass(o.capture);
+      depth = &linearDepth;
+    }
+    if (vo.blur) {
+      TimedPass t(timer, "blur");
+      blurPass(vo.blurOffset);
+      depth = &blurredDepth;
+    }
+    return depth;
+  }
+
+  /// The refined GPU cube volume (docs/gpu.md "The refined GPU cube volume"): six closed volumes,
+  /// each face's refined GPU volume (refined_gpu_volume.h) over the face's frustum widened by
+  /// kCubeGuardTexels (guardedCubeFaceLight), and each pixel counted against the volume of the
+  /// face its surface point lies on. Per face: the light pass with the triangle record, the
+  /// crossings, the face mask (stencil bit 7 set on the pixels of the other faces: maskOtherCubeFaces)
+  /// and the volume counted in bits 0-6 where bit 7 is clear. The mask is cleared at the end, so the
+  /// stencil holds each pixel's count of its own face's volume, modulo 128 (result.stencilBits).
+  /// With keepVolume each face's debug meshes (refinedGpuDebugMeshes) go to result.faceVolumes
+  /// and faceGpuVolumes. Call with the camera pass drawn; the point light is set back afterwards.
+  void drawRefinedCubeFaces(const RenderOptions& o, const CameraSetup& cam, PassTimer& timer, RenderResult& result) {
+    const VolumeBuildOptions& vo = o.volumeOptions;
+    const int n = o.depthWidth, m = n + 2 * kCubeGuardTexels;
+    result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, n, n, o.capture);
+    result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
+    result.stencilBits = 7;
+    if (o.keepVolume) result.faceVolumes.resize(kCubeFaces), result.faceGpuVolumes.resize(kCubeFaces);
+    const Light point = light;
+    struct Restore {
+      Light& light;
+      const Light& point;
+      ~Restore() { light = point; }
+    } restore{light, point};
+    for (int f = 0; f < kCubeFaces; ++f) {
+      light = guardedCubeFaceLight(point, f, n, kCubeGuardTexels);
+      {
+        TimedPass t(timer, "light");
+        lightPass(m, m, o.capture, true, true);
+      }
+      const Texture* depth = gpuVolumeDepth(o, true, timer);
+      {
+        TimedPass t(timer, "crossings");
+        findGpuCrossings(vo, result.biasUsed, *depth);
+      }
+      RenderResult face;
+      face.biasUsed = result.biasUsed;
+      {
+        TimedPass t(timer, "volume");  // the face's mask and its volume
+        maskOtherCubeFaces(cam, f, point.position);
+        beginVolume(false);
+        SV_GL(glStencilMask(0x7F));
+        SV_GL(glStencilFunc(GL_EQUAL, 0, 0x80));
+        drawRefinedGpuVolume(cam, vo, result.biasUsed, *depth, face);
+        endVolume();
+      }
+      GLuint64 triangles = 0;  // the face's draw, read now: the next face's draw reuses the query
+      SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &triangles));
+      volumeTrianglesPending = false;
+      result.volumeTriangles += std::size_t(triangles);
+      result.gpuVolumeQuads += face.gpuVolumeQuads;
+      result.gpuVolumeQuadsDrawn += face.gpuVolumeQuadsDrawn;
+      result.gpuBoundaryEdges += face.gpuBoundaryEdges;
+      result.gpuCrossingFallbacks += face.gpuCrossingFallbacks;
+      if (o.keepVolume) {
+        refinedGpuDebugMeshes(cam, o, *depth, face);
+        result.faceVolumes[std::size_t(f)] = std::move(*face.volume);
+        result.faceGpuVolumes[std::size_t(f)] = std::move(*face.gpuVolume);
+      }
+      light = point;
+    }
+    resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    SV_GL(glStencilMask(0x80));  // the last mask cleared: bits 0-6 are the counts
+    SV_GL(glClearStencil(0));
+    SV_GL(glClear(GL_STENCIL_BUFFER_BIT));
+    resetState();
+  }
+
+  /// Stencil bit 7 set on the pixels whose surface point (the camera pass's depth, GL_EQUAL) lies on
+  /// another cube face than `face` (scene.frag's skipCubeFace, cubeLookup's rule), clear elsewhere;
+  /// colour, depth and bits 0-6 kept.
+  void maskOtherCubeFaces(const CameraSetup& cam, int face, const glm::dvec3& lightPosition) {
+    resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
+    SV_GL(glDepthMask(GL_FALSE));
+    SV_GL(glDepthFunc(GL_EQUAL));
+    SV_GL(glStencilMask(0x80));
+    SV_GL(glClearStencil(0));
+    SV_GL(glClear(GL_STENCIL_BUFFER_BIT));
+    SV_GL(glEnable(GL_STENCIL_TEST));
+    SV_GL(glStencilFunc(GL_ALWAYS, 0x80, 0x80));
+    SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE));
+    sceneProgram.use();
+    sceneProgram.set("worldToClip", toFloat(cam.proj * cam.view));  // as the camera pass: the same depths
+    sceneProgram.set("lightPosition", glm::vec3(lightPosition));
+    sceneProgram.set("skipCubeFace", face);
+    drawScene();
+    sceneProgram.set("skipCubeFace", -1);
+    resetState();
   }
 
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
@@ -1597,7 +1746,8 @@ struct Renderer::Impl {
 
     const bool point = light.type == LightType::Point;
     const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && !point;
-    const bool cubeGpu = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point;
+    const bool cubeGpu = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps == 0;
+    const bool refinedCube = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps > 0;
     const bool refinedGpu = gpuVolume && refinedGpuVolume(o);
     const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
                                   : refinedGpu             ? GpuVolumeDraw::Refined
@@ -1624,7 +1774,7 @@ struct Renderer::Impl {
     const Texture* volumeDepth = nullptr;
     if (cubeGpu) {
       cubeVolumeDepthPass(o, timer, result);
-    } else if (hybrid && !givenVolume && point) {
+    } else if (hybrid && !givenVolume && point && !refinedCube) {
       auto t0 = Clock::now();
       const CubeDepthMap cube = captureCube(o.depthWidth, o.capture);
       timer.cpu("light", msSince(t0));  // six light passes and their read-backs
@@ -1664,22 +1814,8 @@ struct Renderer::Impl {
       glFinish();
       timer.cpu("upload", msSince(t0));
       explicitTriangles = givenVolume->triangleCount();
-    } else if (hybrid) {
-      // The indexed volume converts the few texels it reads itself; the other ways read every
-      // texel several times, and midpoint and blur need the resolved depth (docs/gpu.md).
-      volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;  // refined too
-      if (volumeReadsWindowDepth) {
-        volumeDepth = &layer0;
-      } else {
-        TimedPass t(timer, "resolve");
-        resolvePass(o.capture);
-        volumeDepth = &linearDepth;
-      }
-      if (vo.blur) {
-        TimedPass t(timer, "blur");
-        blurPass(vo.blurOffset);
-        volumeDepth = &blurredDepth;
-      }
+    } else if (hybrid && !refinedCube) {
+      volumeDepth = gpuVolumeDepth(o, indexedVolume, timer);
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
       if (refinedGpu) {
         TimedPass t(timer, "crossings");
@@ -1703,7 +1839,9 @@ struct Renderer::Impl {
         drawScene();
         SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
       }
-      {
+      if (refinedCube) {
+        drawRefinedCubeFaces(o, cam, timer, result);
+      } else {
         TimedPass t(timer, silhouette ? "silhouette" : "volume");
         beginVolume(zPassFrame);
         if (refinedGpu)
@@ -1756,26 +1894,7 @@ struct Renderer::Impl {
       result.volumeTriangles = std::size_t(n);
       volumeTrianglesPending = false;
     }
-    if (refinedGpu && o.keepVolume) {  // the debug read-back: the CPU mesh from the GPU's crossings
-      result.depthMap = readBack(o.capture);
-      VolumeBuildOptions v = vo;
-      v.crossingSource = gpuCrossingSource();
-      VolumeBuildResult built = buildVolume(*result.depthMap, v);
-      result.volume = std::move(built.mesh);
-      result.volumeStats = built.stats;
-      const SheetDepthRule rule(*result.depthMap, result.biasUsed, vo.blurOffset);
-      // The list again, with the cap where the frame (z-pass) drew none: the closed mesh. (The
-      // frame is drawn: zPassFrame = false only makes setVolumeUniforms set drawCap = 1.)
-      zPassFrame = false;
-      for (const Program* p : refined->programs()) setVolumeUniforms(*p, vo, result.biasUsed);
-      bindTexture(3, vo.blur ? linearDepth : *volumeDepth, fetchSampler);
-      std::array<GLuint, 2> listed{};
-      SV_CHECK(listIndexedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, std::int64_t(lightW - 1) * (lightH - 1),
-                                    listed, &*refined));
-      bindTexture(3, Texture(), fetchSampler);
-      const std::vector<std::uint32_t> indices = readIndexList(listed[0]);
-      result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, indices, refined->readRecords());
-    }
+    if (refinedGpu && o.keepVolume) refinedGpuDebugMeshes(cam, o, *volumeDepth, result);
     if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette && !point)
       result.depthMap = readBack(o.capture);
     return result;

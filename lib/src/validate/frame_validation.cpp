@@ -6,6 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
@@ -29,6 +34,119 @@ void score(ShadowError& e, PixelClass exact, bool testShadowed) {
   const bool exactShadowed = exact == PixelClass::Shadowed;
   if (exactShadowed && !testShadowed) ++e.missed;
   if (!exactShadowed && testShadowed) ++e.falseShadow;
+}
+
+// One volume's mesh checks and crossing counts, with the eye's side and the double recount of the
+// pixels that contradict it (double_recount.h).
+struct CountedVolume {
+  MeshCheckReport mesh;
+  std::optional<MeshCheckReport> gpuMesh;
+  CrossingCounts counts;
+  bool eyeInside = false;
+  std::size_t recounted = 0;
+};
+
+CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
+                          const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
+  CountedVolume c;
+  c.mesh = checkMesh(volume, co);
+  if (gpuVolume) c.gpuMesh = checkMesh(*gpuVolume, co);
+  const TriangleMesh volumeF = volume.toTriangleMesh();
+  const EmbreeScene volumeRt(device, {&volumeF});
+  c.counts = countCrossings(volumeRt, camera, hits);
+  if (c.mesh.closedManifold() && volume.triangleCount() > 0) {
+    const auto side = VolumeClassifier(volume).classify(camera.eye);
+    c.eyeInside = side != VolumeClassifier::Side::Outside;
+    if (side != VolumeClassifier::Side::Boundary)
+      c.recounted = recountInconsistentPixels(volume, camera, hits, c.eyeInside ? 1 : 0, c.counts);
+  }
+  return c;
+}
+
+// Several meshes' checks as one report: every count summed, outward when every non-empty one is.
+MeshCheckReport summed(const std::vector<MeshCheckReport>& reports) {
+  MeshCheckReport r;
+  r.outward = true;
+  bool selfChecked = true;
+  std::size_t selfPairs = 0;
+  for (const MeshCheckReport& m : reports) {
+    r.vertices += m.vertices;
+    r.triangles += m.triangles;
+    r.nonFiniteVertices += m.nonFiniteVertices;
+    r.badIndexTriangles += m.badIndexTriangles;
+    r.degenerateTriangles += m.degenerateTriangles;
+    r.boundaryEdges += m.boundaryEdges;
+    r.overusedEdges += m.overusedEdges;
+    r.nonManifoldVertices += m.nonManifoldVertices;
+    r.isolatedVertices += m.isolatedVertices;
+    r.coincidentVertices += m.coincidentVertices;
+    if (m.triangles > 0) r.outward = r.outward && m.outward;  // an empty mesh is valid, not outward
+    r.volume += m.volume;
+    selfChecked = selfChecked && m.selfIntersectingPairs.has_value();
+    selfPairs += m.selfIntersectingPairs.value_or(0);
+    r.allowedTouchingPairs += m.allowedTouchingPairs;
+  }
+  if (selfChecked) r.selfIntersectingPairs = selfPairs;
+  r.outward = r.outward && r.triangles > 0;
+  return r;
+}
+
+// The faces a surface point's counts may come from (RenderedFrame::faceVolumes): cubeLookup's, and
+// the face of the second largest |coordinate| when that is within kFaceTieTolerance of the largest
+// (else the same face twice).
+std::pair<int, int> pixelFaces(const glm::dvec3& offset) {
+  const int first = cubeLookup(offset, 1).face, axis = first / 2;
+  const glm::dvec3 a = glm::abs(offset);
+  int second = -1;
+  for (int k = 0; k < 3; ++k)
+    if (k != axis && (second < 0 || a[k] > a[second])) second = k;
+  if (!(a[second] >= a[axis] * (1.0 - kFaceTieTolerance))) return {first, first};
+  return {first, 2 * second + (offset[second] < 0.0 ? 1 : 0)};
+}
+
+// A refined GPU cube volume's six face volumes counted as one: their checks summed (each face's
+// sheet and cap may touch on the face's far plane), each pixel's counts those of its face, its
+// admissible range both faces' in the tie band.
+CountedVolume countFaceVolumes(const EmbreeDevice& device, const RenderedFrame& frame, const Light& light,
+                               bool selfIntersections, const Camera& camera, const CameraHits& hits) {
+  if (frame.faceVolumes.size() != std::size_t(kCubeFaces) ||
+      !(frame.faceGpuVolumes.empty() || frame.faceGpuVolumes.size() == std::size_t(kCubeFaces)))
+    throw InputError("RenderedFrame", "faceVolumes", std::to_string(frame.faceVolumes.size()) + " meshes",
+                     "a refined GPU cube volume has one volume per cube face (6)");
+  std::vector<CountedVolume> faces;
+  std::vector<MeshCheckReport> meshes, gpuMeshes;
+  const double far = light.farPlane, farTolerance = 1e-7 * far;
+  for (int f = 0; f < kCubeFaces; ++f) {
+    MeshCheckOptions co;
+    co.selfIntersections = selfIntersections;
+    const glm::dvec3 axis = cubeFaceDirection(f), apex = light.position;
+    co.allowedTouch = [axis, apex, far, farTolerance](const glm::dvec3& p) {
+      return std::abs(glm::dot(p - apex, axis) - far) <= farTolerance;
+    };
+    const VolumeMesh* gpu = frame.faceGpuVolumes.empty() ? nullptr : &frame.faceGpuVolumes[std::size_t(f)];
+    faces.push_back(countVolume(device, frame.faceVolumes[std::size_t(f)], gpu, co, camera, hits));
+    meshes.push_back(faces.back().mesh);
+    if (faces.back().gpuMesh) gpuMeshes.push_back(*faces.back().gpuMesh);
+  }
+  CountedVolume c;
+  c.mesh = summed(meshes);
+  if (!gpuMeshes.empty()) c.gpuMesh = summed(gpuMeshes);
+  c.counts = faces[0].counts;
+  for (std::size_t k = 0; k < hits.point.size(); ++k) {
+    if (hits.isBackground(k)) continue;
+    const auto [first, second] = pixelFaces(hits.point[k] - light.position);
+    const CrossingCounts& a = faces[std::size_t(first)].counts;
+    const CrossingCounts& b = faces[std::size_t(second)].counts;
+    c.counts.zfail[k] = a.zfail[k];
+    c.counts.zpass[k] = a.zpass[k];
+    c.counts.zfailMin[k] = std::min(a.zfailMin[k], b.zfailMin[k]);
+    c.counts.zfailMax[k] = std::max(a.zfailMax[k], b.zfailMax[k]);
+  }
+  for (const CountedVolume& f : faces) {
+    c.eyeInside = c.eyeInside || f.eyeInside;
+    c.recounted += f.recounted;
+  }
+  return c;
 }
 
 }  // namespace
@@ -70,31 +188,36 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   }
 
   if (frame.hybrid) {
-    // The explicit volume of the same depth map and options, its checks and crossing counts.
-    if (!frame.volume && scene.light.type == LightType::Point)
+    // The explicit volume of the same depth map and options (or a cube volume's six faces), its
+    // checks and crossing counts.
+    const bool faces = !frame.faceVolumes.empty();
+    if (!frame.volume && !faces && scene.light.type == LightType::Point)
       throw InputError(scene.source, "/light/type", "point",
                        "validating a point light's frame needs its volume (RenderOptions::keepVolume)");
-    const VolumeMesh volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
-    MeshCheckOptions co;
-    co.selfIntersections = options.selfIntersections;
-    // Sheet and cap may touch on the far plane (a point light's: its far cube, cube_map.h).
     const Light& light = scene.light;
-    const double far = light.type == LightType::Point ? light.farPlane : depth.farPlane, farTolerance = 1e-7 * far;
-    co.allowedTouch = [&depth, &light, far, farTolerance](const glm::dvec3& p) {
-      const double d = light.type == LightType::Point ? cubeDepth(p - light.position) : depth.viewDepthOf(p);
-      return std::abs(d - far) <= farTolerance;
-    };
-    v.meshCheck = checkMesh(volume, co);
-    if (frame.gpuVolume) v.gpuMeshCheck = checkMesh(*frame.gpuVolume, co);
-    const TriangleMesh volumeF = volume.toTriangleMesh();
-    const EmbreeScene volumeRt(device, {&volumeF});
-    v.counts = countCrossings(volumeRt, scene.camera, hits);
-    if (v.meshCheck->closedManifold() && volume.triangleCount() > 0) {
-      const auto side = VolumeClassifier(volume).classify(scene.camera.eye);
-      v.eyeInsideVolume = side != VolumeClassifier::Side::Outside;
-      if (side != VolumeClassifier::Side::Boundary)
-        v.recountedPixels = recountInconsistentPixels(volume, scene.camera, hits, v.eyeInsideVolume ? 1 : 0, *v.counts);
+    CountedVolume counted;
+    if (faces) {
+      counted = countFaceVolumes(device, frame, light, options.selfIntersections, scene.camera, hits);
+    } else {
+      const VolumeMesh volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
+      MeshCheckOptions co;
+      co.selfIntersections = options.selfIntersections;
+      // Sheet and cap may touch on the far plane (a point light's: its far cube, cube_map.h).
+      const double far = light.type == LightType::Point ? light.farPlane : depth.farPlane, farTolerance = 1e-7 * far;
+      co.allowedTouch = [&depth, &light, far, farTolerance](const glm::dvec3& p) {
+        const double d = light.type == LightType::Point ? cubeDepth(p - light.position) : depth.viewDepthOf(p);
+        return std::abs(d - far) <= farTolerance;
+      };
+      counted = countVolume(device, volume, frame.gpuVolume ? &*frame.gpuVolume : nullptr, co, scene.camera, hits);
     }
+    v.meshCheck = counted.mesh;
+    v.gpuMeshCheck = counted.gpuMesh;
+    v.counts = std::move(counted.counts);
+    v.eyeInsideVolume = counted.eyeInside;
+    v.recountedPixels = counted.recounted;
+    // Counts modulo the stencil's counting bits (2^8 but for the refined GPU cube volume's 2^7).
+    const int modulus = 1 << std::clamp(frame.stencilBits, 1, 8);
+    const auto wrapped = [modulus](int c) { return std::uint8_t(((c % modulus) + modulus) % modulus); };
     Agreement zz;
     ShadowError stencilErr, countErr;
     v.stencilOverLitFrustumOnly = frame.zPass;
@@ -103,11 +226,11 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
       const int zfail = v.counts->zfail[k];
       if (!(frame.zPass && v.exact[k] == PixelClass::OutsideLight)) {
         ++v.stencilVsCount.pixels;
-        if (std::uint8_t(zfail) == frame.stencil[k]) {
+        if (wrapped(zfail) == frame.stencil[k]) {
           ++v.stencilVsCount.agree;
         } else {
           for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
-            if (std::uint8_t(c) == frame.stencil[k]) {
+            if (wrapped(c) == frame.stencil[k]) {
               ++v.stencilVsCount.agree;
               ++v.stencilVsCount.ties;
               break;
@@ -132,7 +255,10 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     if (v.stencilVsCount.fraction() < kRequiredAgreement)
       v.failures.push_back("stencil and crossing counts agree on " + percent(v.stencilVsCount.fraction()) +
                            " of visible pixels, below the required " + percent(kRequiredAgreement));
-    if (!meshOk) v.failures.push_back("the volume's mesh checks fail: " + m.summary());
+    if (!meshOk)
+      v.failures.push_back(std::string(faces ? "the face volumes' mesh checks (summed over the six) fail: "
+                                             : "the volume's mesh checks fail: ") +
+                           m.summary());
     if (v.gpuMeshCheck && !v.gpuMeshCheck->valid())
       v.failures.push_back("the GPU volume's mesh checks fail: " + v.gpuMeshCheck->summary());
     v.consistent = v.failures.empty();

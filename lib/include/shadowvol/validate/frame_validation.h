@@ -24,6 +24,7 @@ struct RenderedFrame {
   int width = 0, height = 0;            ///< must equal the scene camera's size
   std::vector<std::uint8_t> rgba;       ///< the shaded frame, RGBA8 (may be empty)
   std::vector<std::uint8_t> stencil;    ///< hybrid: 8-bit wrapping stencil counts; empty otherwise
+  int stencilBits = 8;                  ///< the bits that count: counts are compared modulo 2^stencilBits
   std::vector<std::uint8_t> shadowed;   ///< the method's own shadow test: 1 = in shadow (for PCF:
                                         ///< visibility < 0.5); empty = derive from the stencil
   bool hybrid = true;                   ///< a shadow-volume method (stencil and volume apply)
@@ -34,6 +35,10 @@ struct RenderedFrame {
                                         ///< (the GPU volume, which mirrors the CPU build)
   std::optional<VolumeMesh> gpuVolume;  ///< the refined GPU volume's own triangles (read back): mesh-checked
                                         ///< as well (`volume` is then the CPU mesh of its crossings)
+  /// A point light's refined GPU cube volume: the six face volumes (cube_map.h's order), checked
+  /// each and counted each; a pixel's count is that of the face its surface point lies on
+  /// (cubeLookup; within kFaceTieTolerance of two faces, either's). `volume` is then unused.
+  std::vector<VolumeMesh> faceVolumes, faceGpuVolumes;
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -108,6 +113,11 @@ struct FrameValidation {
   /// Exit criterion of `shadowvol validate`: consistent and accurate.
   bool passed = true;
 };
+
+/// Relative tie band between two cube faces (RenderedFrame::faceVolumes): a surface point whose two
+/// largest |coordinates| of the offset from the light differ by at most this much of the larger
+/// may have been counted against either face's volume (the GPU picks the face in float).
+inline constexpr double kFaceTieTolerance = 1e-5;
 
 /// Agreement required between stencil and count: 99.99 % of visible pixels.
 inline constexpr double kRequiredAgreement = 0.9999;

@@ -34,6 +34,9 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   frame.zPass = result.volumeCountUsed == gl::VolumeCount::ZPass;
   frame.volume = result.volume;
   frame.gpuVolume = result.gpuVolume;
+  frame.stencilBits = result.stencilBits;
+  frame.faceVolumes = result.faceVolumes;
+  frame.faceGpuVolumes = result.faceGpuVolumes;
   frame.shadowed.resize(result.visibility.size());
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;
@@ -42,7 +45,7 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
 /// Every check of validateFrame on a frame rendered with validationRenderOptions(ro).
 inline FrameValidation validateRender(const Scene& scene, const gl::RenderOptions& ro, const gl::RenderResult& result,
                                       const RenderedFrame& frame, const ValidationOptions& options) {
-  if (frame.hybrid && !result.depthMap && !result.volume)
+  if (frame.hybrid && !result.depthMap && !result.volume && result.faceVolumes.empty())
     throw std::runtime_error("the renderer returned no depth map and no volume");
   return validateFrame(scene, result.depthMap ? *result.depthMap : DepthMap{}, ro.volumeOptions, frame, options);
 }
