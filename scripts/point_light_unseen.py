@@ -12,8 +12,9 @@ dual-paraboloid map at the same texel count.
 Prints per scene whether the frame is consistent, the three errors (misclassified %) and the ratio
 of the volume's to the cube shadow map's, then the count where the volume's error is at most the
 shadow map's and the median ratio, and the same for the dual-paraboloid map against the cube map.
-With --refine K the cube volume is the explicit one refined by K rays per boundary edge; --capture
-sets the cube volume's capture mode (the shadow maps keep back capture)."""
+With --refine K the cube volume is refined: the GPU cube volume (auto, gpu) by the GPU's walk over
+the scene's triangles (six face volumes), the explicit one (--volume explicit) by K rays per
+boundary edge; --capture sets the cube volume's capture mode (the shadow maps keep back capture)."""
 import argparse
 import glob
 import json
@@ -56,15 +57,12 @@ def main():
     ap.add_argument("--resolution", default="128")
     ap.add_argument("--volume", default="auto", choices=["auto", "gpu", "explicit"],
                     help="the hybrid cube volume: auto (gpu), gpu or explicit")
-    ap.add_argument("--refine", default="0", help="rays per boundary edge (0: off; needs --volume explicit or auto)")
+    ap.add_argument("--refine", default="0",
+                    help="refinement (0: off): rays per boundary edge for --volume explicit; on for the GPU cube volume")
     ap.add_argument("--capture", default="back", choices=["back", "front", "midpoint"],
                     help="the cube volume's capture mode")
     a = ap.parse_args()
-    hybrid_args = ["--resolution", a.resolution, "--volume", a.volume, "--capture", a.capture]
-    if a.refine != "0":
-        if a.volume == "gpu":
-            sys.exit("--refine refines the explicit cube volume: use --volume explicit")
-        hybrid_args = ["--resolution", a.resolution, "--volume", "explicit", "--refine", a.refine, "--capture", a.capture]
+    hybrid_args = ["--resolution", a.resolution, "--volume", a.volume, "--refine", a.refine, "--capture", a.capture]
     out_dir = os.path.join("out", "point-unseen")
     os.makedirs(out_dir, exist_ok=True)
     ratios, at_most, consistent = [], 0, 0
