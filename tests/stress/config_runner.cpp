@@ -24,7 +24,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
   if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
   if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::Walk);  // rays only for the cube
-  if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::GpuRefined);
+  if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);  // a point light's: its face volumes
   runs.push_back(RunKind::Build);
   return runs;
 }
