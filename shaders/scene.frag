@@ -30,8 +30,6 @@ uniform float biasConstant;       // world units
 uniform float biasSlope;          // x texel footprint x tan(angle between N and the light axis)
 uniform float texelFootprint;     // world size of a texel: spot at unit depth, directional overall
 uniform int writeVisibility;      // 1: evaluate the shadow test everywhere in the frustum for visibilityOut
-uniform int skipCubeFace;         // >= 0: discard the fragments whose offset from the light falls on this
-                                  // cube face (the refined GPU cube volume's face masks, docs/gpu.md); -1: none
 layout(location = 0) out vec4 fragColor;
 layout(location = 1) out float visibilityOut;
 layout(location = 2) out vec4 ambientOut;
@@ -52,15 +50,6 @@ float shadowVisibility(vec4 lightClip, float cosTheta) {
   for (int y = -r; y <= r; ++y)
     for (int x = -r; x <= r; ++x) sum += texture(shadowMap, vec3(uv + vec2(float(x), float(y)) / shadowMapSize, ref));
   return sum / float((2 * r + 1) * (2 * r + 1));
-}
-
-// The face of a point light's cube that an offset from it falls on, as cube_map.h's cubeLookup
-// chooses it: the axis of the largest |coordinate| (ties to the lower axis, x before y before z),
-// then + (face 2 axis) or - (2 axis + 1).
-int cubeFaceOf(vec3 o) {
-  vec3 a = abs(o);
-  int axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
-  return 2 * axis + (o[axis] < 0.0 ? 1 : 0);
 }
 
 // A point light's visibility from its cube shadow map: the depth is the largest |coordinate| of
@@ -108,7 +97,6 @@ float paraboloidVisibility(vec3 n) {
 }
 
 void main() {
-  if (skipCubeFace >= 0 && cubeFaceOf(worldPos - lightPosition) == skipCubeFace) discard;
   ambientOut = vec4(color * ambient, 1.0);
   vec3 n = normalize(cross(dFdx(worldPos), dFdy(worldPos)));
   if (dot(n, cameraPosition - worldPos) < 0.0) n = -n;

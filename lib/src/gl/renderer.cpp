@@ -198,6 +198,7 @@ struct Renderer::Impl {
   EglContext context;
   ShaderLibrary shaders;
   Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
+  Program cubeFaceIdProgram, cubeFaceMaskProgram;  // the refined GPU cube volume's face image and masks
   Program volumeGpuProgram;
   Program volumeKeepProgram, volumeGpuKeptProgram;  // GpuVolumeDraw::KeptQuads
   Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
@@ -279,13 +280,18 @@ struct Renderer::Impl {
   Texture ambientImage;      // RGBA8: the camera pass's ambient term (stencil methods)
   Framebuffer cameraFbo;     // colour, visibility, ambient image, depth + stencil
   Framebuffer shadowOverFbo; // colour and depth + stencil only: the lighting pass samples ambientImage
+  Texture cubeFaceImage;     // R8UI: the refined GPU cube volume's face per pixel (made on its first frame)
+  Framebuffer cubeFaceFbo;   // cubeFaceImage and the camera's depth + stencil
+  int cubeFaceW = 0, cubeFaceH = 0;
 
   Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
     lightProgram = Program(shaders, "light.vert", "depth_only.frag");
     peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
     resolveProgram = Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
     blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
-    sceneProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "paraboloid.glsl", "scene.frag"});
+    sceneProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "paraboloid.glsl", "cube_face.glsl", "scene.frag"});
+    cubeFaceIdProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "cube_face.glsl", "cube_face_id.frag"});
+    cubeFaceMaskProgram = Program(shaders, "fullscreen.vert", "cube_face_mask.frag");
     paraboloid = DualParaboloidPass(shaders);
     ambientOverProgram = Program(shaders, "fullscreen.vert", "ambient_over.frag");
     volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
@@ -658,7 +664,6 @@ struct Renderer::Impl {
     sceneProgram.set("diffuse", float(o.diffuse * light.intensity));
     sceneProgram.set("shadowTaps", shadowTaps);
     sceneProgram.set("writeVisibility", 0);
-    sceneProgram.set("skipCubeFace", -1);
     sceneProgram.set("shadowMap", 2);
     sceneProgram.set("cubeShadowMap", 3);
     sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
@@ -1460,7 +1465,8 @@ struct Renderer::Impl {
   /// each face's refined GPU volume (refined_gpu_volume.h) over the face's frustum widened by
   /// kCubeGuardTexels (guardedCubeFaceLight), and each pixel counted against the volume of the
   /// face its surface point lies on. Per face: the light pass with the triangle record, the
-  /// crossings, the face mask (stencil bit 7 set on the pixels of the other faces: maskOtherCubeFaces)
+  /// crossings, the face mask (stencil bit 7 set on the pixels of the other faces of the face image:
+  /// writeCubeFaceImage, maskOtherCubeFaces)
   /// and the volume counted in bits 0-6 where bit 7 is clear. The mask is cleared at the end, so the
   /// stencil holds each pixel's count of its own face's volume, modulo 128 (result.stencilBits).
   /// With keepVolume each face's debug meshes (refinedGpuDebugMeshes) go to result.faceVolumes
@@ -1478,6 +1484,10 @@ struct Renderer::Impl {
       const Light& point;
       ~Restore() { light = point; }
     } restore{light, point};
+    {
+      TimedPass t(timer, "volume");
+      writeCubeFaceImage(cam, point.position);
+    }
     for (int f = 0; f < kCubeFaces; ++f) {
       light = guardedCubeFaceLight(point, f, n, kCubeGuardTexels);
       {
@@ -1493,7 +1503,7 @@ struct Renderer::Impl {
       face.biasUsed = result.biasUsed;
       {
         TimedPass t(timer, "volume");  // the face's mask and its volume
-        maskOtherCubeFaces(cam, f, point.position);
+        maskOtherCubeFaces(cam, f);
         beginVolume(false);
         SV_GL(glStencilMask(0x7F));
         SV_GL(glStencilFunc(GL_EQUAL, 0, 0x80));
@@ -1524,28 +1534,57 @@ struct Renderer::Impl {
     resetState();
   }
 
-  /// Stencil bit 7 set on the pixels whose surface point (the camera pass's depth, GL_EQUAL) lies on
-  /// another cube face than `face` (scene.frag's skipCubeFace, cubeLookup's rule), clear elsewhere;
-  /// colour, depth and bits 0-6 kept.
-  void maskOtherCubeFaces(const CameraSetup& cam, int face, const glm::dvec3& lightPosition) {
+  /// The face image of a point light at `lightPosition`: for each pixel, the cube face its surface
+  /// point (the camera pass's depth, GL_EQUAL) lies on (cube_face_id.frag, cubeLookup's rule); 255
+  /// on the background. One scene pass per light, read by the six masks.
+  void writeCubeFaceImage(const CameraSetup& cam, const glm::dvec3& lightPosition) {
+    if (cubeFaceW != cam.w || cubeFaceH != cam.h) {
+      cubeFaceImage = makeTexture2D(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, cam.w, cam.h);
+      cubeFaceFbo = makeFramebuffer();
+      SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cubeFaceFbo.id()));
+      SV_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, cubeFaceImage.id(), 0));
+      SV_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depthStencilRb.id()));
+      SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
+      checkFramebufferComplete("cube face image");
+      cubeFaceW = cam.w, cubeFaceH = cam.h;
+    }
+    resetState();
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cubeFaceFbo.id()));
+    SV_GL(glViewport(0, 0, cam.w, cam.h));
+    const GLuint background[4] = {255, 0, 0, 0};
+    SV_GL(glClearBufferuiv(GL_COLOR, 0, background));
+    SV_GL(glDepthMask(GL_FALSE));
+    SV_GL(glDepthFunc(GL_EQUAL));
+    cubeFaceIdProgram.use();
+    cubeFaceIdProgram.set("worldToClip", toFloat(cam.proj * cam.view));  // as the camera pass: the same depths
+    cubeFaceIdProgram.set("lightPosition", glm::vec3(lightPosition));
+    drawScene();
+    resetState();
+  }
+
+  /// Stencil bit 7 set on the pixels of the face image (writeCubeFaceImage) that lie on another
+  /// cube face than `face` or on the background, clear elsewhere; colour, depth and bits 0-6 kept.
+  void maskOtherCubeFaces(const CameraSetup& cam, int face) {
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
     SV_GL(glViewport(0, 0, cam.w, cam.h));
     SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
     SV_GL(glDepthMask(GL_FALSE));
-    SV_GL(glDepthFunc(GL_EQUAL));
+    SV_GL(glDisable(GL_DEPTH_TEST));
     SV_GL(glStencilMask(0x80));
     SV_GL(glClearStencil(0));
     SV_GL(glClear(GL_STENCIL_BUFFER_BIT));
     SV_GL(glEnable(GL_STENCIL_TEST));
     SV_GL(glStencilFunc(GL_ALWAYS, 0x80, 0x80));
     SV_GL(glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE));
-    sceneProgram.use();
-    sceneProgram.set("worldToClip", toFloat(cam.proj * cam.view));  // as the camera pass: the same depths
-    sceneProgram.set("lightPosition", glm::vec3(lightPosition));
-    sceneProgram.set("skipCubeFace", face);
-    drawScene();
-    sceneProgram.set("skipCubeFace", -1);
+    cubeFaceMaskProgram.use();
+    cubeFaceMaskProgram.set("faceImage", 0);
+    SV_GL(glUniform1ui(cubeFaceMaskProgram.location("face"), GLuint(face)));
+    bindTexture(0, cubeFaceImage, fetchSampler);
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+    bindTexture(0, Texture(), fetchSampler);
     resetState();
   }
 
