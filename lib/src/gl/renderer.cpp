@@ -1478,12 +1478,8 @@ struct Renderer::Impl {
     result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
     result.stencilBits = 7;
     if (o.keepVolume) result.faceVolumes.resize(kCubeFaces), result.faceGpuVolumes.resize(kCubeFaces);
-    const Light point = light;
-    struct Restore {
-      Light& light;
-      const Light& point;
-      ~Restore() { light = point; }
-    } restore{light, point};
+    const LightRestore restore{light, light};
+    const Light& point = restore.saved;
     {
       TimedPass t(timer, "volume");
       writeCubeFaceImage(cam, point.position);
@@ -1588,18 +1584,21 @@ struct Renderer::Impl {
     resetState();
   }
 
+  /// Sets the renderer's light back to `saved` when it goes (a pass between may throw).
+  struct LightRestore {
+    Light& light;
+    Light saved;
+    ~LightRestore() { light = saved; }
+  };
+
   /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
   /// For each face of a point light's cube (cube_map.h): the light pass of the face's spot light
   /// at n x n, then `afterPass(f)` while that light is the renderer's; the point light is set back
   /// after each face, and when a pass throws.
   template <class AfterPass>
   void eachCubeFace(int n, CaptureMode mode, AfterPass afterPass) {
-    const Light point = light;
-    struct Restore {
-      Light& light;
-      const Light& point;
-      ~Restore() { light = point; }
-    } restore{light, point};
+    const LightRestore restore{light, light};
+    const Light& point = restore.saved;
     for (int f = 0; f < kCubeFaces; ++f) {
       light = cubeFaceLight(point, f);
       lightPass(n, n, mode, false);
