@@ -1464,11 +1464,11 @@ struct Renderer::Impl {
   /// The refined GPU cube volume (docs/gpu.md "The refined GPU cube volume"): six closed volumes,
   /// each face's refined GPU volume (refined_gpu_volume.h) over the face's frustum widened by
   /// kCubeGuardTexels (guardedCubeFaceLight), and each pixel counted against the volume of the
-  /// face its surface point lies on. Per face: the light pass with the triangle record, the
-  /// crossings, the face mask (stencil bit 7 set on the pixels of the other faces of the face image:
-  /// writeCubeFaceImage, maskOtherCubeFaces)
-  /// and the volume counted in bits 0-6 where bit 7 is clear. The mask is cleared at the end, so the
-  /// stencil holds each pixel's count of its own face's volume, modulo 128 (result.stencilBits).
+  /// face its surface point lies on. Once: the face image (writeCubeFaceImage). Per face: the light
+  /// pass with the triangle record, the crossings, the face mask (maskOtherCubeFaces: stencil bit 7
+  /// on the pixels of the other faces) and the volume counted in bits 0-6 where bit 7 is clear. The
+  /// mask is cleared at the end, so the stencil holds each pixel's count of its own face's volume,
+  /// modulo 128 (result.stencilBits).
   /// With keepVolume each face's debug meshes (refinedGpuDebugMeshes) go to result.faceVolumes
   /// and faceGpuVolumes. Call with the camera pass drawn; the point light is set back afterwards.
   void drawRefinedCubeFaces(const RenderOptions& o, const CameraSetup& cam, PassTimer& timer, RenderResult& result) {
@@ -1591,7 +1591,6 @@ struct Renderer::Impl {
     ~LightRestore() { light = saved; }
   };
 
-  /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
   /// For each face of a point light's cube (cube_map.h): the light pass of the face's spot light
   /// at n x n, then `afterPass(f)` while that light is the renderer's; the point light is set back
   /// after each face, and when a pass throws.
@@ -1685,6 +1684,7 @@ struct Renderer::Impl {
     paraboloid.draw(paraboloidFrame, mode, subdivision, [this] { drawScene(); });
   }
 
+  /// Z-pass for this frame: hybrid volumes built from the depth map only, where zPassSafety allows.
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
     if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
     if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
