@@ -1,6 +1,6 @@
 // camera-in-volume: the eye in the sphere's shadow (z-pass counts from the eye differ from z-fail
-// there, so validate skips that comparison), and eyes at the shadow's boundary, where the near plane
-// cuts the volume.
+// there, so validate skips that comparison), under a spot, a directional and a point light, the eye
+// at a point light, and eyes at the shadow's boundary, where the near plane cuts the volume.
 #include <cmath>
 
 #include "stress_configs.h"
@@ -37,6 +37,27 @@ void addEyesInShadow(std::vector<StressConfig>& out) {
       c.quick = (t == 1.2 && (std::string(lookName) == "along" || std::string(lookName) == "level"));
       out.push_back(std::move(c));
     }
+  // A point light at the spot light's place: the eye in the sphere's shadow on the same axis (the
+  // cube volume of the -y face, refined on the GPU as six face volumes), and at the light itself.
+  json point = defaultSpotScene();
+  point["light"] = json{{"type", "point"}, {"position", toJson(kSpotPosition)}};
+  for (const double t : {1.15, 1.2, 1.26})
+    for (const auto& [lookName, look] : {looks[0], looks[3]}) {
+      const Vec3 eye = kSpotPosition + t * axis;
+      StressConfig c =
+          makeConfig("camera-in-volume", "eye-in-shadow-point-t" + numberName(t) + "-" + lookName,
+                     "eye in the sphere's shadow under a point light (t = " + numberName(t) + "), looking " + lookName,
+                     withCamera(point, eye, eye + look));
+      c.eyeInside = true;
+      c.quick = t == 1.2 && std::string(lookName) == "level";
+      out.push_back(std::move(c));
+    }
+  for (const auto& [lookName, look] : {looks[0], looks[1]}) {
+    const Vec3 eye = kSpotPosition + 1e-3 * normalized(axis);
+    out.push_back(makeConfig("camera-in-volume", std::string("eye-at-point-light-") + lookName,
+                             std::string("eye 1e-3 from a point light, looking ") + lookName,
+                             withCamera(point, eye, eye + look)));
+  }
   json down = defaultSpotScene();
   down["light"] = {{"type", "directional"}, {"direction", {0, -1, 0}}};
   const Vec3 eyes[] = {{0, 0.5, 0}, {0.3, 0.9, 0.2}};
