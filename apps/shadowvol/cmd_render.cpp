@@ -89,7 +89,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       gl::RenderResult result;
       for (int f = 0; f < o->frames; ++f) {
         result = renderer.render(ro);
-        for (const auto& p : result.passes) {
+        for (const auto& p : shadowvol::passTotals(result.passes)) {  // a cube volume's per-face passes: their sums
           if (!times.count(p.name)) order.push_back(p.name);
           times[p.name].push_back(p.ms);
         }

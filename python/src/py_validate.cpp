@@ -93,7 +93,7 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
     if (!l.stencil.empty()) others.append(imageArray(l.stencil, result.width, result.height, 1));
   if (!result.otherLights.empty()) d["other_stencils"] = others;
   py::dict passes;
-  for (const auto& p : result.passes) passes[py::str(p.name)] = p.ms;
+  for (const auto& p : shadowvol::passTotals(result.passes)) passes[py::str(p.name)] = p.ms;  // per-face passes summed
   d["passes_ms"] = passes;
   d["total_ms"] = result.totalMs;
   d["timing"] = toString(result.timing);

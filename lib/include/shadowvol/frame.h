@@ -141,6 +141,10 @@ struct PassTime {
                      ///< passes (readback, build, upload) are always wall clock
 };
 
+/// One frame's passes with each name once, in the order the names first ran: a pass that runs
+/// several times in a frame (a point light's per cube face) counts with the sum of its times.
+std::vector<PassTime> passTotals(const std::vector<PassTime>& passes);
+
 struct RenderResult {
   int width = 0, height = 0;          ///< image pixels
   std::vector<std::uint8_t> rgba;     ///< width * height * 4, RGBA8, rows top first

@@ -440,13 +440,10 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     for (int f = 0; f < o.repeat; ++f) {
       result = renderer.render(ro);
       frameTimes.push_back(result.totalMs);
-      // A pass that runs several times in a frame (a cube volume's per face) counts with its sum.
-      std::map<std::string, double> frame;
-      for (const auto& p : result.passes) {
-        if (!phaseTimes.count(p.name) && !frame.count(p.name)) phaseOrder.push_back(p.name);
-        frame[p.name] += p.ms;
+      for (const auto& p : passTotals(result.passes)) {  // a cube volume's per-face passes: their sums
+        if (!phaseTimes.count(p.name)) phaseOrder.push_back(p.name);
+        phaseTimes[p.name].push_back(p.ms);
       }
-      for (const auto& [name, ms] : frame) phaseTimes[name].push_back(ms);
     }
     // One more frame, not timed, for the method's own shadow test.
     gl::RenderOptions vis = ro;

@@ -1,5 +1,7 @@
 #include "shadowvol/frame.h"
 
+#include <algorithm>
+
 namespace shadowvol {
 
 const char* toString(ShadowMethod m) {
@@ -86,6 +88,16 @@ bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
   else if (text == "gpu-walk") c = RefineCrossings::GpuWalk;
   else return false;
   return true;
+}
+
+std::vector<PassTime> passTotals(const std::vector<PassTime>& passes) {
+  std::vector<PassTime> out;
+  for (const PassTime& p : passes) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const PassTime& o) { return o.name == p.name; });
+    if (it == out.end()) out.push_back(p);
+    else it->ms += p.ms;
+  }
+  return out;
 }
 
 const char* toString(TimingMethod t) {
