@@ -164,6 +164,29 @@ TEST(PointLight, RefinedGpuCubeVolumeMatchesCrossingCountsInEveryCombination) {
 // without it, 90 against 36 wrong pixels at this test's image size).
 TEST(PointLight, RefinedGpuCubeVolumeCutsTheError) { expectRefinementCutsTheError(gl::VolumeSource::Gpu); }
 
+// The refined GPU cube volume's face image shares the camera's depth: after a frame at another
+// image size (new camera targets), a frame at the first size again, from another eye, must use
+// the new depth (regression: the face image's framebuffer kept the old depth renderbuffer).
+TEST(PointLight, RefinedGpuCubeVolumeFollowsTheCameraTargets) {
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Gpu;
+  ro.depthWidth = ro.depthHeight = 32;
+  ro.volumeOptions.refineSteps = 4;
+  EXPECT_TRUE(renderAndValidate(room(), ro).consistent);
+  Scene small = room();
+  small.camera.width = 80;
+  small.camera.height = 60;
+  renderer().setScene(small);
+  gl::RenderOptions plain = ro;  // unrefined: the face image is not remade at this size
+  plain.volumeOptions.refineSteps = 0;
+  renderer().render(plain);
+  Scene moved = room();
+  moved.camera.eye = {-4.0, 2.0, 3.5};
+  const FrameValidation v = renderAndValidate(moved, ro);
+  EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement);
+  EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
+}
+
 // The GPU draws the explicit volume's triangles before the cap's flattening, in float: the same
 // shadow up to the pixels where a float sheet vertex falls on the other side of a surface, and
 // the same number of triangles as the explicit sheet and its unflattened cap, plus twice the

@@ -442,6 +442,7 @@ struct Renderer::Impl {
     SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));
     checkFramebufferComplete("camera lighting");
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+    cubeFaceW = cubeFaceH = 0;  // its framebuffer held the old depth + stencil (writeCubeFaceImage)
     camW = w;
     camH = h;
   }
