@@ -466,6 +466,13 @@ struct Renderer::Impl {
     SV_GL(glDepthFunc(GL_GREATER));
   }
 
+  /// One triangle over the viewport (fullscreen.vert, no vertex buffer).
+  void drawFullScreenTriangle() {
+    SV_GL(glBindVertexArray(emptyVao.id()));
+    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+    SV_GL(glBindVertexArray(0));
+  }
+
   void drawScene() {
     SV_GL(glBindVertexArray(sceneVao.id()));
     SV_GL(glDrawElements(GL_TRIANGLES, sceneIndexCount, GL_UNSIGNED_INT, nullptr));
@@ -579,9 +586,7 @@ struct Renderer::Impl {
     resolveProgram.set("farPlane", float(light.farPlane));
     bindTexture(0, layer0, fetchSampler);
     bindTexture(1, layer1, fetchSampler);
-    SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-    SV_GL(glBindVertexArray(0));
+    drawFullScreenTriangle();
     SV_GL(glDepthFunc(GL_GREATER));
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
@@ -597,9 +602,7 @@ struct Renderer::Impl {
     blurProgram.set("farSnap", float(light.farPlane * (1.0 - kFarSnap)));
     blurProgram.set("blurOffset", float(blurOffset));
     bindTexture(0, linearDepth, fetchSampler);
-    SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-    SV_GL(glBindVertexArray(0));
+    drawFullScreenTriangle();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
   }
 
@@ -835,9 +838,7 @@ struct Renderer::Impl {
     ambientOverProgram.use();
     ambientOverProgram.set("ambientImage", 0);
     bindTexture(0, ambientImage, fetchSampler);
-    SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-    SV_GL(glBindVertexArray(0));
+    drawFullScreenTriangle();
     bindTexture(0, Texture(), fetchSampler);
     resetState();
     SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
@@ -1578,9 +1579,7 @@ struct Renderer::Impl {
     cubeFaceMaskProgram.set("faceImage", 0);
     SV_GL(glUniform1ui(cubeFaceMaskProgram.location("face"), GLuint(face)));
     bindTexture(0, cubeFaceImage, fetchSampler);
-    SV_GL(glBindVertexArray(emptyVao.id()));
-    SV_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-    SV_GL(glBindVertexArray(0));
+    drawFullScreenTriangle();
     bindTexture(0, Texture(), fetchSampler);
     resetState();
   }
