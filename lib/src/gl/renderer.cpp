@@ -1342,18 +1342,20 @@ struct Renderer::Impl {
       if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
         refuse("finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
                "with rays");
-      // A point light's faces are drawn with their guard band (drawRefinedCubeFaces).
-      const std::int64_t side = light.type == LightType::Point ? o.depthWidth + 2 * kCubeGuardTexels : o.depthWidth;
-      if (side * (light.type == LightType::Point ? side : o.depthHeight) > kMaxRefinedGpuTexels)
+      // The maps it walks: one W x H, or a point light's six faces with their guard band
+      // (drawRefinedCubeFaces), each (N + 2 G)^2.
+      const bool point = light.type == LightType::Point;
+      const std::int64_t w = point ? o.depthWidth + 2 * kCubeGuardTexels : o.depthWidth;
+      const std::int64_t h = point ? w : o.depthHeight;
+      if (w * h > kMaxRefinedGpuTexels)
         throw InputError("RenderOptions", "depthWidth x depthHeight",
                          std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
-                         light.type == LightType::Point
-                             ? "the refined GPU cube volume takes faces of up to " +
-                                   std::to_string(2048 - 2 * kCubeGuardTexels) + " texels a side (with its guard band " +
-                                   "of " + std::to_string(kCubeGuardTexels) + " texels, 2048; the index list is kept "
-                                   "under 512 MiB)"
-                             : "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
-                               "under 512 MiB)");
+                         "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
+                         "under 512 MiB)" +
+                             (point ? std::string("; a point light's faces are drawn with a guard band of ") +
+                                          std::to_string(kCubeGuardTexels) + " texels a side, so up to " +
+                                          std::to_string(2048 - 2 * kCubeGuardTexels) + " texels per face"
+                                    : std::string()));
       if (o.gpuVolumeDraw != GpuVolumeDraw::Auto)
         throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
                          "the refined GPU volume lists its triangles its own way: leave it at auto");
