@@ -3,13 +3,15 @@
 # frame, measured in N alternating pairs of `shadowvol render --frames 51` (the median frame of
 # each), because one bench cell on a shared machine varies by 20-30 %. Prints both medians, the
 # median ratio and every pair's ratio.
-# Usage: bash scripts/refined_gpu_ratio.sh [N pairs, default 15] [build dir]
+# Usage: bash scripts/refined_gpu_ratio.sh [N pairs, default 15] [build dir, or the shadowvol executable]
 set -eu
 N=${1:-15}
 B=${2:-build}
+SV=$B/apps/shadowvol
+[ -f "$B" ] && SV=$B
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-frame() { "$B/apps/shadowvol" render --scene data/scenes/default.json --resolution 128 --frames 51 "$@" \
+frame() { "$SV" render --scene data/scenes/default.json --resolution 128 --frames 51 "$@" \
             --out "$out/r.png" 2>&1 | grep -o 'frame [0-9.]* ms' | grep -o '[0-9.]*'; }
 for k in $(seq 1 "$N"); do
   echo "$(frame) $(frame --refine 4)"

@@ -6,8 +6,12 @@
 //   far cap; not with drawCap = 0, for z-pass); a quad with all four corners on the far plane
 //   emits nothing.
 // exactCap = 0 (the thesis): the two sheet triangles of every quad; drawRectangle = 1 (a draw of
-//   one point) emits the far-plane rectangle over the texel centres (0,0)..(W-1,H-1), facing away
-//   from the light.
+//   ringVertexCount() points) emits the far-plane rectangle over the texel centres
+//   (0,0)..(W-1,H-1), facing away from the light, as a fan from its centre over every ring
+//   vertex: point k is the triangle (centre, ring vertex k, ring vertex k + 1). The sheet's ring
+//   lies on the rectangle's edges; one triangle per ring edge shares the sheet's vertices there
+//   (the same lightViewPoint of the same texel), so the two meet without T-junctions, where a
+//   rasteriser's snapping would let a pixel centre on the border fall in one and not the other.
 // Strips: triangle k of a strip is (v_k, v_k+1, v_k+2) with odd k reordered by GL, so
 //   fixed sheet  A B D C = ABD, BCD      flipped sheet  B C A D = ABC, ACD
 //   fixed cap    A D B C = ADB, BDC      flipped cap    B A C D = ACB, ADC (all as listed).
@@ -22,12 +26,27 @@ void emit(vec3 lightViewPosition) {
   EmitVertex();
 }
 
+// The ring's vertices in the rectangle's winding (clockwise in texel space, i right and j up:
+// up the left side from (0, 0), along the top, down the right side, back along the bottom);
+// ringVertex(ringVertexCount()) is ringVertex(0).
+int ringVertexCount() { return 2 * (size.x - 1) + 2 * (size.y - 1); }
+ivec2 ringVertex(int k) {
+  int w = size.x - 1, h = size.y - 1;
+  if (k < h) return ivec2(0, k);
+  k -= h;
+  if (k < w) return ivec2(k, h);
+  k -= w;
+  if (k < h) return ivec2(w, h - k);
+  k -= h;
+  return ivec2(w - min(k, w), 0);
+}
+
 void main() {
   if (drawRectangle != 0) {
-    emit(lightViewPoint(ivec2(0, size.y - 1), farPlane));           // D
-    emit(lightViewPoint(ivec2(size.x - 1, size.y - 1), farPlane));  // C
-    emit(lightViewPoint(ivec2(0, 0), farPlane));                    // A
-    emit(lightViewPoint(ivec2(size.x - 1, 0), farPlane));           // B
+    int k = vQuad[0];
+    emit(lightViewPointAt(0.5 * vec2(size - 1), farPlane));  // the centre
+    emit(lightViewPoint(ringVertex(k), farPlane));
+    emit(lightViewPoint(ringVertex(k + 1), farPlane));
     EndPrimitive();
     return;
   }

@@ -117,7 +117,9 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--repeat", o->repeat, "Measured frames per cell (median, min, max)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--warmup", o->warmup, "Frames rendered and discarded before measuring")
+  cmd->add_option("--warmup", o->warmup,
+                  "Frames rendered and discarded before measuring (at least one is: the first also finds a method "
+                  "that refuses the cell, which is then skipped with a note)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   addPlatformOption(*cmd, o->platform);

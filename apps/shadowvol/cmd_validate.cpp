@@ -73,10 +73,14 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   if (v.meshCheck) {
     std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
     if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());
-    std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface)\n",
+    std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface, "
+                "%zu in the image plane)\n",
                 gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
                 v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
-                v.stencilVsCount.ties);
+                v.stencilVsCount.ties - v.stencilVsCount.imagePlaneTies, v.stencilVsCount.imagePlaneTies);
+    for (const Agreement::Miss& m : v.stencilVsCount.firstMisses)
+      std::printf("    disagrees at pixel (%d, %d) (row 0 at the top): stencil %d, count %d (admissible %d to %d)\n", m.x,
+                  m.row, m.stencil, m.zfail, m.zfailMin, m.zfailMax);
     if (v.zfailVsZpass)
       std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());
     else

@@ -272,6 +272,32 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
         << note << " in " << ::testing::PrintToString(notes);
 }
 
+// A cell that its method refuses (the refined GPU volume past 2048^2 texels) is skipped with a
+// note naming it; the sweep measures the others. Before, the refusal ended the whole sweep.
+TEST(Sweep, RefusedCellsAreSkippedWithANote) {
+  const auto dir = test::tempDir();
+  gl::Renderer renderer;
+  SweepOptions o;
+  o.scenes = {std::filesystem::path()};  // the built-in default scene
+  o.methods = {"hybrid-refined/gpu"};
+  o.resolutions = {2056, 32};
+  o.width = 64;
+  o.height = 48;
+  o.repeat = 1;
+  o.warmup = 0;
+  o.out = dir;
+  std::atomic<bool> stop{false};
+  std::vector<std::string> notes;
+  SweepProgress last;
+  const auto rows = runSweep(renderer, o, stop, [&](const SweepProgress& p) { last = p; }, notes);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].resolution, 32);
+  EXPECT_EQ(last.done, 2u);
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.rfind("default | hybrid-refined/gpu | 2056 skipped: ", 0) == 0 && n.find("2048") != std::string::npos;
+  })) << ::testing::PrintToString(notes);
+}
+
 TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;

@@ -68,6 +68,7 @@ class VolumeOracle {
 
 struct Expectation {
   std::size_t tested = 0, inside = 0, outside = 0, wrong = 0;
+  std::string firstWrong;  // the first few wrong pixels: window position, expected and stencil
 };
 
 /// Compares the stencil (rows top first) with the oracle for the ground pixels of the camera.
@@ -83,7 +84,9 @@ Expectation checkStencil(const Scene& scene, const VolumeOracle& oracle, const s
   gltest::forEachPixelAwayFromBorders(w, h, classify, [&](std::size_t pixel, int c) {
     ++e.tested;
     (c ? e.inside : e.outside) += 1;
-    if (stencil[pixel] != std::uint8_t(c)) ++e.wrong;
+    if (stencil[pixel] != std::uint8_t(c) && ++e.wrong <= 8)
+      e.firstWrong += " (" + std::to_string(pixel % std::size_t(w)) + ", " + std::to_string(pixel / std::size_t(w)) +
+                      "): expected " + std::to_string(c) + ", stencil " + std::to_string(int(stencil[pixel])) + ";";
   });
   return e;
 }
@@ -118,7 +121,7 @@ void runPlate(Scene scene, std::size_t minInside, std::size_t minOutside) {
                 e.tested, e.inside, e.outside, e.wrong);
     EXPECT_GE(e.inside, minInside) << c.name;
     EXPECT_GE(e.outside, minOutside) << c.name;
-    EXPECT_EQ(e.wrong, 0u) << c.name;
+    EXPECT_EQ(e.wrong, 0u) << c.name << ", rows top first:" << e.firstWrong;
   }
 }
 

@@ -264,20 +264,49 @@ TEST(PointLight, CubeVolumeErrorFallsWithResolution) {
   EXPECT_LT(previous, 0.01);
 }
 
+namespace {
+
+// The largest depth change from texel (i, j) to a 4-neighbour that also hit (0 if none).
+double neighbourDepthChange(const DepthMap& m, int i, int j) {
+  const float d = m.depth[m.index(i, j)];
+  double change = 0.0;
+  for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+    const int a = i + di, b = j + dj;
+    if (a < 0 || b < 0 || a >= m.width || b >= m.height) continue;
+    const float e = m.depth[m.index(a, b)];
+    if (std::isfinite(d) && std::isfinite(e)) change = std::max(change, double(std::abs(e - d)));
+  }
+  return change;
+}
+
+constexpr double kSubTexel = 1.0 / 256.0;
+
+}  // namespace
+
 TEST(PointLight, GpuCubeCaptureMatchesEmbree) {
   const Scene scene = room();
   renderer().setScene(scene);
   for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
     const CubeDepthMap gpu = renderer().captureCube(48, mode), cpu = captureCubeEmbree(scene, 48, mode);
     std::size_t texels = 0, agree = 0;
+    std::string differ;  // the first few texels that differ: face, texel, GPU and Embree depth
     for (int f = 0; f < kCubeFaces; ++f)
       for (std::size_t k = 0; k < gpu.faces[f].depth.size(); ++k) {
         const float a = gpu.faces[f].depth[k], b = cpu.faces[f].depth[k];
         ++texels;
-        agree += (a == b) || std::abs(a - b) <= 1e-4f * std::max(a, b);
+        // The rasteriser interpolates depth over vertices snapped to its sub-pixel grid (8 bits on
+        // NVIDIA's driver and llvmpipe): on a steep surface that is kSubTexel of the depth's
+        // change to the next texel (NVIDIA: 5e-4 on the ceiling at a 0.37 change per texel).
+        const double slope = neighbourDepthChange(cpu.faces[f], int(k % 48), int(k / 48));
+        const bool same =
+            (a == b) || std::abs(a - b) <= std::max(1e-4 * std::max(a, b), kSubTexel * slope);
+        agree += same;
+        if (!same && texels - agree <= 12)
+          differ += " face " + std::to_string(f) + " (" + std::to_string(k % 48) + ", " + std::to_string(k / 48) +
+                    "): " + std::to_string(a) + " vs " + std::to_string(b) + ";";
       }
     // Texels on a silhouette may differ (rasterisation against ray casting at the same centre).
-    EXPECT_GE(double(agree) / double(texels), 0.995) << toString(mode);
+    EXPECT_GE(double(agree) / double(texels), 0.995) << toString(mode) << ":" << differ;
   }
 }
 

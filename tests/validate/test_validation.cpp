@@ -71,8 +71,13 @@ std::vector<std::pair<std::filesystem::path, Scene>> loadableScenes() {
 // The consistency verdict of one frame, with the numbers that matter when it fails.
 void expectConsistent(const Validated& r) {
   ASSERT_TRUE(r.v.meshCheck && r.v.meshCheck->valid()) << r.v.meshCheck->summary();
+  std::string misses;
+  for (const Agreement::Miss& m : r.v.stencilVsCount.firstMisses)
+    misses += " (" + std::to_string(m.x) + ", " + std::to_string(m.row) + "): stencil " + std::to_string(m.stencil) +
+              ", count " + std::to_string(m.zfail) + " in " + std::to_string(m.zfailMin) + ".." +
+              std::to_string(m.zfailMax) + ";";
   EXPECT_GE(r.v.stencilVsCount.fraction(), kRequiredAgreement)
-      << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels;
+      << r.v.stencilVsCount.pixels - r.v.stencilVsCount.agree << " of " << r.v.stencilVsCount.pixels << misses;
   EXPECT_TRUE(r.v.consistent) << (r.v.failures.empty() ? "" : r.v.failures.front());
   if (!r.v.eyeInsideVolume) {
     ASSERT_TRUE(r.v.zfailVsZpass.has_value());
@@ -438,6 +443,38 @@ TEST(Validation, FarFromTheOriginKeepsTheExactShadowAndTheError) {
       EXPECT_TRUE(r.v.passed) << (r.v.failures.empty() ? "" : r.v.failures.front());
     }
   }
+}
+
+// A pixel centre on a projected edge of the volume is an image-plane tie: a rasteriser may cover
+// it from either side, so its admissible range takes both counts; a pixel well inside a triangle
+// keeps its one count. One triangle with an edge through the centre ray of a 63 x 63 camera.
+TEST(Validation, ImagePlaneTiesWidenOnlyPixelsOnAnEdge) {
+  Camera camera;
+  camera.eye = {0.0, 0.0, 5.0};
+  camera.target = {0.0, 0.0, 0.0};
+  camera.width = camera.height = 63;
+  camera.nearPlane = 1.0;
+  camera.farPlane = 10.0;
+  VolumeMesh volume;  // in z = 0, its edge x = 0 through the view axis, facing away from the eye
+  volume.positions = {{0.0, -1.0, 0.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}};
+  volume.triangles = {{0u, 1u, 2u}};
+  CameraHits hits;
+  hits.width = hits.height = 63;
+  hits.depth.assign(63 * 63, INFINITY);
+  hits.point.assign(63 * 63, glm::dvec3(0.0));
+  const std::size_t onEdge = 31 * 63 + 31, inside = 31 * 63 + 40;  // row 31, columns 31 and 40
+  hits.depth[onEdge] = hits.depth[inside] = 2.0f;  // a visible point in front of the triangle
+  CrossingCounts counts;
+  counts.width = counts.height = 63;
+  counts.zfail.assign(63 * 63, 1);
+  counts.zpass.assign(63 * 63, 0);
+  counts.zfailMin = counts.zfail;
+  counts.zfailMax = counts.zfail;
+  EXPECT_EQ(widenImagePlaneTies(volume, camera, hits, {onEdge, inside}, counts), 1u);
+  EXPECT_EQ(counts.zfailMin[onEdge], 0);  // the rays left of the edge miss the triangle
+  EXPECT_EQ(counts.zfailMax[onEdge], 1);
+  EXPECT_EQ(counts.zfailMin[inside], 1);
+  EXPECT_EQ(counts.zfailMax[inside], 1);
 }
 
 // Counts that contradict the eye's side are recounted in double and come back as Embree counted

@@ -432,7 +432,18 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     ro.readStencil = false;
     ro.readDepthMap = false;
     ro.readVisibility = false;
-    for (int w = 0; w < o.warmup; ++w) renderer.render(ro);
+    // The first warm-up frame (rendered even with warmup 0) also meets a method's refusal of this
+    // cell, such as the refined GPU volume's size limit: the cell is noted and left out, as a
+    // resolution that does not fit, and the sweep goes on.
+    try {
+      renderer.render(ro);
+    } catch (const InputError& e) {
+      notes.push_back(label + " skipped: " + e.what());
+      ++progress.done;
+      report(label + " (skipped: the method refuses it)");
+      continue;
+    }
+    for (int w = 1; w < o.warmup; ++w) renderer.render(ro);
     std::map<std::string, std::vector<double>> phaseTimes;
     std::vector<std::string> phaseOrder;
     std::vector<double> frameTimes;

@@ -168,6 +168,10 @@ PrimaryRays::PrimaryRays(const Camera& camera)
 
 TexelUnprojector::Ray PrimaryRays::ray(int x, int row) const { return pixelRay(unproject_, x, row, height_); }
 
+TexelUnprojector::Ray PrimaryRays::ray(int x, int row, double dx, double dy) const {
+  return unproject_.ray(double(x) + dx, double(height_ - 1 - row) + dy);  // GL rows count from the bottom
+}
+
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits) {
   CrossingCounts out;
   out.width = hits.width;

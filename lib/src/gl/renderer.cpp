@@ -917,9 +917,10 @@ struct Renderer::Impl {
       volumeGpuProgram.set("firstQuad", int(first));
       SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(std::min(kChunkQuads, quads - first))));
     }
-    if (vo.cap == FarCap::Quad && !zPassFrame) {
+    if (vo.cap == FarCap::Quad && !zPassFrame) {  // the far rectangle: a fan over the ring (volume_gpu.geom)
       volumeGpuProgram.set("drawRectangle", 1);
-      SV_GL(glDrawArrays(GL_POINTS, 0, 1));
+      volumeGpuProgram.set("firstQuad", 0);
+      SV_GL(glDrawArrays(GL_POINTS, 0, GLsizei(2 * (lightW - 1) + 2 * (lightH - 1))));
     }
     SV_GL(glEndQuery(GL_PRIMITIVES_GENERATED));
     SV_GL(glBindVertexArray(0));

@@ -1,5 +1,6 @@
 #include "shadowvol/validate/double_recount.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <vector>
@@ -32,6 +33,39 @@ bool crossing(const K::Triangle_3& t, const glm::dvec3& o, const glm::dvec3& d, 
   return out.t >= 0.0;
 }
 
+// The volume's triangles in double in an AABB tree, counting any camera ray by countPixel.
+class DoubleCounter {
+ public:
+  explicit DoubleCounter(const VolumeMesh& volume) {
+    triangles_.reserve(volume.triangleCount());
+    auto point = [&](std::uint32_t i) {
+      const glm::dvec3& p = volume.positions[i];
+      return K::Point_3(p.x, p.y, p.z);
+    };
+    for (const auto& t : volume.triangles) triangles_.emplace_back(point(t[0]), point(t[1]), point(t[2]));
+    tree_.insert(triangles_.begin(), triangles_.end());
+    tree_.build();
+  }
+
+  PixelCounts count(const TexelUnprojector::Ray& r, const Camera& camera, double tVisible) {
+    const K::Ray_3 ray(K::Point_3(r.origin.x, r.origin.y, r.origin.z),
+                       K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
+    hit_.clear();
+    tree_.all_intersected_primitives(ray, std::back_inserter(hit_));
+    crossings_.clear();
+    VolumeCrossing c;
+    for (const auto& id : hit_)
+      if (crossing(*id, r.origin, r.direction, c)) crossings_.push_back(c);
+    return countPixel(crossings_, tVisible, tieTolerance(camera, tVisible) * tVisible);
+  }
+
+ private:
+  Triangles triangles_;
+  Tree tree_;
+  std::vector<Primitive::Id> hit_;
+  std::vector<VolumeCrossing> crossings_;
+};
+
 }  // namespace
 
 std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
@@ -41,36 +75,40 @@ std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& ca
     if (!hits.isBackground(k) && counts.zfail[k] - counts.zpass[k] != expectedNet) pixels.push_back(k);
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
 
-  Triangles triangles;
-  triangles.reserve(volume.triangleCount());
-  auto point = [&](std::uint32_t i) {
-    const glm::dvec3& p = volume.positions[i];
-    return K::Point_3(p.x, p.y, p.z);
-  };
-  for (const auto& t : volume.triangles) triangles.emplace_back(point(t[0]), point(t[1]), point(t[2]));
-  const Tree tree(triangles.begin(), triangles.end());
-  std::vector<Primitive::Id> hit;
-  std::vector<VolumeCrossing> crossings;
+  DoubleCounter counter(volume);
   const PrimaryRays rays(camera);
   for (std::size_t k : pixels) {
     const int x = int(k % std::size_t(hits.width)), row = int(k / std::size_t(hits.width));
-    const TexelUnprojector::Ray r = rays.ray(x, row);
-    const K::Ray_3 ray(K::Point_3(r.origin.x, r.origin.y, r.origin.z),
-                       K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
-    hit.clear();
-    tree.all_intersected_primitives(ray, std::back_inserter(hit));
-    crossings.clear();
-    VolumeCrossing c;
-    for (const auto& id : hit)
-      if (!triangles.empty() && crossing(*id, r.origin, r.direction, c)) crossings.push_back(c);
-    const double tVisible = hits.depth[k];
-    const PixelCounts pc = countPixel(crossings, tVisible, tieTolerance(camera, tVisible) * tVisible);
+    const PixelCounts pc = counter.count(rays.ray(x, row), camera, hits.depth[k]);
     counts.zfail[k] = pc.zfail;
     counts.zpass[k] = pc.zpass;
     counts.zfailMin[k] = pc.zfailMin;
     counts.zfailMax[k] = pc.zfailMax;
   }
   return pixels.size();
+}
+
+std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
+                                const std::vector<std::size_t>& pixels, CrossingCounts& counts) {
+  if (pixels.empty() || volume.triangleCount() == 0) return 0;
+  DoubleCounter counter(volume);
+  const PrimaryRays rays(camera);
+  std::size_t widened = 0;
+  for (std::size_t k : pixels) {
+    if (hits.isBackground(k)) continue;
+    const int x = int(k % std::size_t(hits.width)), row = int(k / std::size_t(hits.width));
+    int lo = counts.zfailMin[k], hi = counts.zfailMax[k];
+    for (double dx : {-kImagePlaneTie, kImagePlaneTie})
+      for (double dy : {-kImagePlaneTie, kImagePlaneTie}) {
+        const PixelCounts pc = counter.count(rays.ray(x, row, dx, dy), camera, hits.depth[k]);
+        lo = std::min(lo, pc.zfailMin);
+        hi = std::max(hi, pc.zfailMax);
+      }
+    widened += lo < counts.zfailMin[k] || hi > counts.zfailMax[k];
+    counts.zfailMin[k] = lo;
+    counts.zfailMax[k] = hi;
+  }
+  return widened;
 }
 
 }  // namespace shadowvol

@@ -196,10 +196,11 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
                        "validating a point light's frame needs its volume (RenderOptions::keepVolume)");
     const Light& light = scene.light;
     CountedVolume counted;
+    std::optional<VolumeMesh> volume;  // the single volume counted (not a cube's face volumes)
     if (faces) {
       counted = countFaceVolumes(device, frame, light, options.selfIntersections, scene.camera, hits);
     } else {
-      const VolumeMesh volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
+      volume = frame.volume ? *frame.volume : buildVolume(depth, volumeOptions).mesh;
       MeshCheckOptions co;
       co.selfIntersections = options.selfIntersections;
       // Sheet and cap may touch on the far plane (a point light's: its far cube, cube_map.h).
@@ -208,7 +209,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
         const double d = light.type == LightType::Point ? cubeDepth(p - light.position) : depth.viewDepthOf(p);
         return std::abs(d - far) <= farTolerance;
       };
-      counted = countVolume(device, volume, frame.gpuVolume ? &*frame.gpuVolume : nullptr, co, scene.camera, hits);
+      counted = countVolume(device, *volume, frame.gpuVolume ? &*frame.gpuVolume : nullptr, co, scene.camera, hits);
     }
     v.meshCheck = counted.mesh;
     v.gpuMeshCheck = counted.gpuMesh;
@@ -221,20 +222,35 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     Agreement zz;
     ShadowError stencilErr, countErr;
     v.stencilOverLitFrustumOnly = frame.zPass;
+    const auto compared = [&](std::size_t k) {
+      return v.exact[k] != PixelClass::Background && !(frame.zPass && v.exact[k] == PixelClass::OutsideLight);
+    };
+    const auto admissible = [&](std::size_t k) {
+      for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
+        if (wrapped(c) == frame.stencil[k]) return true;
+      return wrapped(v.counts->zfail[k]) == frame.stencil[k];
+    };
+    // The pixels outside their admissible range get the image-plane tie band (double_recount.h).
+    std::vector<std::size_t> outside;
+    for (std::size_t k = 0; k < n; ++k)
+      if (compared(k) && !admissible(k)) outside.push_back(k);
+    if (volume && !outside.empty()) {
+      widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts);
+      for (std::size_t k : outside) v.stencilVsCount.imagePlaneTies += admissible(k);
+    }
     for (std::size_t k = 0; k < n; ++k) {
       if (v.exact[k] == PixelClass::Background) continue;
       const int zfail = v.counts->zfail[k];
-      if (!(frame.zPass && v.exact[k] == PixelClass::OutsideLight)) {
+      if (compared(k)) {
         ++v.stencilVsCount.pixels;
         if (wrapped(zfail) == frame.stencil[k]) {
           ++v.stencilVsCount.agree;
-        } else {
-          for (int c = v.counts->zfailMin[k]; c <= v.counts->zfailMax[k]; ++c)
-            if (wrapped(c) == frame.stencil[k]) {
-              ++v.stencilVsCount.agree;
-              ++v.stencilVsCount.ties;
-              break;
-            }
+        } else if (admissible(k)) {
+          ++v.stencilVsCount.agree;
+          ++v.stencilVsCount.ties;
+        } else if (v.stencilVsCount.firstMisses.size() < Agreement::kListedMisses) {
+          v.stencilVsCount.firstMisses.push_back({int(k % std::size_t(frame.width)), int(k / std::size_t(frame.width)),
+                                                  frame.stencil[k], zfail, v.counts->zfailMin[k], v.counts->zfailMax[k]});
         }
       }
       ++zz.pixels;

@@ -13,11 +13,17 @@ nlohmann::json toJson(const ShadowError& e) {
 }
 
 nlohmann::json toJson(const Agreement& a) {
+  nlohmann::json misses = nlohmann::json::array();
+  for (const Agreement::Miss& m : a.firstMisses)
+    misses.push_back({{"x", m.x}, {"row", m.row}, {"stencil", m.stencil}, {"zfail", m.zfail},
+                      {"zfailMin", m.zfailMin}, {"zfailMax", m.zfailMax}});
   return {{"pixels", a.pixels},
           {"agree", a.agree},
           {"ties", a.ties},
+          {"imagePlaneTies", a.imagePlaneTies},
           {"disagree", a.pixels - a.agree},
-          {"fraction", a.fraction()}};
+          {"fraction", a.fraction()},
+          {"firstDisagreeing", misses}};
 }
 
 nlohmann::json toJson(const MeshCheckReport& m, const std::string& notApplicable) {

@@ -45,7 +45,7 @@ struct SweepOptions {
   std::vector<int> resolutions = {64, 128, 256, 512, 1024, 2048, 4096};
   int width = 640, height = 480;              ///< image size (replaces each scene camera's)
   int repeat = 5;                             ///< measured frames per cell (median, min, max)
-  int warmup = 1;                             ///< frames rendered and discarded first
+  int warmup = 1;                             ///< frames rendered and discarded first (at least one: it finds a refused cell)
   std::filesystem::path out;                  ///< folder for results.csv (created)
   /// How the light is fitted, each a set of cells: View fits each scene's light to its camera for
   /// each resolution (fitLightToView) and names the scene "<scene>@view" in the results, so both

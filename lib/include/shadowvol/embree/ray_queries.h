@@ -113,6 +113,8 @@ class PrimaryRays {
  public:
   explicit PrimaryRays(const Camera& camera);
   TexelUnprojector::Ray ray(int x, int row) const;
+  /// The ray through the pixel's centre moved by (dx, dy) pixels (dx to the right, dy up).
+  TexelUnprojector::Ray ray(int x, int row, double dx, double dy) const;
 
  private:
   TexelUnprojector unproject_;

@@ -1,13 +1,21 @@
-// The crossing counts recounted in double precision where Embree's float counts contradict
-// themselves. For a closed volume every pixel ray from the eye has the same net crossing (its
-// z-fail minus z-pass count: 0 when the eye is outside, +1 inside). A pixel whose Embree counts
-// give another net lost or doubled a hit in float, which happens where the volume reaches far
-// beyond the view (walls of 3e5 units under a 2e6 ground: 1,200 wrong pixels of 76,800). Such
-// pixels are recounted on the volume's double positions, through a CGAL AABB tree, with the
-// same counting rule (countPixel).
+// The crossing counts recounted in double precision, on the volume's double positions through a
+// CGAL AABB tree, with the same counting rule as Embree's (countPixel), for two kinds of pixel:
+// - Counts that contradict themselves. For a closed volume every pixel ray from the eye has the
+//   same net crossing (its z-fail minus z-pass count: 0 when the eye is outside, +1 inside). A
+//   pixel whose Embree counts give another net lost or doubled a hit in float, which happens where
+//   the volume reaches far beyond the view (walls of 3e5 units under a 2e6 ground: 1,200 wrong
+//   pixels of 76,800). Such pixels are recounted.
+// - Ties in the image plane. A rasteriser snaps the volume's projected vertices to its sub-pixel
+//   grid (GL_SUBPIXEL_BITS, 8 on llvmpipe and NVIDIA's driver), so a pixel centre within a
+//   fraction of that grid of a projected edge may be covered by the triangle on either side (or by
+//   none or both where the edge is a silhouette of the volume as the camera sees it). For the
+//   pixels whose stencil lies outside their admissible range, the range is widened by the counts
+//   of four rays through the corners of a square of +-kImagePlaneTie pixels around the centre:
+//   every edge that passes within kImagePlaneTie of the centre separates it from one corner.
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "shadowvol/camera.h"
 #include "shadowvol/embree/ray_queries.h"
@@ -15,10 +23,19 @@
 
 namespace shadowvol {
 
+/// Half the side of the square of image-plane ties, in pixels: one step of an 8-bit sub-pixel grid.
+inline constexpr double kImagePlaneTie = 1.0 / 256.0;
+
 /// Recounts every non-background pixel whose zfail - zpass differs from `expectedNet` (0: the eye
 /// is outside the volume, 1: inside). Returns the number of pixels recounted. The recount uses the
 /// same primary rays, tie band and merge tolerance as countCrossings.
 std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
                                       int expectedNet, CrossingCounts& counts);
+
+/// Widens the admissible z-fail range (zfailMin, zfailMax) of each of `pixels` (indices into the
+/// frame, rows top first) by the counts of the four rays +-kImagePlaneTie pixels off its centre,
+/// each split at the pixel's visible depth. Returns the number of pixels whose range grew.
+std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
+                                const std::vector<std::size_t>& pixels, CrossingCounts& counts);
 
 }  // namespace shadowvol

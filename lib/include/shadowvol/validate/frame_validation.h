@@ -63,6 +63,16 @@ struct Agreement {
   std::size_t pixels = 0;  ///< pixels compared
   std::size_t agree = 0;   ///< including ties
   std::size_t ties = 0;    ///< agreeing only through the tie band (CrossingCounts::zfailMin/Max)
+  /// Of the ties, those admitted only by the image-plane band (double_recount.h: a pixel centre
+  /// within kImagePlaneTie pixels of a projected edge of the volume).
+  std::size_t imagePlaneTies = 0;
+  /// A pixel where stencil and count disagree (stencil vs count only): where, and the numbers.
+  struct Miss {
+    int x = 0, row = 0;  ///< row 0 at the top
+    int stencil = 0, zfail = 0, zfailMin = 0, zfailMax = 0;
+  };
+  static constexpr std::size_t kListedMisses = 16;
+  std::vector<Miss> firstMisses;  ///< the first kListedMisses disagreeing pixels, rows top first
   double fraction() const { return pixels ? double(agree) / double(pixels) : 1.0; }
 };
 
