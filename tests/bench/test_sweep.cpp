@@ -277,15 +277,9 @@ TEST(Sweep, PointLightScenesGetTheCubeMethods) {
 TEST(Sweep, RefusedCellsAreSkippedWithANote) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;
-  SweepOptions o;
-  o.scenes = {std::filesystem::path()};  // the built-in default scene
-  o.methods = {"hybrid-refined/gpu"};
+  SweepOptions o = quickSweep({std::filesystem::path()}, {"hybrid-refined/gpu"}, 64, 48, dir);  // the default scene
   o.resolutions = {2056, 32};
-  o.width = 64;
-  o.height = 48;
-  o.repeat = 1;
-  o.warmup = 0;
-  o.out = dir;
+  o.fits = {LightFit::Scene};
   std::atomic<bool> stop{false};
   std::vector<std::string> notes;
   SweepProgress last;
