@@ -33,16 +33,55 @@ bool crossing(const K::Triangle_3& t, const glm::dvec3& o, const glm::dvec3& d, 
   return out.t >= 0.0;
 }
 
-// The volume's triangles in double in an AABB tree, counting any camera ray by countPixel.
+// The triangles of `volume` whose projection may cover one of `pixels` (rows top first) of the
+// camera's image: each triangle's pixel bounding box, grown by two pixels, against a summed-area
+// table of the pixels; a triangle with a vertex at or behind the eye plane is always kept. So the
+// tree below holds what a few pixels' rays can meet, not a whole 2048^2 volume.
+std::vector<std::size_t> trianglesNear(const VolumeMesh& volume, const Camera& camera,
+                                       const std::vector<std::size_t>& pixels) {
+  const int w = camera.width, h = camera.height;
+  std::vector<std::uint32_t> sat(std::size_t(w + 1) * std::size_t(h + 1), 0);  // sat[(r + 1)(w + 1) + c + 1]
+  auto at = [w](int row, int col) { return std::size_t(row) * std::size_t(w + 1) + std::size_t(col); };
+  for (std::size_t k : pixels) sat[at(int(k / std::size_t(w)) + 1, int(k % std::size_t(w)) + 1)] = 1;
+  for (int r = 1; r <= h; ++r)
+    for (int c = 1; c <= w; ++c) sat[at(r, c)] += sat[at(r - 1, c)] + sat[at(r, c - 1)] - sat[at(r - 1, c - 1)];
+  const glm::dmat4 toClip = cameraProjection(camera) * cameraView(camera);
+  std::vector<std::size_t> out;
+  for (std::size_t t = 0; t < volume.triangles.size(); ++t) {
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    bool behind = false;
+    for (std::uint32_t i : volume.triangles[t]) {
+      const glm::dvec4 c = toClip * glm::dvec4(volume.positions[i], 1.0);
+      if (!(c.w > 0.0)) {
+        behind = true;
+        break;
+      }
+      const double x = (c.x / c.w + 1.0) * 0.5 * w, y = (1.0 - c.y / c.w) * 0.5 * h;  // y: rows from the top
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (!behind) {
+      const int c0 = int(std::clamp(std::floor(x0) - 2.0, 0.0, double(w))), c1 = int(std::clamp(std::floor(x1) + 3.0, 0.0, double(w)));
+      const int r0 = int(std::clamp(std::floor(y0) - 2.0, 0.0, double(h))), r1 = int(std::clamp(std::floor(y1) + 3.0, 0.0, double(h)));
+      if (c0 >= c1 || r0 >= r1 || sat[at(r1, c1)] - sat[at(r0, c1)] - sat[at(r1, c0)] + sat[at(r0, c0)] == 0) continue;
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+// Triangles of the volume in double in an AABB tree, counting any camera ray by countPixel.
 class DoubleCounter {
  public:
-  explicit DoubleCounter(const VolumeMesh& volume) {
-    triangles_.reserve(volume.triangleCount());
+  DoubleCounter(const VolumeMesh& volume, const std::vector<std::size_t>& which) {
+    triangles_.reserve(which.size());
     auto point = [&](std::uint32_t i) {
       const glm::dvec3& p = volume.positions[i];
       return K::Point_3(p.x, p.y, p.z);
     };
-    for (const auto& t : volume.triangles) triangles_.emplace_back(point(t[0]), point(t[1]), point(t[2]));
+    for (std::size_t k : which) {
+      const auto& t = volume.triangles[k];
+      triangles_.emplace_back(point(t[0]), point(t[1]), point(t[2]));
+    }
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
   }
@@ -75,7 +114,7 @@ std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& ca
     if (!hits.isBackground(k) && counts.zfail[k] - counts.zpass[k] != expectedNet) pixels.push_back(k);
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
 
-  DoubleCounter counter(volume);
+  DoubleCounter counter(volume, trianglesNear(volume, camera, pixels));
   const PrimaryRays rays(camera);
   for (std::size_t k : pixels) {
     const int x = int(k % std::size_t(hits.width)), row = int(k / std::size_t(hits.width));
@@ -91,7 +130,7 @@ std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& ca
 std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
                                 const std::vector<std::size_t>& pixels, CrossingCounts& counts) {
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
-  DoubleCounter counter(volume);
+  DoubleCounter counter(volume, trianglesNear(volume, camera, pixels));
   const PrimaryRays rays(camera);
   std::size_t widened = 0;
   for (std::size_t k : pixels) {
