@@ -3,6 +3,7 @@
 #include "shadowvol/validate/double_recount.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -196,7 +197,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
                        "validating a point light's frame needs its volume (RenderOptions::keepVolume)");
     const Light& light = scene.light;
     CountedVolume counted;
-    std::optional<VolumeMesh> volume;  // the single volume counted (not a cube's face volumes)
+    std::optional<VolumeMesh> volume;  // the single volume counted (else a cube's face volumes)
     if (faces) {
       counted = countFaceVolumes(device, frame, light, options.selfIntersections, scene.camera, hits);
     } else {
@@ -234,8 +235,19 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     std::vector<std::size_t> outside;
     for (std::size_t k = 0; k < n; ++k)
       if (compared(k) && !admissible(k)) outside.push_back(k);
-    if (volume && !outside.empty()) {
-      widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts);
+    if (!outside.empty()) {
+      if (volume) {
+        widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts);
+      } else {  // a cube's face volumes: each pixel by the volumes of its faces (pixelFaces)
+        std::array<std::vector<std::size_t>, kCubeFaces> byFace;
+        for (std::size_t k : outside) {
+          const auto [first, second] = pixelFaces(hits.point[k] - light.position);
+          byFace[std::size_t(first)].push_back(k);
+          if (second != first) byFace[std::size_t(second)].push_back(k);
+        }
+        for (int f = 0; f < kCubeFaces; ++f)
+          widenImagePlaneTies(frame.faceVolumes[std::size_t(f)], scene.camera, hits, byFace[std::size_t(f)], *v.counts);
+      }
       for (std::size_t k : outside) v.stencilVsCount.imagePlaneTies += admissible(k);
     }
     for (std::size_t k = 0; k < n; ++k) {
