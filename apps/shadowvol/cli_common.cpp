@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 #include "shadowvol/capture_warnings.h"
 #include "cli_verbosity.h"
@@ -17,7 +18,12 @@ void addJsonOption(CLI::App& cmd, bool& json) {
 void addSceneOptions(CLI::App& cmd, SceneOptions& o) {
   cmd.add_option("--scene", o.scene,
                  "Scene file (JSON, see README 'Scene files'); without it, the built-in default scene "
-                 "(a sphere floating above a ground plane under a spot light)");
+                 "(a sphere floating above a ground plane under a spot light)")
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            return path.empty() ? "an empty path: name a scene file, or leave --scene out for the built-in scene" : "";
+          },
+          "FILE"));
   addJsonOption(cmd, o.json);
 }
 
@@ -73,6 +79,23 @@ void addLightChoiceOption(CLI::App& cmd, int& light) {
                  "works on one light's depth map")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+}
+
+CLI::Validator finiteRange(double lo, double hi) {
+  std::ostringstream name;
+  name << "FLOAT in [" << lo << " - " << hi << "]";
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        if (!CLI::detail::lexical_cast(text, v)) return "not a number: " + text;
+        if (!(v >= lo && v <= hi)) {  // NaN fails both comparisons
+          std::ostringstream why;
+          why << "value " << text << " not in range [" << lo << " - " << hi << "]";
+          return why.str();
+        }
+        return {};
+      },
+      name.str());
 }
 
 void chooseLight(Scene& scene, int light) {

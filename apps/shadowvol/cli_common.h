@@ -42,6 +42,10 @@ nlohmann::json applyLightFit(Scene& scene, const SceneOptions& o, int resolution
 /// Adds --light K (build, depth: the commands that work on one light's depth map).
 void addLightChoiceOption(CLI::App& cmd, int& light);
 
+/// A check for a real option in [lo, hi] that also refuses NaN (CLI::Range lets NaN through: a
+/// --max-error of nan passed every frame).
+CLI::Validator finiteRange(double lo, double hi);
+
 /// Keeps light `light` of the scene alone (Scene::withOnlyLight); an InputError naming --light
 /// when there is no such light. With several lights and K = 0 a note on stderr says so.
 void chooseLight(Scene& scene, int light);

@@ -132,12 +132,12 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--max-error", o->maxError,
                   "Accuracy verdict: the largest fraction of the pixels facing the light that the method may "
                   "misclassify against exact shadows (every shipped scene meets the default with the default method)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(finiteRange(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--max-missed", o->maxMissedShare,
                   "Accuracy verdict: the largest share of the exact shadow's pixels the method may miss (judged when "
                   "the exact shadow has at least 100 pixels; an empty volume misses all of it)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(finiteRange(0.0, 1.0))
       ->capture_default_str();
   cmd->callback([&run, o] {
     checkRenderOptionConflicts(o->render);

@@ -69,6 +69,16 @@ TEST(Cli, HelpAndUsage) {
   EXPECT_EQ(runCli("").code, 2);                 // a subcommand is required
   EXPECT_EQ(runCli("frobnicate").code, 2);
   EXPECT_EQ(runCli("depth --out x.pfm --no-such-option").code, 2);
+  // Regressions: a NaN threshold passed every frame; an empty --scene meant the built-in scene.
+  for (const char* bad : {"nan", "-nan", "inf", "1.5"}) {
+    const CliResult r = runCli(std::string("validate --report x-report --max-missed ") + bad);
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_TRUE(contains(r.out, "--max-missed")) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists("x-report"));
+  const CliResult empty = runCli("scene --scene \"\"");
+  EXPECT_EQ(empty.code, 2);
+  EXPECT_TRUE(contains(empty.out, "--scene: an empty path")) << empty.out;
   const CliResult depthHelp = runCli("depth --help");
   EXPECT_EQ(depthHelp.code, 0);
   EXPECT_TRUE(contains(depthHelp.out, "--capture"));

@@ -2,6 +2,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <map>
@@ -17,6 +18,7 @@
 
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/error.h"
+#include "shadowvol/image_io.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/temporary_files.h"
@@ -161,6 +163,39 @@ TEST(MeshIo, KilledWhileWritingLeavesNothing) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
+// Regression (a full disk left a truncated PNG in place and `render` exited 0: stbi_write_png does
+// not report failed writes): with the file size limited (as a full disk would), every writer
+// throws and leaves nothing. In a child process, with SIGXFSZ ignored so that writes fail EFBIG.
+TEST(MeshIo, FailedWritesThrowAndLeaveNothing) {
+  const auto dir = test::tempDir();
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{4096, 4096};
+    if (setrlimit(RLIMIT_FSIZE, &limit) != 0) std::_Exit(2);
+    std::vector<std::uint8_t> noise(256 * 256 * 3);  // incompressible: far above 4 KiB as a PNG
+    std::uint32_t x = 12345;
+    for (auto& b : noise) b = std::uint8_t((x = x * 1664525u + 1013904223u) >> 24);
+    int thrown = 0;
+    try {
+      writePng(dir / "noise.png", 256, 256, 3, noise);
+    } catch (const InputError&) {
+      ++thrown;
+    }
+    try {
+      writeTriangleMesh(makeIcoSphere(1.0, 5), dir / "sphere.ply");
+    } catch (const InputError&) {
+      ++thrown;
+    }
+    std::_Exit(thrown == 2 && std::filesystem::is_empty(dir) ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
 TEST(MeshIo, UnknownExtensionWritesNothing) {
   const auto dir = test::tempDir();
   EXPECT_THROW(writeTriangleMesh(makeBox(1, 1, 1), dir / "box.xyz"), InputError);
@@ -201,7 +236,8 @@ TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
 }
 
 // Regression (non-finite output with exit 0): a side file with a singular or non-rigid lightView,
-// a projection of the wrong kind or with 1e300 entries, or far 1e300 is refused, its field named.
+// a projection of the wrong kind or with 1e300 entries, far 1e300 or an origin beyond a scene's
+// +-1e12 is refused, its field named.
 TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   const auto dir = test::tempDir();
   const Light l = spotDown();
@@ -239,6 +275,8 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   expectRefused("far", "1e300", "/far");
   expectRefused("near", "-1", "/near");
   expectRefused("origin", "[1, 2]", "/origin");
+  expectRefused("origin", "[1e300, 0, 0]", "/origin");  // regression: written out as 1e300 (inf in glTF)
+  expectRefused("origin", "[0, 0, -2e12]", "/origin");
   test::writeText(side, good);
   EXPECT_NO_THROW(readDepthMap(dir / "d.pfm"));
 }

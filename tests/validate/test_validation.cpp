@@ -446,6 +446,29 @@ TEST(Validation, FarFromTheOriginKeepsTheExactShadowAndTheError) {
   }
 }
 
+// Regression (a --max-error of nan passed every frame): thresholds outside [0, 1], NaN included,
+// are refused before anything is checked.
+TEST(Validation, ThresholdsOutsideZeroToOneAreRefused) {
+  Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  scene.camera.width = 32;
+  scene.camera.height = 24;
+  RenderedFrame frame;
+  frame.width = 32;
+  frame.height = 24;
+  frame.hybrid = false;
+  frame.shadowed.assign(32 * 24, 0);
+  const DepthMap map = captureDepthEmbree(scene, 16, 16, CaptureMode::Back);
+  for (double bad : {std::nan(""), -0.1, 1.5}) {
+    ValidationOptions o;
+    o.maxError = bad;
+    EXPECT_THROW(validateFrame(scene, map, {}, frame, o), InputError) << bad;
+    o = {};
+    o.maxMissedShare = bad;
+    EXPECT_THROW(validateFrame(scene, map, {}, frame, o), InputError) << bad;
+  }
+  EXPECT_NO_THROW(validateFrame(scene, map, {}, frame, {}));
+}
+
 // A pixel centre on a projected edge of the volume is an image-plane tie: a rasteriser may cover
 // it from either side, so its admissible range takes both counts; a pixel well inside a triangle
 // keeps its one count. One triangle with an edge through the centre ray of a 63 x 63 camera.

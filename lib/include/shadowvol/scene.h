@@ -26,6 +26,10 @@ inline constexpr std::size_t kMaxSceneTriangles = 50'000'000;
 
 /// The most lights a scene may have: each costs a capture, a volume and a stencil pass per frame.
 inline constexpr std::size_t kMaxSceneLights = 16;
+/// Every number of a scene file, and a depth map's origin, lies within +-kMaxSceneMagnitude
+/// (README "Scene files"): double keeps 1e-4 units there, and products of two such numbers stay
+/// far from overflow.
+inline constexpr double kMaxSceneMagnitude = 1e12;
 
 struct Scene {
   std::string source = "default";  ///< file path it was loaded from, or "default"

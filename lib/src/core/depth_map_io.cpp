@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/scene.h"
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 
@@ -245,8 +246,9 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
     if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
       throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
     map.origin = {o[0].get<double>(), o[1].get<double>(), o[2].get<double>()};
-    if (!(std::isfinite(map.origin.x) && std::isfinite(map.origin.y) && std::isfinite(map.origin.z)))
-      throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))  // NaN too
+        throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers within +-1e12, as a scene's");
   }
   return map;
 }

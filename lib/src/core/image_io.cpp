@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
+#include <string>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -16,9 +18,20 @@ void writePng(const std::filesystem::path& path, int width, int height, int chan
               const std::vector<std::uint8_t>& pixels) {
   SV_CHECK(channels == 1 || channels == 3 || channels == 4);
   SV_CHECK_EQ(pixels.size(), std::size_t(width) * std::size_t(height) * std::size_t(channels));
+  // Encoded in memory and written through a checked stream: stbi_write_png's own file writing
+  // does not report a failed write (a full disk left a truncated PNG in place, exit 0).
+  std::string png;
+  const auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, channels, pixels.data(), width * channels))
+    throw InputError(path.string(), "", "", "cannot encode the PNG image");
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    if (!stbi_write_png(tmp.string().c_str(), width, height, channels, pixels.data(), width * channels))
-      throw InputError(path.string(), "", "", "cannot write the PNG file");
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw InputError(path.string(), "", "", "cannot create the file");
+    out.write(png.data(), std::streamsize(png.size()));
+    out.close();
+    if (!out) throw InputError(path.string(), "", "", "writing the file failed (disk full?)");
   });
 }
 

@@ -25,9 +25,7 @@ namespace {
 using nlohmann::json;
 
 constexpr int kMaxImageSide = 16384;
-// Every number of a scene file lies within +-kMaxMagnitude (README "Scene files"): double keeps
-// 1e-4 units there, and products of two such numbers stay far from overflow.
-constexpr double kMaxMagnitude = 1e12;
+constexpr double kMaxMagnitude = kMaxSceneMagnitude;  // scene.h
 constexpr const char* kMagnitudeProblem = "beyond the supported range (|value| <= 1e12)";
 // Fields of view in degrees: at least this, below 179.
 constexpr double kMinFovDegrees = 0.01;

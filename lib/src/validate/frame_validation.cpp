@@ -159,6 +159,10 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   SV_CHECK_EQ(frame.height, scene.camera.height);
   if (frame.hybrid) SV_CHECK_EQ(frame.stencil.size(), n);
   if (!frame.shadowed.empty()) SV_CHECK_EQ(frame.shadowed.size(), n);
+  if (!(options.maxError >= 0.0 && options.maxError <= 1.0))  // NaN too: it would pass every frame
+    throw InputError("ValidationOptions", "maxError", std::to_string(options.maxError), "must be in [0, 1]");
+  if (!(options.maxMissedShare >= 0.0 && options.maxMissedShare <= 1.0))
+    throw InputError("ValidationOptions", "maxMissedShare", std::to_string(options.maxMissedShare), "must be in [0, 1]");
 
   FrameValidation v;
   v.width = frame.width;

@@ -100,7 +100,8 @@ void writeOverlayLegend(const std::filesystem::path& dir, const FrameValidation&
           << "<text x=\"" << v.width + 30 << "\" y=\"" << y + 18 << "\">" << kMarkName[k] << ": " << count[k] << "</text>\n";
     }
     svg << "</svg>\n";
-    if (!svg) throw InputError((dir / "overlay.svg").string(), "", "", "writing the legend failed");
+    svg.close();  // the check below must see the last write
+    if (!svg) throw InputError((dir / "overlay.svg").string(), "", "", "writing the legend failed (disk full?)");
   });
 }
 
