@@ -162,12 +162,13 @@ EyePlaneSplit splitSceneAcrossEyePlanes(Scene& scene, std::size_t maxTriangles) 
     for (int f = 0; f < kCubeFaces; ++f)
       planes.push_back({l.position, cubeFaceDirection(f), l.nearPlane, kEyePlaneEdgeRatio * l.nearPlane});
   EyePlaneSplit result;
+  std::size_t total = scene.triangleCount();  // kept up to date below: once per object was quadratic
   for (auto& o : scene.objects) {
-    const std::size_t total = scene.triangleCount();
     const std::size_t room = std::min(maxTriangles > total ? maxTriangles - total : 0,
                                       kMaxEyePlaneTriangles - result.added);
     const EyePlaneSplit r = splitAcrossEyePlanes(o.mesh, planes, o.mesh.triangles.size() + room);
     result.added += r.added;
+    total += r.added;
     result.complete = result.complete && r.complete;
   }
   return result;
