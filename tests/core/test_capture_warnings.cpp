@@ -94,5 +94,34 @@ TEST(CaptureWarnings, ObjectsNearerThanTheNearPlaneAreNamed) {
   EXPECT_TRUE(captureWarnings(spot, 32, 32, CaptureMode::Back).empty());
 }
 
+// Regression (build wrote an empty volume and render a shadowless image, exit 0, without a word):
+// a light whose frustum holds no object is said, with its near and far planes.
+TEST(CaptureWarnings, AFrustumWithoutObjectsIsSaid) {
+  TriangleMesh box = makeBox(0.5, 0.5, 0.5);
+  for (auto& p : box.positions) p += glm::vec3(0.0f, 2.0f, 0.0f);
+  Scene s = sceneWith({SceneObject{"box", "box", box}});
+  EXPECT_TRUE(captureWarnings(s, 32, 32, CaptureMode::Back).empty());
+  const std::string said = "no object lies inside the light's frustum";
+  // Up, away from the box below; and sideways from beside it.
+  for (const auto& [position, direction] : {std::pair{glm::dvec3(0, 5, 0), glm::dvec3(0, 1, 0)},
+                                            std::pair{glm::dvec3(5, 2, 0), glm::dvec3(1, 0, 0)}}) {
+    Scene away = s;
+    away.light.position = position;
+    away.light.direction = direction;
+    const auto w = captureWarnings(away, 32, 32, CaptureMode::Back);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find(said), std::string::npos) << w[0];
+  }
+  Scene spot = s;  // a spot light whose given far plane ends before the box
+  spot.light.type = LightType::Spot;
+  spot.light.fovYDegrees = 60.0;
+  spot.light.nearPlane = 0.1;
+  spot.light.farPlane = 1.0;
+  const auto w = captureWarnings(spot, 32, 32, CaptureMode::Front);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find(said + " (between its near plane at 0.1 and its far plane at 1 world"), std::string::npos)
+      << w[0];
+}
+
 }  // namespace
 }  // namespace shadowvol

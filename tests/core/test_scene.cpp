@@ -156,6 +156,19 @@ TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
   const auto cam = parse(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"near":1e-4,"far":1e4})"));
   EXPECT_NEAR(cam.scene.camera.nearPlane, 4.5 - 0.01 * std::min(r, 1.0), 1e-12);
   EXPECT_LT(cam.scene.camera.farPlane, 6.0);
+  // Regression (the note named the far plane the fit chose first, inside the scene, not the one
+  // used after a given near beyond the scene pushed it out again): the note names the far plane
+  // used, and the camera's empty view is said.
+  const auto past = parse(withCamera(R"({"eye":[0,0,5],"target":[0,0,0],"near":100,"far":200})"));
+  char used[32];
+  std::snprintf(used, sizeof used, "%.6g", past.scene.camera.farPlane);
+  ASSERT_EQ(past.warnings.size(), 2u);
+  EXPECT_NE(past.warnings[0].find(std::string("/camera/far: ") + used + " (given 200): moved out past the near plane"),
+            std::string::npos)
+      << past.warnings[0];
+  EXPECT_NE(past.warnings[1].find("/camera: no object lies in the camera's view (between its near plane at 100"),
+            std::string::npos)
+      << past.warnings[1];
 }
 
 // A spot light close to a small object over a huge ground: the bounds start behind the light, so

@@ -20,7 +20,10 @@ namespace shadowvol {
 ///    spot light's apex plane are not judged;
 ///  - an object with vertices inside the light's window but nearer than its near plane (a given
 ///    near too far out, or fitted planes stretched by an outlier vertex far away): the near plane
-///    clips them, so they cast no shadow.
+///    clips them, so they cast no shadow;
+///  - a spot or directional light whose frustum holds no object at all (it points away from the
+///    scene, or a given near/far range holds nothing): the map sees nothing and the volume is
+///    empty (said when no object is named as clipped by the near plane).
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture);
 
 }  // namespace shadowvol

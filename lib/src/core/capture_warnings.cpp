@@ -9,6 +9,7 @@
 #include <glm/vec4.hpp>
 
 #include "shadowvol/cube_map.h"
+#include "clip_volume.h"
 
 namespace shadowvol {
 namespace {
@@ -95,6 +96,7 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
   }
   const DepthMap probe = makeDepthMap(scene.light, width, height, capture);
   const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
+  const std::size_t before = out.size();
   for (const auto& o : scene.objects) {
     if (o.mesh.positions.empty()) continue;
     if (const std::size_t clipped = nearClipped(probe, toClip, o.mesh)) {
@@ -138,6 +140,18 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
                   "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre: it "
                   "casts no shadow at this resolution (%s)",
                   o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, remedy);
+    out.push_back(buf);
+  }
+  // Nothing in the frustum at all, and no object named above as clipped by the near plane.
+  if (out.size() == before && std::all_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
+        return detail::outsideClipVolume(toClip, o.mesh);
+      })) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "no object lies inside the light's frustum (between its near plane at %.6g and its far plane at "
+                  "%.6g world units): the depth map sees nothing, the volume is empty and nothing is shadowed "
+                  "(check where the light points, and /light/near and /light/far)",
+                  probe.nearPlane, probe.farPlane);
     out.push_back(buf);
   }
   return out;

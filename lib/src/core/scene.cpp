@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -13,10 +14,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shadowvol/camera.h"
 #include "shadowvol/error.h"
 #include "shadowvol/eye_plane_split.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
+#include "clip_volume.h"
 #include "scene_fit_range.h"
 
 namespace shadowvol {
@@ -606,6 +609,23 @@ void warnAboutLight(const Scene& scene, std::size_t k, const std::string& source
                                                  "the scene's bounds: what lies behind it is neither lit nor casts a shadow");
 }
 
+// A camera whose view holds no object (it looks away, or a given near/far range holds nothing)
+// renders only the background: said, since every command would otherwise run on without a word.
+void warnAboutCamera(const Scene& scene, const std::string& source, std::vector<std::string>& warnings) {
+  const Camera& c = scene.camera;
+  const glm::dmat4 toClip = cameraProjection(c) * cameraView(c);
+  if (!std::all_of(scene.objects.begin(), scene.objects.end(),
+                   [&](const SceneObject& o) { return detail::outsideClipVolume(toClip, o.mesh); }))
+    return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                ": /camera: no object lies in the camera's view (between its near plane at %.6g and its far plane "
+                "at %.6g world units): images show only the background (check /camera/target, /camera/near and "
+                "/camera/far)",
+                c.nearPlane, c.farPlane);
+  warnings.push_back(source + buf);
+}
+
 }  // namespace
 
 std::string Scene::lightPointer(std::size_t k) const {
@@ -677,6 +697,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                               "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
                               "or shrink the largest objects (README \"Known limits\")");
   forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, k, source, result.warnings); });
+  warnAboutCamera(scene, source, result.warnings);
   return result;
 }
 

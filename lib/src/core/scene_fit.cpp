@@ -69,6 +69,20 @@ std::string planeChange(double used, double given) {
   return buf;
 }
 
+// The reason of every note of a moved plane but one (fitLightAndCamera appends it).
+constexpr const char* kMovedInward = "moved to the scene's depth range; planes beyond it capture nothing more and only "
+                                     "cost depth precision";
+
+// A given far plane the fit moved, with the value it ended at, inserted at notes[at] (the far
+// plane's note comes before the near plane's). A far pulled in to the scene's depth range can be
+// pushed out again past a given near beyond the scene: the note names the plane used, and why.
+void noteMovedFar(const char* pointer, double givenFar, double used, std::size_t at, std::vector<std::string>& notes) {
+  if (!(givenFar > 0.0) || used == givenFar) return;
+  std::string note = std::string(pointer) + ": " + planeChange(used, givenFar) + ": ";
+  note += used > givenFar ? "moved out past the near plane, which it must exceed" : kMovedInward;
+  notes.insert(notes.begin() + std::ptrdiff_t(at), std::move(note));
+}
+
 void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius) {
   Light& l = scene.light;
   if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
@@ -115,7 +129,8 @@ FittedRange seenRange(const Bounds3& b, const detail::ViewFrustum& f, const glm:
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
   const auto [lo, hi, margin, far] = seenRange(b, detail::lightFrustum(l, kFittedLightAspect), l.position, l.direction, radius);
-  if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
+  const double givenFar = l.farPlane;
+  const std::size_t farNote = notes.size();
   if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
   // A directional light's view starts at the plane through its position: a fitted near never
   // goes behind it (loadScene warns when that plane cuts the scene).
@@ -123,9 +138,10 @@ void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<s
                           ? std::max(lo - margin, 0.0)
                           : perspectiveNear(lo - margin, l.farPlane, scene, l.position, l.fovYDegrees, kFittedLightAspect);
   const bool raise = l.nearPlane > 0.0 && l.nearPlane < near && near < l.farPlane;
-  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane));
+  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane) + ": " + kMovedInward);
   if (l.nearPlane == 0.0 || raise) l.nearPlane = near;
   if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
+  noteMovedFar("/light/far", givenFar, l.farPlane, farNote, notes);
 }
 
 // A point light: one near and far plane for its six faces (cube_map.h), each face fitted as the
@@ -144,14 +160,16 @@ void fitPointLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vec
     nearSides.push_back(lo - margin);
   }
   if (nearSides.empty()) return;  // bounds with no extent: nothing to fit to
-  if (l.farPlane > far) notes.push_back("/light/far: " + planeChange(far, l.farPlane));
+  const double givenFar = l.farPlane;
+  const std::size_t farNote = notes.size();
   if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
   double near = l.farPlane;
   for (double side : nearSides) near = std::min(near, perspectiveNear(side, l.farPlane, scene, l.position, 90.0, 1.0));
   const bool raise = l.nearPlane > 0.0 && l.nearPlane < near && near < l.farPlane;
-  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane));
+  if (raise) notes.push_back("/light/near: " + planeChange(near, l.nearPlane) + ": " + kMovedInward);
   if (l.nearPlane == 0.0 || raise) l.nearPlane = near;
   if (l.farPlane <= l.nearPlane) l.farPlane = l.nearPlane + radius;
+  noteMovedFar("/light/far", givenFar, l.farPlane, farNote, notes);
 }
 
 void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
@@ -159,14 +177,16 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
   const glm::dvec3 axis = glm::normalize(c.target - c.eye);
   const double aspect = double(c.width) / double(c.height);
   const auto [lo, hi, margin, far] = seenRange(b, detail::cameraFrustum(c), c.eye, axis, radius);
-  if (c.farPlane > far) notes.push_back("/camera/far: " + planeChange(far, c.farPlane));
+  const double givenFar = c.farPlane;
+  const std::size_t farNote = notes.size();
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
   const double near = perspectiveNear(lo - margin, c.farPlane, scene, c.eye, c.fovYDegrees, aspect);
   // A given near is raised only when the part of the scene the camera sees lies wholly in front of it.
   const bool raise = c.nearPlane > 0.0 && lo > 0.0 && c.nearPlane < near && near < c.farPlane;
-  if (raise) notes.push_back("/camera/near: " + planeChange(near, c.nearPlane));
+  if (raise) notes.push_back("/camera/near: " + planeChange(near, c.nearPlane) + ": " + kMovedInward);
   if (c.nearPlane <= 0.0 || raise) c.nearPlane = near;
   if (c.farPlane <= c.nearPlane) c.farPlane = c.nearPlane * 2.0 + radius;
+  noteMovedFar("/camera/far", givenFar, c.farPlane, farNote, notes);
 }
 
 }  // namespace
@@ -193,9 +213,7 @@ std::vector<std::string> fitLightAndCamera(Scene& scene) {
   if (scene.light.type == LightType::Point) fitPointLightPlanes(scene, b, radius, notes);
   else fitLightPlanes(scene, b, radius, notes);
   fitCameraPlanes(scene, b, radius, notes);
-  for (auto& n : notes)
-    n = scene.source + ": " + n + ": moved to the scene's depth range; planes beyond it capture nothing more and "
-                                  "only cost depth precision";
+  for (auto& n : notes) n = scene.source + ": " + n;
   return notes;
 }
 

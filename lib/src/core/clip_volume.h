@@ -1,0 +1,18 @@
+// Whether a mesh lies wholly outside a view's clip volume (internal to the core: the capture
+// warnings' light frustum and the scene loader's camera view).
+#pragma once
+
+#include <glm/mat4x4.hpp>
+
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol::detail {
+
+/// True when every vertex of `mesh` lies beyond one and the same plane of the clip volume of
+/// `worldToClip` (an OpenGL projection times a view: -w <= x, y, z <= w inside). The mesh, inside
+/// the convex hull of its vertices, then lies wholly outside. Each plane is a linear function of
+/// the world position, so the test holds for vertices behind the view's apex too. False for an
+/// empty mesh (nothing to judge).
+bool outsideClipVolume(const glm::dmat4& worldToClip, const TriangleMesh& mesh);
+
+}  // namespace shadowvol::detail
