@@ -214,6 +214,21 @@ Light spotDown() {
   return l;
 }
 
+// Regression ("cannot write the file: Success"): a folder where the side file would go is named,
+// and nothing is left beside it.
+TEST(DepthMapIo, AFolderInTheSideFilesPlaceIsNamed) {
+  const auto dir = test::tempDir();
+  std::filesystem::create_directories(dir / "d.pfm.json");
+  try {
+    writeDepthMap(makeDepthMap(spotDown(), 4, 4, CaptureMode::Back), dir / "d.pfm");
+    ADD_FAILURE() << "wrote over a folder";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("d.pfm.json: is a folder"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir / "d.pfm.json");
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
 TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
   const auto dir = test::tempDir();
   const Light l = spotDown();

@@ -80,6 +80,9 @@ TriangleMesh readChecked(std::string_view bytes, const std::string& ext, const s
 
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path&)>& write) {
+  std::error_code isDir;
+  if (std::filesystem::is_directory(path, isDir))  // (renaming onto it failed with "Success")
+    throw InputError(path.string(), "", "", "is a folder: a file cannot be written in its place");
   // Keep the real extension last: OpenMesh picks the writer by it.
   std::filesystem::path tmp = path;
   std::string name = ".";  // built with += (GCC 12 warns falsely on "." + std::string)
