@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "shadowvol/capture_warnings.h"
 #include "cli_verbosity.h"
 #include "shadowvol/error.h"
@@ -240,6 +242,13 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
     existing = existing.parent_path();
   if (!std::filesystem::is_directory(existing, ec))
     throw InputError("command line", option, path, existing.string() + " is not a folder");
+  // Whether a folder can be made there (a read-only or virtual file system), found now rather than
+  // after the work: by making an empty one and removing it.
+  const std::filesystem::path probe = existing / (".shadowvol-probe-" + std::to_string(::getpid()));
+  if (!std::filesystem::create_directory(probe, ec))
+    throw InputError("command line", option, path,
+                     "cannot create a folder in " + existing.string() + (ec ? ": " + ec.message() : ""));
+  std::filesystem::remove(probe, ec);
 }
 
 void addPlatformOption(CLI::App& cmd, std::string& platform, const std::string& when) {

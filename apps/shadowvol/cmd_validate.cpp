@@ -214,14 +214,14 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       j["images"] = checks.size() == 1 ? images : std::vector<std::string>{"frame.png"};
 
       // Everything is computed; now write. Images first, the report last (its presence means done).
-      std::filesystem::create_directories(dir);
+      createFolders(dir);
       if (checks.size() == 1) {
         writeValidationImages(dir, checks[0].validation, checks[0].frame);
       } else {
         writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
         for (std::size_t k = 0; k < checks.size(); ++k) {
           const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
-          std::filesystem::create_directories(sub);
+          createFolders(sub);
           writeValidationImages(sub, checks[k].validation, checks[k].frame);
         }
       }

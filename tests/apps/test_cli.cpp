@@ -76,6 +76,11 @@ TEST(Cli, HelpAndUsage) {
     EXPECT_TRUE(contains(r.out, "--max-missed")) << r.out;
   }
   EXPECT_FALSE(std::filesystem::exists("x-report"));
+  // Regression (exit 4, "filesystem error", after the frame was rendered): a report folder that
+  // cannot be made is refused before any work, exit 1.
+  const CliResult proc = runCli("validate --resolution 16 --size 40x30 --report /proc/x-report");
+  EXPECT_EQ(proc.code, 1) << proc.out;
+  EXPECT_TRUE(contains(proc.out, "--report = /proc/x-report: cannot create a folder in /proc")) << proc.out;
   const CliResult empty = runCli("scene --scene \"\"");
   EXPECT_EQ(empty.code, 2);
   EXPECT_TRUE(contains(empty.out, "--scene: an empty path")) << empty.out;

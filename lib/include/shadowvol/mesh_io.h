@@ -68,4 +68,8 @@ void writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, 
 /// or the rename fails, the temporary file is removed and nothing is left at `path`.
 void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
 
+/// Creates folder `dir` and its missing parents; InputError naming it when that fails (a read-only
+/// or virtual file system, a file in the way).
+void createFolders(const std::filesystem::path& dir);
+
 }  // namespace shadowvol

@@ -13,7 +13,7 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
-#include "shadowvol/mesh_io.h"  // writeAtomically
+#include "shadowvol/mesh_io.h"  // writeAtomically, createFolders
 
 namespace shadowvol {
 namespace {
@@ -336,7 +336,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       notes.push_back(sceneLabel(o.scenes[s]) + ": no view-fitted cells (a point light's cube covers every direction)");
   }
   // The results file: resume what is there.
-  std::filesystem::create_directories(o.out);
+  createFolders(o.out);
   const auto csv = o.out / "results.csv";
   std::vector<SweepRow> rows;
   std::set<std::string> done;

@@ -107,6 +107,13 @@ void writeAtomically(const std::filesystem::path& path,
   }
 }
 
+void createFolders(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(dir.string(), "", "", "cannot create the folder" + (ec ? ": " + ec.message() : std::string()));
+}
+
 TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source) {
   const std::string ext = lowerText(format);
   checkReadableExtension(ext, source);
