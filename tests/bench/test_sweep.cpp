@@ -342,6 +342,11 @@ TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   one.resolutions = {16};
   EXPECT_EQ(runSweep(renderer, one, stop, nullptr, notes).size(), 1u);
   EXPECT_EQ(readSweepCsv(dir3 / "results.csv").size(), 1u);
+  // Regression: the header alone without its line end was dropped as an incomplete line, and the
+  // rows appended after it made a file that no longer read back.
+  test::writeText(dir3 / "results.csv", sweepCsvHeader());
+  EXPECT_EQ(runSweep(renderer, one, stop, nullptr, notes).size(), 1u);
+  EXPECT_EQ(readSweepCsv(dir3 / "results.csv").size(), 1u);
   // A stop request before the first cell measures nothing.
   stop = true;
   const auto dir2 = dir / "stopped";

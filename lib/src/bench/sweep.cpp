@@ -352,7 +352,11 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     if (text.compare(0, text.find('\n'), sweepCsvHeader()) != 0)
       throw InputError(csv.string(), "header", "", "written by an earlier version (without the volume_quads or volume_count columns): "
                                                    "new rows cannot be appended; use another --out folder");
-    if (!text.empty() && text.back() != '\n') {
+    if (text.find('\n') == std::string::npos) {
+      // The header alone (checked above) without its line end: complete it, or the rows appended
+      // next would follow it on its line (regression: the file then failed to read back).
+      std::ofstream(csv, std::ios::app) << '\n';
+    } else if (text.back() != '\n') {
       std::filesystem::resize_file(csv, text.rfind('\n') + 1);
       notes.push_back("dropped an incomplete last line of " + csv.string());
     }
