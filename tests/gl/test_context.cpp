@@ -98,6 +98,20 @@ TEST(GlShaders, OverrideDirectoryReplacesAFileAndCompileErrorsNameIt) {
     EXPECT_NE(std::string(e.what()).find("compile failed"), std::string::npos) << e.what();
   }
   std::filesystem::remove_all(dir);
+  // Regression (a misspelt SHADOWVOL_SHADER_DIR silently meant the embedded shaders): a folder
+  // that is not there is refused, named.
+  EXPECT_THROW(gl::ShaderLibrary(dir / "missing"), InputError);
+  const char* was = std::getenv("SHADOWVOL_SHADER_DIR");
+  const std::string saved = was ? was : "";
+  ASSERT_EQ(setenv("SHADOWVOL_SHADER_DIR", (dir / "missing").c_str(), 1), 0);
+  try {
+    gl::ShaderLibrary fromEnvironment{std::filesystem::path()};
+    ADD_FAILURE() << "accepted a missing folder";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "SHADOWVOL_SHADER_DIR") << e.what();
+  }
+  if (was) setenv("SHADOWVOL_SHADER_DIR", saved.c_str(), 1);
+  else unsetenv("SHADOWVOL_SHADER_DIR");
 }
 
 TEST(GlRenderer, RejectsBadSizesAndMissingScene) {

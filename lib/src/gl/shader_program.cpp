@@ -6,14 +6,21 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
 
 namespace shadowvol::gl {
 
 ShaderLibrary::ShaderLibrary(std::filesystem::path overrideDir) : dir_(std::move(overrideDir)) {
+  bool fromEnvironment = false;
   if (dir_.empty()) {
-    if (const char* env = std::getenv("SHADOWVOL_SHADER_DIR"); env && *env) dir_ = env;
+    if (const char* env = std::getenv("SHADOWVOL_SHADER_DIR"); env && *env) dir_ = env, fromEnvironment = true;
   }
+  // A folder that is not there would silently mean the embedded shaders (a misspelt variable).
+  std::error_code ec;
+  if (!dir_.empty() && !std::filesystem::is_directory(dir_, ec))
+    throw InputError(fromEnvironment ? "environment" : "RendererOptions",
+                     fromEnvironment ? "SHADOWVOL_SHADER_DIR" : "shaderDir", dir_.string(), "not a folder");
 }
 
 std::pair<std::string, std::string> ShaderLibrary::load(const std::string& name) const {
