@@ -79,8 +79,8 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
                 v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
                 v.stencilVsCount.ties - v.stencilVsCount.imagePlaneTies, v.stencilVsCount.imagePlaneTies);
     for (const Agreement::Miss& m : v.stencilVsCount.firstMisses)
-      std::printf("    disagrees at pixel (%d, %d) (row 0 at the top): stencil %d, count %d (admissible %d to %d)\n", m.x,
-                  m.row, m.stencil, m.zfail, m.zfailMin, m.zfailMax);
+      std::printf("    disagrees at pixel (%d, %d) (row 0 at the top): stencil %d, count %d (admissible %d to %d)\n",
+                  m.x, m.row, m.stencil, m.zfail, m.zfailMin, m.zfailMax);
     if (v.zfailVsZpass)
       std::printf("  z-fail vs z-pass: %.4f%% agree\n", 100 * v.zfailVsZpass->fraction());
     else

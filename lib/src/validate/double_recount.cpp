@@ -60,8 +60,9 @@ std::vector<std::size_t> trianglesNear(const VolumeMesh& volume, const Camera& c
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
     if (!behind) {
-      const int c0 = int(std::clamp(std::floor(x0) - 2.0, 0.0, double(w))), c1 = int(std::clamp(std::floor(x1) + 3.0, 0.0, double(w)));
-      const int r0 = int(std::clamp(std::floor(y0) - 2.0, 0.0, double(h))), r1 = int(std::clamp(std::floor(y1) + 3.0, 0.0, double(h)));
+      // The box's pixels [c0, c1) x [r0, r1), grown by two pixels each way, clamped to the image.
+      auto grown = [](double v, double by, int size) { return int(std::clamp(std::floor(v) + by, 0.0, double(size))); };
+      const int c0 = grown(x0, -2.0, w), c1 = grown(x1, 3.0, w), r0 = grown(y0, -2.0, h), r1 = grown(y1, 3.0, h);
       if (c0 >= c1 || r0 >= r1 || sat[at(r1, c1)] - sat[at(r0, c1)] - sat[at(r1, c0)] + sat[at(r0, c0)] == 0) continue;
     }
     out.push_back(t);
@@ -87,15 +88,17 @@ class DoubleCounter {
   }
 
   PixelCounts count(const TexelUnprojector::Ray& r, const Camera& camera, double tVisible) {
+    crossings_.clear();
+    const double band = tieTolerance(camera, tVisible) * tVisible;
+    if (triangles_.empty()) return countPixel(crossings_, tVisible, band);  // no triangle near the pixels
     const K::Ray_3 ray(K::Point_3(r.origin.x, r.origin.y, r.origin.z),
                        K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
     hit_.clear();
     tree_.all_intersected_primitives(ray, std::back_inserter(hit_));
-    crossings_.clear();
     VolumeCrossing c;
     for (const auto& id : hit_)
       if (crossing(*id, r.origin, r.direction, c)) crossings_.push_back(c);
-    return countPixel(crossings_, tVisible, tieTolerance(camera, tVisible) * tVisible);
+    return countPixel(crossings_, tVisible, band);
   }
 
  private:

@@ -162,7 +162,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   if (!(options.maxError >= 0.0 && options.maxError <= 1.0))  // NaN too: it would pass every frame
     throw InputError("ValidationOptions", "maxError", std::to_string(options.maxError), "must be in [0, 1]");
   if (!(options.maxMissedShare >= 0.0 && options.maxMissedShare <= 1.0))
-    throw InputError("ValidationOptions", "maxMissedShare", std::to_string(options.maxMissedShare), "must be in [0, 1]");
+    throw InputError("ValidationOptions", "maxMissedShare", std::to_string(options.maxMissedShare),
+                     "must be in [0, 1]");
 
   FrameValidation v;
   v.width = frame.width;
@@ -265,8 +266,9 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
           ++v.stencilVsCount.agree;
           ++v.stencilVsCount.ties;
         } else if (v.stencilVsCount.firstMisses.size() < Agreement::kListedMisses) {
-          v.stencilVsCount.firstMisses.push_back({int(k % std::size_t(frame.width)), int(k / std::size_t(frame.width)),
-                                                  frame.stencil[k], zfail, v.counts->zfailMin[k], v.counts->zfailMax[k]});
+          const int x = int(k % std::size_t(frame.width)), row = int(k / std::size_t(frame.width));
+          v.stencilVsCount.firstMisses.push_back(
+              {x, row, frame.stencil[k], zfail, v.counts->zfailMin[k], v.counts->zfailMax[k]});
         }
       }
       ++zz.pixels;
