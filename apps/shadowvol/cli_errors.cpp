@@ -24,6 +24,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"RenderOptions", "paraboloidSubdivision", "--dpsm-subdivide"},
     LibraryFieldFlag{"RenderOptions", "depthWidth", "--resolution"},
     LibraryFieldFlag{"Renderer::captureCube", "n x n", "--resolution"},
+    LibraryFieldFlag{"cube map", "N", "--resolution"},
     LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
     LibraryFieldFlag{"SweepOptions", "methods", "--methods"},

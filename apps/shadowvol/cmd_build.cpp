@@ -10,6 +10,7 @@
 #include "capture_device.h"
 #include "cli_common.h"
 #include "shadowvol/version.h"
+#include "shadowvol/cube_map.h"
 #include "shadowvol/cube_volume.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
@@ -45,7 +46,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
                                    "capturing one from the scene");
   auto* resOpt = cmd->add_option("--resolution", o->resolution,
-                                 "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
+                                 "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution) +
+                                     " (a point light: six faces of N x N, N up to " +
+                                     std::to_string(kMaxResolution / kCubeFaces) + ")")
                      ->capture_default_str();
   auto* capOpt = cmd->add_option("--capture", o->capture,
                                  "Surface recorded per texel: back (thesis default, bias 0), front (needs the bias), "

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <regex>
 
+#include "shadowvol/cube_map.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol::cli {
@@ -63,7 +64,10 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "(refused where not provably safe); the same stencil where the light reaches (docs/gpu.md)")
       ->check(CLI::IsMember({"auto", "zfail", "zpass"}))
       ->capture_default_str();
-  cmd.add_option("--resolution", o.resolution, "Light depth map size N (N x N texels)")->capture_default_str();
+  cmd.add_option("--resolution", o.resolution,
+                 "Light depth map size N (N x N texels; a point light: six faces of N x N, N up to " +
+                     std::to_string(kMaxDepthMapSide / kCubeFaces) + ")")
+      ->capture_default_str();
   cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
       ->check(CLI::IsMember({"back", "front", "midpoint"}))
       ->capture_default_str();

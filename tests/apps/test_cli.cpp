@@ -81,6 +81,14 @@ TEST(Cli, HelpAndUsage) {
   const CliResult proc = runCli("validate --resolution 16 --size 40x30 --report /proc/x-report");
   EXPECT_EQ(proc.code, 1) << proc.out;
   EXPECT_TRUE(contains(proc.out, "--report = /proc/x-report: cannot create a folder in /proc")) << proc.out;
+  // Regression: a point light's cube map past its limit was refused in the cube map's words
+  // ("six faces of N x N texels = 4096x24576"), naming neither the option nor the limit on N.
+  const CliResult cube = runCli("build --scene " + std::string(SV_SOURCE_DIR) +
+                                "/data/scenes/point/room.json --resolution 4096 --out x-cube.ply");
+  EXPECT_EQ(cube.code, 1) << cube.out;
+  EXPECT_TRUE(contains(cube.out, "--resolution = 4096: a point light's cube map")) << cube.out;
+  EXPECT_TRUE(contains(cube.out, "at most 2730")) << cube.out;
+  EXPECT_FALSE(std::filesystem::exists("x-cube.ply"));
   const CliResult empty = runCli("scene --scene \"\"");
   EXPECT_EQ(empty.code, 2);
   EXPECT_TRUE(contains(empty.out, "--scene: an empty path")) << empty.out;

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "shadowvol/check.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol {
 namespace {
@@ -98,7 +100,14 @@ glm::dvec3 CubeDepthMap::lightPosition() const {
 
 CubeDepthMap makeCubeDepthMap(const Light& point, int n, CaptureMode capture) {
   SV_CHECK(point.type == LightType::Point);
-  checkDepthMapSize(n, kCubeFaces * n, "cube map", "six faces of N x N texels");
+  // The six faces together are held to one map's limit (kCubeFaces * N a side): N <= 2730.
+  constexpr int kMaxFaceSide = kMaxDepthMapSide / kCubeFaces;
+  if (n > kMaxFaceSide)
+    throw InputError("cube map", "N", std::to_string(n),
+                     "a point light's cube map holds six faces of N x N texels, held together to the limit of " +
+                         std::to_string(kMaxDepthMapSide) + " texels a side: N may be at most " +
+                         std::to_string(kMaxFaceSide));
+  checkDepthMapSize(n, kCubeFaces * n, "cube map", "N");
   CubeDepthMap cube;
   for (int f = 0; f < kCubeFaces; ++f) cube.faces[f] = makeDepthMap(cubeFaceLight(point, f), n, n, capture);
   return cube;
