@@ -143,16 +143,12 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
     out.push_back(buf);
   }
   // Nothing in the frustum at all, and no object named above as clipped by the near plane.
-  if (out.size() == before && std::all_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
-        return detail::outsideClipVolume(toClip, o.mesh);
-      })) {
-    char buf[400];
-    std::snprintf(buf, sizeof buf,
-                  "no object lies inside the light's frustum (between its near plane at %.6g and its far plane at "
-                  "%.6g world units): the depth map sees nothing, the volume is empty and nothing is shadowed "
-                  "(check where the light points, and /light/near and /light/far)",
-                  probe.nearPlane, probe.farPlane);
-    out.push_back(buf);
+  if (out.size() == before) {
+    std::string w = detail::emptyViewWarning(toClip, scene.objects, "inside the light's frustum", probe.nearPlane,
+                                             probe.farPlane,
+                                             "the depth map sees nothing, the volume is empty and nothing is shadowed "
+                                             "(check where the light points, and /light/near and /light/far)");
+    if (!w.empty()) out.push_back(std::move(w));
   }
   return out;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 
 #include <glm/vec4.hpp>
 
@@ -17,6 +18,18 @@ bool outsideClipVolume(const glm::dmat4& worldToClip, const TriangleMesh& mesh) 
     for (std::size_t k = 0; k < beyond.size(); ++k) allBeyond[k] = allBeyond[k] && beyond[k];
   }
   return std::any_of(allBeyond.begin(), allBeyond.end(), [](bool b) { return b; });
+}
+
+std::string emptyViewWarning(const glm::dmat4& worldToClip, const std::vector<SceneObject>& objects,
+                             const std::string& what, double nearPlane, double farPlane,
+                             const std::string& consequence) {
+  if (!std::all_of(objects.begin(), objects.end(),
+                   [&](const SceneObject& o) { return outsideClipVolume(worldToClip, o.mesh); }))
+    return {};
+  char planes[160];
+  std::snprintf(planes, sizeof planes, " (between its near plane at %.6g and its far plane at %.6g world units): ",
+                nearPlane, farPlane);
+  return "no object lies " + what + planes + consequence;
 }
 
 }  // namespace shadowvol::detail

@@ -4,6 +4,10 @@
 
 #include <glm/mat4x4.hpp>
 
+#include <string>
+#include <vector>
+
+#include "shadowvol/scene.h"
 #include "shadowvol/triangle_mesh.h"
 
 namespace shadowvol::detail {
@@ -14,5 +18,12 @@ namespace shadowvol::detail {
 /// the world position, so the test holds for vertices behind the view's apex too. False for an
 /// empty mesh (nothing to judge).
 bool outsideClipVolume(const glm::dmat4& worldToClip, const TriangleMesh& mesh);
+
+/// The warning for a view that holds none of `objects` (each outsideClipVolume), naming the view
+/// (`what`, such as "inside the light's frustum"), its near and far planes and `consequence`; empty when
+/// some object may lie inside.
+std::string emptyViewWarning(const glm::dmat4& worldToClip, const std::vector<SceneObject>& objects,
+                             const std::string& what, double nearPlane, double farPlane,
+                             const std::string& consequence);
 
 }  // namespace shadowvol::detail

@@ -613,17 +613,10 @@ void warnAboutLight(const Scene& scene, std::size_t k, const std::string& source
 // renders only the background: said, since every command would otherwise run on without a word.
 void warnAboutCamera(const Scene& scene, const std::string& source, std::vector<std::string>& warnings) {
   const Camera& c = scene.camera;
-  const glm::dmat4 toClip = cameraProjection(c) * cameraView(c);
-  if (!std::all_of(scene.objects.begin(), scene.objects.end(),
-                   [&](const SceneObject& o) { return detail::outsideClipVolume(toClip, o.mesh); }))
-    return;
-  char buf[400];
-  std::snprintf(buf, sizeof buf,
-                ": /camera: no object lies in the camera's view (between its near plane at %.6g and its far plane "
-                "at %.6g world units): images show only the background (check /camera/target, /camera/near and "
-                "/camera/far)",
-                c.nearPlane, c.farPlane);
-  warnings.push_back(source + buf);
+  const std::string w = detail::emptyViewWarning(
+      cameraProjection(c) * cameraView(c), scene.objects, "in the camera's view", c.nearPlane, c.farPlane,
+      "images show only the background (check /camera/target, /camera/near and /camera/far)");
+  if (!w.empty()) warnings.push_back(source + ": /camera: " + w);
 }
 
 }  // namespace
