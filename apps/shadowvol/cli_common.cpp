@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -88,8 +89,9 @@ CLI::Validator finiteRange(double lo, double hi) {
   name << "FLOAT in [" << lo << " - " << hi << "]";
   return CLI::Validator(
       [lo, hi](std::string& text) -> std::string {
-        double v = 0.0;
-        if (!CLI::detail::lexical_cast(text, v)) return "not a number: " + text;
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size()) return "not a number: " + text;
         if (!(v >= lo && v <= hi)) {  // NaN fails both comparisons
           std::ostringstream why;
           why << "value " << text << " not in range [" << lo << " - " << hi << "]";
@@ -245,10 +247,11 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
   // Whether a folder can be made there (a read-only or virtual file system), found now rather than
   // after the work: by making an empty one and removing it.
   const std::filesystem::path probe = existing / (".shadowvol-probe-" + std::to_string(::getpid()));
-  if (!std::filesystem::create_directory(probe, ec))
+  const bool made = std::filesystem::create_directory(probe, ec);  // false, no error: left by a crash
+  if (ec)
     throw InputError("command line", option, path,
-                     "cannot create a folder in " + existing.string() + (ec ? ": " + ec.message() : ""));
-  std::filesystem::remove(probe, ec);
+                     "cannot create a folder in " + existing.string() + ": " + ec.message());
+  if (made) std::filesystem::remove(probe, ec);
 }
 
 void addPlatformOption(CLI::App& cmd, std::string& platform, const std::string& when) {
