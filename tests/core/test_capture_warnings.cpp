@@ -15,6 +15,15 @@ Scene sceneWith(std::vector<SceneObject> objects) {
   return s;
 }
 
+// The scene with its light made a 60-degree spot light (same place and direction), planes given.
+Scene asSpot(Scene s, double nearPlane, double farPlane) {
+  s.light.type = LightType::Spot;
+  s.light.fovYDegrees = 60.0;
+  s.light.nearPlane = nearPlane;
+  s.light.farPlane = farPlane;
+  return s;
+}
+
 TEST(CaptureWarnings, BackCaptureNamesOpenMeshes) {
   TriangleMesh bowl = makeHemisphere(1.0, 16, 4);
   bowl.triangles.resize(bowl.triangles.size() / 2);  // open: half of it gone
@@ -82,11 +91,7 @@ TEST(CaptureWarnings, ObjectsNearerThanTheNearPlaneAreNamed) {
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("4 of the 8 vertices of object \"high\""), std::string::npos) << w[0];  // its top face
   EXPECT_NE(w[0].find("near plane (0.5"), std::string::npos) << w[0];
-  Scene spot = sceneWith({SceneObject{"low", "box", low}});
-  spot.light.type = LightType::Spot;
-  spot.light.fovYDegrees = 60.0;
-  spot.light.nearPlane = 10.0;
-  spot.light.farPlane = 100.0;
+  Scene spot = asSpot(sceneWith({SceneObject{"low", "box", low}}), 10.0, 100.0);
   const auto ws = captureWarnings(spot, 32, 32, CaptureMode::Back);
   ASSERT_EQ(ws.size(), 1u);
   EXPECT_NE(ws[0].find("8 of the 8 vertices of object \"low\""), std::string::npos) << ws[0];
@@ -112,11 +117,7 @@ TEST(CaptureWarnings, AFrustumWithoutObjectsIsSaid) {
     ASSERT_EQ(w.size(), 1u);
     EXPECT_NE(w[0].find(said), std::string::npos) << w[0];
   }
-  Scene spot = s;  // a spot light whose given far plane ends before the box
-  spot.light.type = LightType::Spot;
-  spot.light.fovYDegrees = 60.0;
-  spot.light.nearPlane = 0.1;
-  spot.light.farPlane = 1.0;
+  const Scene spot = asSpot(s, 0.1, 1.0);  // a spot light whose given far plane ends before the box
   const auto w = captureWarnings(spot, 32, 32, CaptureMode::Front);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find(said + " (between its near plane at 0.1 and its far plane at 1 world"), std::string::npos)
