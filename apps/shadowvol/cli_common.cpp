@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include "shadowvol/volume_builder.h"
 #include "shadowvol/capture_warnings.h"
 #include "cli_verbosity.h"
 #include "shadowvol/error.h"
@@ -207,6 +208,10 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
 }
 
 void checkResolution(const std::string& option, int resolution) {
+  if (resolution == 2)  // checkDepthMapSize names the others
+    throw InputError("command line", option, "2",
+                     "must be at least " + std::to_string(kMinVolumeMapSide) +
+                         ": a map's outermost ring of texels lies on the far plane, so a 2 x 2 map's volume is empty");
   checkDepthMapSize(resolution, resolution, "command line", option);
 }
 

@@ -29,6 +29,8 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
     LibraryFieldFlag{"SweepOptions", "methods", "--methods"},
     LibraryFieldFlag{"SweepOptions", "resolutions", "--resolutions"},
+    LibraryFieldFlag{"volume options", "bias", "--bias"},
+    LibraryFieldFlag{"volume options", "blur offset", "--blur-offset"},
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},
     LibraryFieldFlag{"volume options", "cap", "--cap"},
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},

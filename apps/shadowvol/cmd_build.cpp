@@ -91,6 +91,11 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       double msCapture = 0.0;
       if (!o->depth.empty()) {
         map = readDepthMap(o->depth);
+        if (map.width < kMinVolumeMapSide || map.height < kMinVolumeMapSide)
+          throw InputError(o->depth, "size", std::to_string(map.width) + "x" + std::to_string(map.height),
+                           "a volume needs a map of at least " + std::to_string(kMinVolumeMapSide) + " x " +
+                               std::to_string(kMinVolumeMapSide) +
+                               " texels: the outermost ring lies on the far plane, so a smaller map's volume is empty");
         j["depth"] = o->depth;
       } else {
         checkResolution("--resolution", o->resolution);

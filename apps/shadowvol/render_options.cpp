@@ -110,8 +110,8 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
 
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   checkResolution("--resolution", o.resolution);
-  if (o.shadowBias && !std::isfinite(*o.shadowBias))
-    throw InputError("command line", "--shadow-bias", std::to_string(*o.shadowBias), "must be finite");
+  if (o.shadowBias && (!std::isfinite(*o.shadowBias) || *o.shadowBias < 0.0))
+    throw InputError("command line", "--shadow-bias", std::to_string(*o.shadowBias), "must be finite and >= 0");
   if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)
     throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;

@@ -136,12 +136,31 @@ TEST(Cli, VersionIsTheSameEverywhere) {
 TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "d.pfm").string();
-  for (const char* res : {"0", "-4", "100000"}) {
+  for (const char* res : {"0", "-4", "2", "100000"}) {  // 2: a volume of border ring alone, empty
     const CliResult r = runCli(std::string("depth --resolution ") + res + " --out " + out);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_TRUE(contains(r.out, "--resolution")) << r.out;
     EXPECT_TRUE(contains(r.out, res)) << r.out;
   }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// Regression (a hostile-input probe): --bias 1e6 wrote an empty volume with exit 0, and
+// --shadow-bias took negative values.
+TEST(Cli, OffsetsThatLeaveNothingInShadowAreRefused) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "v.ply").string();
+  const CliResult bias = runCli("build --resolution 16 --bias 1e6 --out " + out);
+  EXPECT_EQ(bias.code, 1) << bias.out;
+  EXPECT_TRUE(contains(bias.out, "--bias")) << bias.out;
+  EXPECT_TRUE(contains(bias.out, "depth range")) << bias.out;
+  const CliResult blur = runCli("build --resolution 16 --blur --blur-offset 1e30 --out " + out);
+  EXPECT_EQ(blur.code, 1) << blur.out;
+  EXPECT_TRUE(contains(blur.out, "--blur-offset")) << blur.out;
+  const CliResult shadow = runCli("render --method shadowmap --resolution 16 --shadow-bias -0.5 --out " +
+                                  (dir / "x.png").string());
+  EXPECT_EQ(shadow.code, 1) << shadow.out;
+  EXPECT_TRUE(contains(shadow.out, "--shadow-bias")) << shadow.out;
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 

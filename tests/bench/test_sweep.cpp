@@ -150,6 +150,30 @@ TEST(SweepCsv, InterruptedLastLineIsIgnoredAndBadFilesAreNamed) {
   }
 }
 
+// Regression (a hostile-input probe): a row whose times were "nan" was read into the report.
+TEST(SweepCsv, NonFiniteOrNegativeNumbersAreRefusedWithLineAndColumn) {
+  const auto dir = test::tempDir();
+  const auto csv = dir / "results.csv";
+  SweepRow r = sampleRow();
+  const std::string good = toCsv(r);
+  const std::string median = "12.5";  // sampleRow's frame median, the first real column
+  ASSERT_NE(good.find("," + median + ","), std::string::npos);
+  for (const char* bad : {"nan", "inf", "-1"}) {
+    std::string row = good;
+    row.replace(row.find("," + median + ",") + 1, median.size(), bad);
+    test::writeText(csv, sweepCsvHeader() + "\n" + row + "\n");
+    try {
+      readSweepCsv(csv);
+      FAIL() << bad;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("line 2"), std::string::npos) << what;
+      EXPECT_NE(what.find("frame_ms"), std::string::npos) << what;
+      EXPECT_NE(what.find(bad), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(ShadowErrorMetric, HandMadeMasksWithKnownAnswers) {
   // 20 x 10 pixels, all facing the light; exact shadow in columns 0..9, the test's in 0..11:
   // 20 acne pixels in columns 10 and 11, at 0.5 and 1.5 pixels from the boundary.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "mesh_readers/isolated_call.h"
 #include "shadowvol/error.h"
@@ -100,6 +101,43 @@ TEST(AssimpReader, GltfAndGlbReadBackAsWritten) {
       for (int c = 0; c < 3; ++c)
         EXPECT_EQ(back.positions[back.triangles[t][c]], box.positions[box.triangles[t][c]]) << name << " triangle " << t;
   }
+}
+
+// Regression (a hostile-input probe): a glTF node matrix of zeros collapsed the mesh to a point.
+// A singular or non-finite node transformation is refused, naming the node; a sound one still
+// places the mesh.
+TEST(AssimpReader, SingularNodeTransformationsAreRefused) {
+  const auto dir = test::tempDir();
+  const auto written = dir / "box.gltf";
+  writeTriangleMesh(makeBox(1, 1, 1), written);
+  std::ifstream in(written);
+  const nlohmann::json gltf = nlohmann::json::parse(in);
+  ASSERT_EQ(gltf.at("nodes").size(), 1u);
+  auto withNode = [&](const char* name, const nlohmann::json& node) {
+    nlohmann::json g = gltf;
+    for (const auto& [key, value] : node.items()) g["nodes"][0][key] = value;
+    const auto path = dir / name;
+    test::writeText(path, g.dump());
+    return path;
+  };
+  const nlohmann::json zeros = {{"name", "flat"}, {"matrix", std::vector<double>(16, 0.0)}};
+  const nlohmann::json noDepth = {{"name", "flat"}, {"scale", {1.0, 0.0, 1.0}}};
+  for (const auto& [name, node] : {std::pair{"zeros.gltf", zeros}, std::pair{"scale0.gltf", noDepth}}) {
+    const auto path = withNode(name, node);
+    try {
+      readTriangleMesh(path);
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(e.source(), path.string()) << m;
+      EXPECT_NE(m.find("node /"), std::string::npos) << m;
+      EXPECT_NE(m.find("flat"), std::string::npos) << m;
+      EXPECT_NE(m.find("determinant 0"), std::string::npos) << m;
+    }
+  }
+  const TriangleMesh moved = readTriangleMesh(withNode("moved.gltf", {{"translation", {10.0, 0.0, 0.0}}}));
+  ASSERT_FALSE(moved.positions.empty());
+  for (const auto& p : moved.positions) EXPECT_GT(p.x, 9.0f);
 }
 
 TEST(AssimpReader, BrokenFilesAreRefusedNamingTheFile) {

@@ -328,6 +328,35 @@ TEST(VolumeBuilder, BiasClampsToNearAndFar) {
   }
 }
 
+// Regression (a hostile-input probe): --bias 1e6 gave an empty volume without a word. An offset of
+// at least far - near puts every texel on the far plane: refused, naming the field and the range.
+TEST(VolumeBuilder, OffsetsThatEmptyTheRangeAreRefused) {
+  DepthMap m = makeDepthMap(directionalDown(), 16, 16, CaptureMode::Back);
+  for (auto& d : m.depth) d = float(m.nearPlane);
+  const double range = m.farPlane - m.nearPlane;
+  VolumeBuildOptions o;
+  auto refusal = [&](const VolumeBuildOptions& options) -> std::string {
+    try {
+      buildVolume(m, options);
+    } catch (const InputError& e) {
+      return e.field() + ": " + e.problem();
+    }
+    return "";
+  };
+  o.bias = range;
+  EXPECT_NE(refusal(o).find("bias: is at least the light's depth range"), std::string::npos) << refusal(o);
+  o.bias = 1e6;
+  EXPECT_NE(refusal(o).find("bias:"), std::string::npos) << refusal(o);
+  o.bias = 0.5 * range;
+  o.blur = true;
+  o.blurOffset = 0.5 * range;
+  EXPECT_NE(refusal(o).find("blur offset: plus the bias"), std::string::npos) << refusal(o);
+  o.blur = false;  // the blur offset counts only with blur
+  EXPECT_EQ(refusal(o), "");
+  o.bias = 0.999 * range;  // just inside: texels at the near plane stay off the far plane
+  EXPECT_GT(buildVolume(m, o).mesh.triangleCount(), 0u);
+}
+
 // The same map gives the same mesh (positions bit for bit, triangles in the same order) with one
 // thread as with all of them.
 TEST(VolumeBuilder, DeterministicAcrossThreadCounts) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
 
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/depth_map.h"
@@ -55,6 +56,17 @@ struct SheetDepthRule {
 
   bool isFar(double sheetDepth) const { return sheetDepth == farPlane; }
 };
+
+/// Why a depth offset (the volume's bias, plus the blur offset with blur; a shadow map's constant
+/// bias) would leave nothing in shadow, or "" when it does not: every stored depth d lies at or
+/// beyond the near plane, so an offset of at least far - near puts every d + offset on the far
+/// plane (the volume's sheet is all far plane and the volume empty; a shadow map's comparison
+/// never shadows a receiver inside the range).
+inline std::string offsetEmptiesRange(double offset, double nearPlane, double farPlane) {
+  if (!(offset >= farPlane - nearPlane)) return "";
+  return "is at least the light's depth range (far - near = " + std::to_string(farPlane - nearPlane) +
+         " world units): every depth plus it lies past the far plane, so nothing would be in shadow";
+}
 
 /// The whole rule for one texel (ring, blur when `blur`, bias), one texel at a time: the
 /// reference that the builder's row loops reproduce bit for bit.

@@ -177,6 +177,18 @@ double defaultBias(const DepthMap& map);
 /// defaultBias(makeDepthMap(light, width, height, capture)); a point light's is its faces'.
 double defaultBias(const Light& light, int width, int height, CaptureMode capture);
 
+/// The smallest side of a depth map whose volume can hold anything: the outermost ring of texels
+/// always lies on the far plane, so a map 2 texels across is all ring and its volume empty. The
+/// command line refuses smaller maps; the library builds their empty volumes.
+inline constexpr int kMinVolumeMapSide = 3;
+
+/// The options' depth offsets checked for a light range [nearPlane, farPlane]: InputError ("volume
+/// options", "bias" or "blur offset") when the bias or the blur offset is not finite, or when the
+/// given bias, plus the blur offset with blur, is at least far - near (offsetEmptiesRange in
+/// sheet_depth.h: every texel would lie on the far plane and the volume be empty). The default
+/// bias is not checked. Called by every volume build (one map's or a cube's).
+void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, double farPlane);
+
 /// Builds shadow volumes again and again (one per frame, say) without grid-sized allocations: the
 /// builder keeps its scratch buffers (about 5 bytes per texel) and build() reuses the storage
 /// already in `result`. After the first build at a given size only per-row bookkeeping and the
@@ -200,8 +212,8 @@ class VolumeBuilder {
 };
 
 /// Builds the shadow volume of a depth map (see the header comment). Throws InputError naming
-/// the texel and value if the map holds a NaN or negative depth, if bias / blurOffset is not
-/// finite, or if refineSteps is out of range, lacks a depth oracle or comes with the quad cap. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,
+/// the texel and value if the map holds a NaN or negative depth, if bias / blurOffset fail
+/// checkVolumeOffsets, or if refineSteps is out of range, lacks a depth oracle or comes with the quad cap. The exact-cap result is a closed, consistently oriented 2-manifold with outward normals,
 /// welded (coincident vertices only at documented splits), without zero-area triangles or
 /// non-finite coordinates; empty (no triangles) when no texel is hit. Multithreaded (TBB),
 /// deterministic (the same input gives the same mesh, whatever the thread count).

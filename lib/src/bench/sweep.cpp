@@ -14,6 +14,7 @@
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"  // writeAtomically, createFolders
+#include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
 namespace {
@@ -293,8 +294,10 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
   for (int r : o.resolutions) {
-    if (r < 2 || r > kMaxDepthMapSide)
-      throw InputError("SweepOptions", "resolutions", std::to_string(r), "must be in 2.." + std::to_string(kMaxDepthMapSide));
+    if (r < kMinVolumeMapSide || r > kMaxDepthMapSide)
+      throw InputError("SweepOptions", "resolutions", std::to_string(r),
+                       "must be in " + std::to_string(kMinVolumeMapSide) + ".." + std::to_string(kMaxDepthMapSide) +
+                           " (a 2 x 2 map's volume is all border ring: empty)");
     const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies
     if (physical > 0 && need > physical / 2) {
       notes.push_back("resolution " + std::to_string(r) + " skipped: needs about " +

@@ -1,6 +1,7 @@
 #include "shadowvol/bench/sweep_results.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -131,6 +132,9 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
     const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
       throw InputError(where, cols[k], s, "expected a number");
+    // Every real column is a time, a fraction or a distance: a NaN, an infinity or a negative
+    // value is a damaged row, not a measurement.
+    if (!std::isfinite(v) || v < 0.0) throw InputError(where, cols[k], s, "expected a finite number >= 0");
     ++k;
     return v;
   };

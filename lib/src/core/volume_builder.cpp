@@ -13,6 +13,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/far_cap.h"
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "volume/build_buffers.h"
 #include "volume/cap_boundary.h"
@@ -68,15 +69,7 @@ double defaultBias(const Light& light, int width, int height, CaptureMode captur
                        light.farPlane, capture);
 }
 
-namespace {
-
-// Cheap checks of the map's metadata and of the options, before anything else.
-void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& options) {
-  SV_CHECK_GT(map.width, 0);
-  SV_CHECK_GT(map.height, 0);
-  SV_CHECK_EQ(map.depth.size(), std::size_t(map.width) * std::size_t(map.height));
-  SV_CHECK_GT(map.farPlane, map.nearPlane);
-  SV_CHECK_GE(map.nearPlane, 0.0);
+void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, double farPlane) {
   auto finite = [](const char* name, double v) {
     if (!std::isfinite(v)) {
       std::ostringstream value;
@@ -86,6 +79,24 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   };
   finite("blur offset", options.blurOffset);
   if (options.bias) finite("bias", *options.bias);
+  const double bias = options.bias.value_or(0.0), blurOffset = options.blur ? options.blurOffset : 0.0;
+  if (const std::string why = offsetEmptiesRange(bias, nearPlane, farPlane); !why.empty())
+    throw InputError("volume options", "bias", std::to_string(bias), why);
+  if (const std::string why = offsetEmptiesRange(bias + blurOffset, nearPlane, farPlane); !why.empty())
+    throw InputError("volume options", "blur offset", std::to_string(blurOffset),
+                     "plus the bias (" + std::to_string(bias) + ") " + why);
+}
+
+namespace {
+
+// Cheap checks of the map's metadata and of the options, before anything else.
+void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& options) {
+  SV_CHECK_GT(map.width, 0);
+  SV_CHECK_GT(map.height, 0);
+  SV_CHECK_EQ(map.depth.size(), std::size_t(map.width) * std::size_t(map.height));
+  SV_CHECK_GT(map.farPlane, map.nearPlane);
+  SV_CHECK_GE(map.nearPlane, 0.0);
+  checkVolumeOffsets(options, map.nearPlane, map.farPlane);
   if (options.refineSteps < 0 || options.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));

@@ -1,3 +1,4 @@
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/gl/renderer.h"
 
 #include <epoxy/gl.h>
@@ -1306,6 +1307,25 @@ struct Renderer::Impl {
                        "a point light's GPU cube volume is drawn indexed (auto) or one point per cell (all-quads)");
   }
 
+  /// Given depth offsets that would leave nothing in shadow under this light (offsetEmptiesRange,
+  /// sheet_depth.h): the volume's bias (plus the blur offset with blur), a one-map shadow map's
+  /// constant bias.
+  void checkOffsetRanges(const RenderOptions& o) const {
+    const VolumeBuildOptions& v = o.volumeOptions;
+    const double bias = v.bias.value_or(0.0), blurOffset = v.blur ? v.blurOffset : 0.0;
+    if (o.method == ShadowMethod::Hybrid) {
+      if (const std::string why = offsetEmptiesRange(bias, light.nearPlane, light.farPlane); !why.empty())
+        throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(bias), why);
+      if (const std::string why = offsetEmptiesRange(bias + blurOffset, light.nearPlane, light.farPlane); !why.empty())
+        throw InputError("RenderOptions", "volumeOptions.blurOffset", std::to_string(blurOffset),
+                         "plus the bias (" + std::to_string(bias) + ") " + why);
+    }
+    const bool oneMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
+    if (oneMap && light.type != LightType::Point && o.shadowBiasConstant)
+      if (const std::string why = offsetEmptiesRange(*o.shadowBiasConstant, light.nearPlane, light.farPlane); !why.empty())
+        throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant), why);
+  }
+
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
     requireScene();
     checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
@@ -1315,8 +1335,9 @@ struct Renderer::Impl {
     if (!std::isfinite(o.ambient) || !std::isfinite(o.diffuse) || o.ambient < 0 || o.diffuse < 0)
       throw InputError("RenderOptions", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
                        "must be finite and >= 0");
-    if (o.shadowBiasConstant && !std::isfinite(*o.shadowBiasConstant))
-      throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant), "must be finite");
+    if (o.shadowBiasConstant && (!std::isfinite(*o.shadowBiasConstant) || *o.shadowBiasConstant < 0.0))
+      throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant),
+                       "must be finite and >= 0 (a negative bias moves receivers in front of themselves: acne)");
     if (!std::isfinite(o.shadowBiasSlope))
       throw InputError("RenderOptions", "shadowBiasSlope", std::to_string(o.shadowBiasSlope), "must be finite");
     if (!std::isfinite(o.volumeOptions.blurOffset))
@@ -1324,6 +1345,7 @@ struct Renderer::Impl {
                        "must be finite");
     if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
       throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
+    checkOffsetRanges(o);
     if (light.type == LightType::Point) validatePointLight(o);
     if (light.type != LightType::Point && o.method == ShadowMethod::Dpsm)
       throw InputError("RenderOptions", "method", "dpsm",

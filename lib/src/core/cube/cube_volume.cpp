@@ -42,14 +42,7 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
   }
   SV_CHECK_GT(cube.farPlane(), cube.nearPlane());
   SV_CHECK_GT(cube.nearPlane(), 0.0);
-  auto finite = [](const char* name, double v) {
-    if (std::isfinite(v)) return;
-    std::ostringstream value;
-    value << v;
-    throw InputError("volume options", name, value.str(), "must be a finite number of world units");
-  };
-  finite("blur offset", o.blurOffset);
-  if (o.bias) finite("bias", *o.bias);
+  checkVolumeOffsets(o, cube.nearPlane(), cube.farPlane());
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));

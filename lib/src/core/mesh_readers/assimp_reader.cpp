@@ -23,8 +23,28 @@ constexpr unsigned kRemovedComponents = aiComponent_NORMALS | aiComponent_TANGEN
                                         aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                         aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
                                         aiComponent_MATERIALS;
-constexpr unsigned kSteps = aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                            aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+// The steps before the node check (checkNodes); aiProcess_PreTransformVertices then bakes the
+// nodes' transformations into the vertices.
+constexpr unsigned kSteps = aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_SortByPType |
+                            aiProcess_ValidateDataStructure;
+
+// Refuses a node that places meshes by a transformation that is not finite or is singular
+// (determinant 0, say a glTF matrix of zeros), accumulated from the root: it would collapse them
+// to a plane, a line or a point, or make their positions NaN. Named by the node's path.
+void checkNodes(const aiNode& node, const aiMatrix4x4& parent, const std::string& path, const std::string& source) {
+  const aiMatrix4x4 m = parent * node.mTransformation;
+  const std::string here = path + "/" + (node.mName.length > 0 ? std::string(node.mName.C_Str()) : "(unnamed)");
+  if (node.mNumMeshes > 0) {
+    bool finite = true;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(m[r][c]);
+    const double det = finite ? double(m.Determinant()) : 0.0;
+    if (!finite || det == 0.0 || !std::isfinite(det))
+      throw InputError(source, "node " + here + " transformation", finite ? "determinant 0" : "not finite",
+                       "it would collapse the node's meshes (a matrix of zeros, a scale of 0, or a NaN)");
+  }
+  for (unsigned k = 0; k < node.mNumChildren; ++k) checkNodes(*node.mChildren[k], m, here, source);
+}
 
 // The scene's triangles, welded (CornerWelder), in world units as the file's nodes place them.
 TriangleMesh collect(const aiScene& scene, const std::string& source) {
@@ -127,6 +147,9 @@ TriangleMesh readWithAssimp(const std::string& source, const std::filesystem::pa
     if (!scene) throw InputError(source, "", "", std::string("Assimp cannot read it: ") + importer.GetErrorString());
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
       throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
+    if (scene->mRootNode) checkNodes(*scene->mRootNode, aiMatrix4x4(), "", source);
+    scene = importer.ApplyPostProcessing(aiProcess_PreTransformVertices);
+    if (!scene) throw InputError(source, "", "", std::string("Assimp cannot place its nodes: ") + importer.GetErrorString());
     return serialize(collect(*scene, source));
   });
   if (!r.ok) {
