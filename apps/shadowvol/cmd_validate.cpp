@@ -21,6 +21,15 @@
 namespace shadowvol::cli {
 namespace {
 
+// Where this frame's refinement found its crossings (null without refinement): the explicit
+// volume's choice, or the refined GPU volume's (its rays, or the walk for any other choice).
+nlohmann::json crossingsUsed(const gl::RenderOptions& ro) {
+  if (ro.method != gl::ShadowMethod::Hybrid || ro.volumeOptions.refineSteps == 0) return nullptr;
+  if (ro.volume == gl::VolumeSource::Explicit) return gl::toString(ro.refineCrossings);
+  return ro.refineCrossings == gl::RefineCrossings::GpuRays ? "gpu-rays" : "gpu-walk";
+}
+
+
 // The report's fields of one light's checks (all of them at the top level for one light).
 nlohmann::json describeLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
                                        const ValidationOptions& vo) {
@@ -59,12 +68,12 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
               v.facingAway, v.outsideLight, v.background);
   if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
-    std::printf("  refinement on the GPU: %zu boundary edges walked, %zu without a crossing found; the CPU "
+    std::printf("  refinement on the GPU: %zu boundary edges refined, %zu without a crossing found; the CPU "
                 "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
                 result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
                 result.volumeStats->crossingFallbacks);
   else if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)  // a point light's six face volumes
-    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges walked, %zu without a crossing found\n",
+    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing found\n",
                 result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks);
   else if (result.volumeStats && result.volumeStats->refinedCells > 0)
     std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
@@ -181,6 +190,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"bias", result.biasUsed},
                       {"cap", o->render.shape.cap},
                       {"refine", o->render.shape.refine},
+                      {"crossings", crossingsUsed(ro)},
                       {"shadowBias", shadowBiasFor(scene.light, ro)},
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},

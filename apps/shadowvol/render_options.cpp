@@ -51,12 +51,14 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--crossings", o.crossings,
                  "With --refine K: where refinement finds each boundary edge's crossing: rays (K bisection rays "
-                 "into the Embree scene; --volume explicit only) or gpu-walk (the GPU walks over the scene's "
+                 "into the Embree scene; --volume explicit only), gpu-walk (the GPU walks over the scene's "
                  "triangles from the one each texel recorded to the silhouette edge: exact, no rays, K only "
                  "switches it on; GL 4.3, back or front capture, not with --chord-points or --refine-grid; "
-                 "docs/gpu.md 'Crossings from a triangle walk'); auto: rays for --volume explicit, gpu-walk for "
-                 "--volume gpu (the refined GPU volume always walks)")
-      ->check(CLI::IsMember({"auto", "rays", "gpu-walk"}))
+                 "docs/gpu.md 'Crossings from a triangle walk') or gpu-rays (--volume gpu only: the same K "
+                 "bisection rays as 'rays', cast on the GPU through a hierarchy of the scene's triangles; back or "
+                 "front capture; docs/gpu.md 'Crossings from GPU rays'); auto: rays for --volume explicit, "
+                 "gpu-walk for --volume gpu")
+      ->check(CLI::IsMember({"auto", "rays", "gpu-walk", "gpu-rays"}))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
@@ -93,8 +95,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 
 namespace {
 
-constexpr const char* kGpuWalksOnly = "the refined GPU volume finds its crossings with the GPU's walk: use "
-                                      "--crossings gpu-walk (or auto), or --volume explicit for rays";
+constexpr const char* kGpuWalksOnly = "the refined GPU volume finds its crossings on the GPU: use --crossings "
+                                      "gpu-walk (or auto) or gpu-rays, or --volume explicit for Embree's rays";
 constexpr const char* kGpuCrossingsOnly = "needs rays (--volume explicit --crossings rays): the refined GPU volume "
                                           "refines the boundary edges' crossings alone";
 
@@ -152,6 +154,9 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
     throw CLI::ValidationError(flag, std::string(flag) == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly);
   if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))
     throw CLI::ValidationError("--crossings", "gpu-walk refines a hybrid volume: add --method hybrid --refine K");
+  if (o.crossings == "gpu-rays" && !refinedGpu)
+    throw CLI::ValidationError("--crossings", "gpu-rays refines the GPU volume: add --method hybrid --volume gpu "
+                                              "--refine K (the explicit volume casts Embree's rays: --crossings rays)");
   if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
     throw CLI::ValidationError("--crossings", "gpu-walk gives the boundary edges' crossings alone: --chord-points "
                                               "and --refine-grid need --crossings rays");

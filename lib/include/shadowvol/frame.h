@@ -72,17 +72,19 @@ enum class GpuVolumeDraw {
 };
 const char* toString(GpuVolumeDraw d);
 
-/// Where an explicit volume's refinement finds its crossings (volumeOptions.refineSteps > 0). The
-/// refined GPU volume always finds them with the walk (docs/gpu.md "The refined GPU volume"),
-/// whichever is set.
+/// Where refinement finds its crossings (volumeOptions.refineSteps > 0). The explicit volume takes
+/// Rays or GpuWalk; the refined GPU volume (docs/gpu.md "The refined GPU volume") takes GpuRays,
+/// and GpuWalk for any other value.
 enum class RefineCrossings {
   Rays,     ///< bisection rays from volumeOptions.depthOracle (Embree), refineSteps per edge
   GpuWalk,  ///< the GPU's silhouette walk over the scene's triangles (walk_crossings.h,
             ///< docs/gpu.md "Crossings from a triangle walk"): exact crossings without rays; needs
-            ///< GL 4.3 and the explicit volume, refineSteps > 0 only switches it on; not with chord
-            ///< points or the sub-grid
+            ///< GL 4.3, refineSteps > 0 only switches it on; not with chord points or the sub-grid
+  GpuRays,  ///< the refined GPU volume only: the same bisection as Rays, refineSteps rays per edge,
+            ///< each cast on the GPU through a hierarchy of the scene's triangles (triangle_bvh.h,
+            ///< docs/gpu.md "Crossings from GPU rays"); back or front capture
 };
-const char* toString(RefineCrossings c);  ///< "rays", "gpu-walk"
+const char* toString(RefineCrossings c);  ///< "rays", "gpu-walk", "gpu-rays"
 bool parseRefineCrossings(const std::string& text, RefineCrossings& c);
 
 struct RenderOptions {

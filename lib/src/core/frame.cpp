@@ -81,11 +81,14 @@ bool parseVolumeCount(const std::string& text, VolumeCount& c) {
   return true;
 }
 
-const char* toString(RefineCrossings c) { return c == RefineCrossings::GpuWalk ? "gpu-walk" : "rays"; }
+const char* toString(RefineCrossings c) {
+  return c == RefineCrossings::GpuWalk ? "gpu-walk" : (c == RefineCrossings::GpuRays ? "gpu-rays" : "rays");
+}
 
 bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
   if (text == "rays") c = RefineCrossings::Rays;
   else if (text == "gpu-walk") c = RefineCrossings::GpuWalk;
+  else if (text == "gpu-rays") c = RefineCrossings::GpuRays;
   else return false;
   return true;
 }

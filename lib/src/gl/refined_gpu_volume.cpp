@@ -141,10 +141,10 @@ void RefinedGpuVolume::ensureSize(int w, int h) {
   w_ = w, h_ = h;
 }
 
-void RefinedGpuVolume::findCrossings(SilhouetteWalk& walk, const WalkInputs& in, const TexelFootprint& footprint,
-                                     double hitLimit) {
-  ensureSize(in.width, in.height);
-  const GLuint gx = GLuint((in.width + kGroup - 1) / kGroup), gy = GLuint((in.height + kGroup - 1) / kGroup);
+void RefinedGpuVolume::findCrossings(int width, int height, const TexelFootprint& footprint,
+                                     const std::function<void(GLintptr indirectOffset)>& crossings) {
+  ensureSize(width, height);
+  const GLuint gx = GLuint((width + kGroup - 1) / kGroup), gy = GLuint((height + kGroup - 1) / kGroup);
   const std::array<GLuint, kCounters> zero{};
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters_.id()));
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof(zero), zero.data(), GL_DYNAMIC_READ));
@@ -190,9 +190,7 @@ void RefinedGpuVolume::findCrossings(SilhouetteWalk& walk, const WalkInputs& in,
   SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT));
   SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, counters_.id()));
   SV_GL(glBindImageTexture(0, records_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F));
-  walk.program().use();
-  walk.program().set("rawDepth", 3);
-  walk.dispatchGrid(in, hitLimit, kWalkDispatch);  // binds SSBOs 2-4 and unbinds 0-4 afterwards
+  crossings(kWalkDispatch);  // binds SSBOs 2-4 and unbinds them afterwards
   SV_GL(glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0));
   SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F));
   SV_GL(glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT));

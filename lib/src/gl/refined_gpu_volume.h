@@ -5,10 +5,11 @@
 //   2. boundary_unfold.comp: the unfolding rounds (kMaxUnfoldRounds), every dispatch indirect and
 //      given work groups only by a surface edge or the round before (no read-back);
 //   3. walk_slots.comp lists the boundary edges and ambiguous quads to walk and the quads to refine;
-//      silhouette_walk.comp with grid queries, dispatched indirectly over the first list: each
-//      boundary edge's crossing and each ambiguous quad's centre depth, as walk_crossings.h's
-//      refinementFromWalks makes them, into a W x H x 3 RGBA32F array texture (layers: axis 0,
-//      axis 1, centre);
+//      silhouette_walk.comp with grid queries (or silhouette_rays.comp's bisection rays,
+//      RefineCrossings::GpuRays), dispatched indirectly over the first list: each boundary edge's
+//      crossing and each ambiguous quad's centre depth, as walk_crossings.h's refinementFromWalks
+//      (or silhouette_refinement.h's bisection) makes them, into a W x H x 3 RGBA32F array texture
+//      (layers: axis 0, axis 1, centre);
 //   4. volume_refined.comp, dispatched indirectly over the refined quads, lists their triangles as
 //      vertex indices into the indexed GPU volume's buffer, where the renderer's listing pass
 //      (volume_index.frag with skipRefined) lists the other quads; volume_refined.vert places all.
@@ -17,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -69,10 +71,12 @@ class RefinedGpuVolume {
   /// The boundary flags buffer (W H words, refine_common.glsl's bits) of the last findCrossings.
   GLuint flags() const { return flags_.id(); }
 
-  /// Steps 1-3 for a W x H map (in.width, in.height). Textures: the final sheet depths on unit 0
-  /// (lightDepth), with blur the unblurred on unit 3 (rawDepth); the walk's program's uniforms
-  /// must be set. `hitLimit` as for SilhouetteWalk::answers.
-  void findCrossings(SilhouetteWalk& walk, const WalkInputs& in, const TexelFootprint& footprint, double hitLimit);
+  /// Steps 1-3 for a W x H map (width, height). Textures: the final sheet depths on unit 0
+  /// (lightDepth), with blur the unblurred on unit 3 (rawDepth). Step 3's crossings come from
+  /// `crossings`, called with the buffers and the records bound as SilhouetteWalk::dispatchGrid
+  /// (or SilhouetteRays::dispatchGrid) takes them and the byte offset of its indirect dispatch.
+  void findCrossings(int width, int height, const TexelFootprint& footprint,
+                     const std::function<void(GLintptr indirectOffset)>& crossings);
 
   /// Step 4: the refined quads' triangles appended as vertex indices to the buffers bound at SSBO
   /// 0 (index count, quad count) and 1 (indices, `capacity` of them), as volume_index.frag appends

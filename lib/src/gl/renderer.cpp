@@ -30,6 +30,7 @@
 #include "refined_gpu_volume.h"
 #include "cube_gpu_volume.h"
 #include "dual_paraboloid_pass.h"
+#include "silhouette_rays.h"
 #include "silhouette_walk.h"
 
 namespace shadowvol::gl {
@@ -259,6 +260,7 @@ struct Renderer::Impl {
   Program lightTriangleProgram;   // light.vert + light_triangle.frag
   Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
+  SilhouetteRays rays;            // the refined GPU volume's bisection rays (RefineCrossings::GpuRays)
   DualParaboloidPass paraboloid;  // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
   CubeGpuVolume cubeVolume;       // a point light's GPU cube volume (GL 4.3: glCopyImageSubData)
   DualParaboloid paraboloidFrame;  // of the last paraboloid pass
@@ -322,6 +324,7 @@ struct Renderer::Impl {
       lightMarkTriangleProgram = Program(shaders, {"light.vert"},
                                          {"version_430.glsl", "light_mark.glsl", "light_triangle.glsl", "light_mark_triangle.frag"});
       walk = SilhouetteWalk(shaders);
+      rays = SilhouetteRays(shaders);
     }
 
     fetchSampler = makeSampler();
@@ -1066,8 +1069,10 @@ struct Renderer::Impl {
   }
 
   /// The refined GPU volume's boundary edges and crossings for this frame's map (`depth`: the
-  /// final sheet depths; with blur the unblurred are linearDepth).
-  void findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth) {
+  /// final sheet depths; with blur the unblurred are linearDepth): by bisection rays on the GPU for
+  /// RefineCrossings::GpuRays (vo.refineSteps per edge, `capture`'s rule), else by the walk.
+  void findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth, RefineCrossings crossings,
+                        CaptureMode capture) {
     if (!refined) refined.emplace(shaders);  // compiled on the first refined frame
     if (!footprint || footprintW != lightW || footprintH != lightH) {
       footprint = TexelFootprint::of(makeDepthMap(light, lightW, lightH, CaptureMode::Back));  // metadata only
@@ -1076,6 +1081,7 @@ struct Renderer::Impl {
     const WalkInputs in = walkInputs();  // sets the walk's map uniforms (bias 0): before the ones below
     std::vector<const Program*> programs = refined->programs();
     programs.push_back(&walk.program());
+    programs.push_back(&rays.program());
     for (const Program* p : programs) {
       setVolumeUniforms(*p, vo, bias);
       p->set("blurOn", vo.blur ? 1 : 0);
@@ -1085,7 +1091,14 @@ struct Renderer::Impl {
     bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
     const double farSnap = light.farPlane * (1.0 - kFarSnap);
     const double hitLimit = std::min(farSnap, farSnap - bias - (vo.blur ? vo.blurOffset : 0.0));
-    refined->findCrossings(walk, in, *footprint, hitLimit);
+    const bool byRays = crossings == RefineCrossings::GpuRays;
+    refined->findCrossings(lightW, lightH, *footprint, [&](GLintptr indirectOffset) {
+      const Program& p = byRays ? rays.program() : walk.program();
+      p.use();
+      p.set("rawDepth", 3);
+      if (byRays) rays.dispatchGrid(in, vo.refineSteps, capture, indirectOffset);
+      else walk.dispatchGrid(in, hitLimit, indirectOffset);
+    });
   }
 
   /// The refined GPU volume: its refined cells (volume_refined.comp) and the other quads as the
@@ -1402,6 +1415,10 @@ struct Renderer::Impl {
         refuse("gpu-walk", "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
                            "edges' crossings alone");
     }
+    if (o.refineCrossings == RefineCrossings::GpuRays && !refinedGpuVolume(o))
+      throw InputError("RenderOptions", "refineCrossings", "gpu-rays",
+                       "the GPU's rays refine the GPU volume: it needs method hybrid, volume gpu and refineSteps > 0 "
+                       "(the explicit volume casts Embree's rays: RefineCrossings::Rays)");
   }
 
   /// This frame draws the refined GPU volume (refined_gpu_volume.h).
@@ -1438,6 +1455,7 @@ struct Renderer::Impl {
     in.width = triangleIdsW;
     in.height = triangleIdsH;
     in.worldToLightView = toFloat(lightView(light));
+    in.lightViewToWorld = toFloat(glm::inverse(lightView(light)));
     return in;
   }
 
@@ -1520,7 +1538,7 @@ struct Renderer::Impl {
       const Texture* depth = gpuVolumeDepth(o, true, timer);
       {
         TimedPass t(timer, "crossings");
-        findGpuCrossings(vo, result.biasUsed, *depth);
+        findGpuCrossings(vo, result.biasUsed, *depth, o.refineCrossings, o.capture);
       }
       RenderResult face;
       face.biasUsed = result.biasUsed;
@@ -1882,7 +1900,7 @@ struct Renderer::Impl {
       result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
       if (refinedGpu) {
         TimedPass t(timer, "crossings");
-        findGpuCrossings(vo, result.biasUsed, *volumeDepth);
+        findGpuCrossings(vo, result.biasUsed, *volumeDepth, o.refineCrossings, o.capture);
       }
     } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !point) {
       TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
@@ -2031,6 +2049,7 @@ void Renderer::setScene(const Scene& scene) {
   s.sceneBounds = scene.bounds();
   s.occluders.reset();
   s.walk.setScene(&s.scene);
+  s.rays.setScene(&s.scene);
   s.footprint.reset();
   s.hasScene = true;
 }

@@ -25,6 +25,7 @@ struct WalkInputs {
   GLuint triangleIds = 0;      ///< R32UI, light_triangle.frag's record, at the map's size
   int width = 0, height = 0;   ///< the map's size
   glm::mat4 worldToLightView;  ///< V_light, composed in double
+  glm::mat4 lightViewToWorld;  ///< its inverse, in double (the GPU's rays, silhouette_rays.h)
 };
 
 class SilhouetteWalk {

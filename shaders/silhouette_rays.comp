@@ -1,0 +1,153 @@
+// (version_430.glsl, light_window_depth.glsl, volume_common.glsl and refine_common.glsl come
+// first.) The refined GPU volume's crossings by bisection rays (RefineCrossings::Rays with
+// --volume gpu, docs/gpu.md "Crossings from GPU rays"): the CPU builder's refinement
+// (silhouette_refinement.h's bisectWith and edgeSegment, rule for rule) with each ray cast here,
+// through triangle_bvh.h's hierarchy of the scene's triangles, by the capture rule of the light
+// pass (depth_capture.h's captureRay): the nearest hit in [near, far] for front capture, the
+// nearest back face (its counter-clockwise normal along the ray) for back capture.
+// One invocation per slot of walk_slots.comp's list, dispatched indirectly in rows of work groups:
+//   slot 3 t + k, k = axis (0, 1): texel t's boundary edge along k: refineSteps halvings of the
+//     bracket from the near end N to the far end R; its record (layer k at t): the crossing's
+//     texel coordinates (the middle of the last bracket), near depth, far depth;
+//   k = 2: the centre of quad t (3 or 4 boundary sides): one ray; its record (sheet depth, 0, 0, 0).
+layout(local_size_x = 64) in;
+
+struct BvhNode { float lo[3]; uint first; float hi[3]; uint count; };  // triangle_bvh.h
+
+layout(std430, binding = 2) readonly buffer SceneVertices { float sceneVertices[]; };  // renderer's VBO
+layout(std430, binding = 3) readonly buffer BvhTriangles { uint bvhTriangles[]; };     // 3 vertex indices each, leaf order
+layout(std430, binding = 4) readonly buffer BvhNodes { BvhNode nodes[]; };
+layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };
+layout(std430, binding = 6) buffer Counters { uint counters[]; };  // [2] edges refined, [10] slots
+layout(std430, binding = 7) readonly buffer WalkSlots { uint walkSlots[]; };
+layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
+uniform int vertexStride;        // floats per scene vertex (position first)
+uniform mat4 lightViewToWorld;   // inverse of V_light, composed in double
+uniform int refineSteps;         // K: rays per boundary edge
+uniform int backCapture;         // 1: back faces only; 0: the nearest hit (front capture)
+uniform int nodeCount;           // 0: no triangles
+
+const int kStack = 64;                    // kBvhMaxDepth
+const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
+const float kBarycentricSlack = 1e-6;     // a ray through a shared edge hits both triangles
+
+vec3 vertexAt(uint v) {
+  uint at = v * uint(vertexStride);
+  return vec3(sceneVertices[at], sceneVertices[at + 1u], sceneVertices[at + 2u]);
+}
+
+// The entry parameter of the ray o + t d (1 / d = inv) into node n's box within [t0, t1], or
+// +infinity when it misses.
+float boxEntry(uint n, vec3 o, vec3 inv, float t0, float t1) {
+  vec3 lo = vec3(nodes[n].lo[0], nodes[n].lo[1], nodes[n].lo[2]);
+  vec3 hi = vec3(nodes[n].hi[0], nodes[n].hi[1], nodes[n].hi[2]);
+  vec3 a = (lo - o) * inv, b = (hi - o) * inv;
+  vec3 tmin = min(a, b), tmax = max(a, b);
+  float enter = max(max(tmin.x, tmin.y), max(tmin.z, t0));
+  float leave = min(min(tmax.x, tmax.y), min(tmax.z, t1));
+  return enter <= leave + 1e-6 * abs(leave) ? enter : kNoHitDepth;  // slack: flat boxes, rounding
+}
+
+// Triangle k (leaf order) against the ray: its parameter when hit within [t0, tBest) and
+// accepted by the capture rule, else tBest.
+float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest) {
+  vec3 v0 = vertexAt(bvhTriangles[3u * k]), v1 = vertexAt(bvhTriangles[3u * k + 1u]), v2 = vertexAt(bvhTriangles[3u * k + 2u]);
+  vec3 e1 = v1 - v0, e2 = v2 - v0;
+  if (backCapture != 0 && !(dot(cross(e1, e2), d) > 0.0)) return tBest;
+  vec3 p = cross(d, e2);
+  float det = dot(e1, p);
+  if (det == 0.0) return tBest;
+  float invDet = 1.0 / det;
+  vec3 s = o - v0;
+  float u = dot(s, p) * invDet;
+  if (u < -kBarycentricSlack || u > 1.0 + kBarycentricSlack) return tBest;
+  vec3 q = cross(s, e1);
+  float v = dot(d, q) * invDet;
+  if (v < -kBarycentricSlack || u + v > 1.0 + kBarycentricSlack) return tBest;
+  float t = dot(e2, q) * invDet;
+  return t >= t0 && t < tBest ? t : tBest;
+}
+
+// 1 / d, with components of magnitude below 1e-30 taken as +-1e-30 (no 0 * inf in boxEntry).
+vec3 safeInverse(vec3 d) {
+  vec3 s = mix(vec3(1.0), sign(d), notEqual(d, vec3(0.0)));
+  return 1.0 / mix(d, s * 1e-30, lessThan(abs(d), vec3(1e-30)));
+}
+
+// The light-view depth the capture rule records along the light ray through texel coordinates
+// u (lightViewPointAt's), within [nearPlane, farPlane); kNoHitDepth when nothing is recorded
+// (a hit at the far plane itself would be the far plane to the sheet-depth rule anyway).
+float castRay(vec2 u) {
+  if (nodeCount == 0) return kNoHitDepth;
+  // Light view: the point at depth t is a + t b (linear in t, -b.z = 1); the ray starts at the
+  // near plane, so its parameter is the depth less nearPlane.
+  vec3 a = lightViewPointAt(u, 0.0), b = lightViewPointAt(u, 1.0) - a;
+  vec3 o = (lightViewToWorld * vec4(a + nearPlane * b, 1.0)).xyz;
+  vec3 d = (lightViewToWorld * vec4(b, 0.0)).xyz;
+  vec3 inv = safeInverse(d);
+  float range = farPlane - nearPlane, best = range;
+  uint stack[kStack];
+  int top = 0;
+  if (boxEntry(0u, o, inv, 0.0, range) != kNoHitDepth) stack[top++] = 0u;
+  while (top > 0) {
+    uint n = stack[--top];
+    if (nodes[n].count > 0u) {
+      for (uint k = nodes[n].first; k < nodes[n].first + nodes[n].count; ++k) best = hitTriangle(k, o, d, 0.0, best);
+      continue;
+    }
+    uint c0 = nodes[n].first, c1 = c0 + 1u;
+    float e0 = boxEntry(c0, o, inv, 0.0, best), e1 = boxEntry(c1, o, inv, 0.0, best);
+    if (e0 > e1) {  // the nearer child on top of the stack
+      uint c = c0;
+      c0 = c1;
+      c1 = c;
+      float e = e0;
+      e0 = e1;
+      e1 = e;
+    }
+    if (e1 != kNoHitDepth && top < kStack) stack[top++] = c1;
+    if (e0 != kNoHitDepth && top < kStack) stack[top++] = c0;
+  }
+  return best < range ? nearPlane + best : kNoHitDepth;
+}
+
+void refineEdge(ivec2 P, int axis, uint e) {
+  bool nearAtP = (e & kNearAtPBit) != 0u, surface = (e & kSurfaceBit) != 0u;
+  ivec2 Q = P + (axis == 0 ? ivec2(1, 0) : ivec2(0, 1));
+  ivec2 N = nearAtP ? P : Q, R = nearAtP ? Q : P;
+  // edgeSegment: the ends' depths by the rule for one sample (the ring is the far plane).
+  float dLo = unblurredDepth(N), dHi = surface ? unblurredDepth(R) : farPlane;
+  float lo = 0.0, hi = 1.0;
+  for (int step = 0; step < refineSteps; ++step) {
+    float m = 0.5 * (lo + hi);
+    float d = ofSample(castRay(mix(vec2(N), vec2(R), m)));
+    bool hit = d != farPlane;
+    if (hit && (!surface || d < 0.5 * (dLo + dHi))) {
+      lo = m;
+      dLo = d;
+    } else {
+      hi = m;
+      if (hit && surface) dHi = d;
+    }
+  }
+  // bisectWith's crossing: the bracket's middle; a near depth on the far plane (blur) falls back
+  // to the near end's final sheet depth.
+  float nearDepth = dLo != farPlane ? dLo : sheetDepth(N);
+  float farDepth = surface ? dHi : farPlane;
+  imageStore(crossingRecords, ivec3(P, axis), vec4(mix(vec2(N), vec2(R), 0.5 * (lo + hi)), nearDepth, farDepth));
+  atomicAdd(counters[2], 1u);
+}
+
+void main() {
+  uint id = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x;
+  if (id >= counters[10]) return;
+  uint slot = walkSlots[id], t = slot / 3u;
+  int k = int(slot % 3u);
+  ivec2 P = ivec2(int(t % uint(size.x)), int(t / uint(size.x)));
+  if (k < 2) {
+    uint e = flags[texelIndex(P)] >> uint(k);
+    if ((e & kBoundaryBit) != 0u) refineEdge(P, k, e);
+    return;
+  }
+  imageStore(crossingRecords, ivec3(P, 2), vec4(ofSample(castRay(vec2(P) + 0.5)), 0.0, 0.0, 0.0));
+}
