@@ -4,9 +4,11 @@
 # each), because one bench cell on a shared machine varies by 20-30 %. Prints both medians, the
 # median ratio and every pair's ratio.
 # Usage: bash scripts/refined_gpu_ratio.sh [N pairs, default 15] [build dir, or the shadowvol executable]
+#            [the refined frame's options, default "--refine 4" (the walk); e.g. "--refine 6 --crossings gpu-rays"]
 set -eu
 N=${1:-15}
 B=${2:-build}
+REFINED=${3:---refine 4}
 SV=$B/apps/shadowvol
 [ -f "$B" ] && SV=$B
 out=$(mktemp -d)
@@ -14,7 +16,8 @@ trap 'rm -rf "$out"' EXIT
 frame() { "$SV" render --scene data/scenes/default.json --resolution 128 --frames 51 "$@" \
             --out "$out/r.png" 2>&1 | grep -o 'frame [0-9.]* ms' | grep -o '[0-9.]*'; }
 for k in $(seq 1 "$N"); do
-  echo "$(frame) $(frame --refine 4)"
+  # shellcheck disable=SC2086  # the options split into words
+  echo "$(frame) $(frame $REFINED)"
 done | python3 -c "
 import sys, statistics
 p = [tuple(map(float, l.split())) for l in sys.stdin if l.strip()]

@@ -14,12 +14,37 @@ uniform vec2 footprint;         // TexelFootprint a, b: F(d) = a + b d
 uniform float jumpFootprints;   // kJumpFootprints
 uniform float jumpSlope;        // kJumpSlope
 
-bool farAt(ivec2 t) { return !inGrid(t) || sheetDepth(t) == farPlane; }
+// The work group's texels and their neighbours (one before, two after, along both axes: the
+// steps beyond an edge's ends), read once into shared memory: sheet depths, and the depths
+// without the blur's averaging; texels off the grid hold the far plane (farAt's rule).
+const int kTile = 16 + 3;
+shared float tileSheet[kTile * kTile];
+shared float tileRaw[kTile * kTile];
+
+int tileIndex(ivec2 t) {
+  ivec2 l = t - (ivec2(gl_WorkGroupID.xy) * 16 - 1);
+  return l.y * kTile + l.x;
+}
+float sheetAt(ivec2 t) { return tileSheet[tileIndex(t)]; }
+float rawAt(ivec2 t) { return tileRaw[tileIndex(t)]; }
+
+void loadTile() {
+  ivec2 origin = ivec2(gl_WorkGroupID.xy) * 16 - 1;
+  for (uint k = gl_LocalInvocationIndex; k < uint(kTile * kTile); k += 256u) {
+    ivec2 t = origin + ivec2(int(k) % kTile, int(k) / kTile);
+    float sd = inGrid(t) ? sheetDepth(t) : farPlane;
+    tileSheet[k] = sd;
+    tileRaw[k] = inGrid(t) && blurOn != 0 ? unblurredDepth(t) : sd;
+  }
+  barrier();
+}
+
+bool farAt(ivec2 t) { return sheetAt(t) == farPlane; }
 
 // The step beyond an end: |u(end) - u(t)|, or -1 when t is far or off the grid.
 float stepBeyond(float uEnd, ivec2 t) {
   if (farAt(t)) return -1.0;
-  float u = unblurredDepth(t);
+  float u = rawAt(t);
   return u == farPlane ? -1.0 : abs(uEnd - u);
 }
 
@@ -27,11 +52,11 @@ float stepBeyond(float uEnd, ivec2 t) {
 // P's sheet depth sP and depth without the blur's averaging uP.
 uint edgeFlags(ivec2 P, ivec2 d, float sP, float uP) {
   ivec2 Q = P + d;
-  float sQ = sheetDepth(Q);
+  float sQ = sheetAt(Q);
   bool farP = sP == farPlane, farQ = sQ == farPlane;
   if (farP && farQ) return 0u;
   if (farP != farQ) return kBoundaryBit | (farP ? 0u : kNearAtPBit);
-  float uQ = blurOn != 0 ? unblurredDepth(Q) : sQ;
+  float uQ = rawAt(Q);
   if (uP == farPlane || uQ == farPlane) return 0u;
   float jump = abs(uQ - uP), least = jumpFootprints * (footprint.x + footprint.y * min(uP, uQ));
   if (!(jump > least)) return 0u;  // the rule's quick reject, before the steps beyond the ends
@@ -42,9 +67,10 @@ uint edgeFlags(ivec2 P, ivec2 d, float sP, float uP) {
 }
 
 void main() {
+  loadTile();  // every invocation of the group, before any returns
   ivec2 P = ivec2(gl_GlobalInvocationID.xy);
   if (!inGrid(P)) return;
-  float sP = sheetDepth(P), uP = blurOn != 0 ? unblurredDepth(P) : sP;
+  float sP = sheetAt(P), uP = rawAt(P);
   uint f = 0u;
   if (P.x + 1 < size.x) f |= edgeFlags(P, ivec2(1, 0), sP, uP);
   if (P.y + 1 < size.y) f |= edgeFlags(P, ivec2(0, 1), sP, uP) << 1;

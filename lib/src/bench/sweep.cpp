@@ -83,6 +83,19 @@ SweepMethod refinedGpu(CaptureMode capture) {
   return m;
 }
 
+// The refined GPU volume with its crossings from bisection rays cast on the GPU (RefineCrossings::
+// GpuRays, kSweepRefineSteps rays per boundary edge through a BVH of the scene's triangles; the
+// rays are part of the "crossings" pass).
+SweepMethod refinedGpuRays(CaptureMode capture) {
+  SweepMethod m = refinedGpu(capture);
+  m.key = std::string("hybrid-refined-rays") + captureSuffix(capture) + "/gpu";
+  m.options.refineCrossings = gl::RefineCrossings::GpuRays;
+  m.description = "GPU volume with sub-texel silhouette refinement, the crossings from " +
+                  std::to_string(kSweepRefineSteps) + " bisection rays per boundary edge cast on the GPU, all on the "
+                  "GPU without a read-back; perfect triangulation, " + captureWords(capture);
+  return m;
+}
+
 // The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
 // boundary edge), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
@@ -237,6 +250,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuRays(c));
     v.push_back(cubeShadowMap("cube-shadowmap", gl::ShadowMethod::ShadowMap,
                               "a point light's cube shadow map, one hardware depth compare, back-face depths"));
     v.push_back(cubeShadowMap("cube-pcf3", gl::ShadowMethod::Pcf3,

@@ -1276,7 +1276,9 @@ struct Renderer::Impl {
   /// silhouette volumes, a cube shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     if (o.method == ShadowMethod::Hybrid) {  // either cube volume
-      if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays)
+      // The GPU cube volume's face volumes take the GPU's rays as one map's refined GPU volume does.
+      const bool gpuRays = o.refineCrossings == RefineCrossings::GpuRays && o.volume == VolumeSource::Gpu;
+      if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays && !gpuRays)
         throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
       if (o.volumeOptions.cap != FarCap::Exact)
         throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
@@ -1533,7 +1535,7 @@ struct Renderer::Impl {
       light = guardedCubeFaceLight(point, f, n, kCubeGuardTexels);
       {
         TimedPass t(timer, "light");
-        lightPass(m, m, o.capture, true, true);
+        lightPass(m, m, o.capture, true, o.refineCrossings != RefineCrossings::GpuRays);  // the walk's record
       }
       const Texture* depth = gpuVolumeDepth(o, true, timer);
       {
@@ -1848,7 +1850,9 @@ struct Renderer::Impl {
     }
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
       TimedPass t(timer, "light");
-      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume, walkCrossings(o) || refinedGpu);
+      // The triangle record for the walk (the GPU's rays do not read it).
+      lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume,
+                walkCrossings(o) || (refinedGpu && o.refineCrossings != RefineCrossings::GpuRays));
     }
 
     std::size_t explicitTriangles = 0;
