@@ -40,17 +40,18 @@ step() {
 scene=data/scenes/default.json
 step context 60 "$SV" -v render --scene "$scene" --resolution 256 --frames 21 --out "$OUT/default.png" \
   --stencil "$OUT/default-stencil.png"
-for v in "gpu" "gpu --refine 6" "explicit --refine 6" "gpu --count zfail"; do
+for v in "gpu" "gpu --refine 6" "gpu --refine 6 --crossings gpu-walk" "explicit --refine 6" "gpu --count zfail"; do
   tag=validate-$(echo "$v" | tr ' ' '_' | tr -d '-')
   # shellcheck disable=SC2086
   step "$tag" 120 "$SV" validate --scene "$scene" --resolution 256 --volume $v --report "$OUT/$tag"
 done
 step tests_gl 300 "$TESTS/tests_gl" --gtest_output="xml:$OUT/tests_gl.xml"
 step refined_ratio 240 bash scripts/refined_gpu_ratio.sh "${GPU_CHECK_PAIRS:-7}" "$SV"
+step refined_walk_ratio 240 bash scripts/refined_gpu_ratio.sh "${GPU_CHECK_PAIRS:-7}" "$SV" "--refine 4 --crossings gpu-walk"
 # shellcheck disable=SC2086
 step bench 300 "$SV" bench \
   --scenes ${GPU_CHECK_BENCH_SCENES:-default data/scenes/bunny.json data/scenes/armadillo.json data/scenes/fandisk.json data/scenes/hemisphere-grazing.json} \
-  --methods shadowmap hybrid-perfect/gpu hybrid-refined/gpu hybrid-refined-front/gpu hybrid-refined/explicit silhouette \
+  --methods shadowmap hybrid-perfect/gpu hybrid-refined/gpu hybrid-refined-front/gpu hybrid-refined-walk/gpu hybrid-refined/explicit silhouette \
   --resolutions ${GPU_CHECK_BENCH_RES:-128 256 512 1024 2048} --size 640x480 --repeat 5 --warmup 1 --out "$OUT/bench"
 step tests_validate 300 "$TESTS/tests_validate" --gtest_output="xml:$OUT/tests_validate.xml"
 step tests_bench 240 "$TESTS/tests_bench" --gtest_output="xml:$OUT/tests_bench.xml"

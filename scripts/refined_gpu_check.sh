@@ -1,6 +1,7 @@
 #!/bin/bash
 # The refined GPU volume's consistency on every shipped scene (docs/gpu.md "The refined GPU volume"):
-# shadowvol validate --volume gpu --refine 4 at 128^2 and 256^2, back and front capture, with and
+# shadowvol validate --volume gpu --refine 4 (the GPU's rays, the default since 2026-12-04; the walk
+# before) at 128^2 and 256^2, back and front capture, with and
 # without blur. One line per frame: stencil vs crossing counts, boundary edges the CPU rule found
 # that the GPU did not, the GPU volume's own mesh check, the error against exact shadows, the verdict
 # (consistent: the checks above; accurate: validate's error limits, which blur with front capture can miss).

@@ -4,11 +4,12 @@
 # each), because one bench cell on a shared machine varies by 20-30 %. Prints both medians, the
 # median ratio and every pair's ratio.
 # Usage: bash scripts/refined_gpu_ratio.sh [N pairs, default 15] [build dir, or the shadowvol executable]
-#            [the refined frame's options, default "--refine 4" (the walk); e.g. "--refine 6 --crossings gpu-rays"]
+#            [the refined frame's options, default "--refine 6" (the GPU's rays, the sweep's K); the walk:
+#             "--refine 4 --crossings gpu-walk", as measured before 2026-12-04 with "--refine 4"]
 set -eu
 N=${1:-15}
 B=${2:-build}
-REFINED=${3:---refine 4}
+REFINED=${3:---refine 6}
 SV=$B/apps/shadowvol
 [ -f "$B" ] && SV=$B
 out=$(mktemp -d)

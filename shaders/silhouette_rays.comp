@@ -14,14 +14,12 @@ layout(local_size_x = 64) in;
 
 struct BvhNode { float lo[3]; uint first; float hi[3]; uint count; };  // triangle_bvh.h
 
-layout(std430, binding = 2) readonly buffer SceneVertices { float sceneVertices[]; };  // renderer's VBO
-layout(std430, binding = 3) readonly buffer BvhTriangles { uint bvhTriangles[]; };     // 3 vertex indices each, leaf order
+layout(std430, binding = 3) readonly buffer BvhTriangles { vec4 bvhCorners[]; };  // 3 corners each (xyz), leaf order
 layout(std430, binding = 4) readonly buffer BvhNodes { BvhNode nodes[]; };
 layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };
 layout(std430, binding = 6) buffer Counters { uint counters[]; };  // [2] edges refined, [10] slots
 layout(std430, binding = 7) readonly buffer WalkSlots { uint walkSlots[]; };
 layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
-uniform int vertexStride;        // floats per scene vertex (position first)
 uniform mat4 lightViewToWorld;   // inverse of V_light, composed in double
 uniform int refineSteps;         // K: rays per boundary edge
 uniform int backCapture;         // 1: back faces only; 0: the nearest hit (front capture)
@@ -30,11 +28,6 @@ uniform int nodeCount;           // 0: no triangles
 const int kStack = 64;                    // kBvhMaxDepth
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 const float kBarycentricSlack = 1e-6;     // a ray through a shared edge hits both triangles
-
-vec3 vertexAt(uint v) {
-  uint at = v * uint(vertexStride);
-  return vec3(sceneVertices[at], sceneVertices[at + 1u], sceneVertices[at + 2u]);
-}
 
 // The entry parameter of the ray o + t d (1 / d = inv) into node n's box within [t0, t1], or
 // +infinity when it misses.
@@ -51,7 +44,7 @@ float boxEntry(uint n, vec3 o, vec3 inv, float t0, float t1) {
 // Triangle k (leaf order) against the ray: its parameter when hit within [t0, tBest) and
 // accepted by the capture rule, else tBest.
 float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest) {
-  vec3 v0 = vertexAt(bvhTriangles[3u * k]), v1 = vertexAt(bvhTriangles[3u * k + 1u]), v2 = vertexAt(bvhTriangles[3u * k + 2u]);
+  vec3 v0 = bvhCorners[3u * k].xyz, v1 = bvhCorners[3u * k + 1u].xyz, v2 = bvhCorners[3u * k + 2u].xyz;
   vec3 e1 = v1 - v0, e2 = v2 - v0;
   if (backCapture != 0 && !(dot(cross(e1, e2), d) > 0.0)) return tBest;
   vec3 p = cross(d, e2);

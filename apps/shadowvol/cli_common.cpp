@@ -151,9 +151,10 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
                   "put each wall on the light ray within 2^-(K+1) texel of where the surface ends; 0 = off, 6 is what "
                   "the sweep uses (README 'Silhouette refinement'). Needs --cap exact (docs/volume.md "
-                  "'Refinement'). In render and validate with --volume gpu (bench: hybrid-refined/gpu) the GPU "
-                  "refines by its walk over the scene's triangles instead (exact: K > 0 only switches it on; back "
-                  "or front capture; docs/gpu.md 'The refined GPU volume')")
+                  "'Refinement'). In render and validate with --volume gpu the GPU casts the same K rays per edge "
+                  "itself (bench: hybrid-refined/gpu), or walks over the scene's triangles with --crossings "
+                  "gpu-walk (exact: K > 0 only switches it on; bench: hybrid-refined-walk/gpu); back or front capture "
+                  "(docs/gpu.md 'The refined GPU volume')")
       ->check(CLI::Range(0, kMaxRefineSteps))
       ->capture_default_str();
 }

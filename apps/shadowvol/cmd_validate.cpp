@@ -21,12 +21,13 @@
 namespace shadowvol::cli {
 namespace {
 
-// Where this frame's refinement found its crossings (null without refinement): the explicit
-// volume's choice, or the refined GPU volume's (its rays, or the walk for any other choice).
+// Where this frame's refinement found its crossings ("none" without refinement: a report holds no
+// null, which reads as a non-finite number): the explicit
+// volume's choice, or the refined GPU volume's (the walk, or its own rays for any other choice).
 nlohmann::json crossingsUsed(const gl::RenderOptions& ro) {
-  if (ro.method != gl::ShadowMethod::Hybrid || ro.volumeOptions.refineSteps == 0) return nullptr;
+  if (ro.method != gl::ShadowMethod::Hybrid || ro.volumeOptions.refineSteps == 0) return "none";
   if (ro.volume == gl::VolumeSource::Explicit) return gl::toString(ro.refineCrossings);
-  return ro.refineCrossings == gl::RefineCrossings::GpuRays ? "gpu-rays" : "gpu-walk";
+  return ro.refineCrossings == gl::RefineCrossings::GpuWalk ? "gpu-walk" : "gpu-rays";
 }
 
 

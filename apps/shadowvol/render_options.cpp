@@ -57,7 +57,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "docs/gpu.md 'Crossings from a triangle walk') or gpu-rays (--volume gpu only: the same K "
                  "bisection rays as 'rays', cast on the GPU through a hierarchy of the scene's triangles; back or "
                  "front capture; docs/gpu.md 'Crossings from GPU rays'); auto: rays for --volume explicit, "
-                 "gpu-walk for --volume gpu")
+                 "gpu-rays for --volume gpu")
       ->check(CLI::IsMember({"auto", "rays", "gpu-walk", "gpu-rays"}))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
@@ -96,7 +96,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 namespace {
 
 constexpr const char* kGpuWalksOnly = "the refined GPU volume finds its crossings on the GPU: use --crossings "
-                                      "gpu-walk (or auto) or gpu-rays, or --volume explicit for Embree's rays";
+                                      "gpu-rays (or auto) or gpu-walk, or --volume explicit for Embree's rays";
 constexpr const char* kGpuCrossingsOnly = "needs rays (--volume explicit --crossings rays): the refined GPU volume "
                                           "refines the boundary edges' crossings alone";
 

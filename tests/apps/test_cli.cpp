@@ -731,22 +731,22 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   EXPECT_EQ(g["volume"]["crossingFallbacks"], 0);
   EXPECT_TRUE(g["gpuVolumeMeshChecks"]["valid"].get<bool>()) << gpu.out;
   EXPECT_TRUE(g["passed"].get<bool>());
-  EXPECT_EQ(g["options"]["crossings"], "gpu-walk");
-  // The GPU's own bisection rays: the same edges, the choice in the report; refused elsewhere.
-  const CliResult gpuRays = runCli("validate --json --refine 4 --crossings gpu-rays --resolution 64 --size 160x120 "
-                                   "--scene " + scene("plate.json") + " --report " + (dir / "gr").string());
-  ASSERT_EQ(gpuRays.code, 0) << gpuRays.out;
-  const auto gr = nlohmann::json::parse(gpuRays.out);
-  EXPECT_EQ(gr["options"]["crossings"], "gpu-rays");
-  EXPECT_EQ(gr["gpuRefinement"]["boundaryEdges"], 64);
-  EXPECT_TRUE(gr["passed"].get<bool>());
+  EXPECT_EQ(g["options"]["crossings"], "gpu-rays");  // the default
+  // The GPU's walk: the same edges, the choice in the report; the GPU's rays refused elsewhere.
+  const CliResult gpuWalk = runCli("validate --json --refine 4 --crossings gpu-walk --resolution 64 --size 160x120 "
+                                   "--scene " + scene("plate.json") + " --report " + (dir / "gw").string());
+  ASSERT_EQ(gpuWalk.code, 0) << gpuWalk.out;
+  const auto gw = nlohmann::json::parse(gpuWalk.out);
+  EXPECT_EQ(gw["options"]["crossings"], "gpu-walk");
+  EXPECT_EQ(gw["gpuRefinement"]["boundaryEdges"], 64);
+  EXPECT_TRUE(gw["passed"].get<bool>());
   const CliResult explicitGpuRays = runCli("render --volume explicit --refine 4 --crossings gpu-rays --resolution 32 "
                                            "--size 64x48 --out " + (dir / "x.png").string());
   EXPECT_EQ(explicitGpuRays.code, 2) << explicitGpuRays.out;
   EXPECT_TRUE(contains(explicitGpuRays.out, "--crossings")) << explicitGpuRays.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
-  const CliResult walk = runCli("render --refine 2 --crossings gpu-walk --resolution 32 --size 64x48 --out " +
-                                (dir / "w.png").string());  // the walk named: what the GPU volume does anyway
+  const CliResult walk = runCli("render --refine 2 --crossings gpu-rays --resolution 32 --size 64x48 --out " +
+                                (dir / "w.png").string());  // the rays named: what the GPU volume does anyway
   EXPECT_EQ(walk.code, 0) << walk.out;
   const CliResult r = runCli("validate --json --volume explicit --refine 4 --resolution 64 --size 160x120 --scene " +
                              scene("plate.json") + " --report " + (dir / "e").string());

@@ -73,8 +73,8 @@ enum class GpuVolumeDraw {
 const char* toString(GpuVolumeDraw d);
 
 /// Where refinement finds its crossings (volumeOptions.refineSteps > 0). The explicit volume takes
-/// Rays or GpuWalk; the refined GPU volume (docs/gpu.md "The refined GPU volume") takes GpuRays,
-/// and GpuWalk for any other value.
+/// Rays or GpuWalk; the refined GPU volume (docs/gpu.md "The refined GPU volume") takes GpuWalk,
+/// or its own rays for Rays (the default) and GpuRays alike.
 enum class RefineCrossings {
   Rays,     ///< bisection rays from volumeOptions.depthOracle (Embree), refineSteps per edge
   GpuWalk,  ///< the GPU's silhouette walk over the scene's triangles (walk_crossings.h,

@@ -71,28 +71,28 @@ SweepMethod refinedWalk(CaptureMode capture) {
   return m;
 }
 
-// The refined GPU volume (--volume gpu --refine K: boundary edges, the walk's crossings and the
-// refined cells in compute passes, no read-back; the walk's passes are the frame's "crossings" pass).
+// The refined GPU volume (--volume gpu --refine K: boundary edges, kSweepRefineSteps bisection
+// rays per boundary edge cast on the GPU through a BVH of the scene's triangles and the refined
+// cells in compute passes, no read-back; the rays are the frame's "crossings" pass). Before
+// 2026-12-04 this key was the walk's (hybrid-refined-walk/gpu since).
 SweepMethod refinedGpu(CaptureMode capture) {
   SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Gpu, capture);
-  m.key = std::string("hybrid-refined") + captureSuffix(capture) +
-          "/gpu";
-  m.options.volumeOptions.refineSteps = kSweepRefineSteps;  // only switches it on: the walk is exact
-  m.description = "GPU volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the scene's "
-                  "triangles, all on the GPU without a read-back; perfect triangulation, " + captureWords(capture);
-  return m;
-}
-
-// The refined GPU volume with its crossings from bisection rays cast on the GPU (RefineCrossings::
-// GpuRays, kSweepRefineSteps rays per boundary edge through a BVH of the scene's triangles; the
-// rays are part of the "crossings" pass).
-SweepMethod refinedGpuRays(CaptureMode capture) {
-  SweepMethod m = refinedGpu(capture);
-  m.key = std::string("hybrid-refined-rays") + captureSuffix(capture) + "/gpu";
-  m.options.refineCrossings = gl::RefineCrossings::GpuRays;
+  m.key = std::string("hybrid-refined") + captureSuffix(capture) + "/gpu";
+  m.options.volumeOptions.refineSteps = kSweepRefineSteps;
   m.description = "GPU volume with sub-texel silhouette refinement, the crossings from " +
                   std::to_string(kSweepRefineSteps) + " bisection rays per boundary edge cast on the GPU, all on the "
                   "GPU without a read-back; perfect triangulation, " + captureWords(capture);
+  return m;
+}
+
+// The refined GPU volume with the crossings from the GPU's walk (RefineCrossings::GpuWalk; the
+// walk's passes are the frame's "crossings" pass).
+SweepMethod refinedGpuWalk(CaptureMode capture) {
+  SweepMethod m = refinedGpu(capture);
+  m.key = std::string("hybrid-refined-walk") + captureSuffix(capture) + "/gpu";
+  m.options.refineCrossings = gl::RefineCrossings::GpuWalk;  // K only switches it on: the walk is exact
+  m.description = "GPU volume with sub-texel silhouette refinement, the crossings from the GPU's walk over the scene's "
+                  "triangles, all on the GPU without a read-back; perfect triangulation, " + captureWords(capture);
   return m;
 }
 
@@ -159,9 +159,9 @@ SweepMethod cubeRefined(CaptureMode capture) {
 SweepMethod cubeRefinedGpu(CaptureMode capture) {
   SweepMethod m = cubeVolume(capture, gl::VolumeSource::Gpu);
   m.key = std::string("hybrid-cube-refined") + captureSuffix(capture) + "/gpu";
-  m.options.volumeOptions.refineSteps = kSweepRefineSteps;  // only switches it on: the walk is exact
-  m.description = "a point light's refined GPU cube volume: per face, the refined GPU volume (the GPU's walk over the "
-                  "scene's triangles, no read-back) of the face's frustum widened by a guard band, each pixel counted "
+  m.options.volumeOptions.refineSteps = kSweepRefineSteps;
+  m.description = "a point light's refined GPU cube volume: per face, the refined GPU volume (bisection rays cast on "
+                  "the GPU, no read-back) of the face's frustum widened by a guard band, each pixel counted "
                   "against its own face's volume; perfect triangulation, " + captureWords(capture);
   return m;
 }
@@ -250,7 +250,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
-    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuRays(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));
     v.push_back(cubeShadowMap("cube-shadowmap", gl::ShadowMethod::ShadowMap,
                               "a point light's cube shadow map, one hardware depth compare, back-face depths"));
     v.push_back(cubeShadowMap("cube-pcf3", gl::ShadowMethod::Pcf3,

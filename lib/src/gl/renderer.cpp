@@ -1069,8 +1069,9 @@ struct Renderer::Impl {
   }
 
   /// The refined GPU volume's boundary edges and crossings for this frame's map (`depth`: the
-  /// final sheet depths; with blur the unblurred are linearDepth): by bisection rays on the GPU for
-  /// RefineCrossings::GpuRays (vo.refineSteps per edge, `capture`'s rule), else by the walk.
+  /// final sheet depths; with blur the unblurred are linearDepth): by the walk for
+  /// RefineCrossings::GpuWalk, else by bisection rays on the GPU (vo.refineSteps per edge,
+  /// `capture`'s rule).
   void findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth, RefineCrossings crossings,
                         CaptureMode capture) {
     if (!refined) refined.emplace(shaders);  // compiled on the first refined frame
@@ -1091,7 +1092,7 @@ struct Renderer::Impl {
     bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
     const double farSnap = light.farPlane * (1.0 - kFarSnap);
     const double hitLimit = std::min(farSnap, farSnap - bias - (vo.blur ? vo.blurOffset : 0.0));
-    const bool byRays = crossings == RefineCrossings::GpuRays;
+    const bool byRays = crossings != RefineCrossings::GpuWalk;
     refined->findCrossings(lightW, lightH, *footprint, [&](GLintptr indirectOffset) {
       const Program& p = byRays ? rays.program() : walk.program();
       p.use();
@@ -1276,9 +1277,9 @@ struct Renderer::Impl {
   /// silhouette volumes, a cube shadow map (GL 4.3), dual-paraboloid maps or no shadows.
   void validatePointLight(const RenderOptions& o) const {
     if (o.method == ShadowMethod::Hybrid) {  // either cube volume
-      // The GPU cube volume's face volumes take the GPU's rays as one map's refined GPU volume does.
-      const bool gpuRays = o.refineCrossings == RefineCrossings::GpuRays && o.volume == VolumeSource::Gpu;
-      if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays && !gpuRays)
+      // The GPU cube volume's face volumes take the GPU's rays or walk as one map's refined GPU
+      // volume does; the explicit cube volume only Embree's rays.
+      if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays && o.volume != VolumeSource::Gpu)
         throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
       if (o.volumeOptions.cap != FarCap::Exact)
         throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
@@ -1406,8 +1407,7 @@ struct Renderer::Impl {
         throw InputError("RenderOptions", "refineCrossings", value, why);
       };
       if (o.method != ShadowMethod::Hybrid || o.volumeOptions.refineSteps == 0)
-        refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0 "
-                           "(the refined GPU volume always walks)");
+        refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0");
       if (!hasCompute) refuse("gpu-walk", "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
                                               context.info().glVersion);
       if (o.capture == CaptureMode::Midpoint)
@@ -1535,7 +1535,7 @@ struct Renderer::Impl {
       light = guardedCubeFaceLight(point, f, n, kCubeGuardTexels);
       {
         TimedPass t(timer, "light");
-        lightPass(m, m, o.capture, true, o.refineCrossings != RefineCrossings::GpuRays);  // the walk's record
+        lightPass(m, m, o.capture, true, o.refineCrossings == RefineCrossings::GpuWalk);  // the walk's record
       }
       const Texture* depth = gpuVolumeDepth(o, true, timer);
       {
@@ -1852,7 +1852,7 @@ struct Renderer::Impl {
       TimedPass t(timer, "light");
       // The triangle record for the walk (the GPU's rays do not read it).
       lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume,
-                walkCrossings(o) || (refinedGpu && o.refineCrossings != RefineCrossings::GpuRays));
+                walkCrossings(o) || (refinedGpu && o.refineCrossings == RefineCrossings::GpuWalk));
     }
 
     std::size_t explicitTriangles = 0;

@@ -1,6 +1,9 @@
 #include "silhouette_rays.h"
 
 #include <algorithm>
+#include <vector>
+
+#include <glm/vec4.hpp>
 
 #include "shadowvol/check.h"
 #include "shadowvol/gl/gl_error.h"
@@ -23,17 +26,21 @@ void SilhouetteRays::setScene(const Scene* scene) {
 void SilhouetteRays::ensureHierarchy() {
   if (built_) return;
   SV_CHECK(scene_ != nullptr);
-  const TriangleBvh bvh = buildTriangleBvh(scene_->merged());
+  const TriangleMesh mesh = scene_->merged();
+  const TriangleBvh bvh = buildTriangleBvh(mesh);
   // Buffers of at least one element, so an empty scene binds valid ranges (nodeCount 0 stops
   // every ray before it reads them).
   const BvhNode noNode{};
-  const std::array<std::uint32_t, 3> noTriangle{};
+  // The corners in leaf order, as vec4 (std430's stride for vec4): one load each in the shader.
+  std::vector<glm::vec4> corners(std::max<std::size_t>(3 * bvh.triangles.size(), 1));
+  for (std::size_t k = 0; k < bvh.triangles.size(); ++k)
+    for (int c = 0; c < 3; ++c) corners[3 * k + c] = glm::vec4(mesh.positions[bvh.triangles[k][c]], 1.0f);
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, nodes_.id()));
   SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<std::size_t>(bvh.nodes.size(), 1) * sizeof(BvhNode)),
                      bvh.nodes.empty() ? &noNode : bvh.nodes.data(), GL_STATIC_DRAW));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, triangles_.id()));
-  SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<std::size_t>(bvh.triangles.size(), 1) * 12),
-                     bvh.triangles.empty() ? noTriangle.data() : bvh.triangles.front().data(), GL_STATIC_DRAW));
+  SV_GL(glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(corners.size() * sizeof(glm::vec4)), corners.data(),
+                     GL_STATIC_DRAW));
   SV_GL(glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0));
   nodeCount_ = bvh.nodes.size();
   built_ = true;
@@ -42,17 +49,15 @@ void SilhouetteRays::ensureHierarchy() {
 void SilhouetteRays::dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, GLintptr indirectOffset) {
   SV_CHECK(capture == CaptureMode::Back || capture == CaptureMode::Front);
   ensureHierarchy();
-  SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, in.sceneVertices));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, triangles_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, nodes_.id()));
   program_.use();
-  program_.set("vertexStride", in.vertexStride);
   program_.set("lightViewToWorld", in.lightViewToWorld);
   program_.set("refineSteps", steps);
   program_.set("backCapture", capture == CaptureMode::Back ? 1 : 0);
   program_.set("nodeCount", int(std::min<std::size_t>(nodeCount_, 0x7fffffff)));
   SV_GL(glDispatchComputeIndirect(indirectOffset));
-  for (GLuint b = 2; b < 5; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
+  for (GLuint b = 3; b < 5; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
 }
 
 }  // namespace shadowvol::gl
