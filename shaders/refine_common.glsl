@@ -1,5 +1,6 @@
 // (volume_common.glsl comes first.) Shared by the refined GPU volume's passes (boundary_edges.comp,
-// boundary_unfold.comp, walk_slots.comp, silhouette_walk.comp's grid queries, volume_refined.comp
+// boundary_unfold.comp, walk_slots.comp, silhouette_walk.comp's grid queries, silhouette_rays.comp,
+// volume_refined.comp
 // and volume_refined.vert): the sheet-depth rule for one sample of the surface (sheet_depth.h's
 // SheetDepthRule::ofSample), the boundary flags of a texel and the sides of a quad.
 //

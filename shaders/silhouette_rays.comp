@@ -17,7 +17,7 @@ struct BvhNode { float lo[3]; uint first; float hi[3]; uint count; };  // triang
 layout(std430, binding = 3) readonly buffer BvhTriangles { vec4 bvhCorners[]; };  // 3 corners each (xyz), leaf order
 layout(std430, binding = 4) readonly buffer BvhNodes { BvhNode nodes[]; };
 layout(std430, binding = 5) readonly buffer Flags { uint flags[]; };
-layout(std430, binding = 6) buffer Counters { uint counters[]; };  // [2] edges refined, [10] slots
+layout(std430, binding = 6) buffer Counters { uint counters[]; };  // [2] edges refined, [3] fallbacks, [10] slots
 layout(std430, binding = 7) readonly buffer WalkSlots { uint walkSlots[]; };
 layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
 uniform mat4 lightViewToWorld;   // inverse of V_light, composed in double
@@ -25,12 +25,12 @@ uniform int refineSteps;         // K: rays per boundary edge
 uniform int backCapture;         // 1: back faces only; 0: the nearest hit (front capture)
 uniform int nodeCount;           // 0: no triangles
 
-const int kStack = 64;                    // kBvhMaxDepth
+const int kStack = 64;                    // kBvhMaxDepth (silhouette_rays.cpp asserts they agree): never full
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 const float kBarycentricSlack = 1e-6;     // a ray through a shared edge hits both triangles
 
-// The entry parameter of the ray o + t d (1 / d = inv) into node n's box within [t0, t1], or
-// +infinity when it misses.
+// The entry parameter of the ray o + t d (1 / d = inv, safeInverse) into node n's box within
+// [t0, t1], or +infinity when it misses.
 float boxEntry(uint n, vec3 o, vec3 inv, float t0, float t1) {
   vec3 lo = vec3(nodes[n].lo[0], nodes[n].lo[1], nodes[n].lo[2]);
   vec3 hi = vec3(nodes[n].hi[0], nodes[n].hi[1], nodes[n].hi[2]);
@@ -61,7 +61,12 @@ float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest) {
   return t >= t0 && t < tBest ? t : tBest;
 }
 
-// 1 / d, with components of magnitude below 1e-30 taken as +-1e-30 (no 0 * inf in boxEntry).
+// 1 / d, finite: a component of magnitude below 1e-30 counts as +-1e-30 (+ for 0), as Embree's
+// traversal takes it. So a ray that does not move along an axis and lies exactly on a box's
+// upper face along it misses the box, on its lower face enters it: asymmetric, but Embree's
+// rule, which the explicit volume's rays follow (RefinedGpuVolumeByRaysIsTheExplicitVolumesBisection:
+// 12 vertices apart with this rule, 204 with such faces counted on both sides or on neither, on
+// the axis-aligned scenes whose bisection samples land on box faces).
 vec3 safeInverse(vec3 d) {
   vec3 s = mix(vec3(1.0), sign(d), notEqual(d, vec3(0.0)));
   return 1.0 / mix(d, s * 1e-30, lessThan(abs(d), vec3(1e-30)));
@@ -125,9 +130,19 @@ void refineEdge(ivec2 P, int axis, uint e) {
   }
   // bisectWith's crossing: the bracket's middle; a near depth on the far plane (blur) falls back
   // to the near end's final sheet depth.
+  float s = 0.5 * (lo + hi);
   float nearDepth = dLo != farPlane ? dLo : sheetDepth(N);
   float farDepth = surface ? dHi : farPlane;
-  imageStore(crossingRecords, ivec3(P, axis), vec4(mix(vec2(N), vec2(R), 0.5 * (lo + hi)), nearDepth, farDepth));
+  // In float the bracket's depths can meet (their middle rounds to the near one: a steep surface
+  // at large K), which double never lets happen: the edge's fallback then, as the walk's
+  // (gridCrossing), counted.
+  if (!(farDepth > nearDepth)) {
+    s = 0.5;
+    nearDepth = unblurredDepth(N) != farPlane ? unblurredDepth(N) : sheetDepth(N);
+    farDepth = surface ? unblurredDepth(R) : farPlane;
+    atomicAdd(counters[3], 1u);
+  }
+  imageStore(crossingRecords, ivec3(P, axis), vec4(mix(vec2(N), vec2(R), s), nearDepth, farDepth));
   atomicAdd(counters[2], 1u);
 }
 

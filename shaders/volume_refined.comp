@@ -22,7 +22,7 @@ layout(std430, binding = 0) buffer Count { uint indexCount; uint quadCount; };  
 layout(std430, binding = 1) writeonly buffer Indices { uint indices[]; };
 layout(std430, binding = 6) readonly buffer Counters { uint counters[]; };  // [11] refined quads (walk_slots.comp)
 layout(std430, binding = 4) readonly buffer RefinedQuads { uint refinedQuads[]; };
-uniform sampler2DArray crossingRecords;  // silhouette_walk.comp's grid answers
+uniform sampler2DArray crossingRecords;  // silhouette_rays.comp's or silhouette_walk.comp's records
 uniform int capacity;
 
 struct CellVertex {

@@ -7,7 +7,8 @@
 // `triangles`, the mesh's triangles (three vertex indices each) in leaf order. Boxes are the
 // float bounds of their triangles' vertices, so a ray that hits a triangle in float hits every box
 // above it. Built by binned surface-area splits (kBins bins along the longest axis of the
-// centroids' bounds), leaves of at most kMaxLeafTriangles; deterministic (ties by triangle index).
+// centroids' bounds), leaves of at most kBvhMaxLeafTriangles (more only at kBvhMaxDepth, where
+// splitting stops); deterministic (ties by triangle index).
 #pragma once
 
 #include <array>

@@ -41,8 +41,8 @@ struct Builder {
     for (std::uint32_t k = begin; k < end; ++k) c.extend(centres[order[k]]);
     const glm::vec3 extent = c.hi - c.lo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-    if (!(extent[axis] > 0.0f)) return false;
     const float scale = float(kBins) / extent[axis];
+    if (!(extent[axis] > 0.0f) || !std::isfinite(scale)) return false;  // coincident (or denormal-near) centroids
     auto binOf = [&](std::uint32_t t) {
       return std::min(kBins - 1, std::max(0, int((centres[t][axis] - c.lo[axis]) * scale)));
     };

@@ -35,7 +35,7 @@
 
 namespace shadowvol::gl {
 
-/// The walk's counts of one refined GPU volume.
+/// The crossings pass's counts of one refined GPU volume (its rays' or its walk's).
 struct RefinedGpuCounts {
   std::uint32_t boundaryEdges = 0, fallbacks = 0;
 };
@@ -63,8 +63,8 @@ class RefinedGpuVolume {
   RefinedGpuVolume() = default;
   explicit RefinedGpuVolume(const ShaderLibrary& shaders);
 
-  /// The programs that read volume_common.glsl's and refine_common.glsl's uniforms (the walk's
-  /// program is the SilhouetteWalk's).
+  /// The programs that read volume_common.glsl's and refine_common.glsl's uniforms (the walk's and
+  /// the rays' programs are their owners', SilhouetteWalk's and SilhouetteRays').
   std::vector<const Program*> programs() const { return {&boundary_, &unfold_, &slots_, &list_, &draw_}; }
   /// The listing pass's program (its drawCap uniform decides the cap).
   const Program& listProgram() const { return list_; }
@@ -85,7 +85,7 @@ class RefinedGpuVolume {
   void dispatchCells(std::int64_t capacity);
   /// The vertex program of the whole list (volume_refined.vert); the records on unit 2.
   const Program& drawProgram() const { return draw_; }
-  /// The walk's counts of the last findCrossings: boundary edges walked, fallbacks.
+  /// The counts of the last findCrossings: boundary edges refined (walked or bisected), fallbacks.
   RefinedGpuCounts walkCounts() const;
 
   /// Debug read-backs of the last findCrossings (tests, validation): every texel's boundary flags

@@ -1374,7 +1374,7 @@ struct Renderer::Impl {
       };
       if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
       if (o.capture == CaptureMode::Midpoint)
-        refuse("walks one layer; midpoint capture is the mean of two: use back or front capture, or the explicit "
+        refuse("finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use back or front capture, or the explicit "
                "volume with rays");
       if (o.volumeOptions.cap != FarCap::Exact)
         refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");

@@ -6,10 +6,14 @@
 #include <glm/vec4.hpp>
 
 #include "shadowvol/check.h"
+#include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
 #include "shadowvol/triangle_bvh.h"
 
 namespace shadowvol::gl {
+
+// silhouette_rays.comp's traversal stack holds kStack = 64 nodes: at most one per level.
+static_assert(kBvhMaxDepth == 64, "keep silhouette_rays.comp's kStack in step");
 
 SilhouetteRays::SilhouetteRays(const ShaderLibrary& shaders)
     : program_(Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl",
@@ -27,6 +31,16 @@ void SilhouetteRays::ensureHierarchy() {
   if (built_) return;
   SV_CHECK(scene_ != nullptr);
   const TriangleMesh mesh = scene_->merged();
+  // Both buffers must fit one shader storage block (128 MiB on llvmpipe: about 2 million triangles).
+  GLint64 limit = 0;
+  SV_GL(glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit));
+  const std::uint64_t cornerBytes = 3 * 16 * std::uint64_t(mesh.triangles.size()), nodeBytes = 2 * 32 * std::uint64_t(mesh.triangles.size());
+  if (limit > 0 && std::max(cornerBytes, nodeBytes) > std::uint64_t(limit))
+    throw InputError("RenderOptions", "refineCrossings", "rays",
+                     "the GPU's rays need " + std::to_string(std::max(cornerBytes, nodeBytes) >> 20) + " MiB for the " +
+                         std::to_string(mesh.triangles.size()) + " triangles' hierarchy in one buffer, above this "
+                         "OpenGL's shader storage block limit of " + std::to_string(limit >> 20) +
+                         " MiB: use --crossings gpu-walk (RefineCrossings::GpuWalk) or --volume explicit");
   const TriangleBvh bvh = buildTriangleBvh(mesh);
   // Buffers of at least one element, so an empty scene binds valid ranges (nodeCount 0 stops
   // every ray before it reads them).
