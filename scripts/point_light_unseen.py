@@ -12,8 +12,8 @@ dual-paraboloid map at the same texel count.
 Prints per scene whether the frame is consistent, the three errors (misclassified %) and the ratio
 of the volume's to the cube shadow map's, then the count where the volume's error is at most the
 shadow map's and the median ratio, and the same for the dual-paraboloid map against the cube map.
-With --refine K the cube volume is refined: the GPU cube volume (auto, gpu) by the GPU's walk over
-the scene's triangles (six face volumes), the explicit one (--volume explicit) by K rays per
+With --refine K the cube volume is refined: the GPU cube volume (auto, gpu) by K bisection rays per
+boundary edge cast on the GPU (six face volumes; the GPU's walk before 2026-12-04), the explicit one (--volume explicit) by K rays per
 boundary edge; --capture sets the cube volume's capture mode (the shadow maps keep back capture)."""
 import argparse
 import glob

@@ -29,6 +29,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
     LibraryFieldFlag{"SweepOptions", "methods", "--methods"},
     LibraryFieldFlag{"SweepOptions", "resolutions", "--resolutions"},
+    LibraryFieldFlag{"SweepOptions", "scenes", "--scenes"},
     LibraryFieldFlag{"volume options", "bias", "--bias"},
     LibraryFieldFlag{"volume options", "blur offset", "--blur-offset"},
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},

@@ -152,6 +152,10 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
   const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && (o.volume == "gpu" || o.volume == "auto");
   if (const char* flag = refinedGpu ? refinedGpuConflict(o) : nullptr)
     throw CLI::ValidationError(flag, std::string(flag) == "--crossings" ? kGpuWalksOnly : kGpuCrossingsOnly);
+  // Regression (a hostile-input probe): --refine with another method was silently ignored.
+  if (o.shape.refine > 0 && o.method != "hybrid")
+    throw CLI::ValidationError("--refine", "refines a hybrid volume's walls; --method " + o.method +
+                                               " has none: add --method hybrid or leave out --refine");
   if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))
     throw CLI::ValidationError("--crossings", "gpu-walk refines a hybrid volume: add --method hybrid --refine K");
   if (o.crossings == "gpu-rays" && !refinedGpu)

@@ -745,6 +745,11 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   EXPECT_EQ(explicitGpuRays.code, 2) << explicitGpuRays.out;
   EXPECT_TRUE(contains(explicitGpuRays.out, "--crossings")) << explicitGpuRays.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+  const CliResult shadowMap = runCli("render --method shadowmap --refine 6 --resolution 32 --size 64x48 --out " +
+                                     (dir / "s.png").string());  // a hostile-input probe: was ignored
+  EXPECT_EQ(shadowMap.code, 2) << shadowMap.out;
+  EXPECT_TRUE(contains(shadowMap.out, "--refine")) << shadowMap.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "s.png"));
   const CliResult walk = runCli("render --refine 2 --crossings gpu-rays --resolution 32 --size 64x48 --out " +
                                 (dir / "w.png").string());  // the rays named: what the GPU volume does anyway
   EXPECT_EQ(walk.code, 0) << walk.out;

@@ -247,6 +247,50 @@ SweepOptions quickSweep(std::vector<std::filesystem::path> scenes, std::vector<s
   return o;
 }
 
+// Regressions (a hostile-input probe): two scene files of one name were merged (and a resumed
+// sweep took one's rows for the other's), a name with a comma failed after the scenes before it
+// were measured, a repeated resolution was measured twice. Now refused, or merged, before any cell.
+TEST(Sweep, SceneNamesAreCheckedBeforeAnythingIsMeasured) {
+  const auto dir = test::tempDir();
+  const auto other = dir / "elsewhere";
+  std::filesystem::create_directories(other);
+  std::filesystem::copy_file(test::sourceDir() / "data/scenes/plate.json", other / "default.json");
+  std::filesystem::copy_file(test::sourceDir() / "data/scenes/plate.json", other / "a,b.json");
+  gl::Renderer renderer;
+  const std::atomic<bool> stop{false};
+  std::vector<std::string> notes;
+  auto refusal = [&](std::vector<std::filesystem::path> scenes) -> std::string {
+    try {
+      runSweep(renderer, quickSweep(std::move(scenes), {"shadowmap"}, 32, 24, dir / "out"), stop, nullptr, notes);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const auto plate = test::sourceDir() / "data/scenes/plate.json";
+  EXPECT_NE(refusal({std::filesystem::path(), other / "default.json"}).find("the built-in scene"), std::string::npos);
+  EXPECT_NE(refusal({plate, plate}).find("given twice"), std::string::npos);
+  EXPECT_NE(refusal({plate, other / "a,b.json"}).find("a comma"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));  // nothing measured, nothing written
+  SweepOptions o = quickSweep({plate}, {"shadowmap"}, 32, 24, dir / "once");
+  o.fits = {LightFit::Scene};
+  o.resolutions = {32, 32};
+  EXPECT_EQ(runSweep(renderer, o, stop, nullptr, notes).size(), 1u);
+}
+
+TEST(SweepCsv, ASecondRowForACellIsRefused) {
+  const auto dir = test::tempDir();
+  const std::string row = toCsv(sampleRow());
+  test::writeText(dir / "results.csv", sweepCsvHeader() + "\n" + row + "\n" + row + "\n");
+  try {
+    readSweepCsv(dir / "results.csv");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cell of line 2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Sweep, BothLightFitsSideBySide) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;

@@ -311,6 +311,13 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("rgb.pfm", "Pf");
   test::writeText(dir / "short.pfm", "Pf\n4 4\n-1.0\n0123");
   expectError("short.pfm", "shorter");
+  // Regressions (a hostile-input probe): data beyond the header's size was read as if absent (a
+  // header of 8 x 8 over 16 x 16 depths built from the wrong texels), and a CR LF header shifted
+  // the depths by a byte and was reported as a bad depth.
+  test::writeText(dir / "long.pfm", "Pf\n1 1\n-1.0\n" + std::string(8, '\0'));
+  expectError("long.pfm", "4 bytes after the header's 4 bytes of depths");
+  test::writeText(dir / "crlf.pfm", "Pf\r\n1 1\r\n-1.0\r\n" + std::string(4, '\0'));
+  expectError("crlf.pfm", "CR LF");
   // A good PFM without its side file.
   Light l;
   l.nearPlane = 1;

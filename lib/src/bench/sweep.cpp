@@ -189,6 +189,28 @@ std::string sceneLabel(const std::filesystem::path& scene) {
   return scene.empty() ? "default" : scene.stem().string();
 }
 
+// Every scene's cells, rows and plots are keyed by its label (the file's name): before anything is
+// measured, refuse a scene given twice, two files of one name (a resumed sweep would take one's
+// rows for the other's) and a name that results.csv cannot hold. Regressions of a hostile-input
+// probe: such sweeps merged two scenes, or failed after measuring the scenes before.
+void checkSceneNames(const std::vector<std::filesystem::path>& scenes, const std::filesystem::path& csv) {
+  std::map<std::string, std::filesystem::path> seen;
+  for (const auto& scene : scenes) {
+    const std::string label = sceneLabel(scene), shown = scene.empty() ? "(the built-in scene)" : scene.string();
+    if (label.find_first_of(",\n\r") != std::string::npos)
+      throw InputError("SweepOptions", "scenes", shown,
+                       "its name \"" + label + "\" holds a comma or a line break, which " + csv.string() +
+                           " cannot hold: copy the scene to a file named without them");
+    const auto [at, fresh] = seen.emplace(label, scene);
+    if (!fresh)
+      throw InputError("SweepOptions", "scenes", shown,
+                       at->second == scene ? "is given twice"
+                                           : "has the name \"" + label + "\" of " +
+                                                 (at->second.empty() ? std::string("the built-in scene") : at->second.string()) +
+                                                 " too: cells, rows and plots are keyed by it; rename one copy");
+  }
+}
+
 // The scene's light type, from the loaded scene (its meshes are read once more for the cells).
 // The sweep scores one light's shadow: a scene with several is refused (validate checks each).
 LightType lightTypeOf(const std::filesystem::path& scene) {
@@ -318,8 +340,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
                       std::to_string(long(need / 1048576)) + " MiB");
       continue;
     }
-    resolutions.push_back(r);
+    if (std::count(resolutions.begin(), resolutions.end(), r) == 0) resolutions.push_back(r);  // once, as methods
   }
+  checkSceneNames(o.scenes, o.out / "results.csv");
 
   // The cells (every scene loaded first, so that a scene refused or broken leaves no output).
   struct Cell {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "shadowvol/error.h"
@@ -200,6 +201,7 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
   ss << in.rdbuf();
   const std::string text = ss.str();
   std::vector<SweepRow> rows;
+  std::map<std::string, std::size_t> lines;  // cell key -> its line
   std::size_t pos = 0, lineNumber = 0;
   int version = kSweepCsvVersion;
   while (pos < text.size()) {
@@ -218,6 +220,11 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
     }
     if (line.empty()) continue;
     rows.push_back(parseSweepRow(line, path.string(), lineNumber, version));
+    // One row per cell: a second (a hand edit, or two scenes of one name before they were
+    // refused) would be reported in the first's place.
+    if (const auto [at, fresh] = lines.emplace(cellKey(rows.back()), lineNumber); !fresh)
+      throw InputError(path.string() + " line " + std::to_string(lineNumber), "cell", cellKey(rows.back()),
+                       "a second row for the cell of line " + std::to_string(at->second) + ": delete one");
   }
   return rows;
 }

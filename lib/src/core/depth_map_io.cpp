@@ -184,14 +184,21 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   if (!in || w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw InputError(file, "header", std::to_string(w) + "x" + std::to_string(h), "bad PFM size");
   if (!(scale < 0)) throw InputError(file, "header", std::to_string(scale), "only little-endian PFM is supported");
-  in.get();  // the single whitespace after the scale
-  // The data's length is checked against the file before anything is allocated.
+  if (in.get() == '\r')  // the single whitespace after the scale
+    throw InputError(file, "header", "CR LF", "a PFM header's lines end with a single newline (\\n), not CR LF "
+                                              "(the depths would be read one byte off)");
+  // The data's length is checked against the file before anything is allocated: exactly the
+  // header's W x H depths, no more (a wrong size in the header would read the wrong texels).
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(pfm, ec);
   const auto dataBytes = std::uintmax_t(w) * std::uintmax_t(h) * sizeof(float);
   if (ec || in.tellg() < 0 || bytes - std::uintmax_t(in.tellg()) < dataBytes)
     throw InputError(file, "data", std::to_string(w) + "x" + std::to_string(h),
                      "the file is shorter than its header says (" + std::to_string(dataBytes) + " bytes of depths)");
+  if (bytes - std::uintmax_t(in.tellg()) > dataBytes)
+    throw InputError(file, "data", std::to_string(w) + "x" + std::to_string(h),
+                     "the file holds " + std::to_string(bytes - std::uintmax_t(in.tellg()) - dataBytes) +
+                         " bytes after the header's " + std::to_string(dataBytes) + " bytes of depths");
   DepthMap map;
   map.width = w;
   map.height = h;
