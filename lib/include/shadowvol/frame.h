@@ -130,7 +130,8 @@ struct RenderOptions {
   /// hybrid (gpu and explicit volumes): z-pass without the far cap where it is safe, or z-fail.
   /// Silhouette volumes and renderWithVolume always use z-fail.
   VolumeCount volumeCount = VolumeCount::Auto;
-  /// hybrid/explicit with refinement: where the crossings come from.
+  /// hybrid with refinement: where the crossings come from (RefineCrossings: the explicit volume takes
+  /// Embree's rays or the walk, the GPU volume its own rays or the walk).
   RefineCrossings refineCrossings = RefineCrossings::Rays;
 };
 
