@@ -124,5 +124,23 @@ TEST(CaptureWarnings, AFrustumWithoutObjectsIsSaid) {
       << w[0];
 }
 
+// Regression (a hostile-input probe): a thin near/far range that cuts the hull of a tilted ground
+// (vertices nearer than near and beyond far) but none of its triangles inside the frustum was not
+// said: each triangle is now clipped against the frustum.
+TEST(CaptureWarnings, ARangeBetweenTheTrianglesIsSaid) {
+  Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(20.0, 20.0, 4)}});
+  s.light.type = LightType::Spot;
+  s.light.fovYDegrees = 45.0;
+  s.light.position = {3.0, 9.0, 2.0};
+  s.light.direction = glm::normalize(glm::dvec3(-3.0, -9.0, -2.0));
+  s.light.nearPlane = 5.0;  // the ground's depths run from about 4.5 to 14.8
+  s.light.farPlane = 5.001;
+  const auto w = captureWarnings(s, 32, 32, CaptureMode::Back);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("no object lies inside the light's frustum"), std::string::npos) << w[0];
+  s.light.farPlane = 12.0;  // the range now holds the ground below the light
+  EXPECT_TRUE(captureWarnings(s, 32, 32, CaptureMode::Back).empty());
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -12,11 +12,12 @@
 
 namespace shadowvol::detail {
 
-/// True when every vertex of `mesh` lies beyond one and the same plane of the clip volume of
-/// `worldToClip` (an OpenGL projection times a view: -w <= x, y, z <= w inside). The mesh, inside
-/// the convex hull of its vertices, then lies wholly outside. Each plane is a linear function of
-/// the world position, so the test holds for vertices behind the view's apex too. False for an
-/// empty mesh (nothing to judge).
+/// True when `mesh` lies wholly outside the clip volume of `worldToClip` (an OpenGL projection
+/// times a view: -w <= x, y, z <= w inside): every vertex beyond one and the same plane (the mesh,
+/// inside the convex hull of its vertices, then lies outside), or else no triangle keeps a part
+/// inside when clipped against the six planes in homogeneous coordinates (linear in the world
+/// position, so vertices behind the view's apex are clipped correctly too). False for an empty mesh
+/// (nothing to judge).
 bool outsideClipVolume(const glm::dmat4& worldToClip, const TriangleMesh& mesh);
 
 /// The warning for a view that holds none of `objects` (each outsideClipVolume), naming the view
