@@ -85,10 +85,18 @@ float castRay(vec2 u) {
   vec3 inv = safeInverse(d);
   float range = farPlane - nearPlane, best = range;
   uint stack[kStack];
+  float entries[kStack];  // each stacked node's entry parameter: skipped once a hit lies before it
   int top = 0;
-  if (boxEntry(0u, o, inv, 0.0, range) != kNoHitDepth) stack[top++] = 0u;
+  float rootEntry = boxEntry(0u, o, inv, 0.0, range);
+  if (rootEntry != kNoHitDepth) {
+    stack[0] = 0u;
+    entries[0] = rootEntry;
+    top = 1;
+  }
   while (top > 0) {
-    uint n = stack[--top];
+    --top;
+    uint n = stack[top];
+    if (entries[top] > best) continue;
     if (nodes[n].count > 0u) {
       for (uint k = nodes[n].first; k < nodes[n].first + nodes[n].count; ++k) best = hitTriangle(k, o, d, 0.0, best);
       continue;
@@ -103,8 +111,14 @@ float castRay(vec2 u) {
       e0 = e1;
       e1 = e;
     }
-    if (e1 != kNoHitDepth && top < kStack) stack[top++] = c1;
-    if (e0 != kNoHitDepth && top < kStack) stack[top++] = c0;
+    if (e1 != kNoHitDepth && top < kStack) {
+      stack[top] = c1;
+      entries[top++] = e1;
+    }
+    if (e0 != kNoHitDepth && top < kStack) {
+      stack[top] = c0;
+      entries[top++] = e0;
+    }
   }
   return best < range ? nearPlane + best : kNoHitDepth;
 }
