@@ -68,6 +68,22 @@ inline std::string offsetEmptiesRange(double offset, double nearPlane, double fa
          " world units): every depth plus it lies past the far plane, so nothing would be in shadow";
 }
 
+/// The volume's offsets checked by offsetEmptiesRange: the bias alone (blamed: `blurOffset` false),
+/// then the bias plus the blur offset with blur (blamed: true). Empty `why` when neither empties
+/// the range.
+struct EmptyingOffset {
+  bool blurOffset = false;
+  std::string why;
+};
+inline EmptyingOffset volumeOffsetEmptiesRange(double bias, double blurOffset, bool blur, double nearPlane,
+                                               double farPlane) {
+  if (std::string why = offsetEmptiesRange(bias, nearPlane, farPlane); !why.empty()) return {false, why};
+  if (!blur) return {};
+  if (std::string why = offsetEmptiesRange(bias + blurOffset, nearPlane, farPlane); !why.empty())
+    return {true, "plus the bias (" + std::to_string(bias) + ") " + why};
+  return {};
+}
+
 /// The whole rule for one texel (ring, blur when `blur`, bias), one texel at a time: the
 /// reference that the builder's row loops reproduce bit for bit.
 inline double sheetDepthOf(const DepthMap& map, int i, int j, const SheetDepthRule& rule, bool blur) {

@@ -79,12 +79,11 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
   };
   finite("blur offset", options.blurOffset);
   if (options.bias) finite("bias", *options.bias);
-  const double bias = options.bias.value_or(0.0), blurOffset = options.blur ? options.blurOffset : 0.0;
-  if (const std::string why = offsetEmptiesRange(bias, nearPlane, farPlane); !why.empty())
-    throw InputError("volume options", "bias", std::to_string(bias), why);
-  if (const std::string why = offsetEmptiesRange(bias + blurOffset, nearPlane, farPlane); !why.empty())
-    throw InputError("volume options", "blur offset", std::to_string(blurOffset),
-                     "plus the bias (" + std::to_string(bias) + ") " + why);
+  const double bias = options.bias.value_or(0.0);
+  const EmptyingOffset e = volumeOffsetEmptiesRange(bias, options.blurOffset, options.blur, nearPlane, farPlane);
+  if (!e.why.empty())
+    throw InputError("volume options", e.blurOffset ? "blur offset" : "bias",
+                     std::to_string(e.blurOffset ? options.blurOffset : bias), e.why);
 }
 
 namespace {

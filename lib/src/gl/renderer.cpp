@@ -1,4 +1,3 @@
-#include "shadowvol/sheet_depth.h"
 #include "shadowvol/gl/renderer.h"
 
 #include <epoxy/gl.h>
@@ -25,6 +24,7 @@
 #include "shadowvol/gl/gl_objects.h"
 #include "shadowvol/gl/shader_program.h"
 #include "shadowvol/light.h"
+#include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
 #include "refined_gpu_volume.h"
@@ -260,7 +260,7 @@ struct Renderer::Impl {
   Program lightTriangleProgram;   // light.vert + light_triangle.frag
   Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
-  SilhouetteRays rays;            // the refined GPU volume's bisection rays (RefineCrossings::GpuRays)
+  SilhouetteRays rays;            // the refined GPU volume's bisection rays (all but RefineCrossings::GpuWalk)
   DualParaboloidPass paraboloid;  // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
   CubeGpuVolume cubeVolume;       // a point light's GPU cube volume (GL 4.3: glCopyImageSubData)
   DualParaboloid paraboloidFrame;  // of the last paraboloid pass
@@ -1328,14 +1328,11 @@ struct Renderer::Impl {
   /// constant bias.
   void checkOffsetRanges(const RenderOptions& o) const {
     const VolumeBuildOptions& v = o.volumeOptions;
-    const double bias = v.bias.value_or(0.0), blurOffset = v.blur ? v.blurOffset : 0.0;
-    if (o.method == ShadowMethod::Hybrid) {
-      if (const std::string why = offsetEmptiesRange(bias, light.nearPlane, light.farPlane); !why.empty())
-        throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(bias), why);
-      if (const std::string why = offsetEmptiesRange(bias + blurOffset, light.nearPlane, light.farPlane); !why.empty())
-        throw InputError("RenderOptions", "volumeOptions.blurOffset", std::to_string(blurOffset),
-                         "plus the bias (" + std::to_string(bias) + ") " + why);
-    }
+    const double bias = v.bias.value_or(0.0);
+    const EmptyingOffset e = volumeOffsetEmptiesRange(bias, v.blurOffset, v.blur, light.nearPlane, light.farPlane);
+    if (o.method == ShadowMethod::Hybrid && !e.why.empty())
+      throw InputError("RenderOptions", e.blurOffset ? "volumeOptions.blurOffset" : "volumeOptions.bias",
+                       std::to_string(e.blurOffset ? v.blurOffset : bias), e.why);
     const bool oneMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
     if (oneMap && light.type != LightType::Point && o.shadowBiasConstant)
       if (const std::string why = offsetEmptiesRange(*o.shadowBiasConstant, light.nearPlane, light.farPlane); !why.empty())
@@ -1374,8 +1371,8 @@ struct Renderer::Impl {
       };
       if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
       if (o.capture == CaptureMode::Midpoint)
-        refuse("finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use back or front capture, or the explicit "
-               "volume with rays");
+        refuse("finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use "
+               "back or front capture, or the explicit volume with rays");
       if (o.volumeOptions.cap != FarCap::Exact)
         refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
       if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)

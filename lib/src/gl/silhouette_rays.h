@@ -23,11 +23,9 @@ class SilhouetteRays {
   /// One dispatch, indirect from the bound GL_DISPATCH_INDIRECT_BUFFER at `indirectOffset`, over
   /// walk_slots.comp's list, `steps` rays per boundary edge by `capture`'s rule (back or front);
   /// the caller binds the boundary flags (SSBO 5), the counters (SSBO 6), the list (SSBO 7) and
-  /// the crossing records (image unit 0) and orders the memory barrier. Uses `in`'s scene
-  /// buffers and lightViewToWorld.
+  /// the crossing records (image unit 0) and orders the memory barrier. Of `in` it reads
+  /// lightViewToWorld (the triangles are the hierarchy's own copy).
   void dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, GLintptr indirectOffset);
-  /// The hierarchy's size once built (0 before): nodes, and its depth.
-  std::size_t nodeCount() const { return nodeCount_; }
 
  private:
   void ensureHierarchy();
