@@ -64,6 +64,12 @@ TEST(MeshReaders, PlyPropertyBeforeElementIsRefusedNotACrash) {
           {"line 3 = \"property float x\"", "before any element"});
 }
 
+// Regression (a hostile-input probe): a second "x" of the vertex element was read.
+TEST(MeshReaders, PlyPropertyNamedTwiceIsRefused) {
+  refusal("bad.ply", "ply\nformat ascii 1.0\n" + kPlyXyz + "property float x\nend_header\n",
+          {"line 7 = \"property float x\"", "names the property \"x\" twice"});
+}
+
 TEST(MeshReaders, PlyTruncatedHeaderIsRefusedNotAnEndlessLoop) {
   refusal("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
           {"line 4 (end of file)", "no end_header"});

@@ -143,7 +143,13 @@ PlyHeader parsePlyHeader(const std::string& source, std::string_view bytes) {
       h.elements.push_back(std::move(e));
     } else if (keyword == "property") {
       if (h.elements.empty()) at.fail("a property before any element");
-      h.elements.back().properties.push_back(readProperty(rest, at));
+      PlyProperty p = readProperty(rest, at);
+      // Which of two same-named columns holds the value would be a guess (a hostile-input probe:
+      // a second "x" was read): refused.
+      for (const PlyProperty& q : h.elements.back().properties)
+        if (q.name == p.name)
+          at.fail("the element " + quoted(h.elements.back().name) + " names the property " + quoted(p.name) + " twice");
+      h.elements.back().properties.push_back(std::move(p));
     } else if (h.elements.empty()) {
       // Ignored before the first element, like a comment: Blender 2.47 wrote its "Created by"
       // comment without the keyword (assimp-testmodels' Wuson.ply, the unseen wusonsoup.ply).
