@@ -99,6 +99,11 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
               v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
               100 * v.methodError.falseFraction(), v.methodError.pixels);
+  if (v.errorCauses)
+    std::printf("  errors by cause: %zu of resolution (the same capture at unlimited resolution gets them right: a "
+                "finer map, refinement or --fit view can help), %zu of capture (it gets them wrong too: capture mode, "
+                "bias or mesh)\n",
+                v.errorCauses->resolution, v.errorCauses->capture);
   if (ro.method == gl::ShadowMethod::Dpsm) {
     const nlohmann::json& d = j["dualParaboloid"];
     std::printf("  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "

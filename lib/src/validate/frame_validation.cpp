@@ -187,11 +187,14 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   }
   v.visible = n - v.background;
 
-  // The method's own test.
+  // The method's own test, and its errors by cause where it has one depth map.
+  std::vector<std::uint8_t> methodShadowed(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const bool shadowed = !frame.shadowed.empty() ? frame.shadowed[k] != 0 : (frame.hybrid && frame.stencil[k] != 0);
-    score(v.methodError, v.exact[k], shadowed);
+    methodShadowed[k] = !frame.shadowed.empty() ? frame.shadowed[k] != 0 : (frame.hybrid && frame.stencil[k] != 0);
+    score(v.methodError, v.exact[k], methodShadowed[k] != 0);
   }
+  if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
+    v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed);
 
   if (frame.hybrid) {
     // The explicit volume of the same depth map and options (or a cube volume's six faces), its

@@ -79,6 +79,16 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
     j["zfailVsZpass"] = na;
     j["againstExact"] = {{"stencil", na}, {"count", na}, {"method", toJson(v.methodError)}};
   }
+  if (v.errorCauses)
+    j["errorCauses"] = {{"resolution", v.errorCauses->resolution},
+                        {"capture", v.errorCauses->capture},
+                        {"offset", v.errorCauses->offset},
+                        {"rule", "resolution: the method's misclassified pixels that the same capture at unlimited "
+                                 "resolution (captured depth on the pixel's own light ray + offset < the point's "
+                                 "light-view depth) gets right; capture: those it gets wrong too"}};
+  else
+    j["errorCauses"] = "not computed: only for the depth-map methods (hybrid, shadowmap, pcf3, pcf5) of a spot or "
+                       "directional light";
   j["requiredAgreement"] = kRequiredAgreement;
   j["verdict"] = {{"consistent", v.consistent},
                   {"accurate", v.accurate},

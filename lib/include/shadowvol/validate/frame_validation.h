@@ -15,6 +15,7 @@
 #include "shadowvol/depth_map.h"
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/scene.h"
+#include "shadowvol/validate/error_causes.h"
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
@@ -39,6 +40,10 @@ struct RenderedFrame {
   /// each and counted each; a pixel's count is that of the face its surface point lies on
   /// (cubeLookup; within kFaceTieTolerance of two faces, either's). `volume` is then unused.
   std::vector<VolumeMesh> faceVolumes, faceGpuVolumes;
+  /// A spot or directional light's depth-map method (hybrid, shadow maps): its depth offset away
+  /// from the light (the volume's bias, plus the blur offset with blur; a shadow map's constant
+  /// bias), to split its errors by cause (error_causes.h). Unset: not split.
+  std::optional<double> depthOffset;
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -110,6 +115,7 @@ struct FrameValidation {
   std::optional<ShadowError> stencilError; ///< stencil != 0 as a shadow test
   std::optional<ShadowError> countError;   ///< zfail != 0 as a shadow test
   ShadowError methodError;                 ///< the method's own test (hybrid: the stencil)
+  std::optional<ErrorCauses> errorCauses;  ///< methodError's pixels by cause, with RenderedFrame::depthOffset
   /// The consistency verdict (hybrid): stencil vs count >= kRequiredAgreement and the mesh checks
   /// pass; always true for the shadow-map baselines. With the quad cap the outward check does not
   /// apply (its far rectangle coincides with the far-plane sheet by design): closed, finite and

@@ -3,6 +3,7 @@
 // command line's validate, the Python module).
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,6 +43,23 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   return frame;
 }
 
+/// The depth offset of a single depth map's shadow test (RenderedFrame::depthOffset): the volume's
+/// bias (plus the blur offset with blur) for hybrid, the constant bias for the shadow maps; unset
+/// for the other methods and where no depth map came back (a point light's six faces).
+inline std::optional<double> methodDepthOffset(const gl::RenderOptions& ro, const gl::RenderResult& result) {
+  if (!result.depthMap) return std::nullopt;
+  switch (ro.method) {
+    case gl::ShadowMethod::Hybrid:
+      return result.biasUsed + (ro.volumeOptions.blur ? ro.volumeOptions.blurOffset : 0.0);
+    case gl::ShadowMethod::ShadowMap:
+    case gl::ShadowMethod::Pcf3:
+    case gl::ShadowMethod::Pcf5:
+      return ro.shadowBiasConstant.value_or(defaultBias(*result.depthMap));
+    default:
+      return std::nullopt;
+  }
+}
+
 /// Every check of validateFrame on a frame rendered with validationRenderOptions(ro).
 inline FrameValidation validateRender(const Scene& scene, const gl::RenderOptions& ro, const gl::RenderResult& result,
                                       const RenderedFrame& frame, const ValidationOptions& options) {
@@ -71,6 +89,7 @@ inline std::vector<LightValidation> validateEveryLight(const Scene& scene, const
     l.result = k == 0 ? &result : &result.otherLights[k - 1];
     l.frame = toRenderedFrame(*l.result, ro.method);
     l.frame.rgba = result.rgba;
+    l.frame.depthOffset = methodDepthOffset(ro, *l.result);
     l.validation = out.size() == 1 ? validateRender(scene, ro, *l.result, l.frame, options)
                                    : validateRender(scene.withOnlyLight(k), ro, *l.result, l.frame, options);
   }

@@ -1,0 +1,38 @@
+#include "shadowvol/validate/error_causes.h"
+
+#include <glm/vec2.hpp>
+
+#include "shadowvol/check.h"
+#include "shadowvol/embree/embree_depth_oracle.h"
+
+namespace shadowvol {
+
+ErrorCauses splitErrorCauses(const Scene& scene, const DepthMap& map, double offset, const CameraHits& hits,
+                             const std::vector<PixelClass>& exact, const std::vector<std::uint8_t>& methodShadowed) {
+  SV_CHECK_EQ(exact.size(), methodShadowed.size());
+  SV_CHECK_EQ(exact.size(), hits.point.size());
+  ErrorCauses causes;
+  causes.offset = offset;
+  std::vector<std::size_t> wrong;
+  std::vector<glm::dvec2> ndc;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (exact[k] != PixelClass::Lit && exact[k] != PixelClass::Shadowed) continue;
+    if ((exact[k] == PixelClass::Shadowed) == (methodShadowed[k] != 0)) continue;
+    wrong.push_back(k);
+    const glm::dvec2 texel = map.texelOf(hits.point[k]);
+    ndc.push_back(map.texelNdc(texel.x, texel.y));
+  }
+  if (wrong.empty()) return causes;
+  const EmbreeDepthOracle oracle(scene);
+  std::vector<float> captured(wrong.size());
+  oracle.oracle()(map, ndc, captured);
+  for (std::size_t q = 0; q < wrong.size(); ++q) {
+    const std::size_t k = wrong[q];
+    const bool ideal =
+        !DepthMap::isNoHit(captured[q]) && double(captured[q]) + offset < map.viewDepthOf(hits.point[k]);
+    ++(ideal == (exact[k] == PixelClass::Shadowed) ? causes.resolution : causes.capture);
+  }
+  return causes;
+}
+
+}  // namespace shadowvol
