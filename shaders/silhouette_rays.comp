@@ -7,8 +7,11 @@
 // nearest back face (its counter-clockwise normal along the ray) for back capture.
 // One invocation per slot of walk_slots.comp's list, dispatched indirectly in rows of work groups:
 //   slot 3 t + k, k = axis (0, 1): texel t's boundary edge along k: refineSteps halvings of the
-//     bracket from the near end N to the far end R; its record (layer k at t): the crossing's
-//     texel coordinates (the middle of the last bracket), near depth, far depth;
+//     bracket from the near end N to the far end R, then, with snapCrossings, crossing_snap.h's
+//     snap (the triangle each round's ray records at lo, where the edge leaves its image:
+//     triangle_exit.h's rule in float; a probe just beyond); its record (layer k at t): the
+//     crossing's texel coordinates (the middle of the last bracket, or where it snapped), near
+//     depth, far depth;
 //   k = 2: the centre of quad t (3 or 4 boundary sides): one ray; its record (sheet depth, 0, 0, 0).
 layout(local_size_x = 64) in;
 
@@ -24,10 +27,16 @@ uniform mat4 lightViewToWorld;   // inverse of V_light, composed in double
 uniform int refineSteps;         // K: rays per boundary edge
 uniform int backCapture;         // 1: back faces only; 0: the nearest hit (front capture)
 uniform int nodeCount;           // 0: no triangles
+uniform int snapCrossings;       // 1: crossing_snap.h's snap after bisection (VolumeBuildOptions::refineSnap)
+uniform mat4 worldToLightView;   // V_light, composed in double (the snap's triangle images)
 
 const int kStack = 64;                    // kBvhMaxDepth (silhouette_rays.cpp asserts they agree): never full
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 const float kBarycentricSlack = 1e-6;     // a ray through a shared edge hits both triangles
+const uint kNoTriangle = 0xffffffffu;
+const int kSnapRounds = 3;                // crossing_snap.h (SnapConstantsMatchTheShader keeps them in step)
+const float kSnapProbeTexels = 1.0 / 4096.0;
+const float kSnapEndSlack = 1e-9;
 
 // The entry parameter of the ray o + t d (1 / d = inv, safeInverse) into node n's box within
 // [t0, t1], or +infinity when it misses.
@@ -75,7 +84,8 @@ vec3 safeInverse(vec3 d) {
 // The light-view depth the capture rule records along the light ray through texel coordinates
 // u (lightViewPointAt's), within [nearPlane, farPlane); kNoHitDepth when nothing is recorded
 // (a hit at the far plane itself would be the far plane to the sheet-depth rule anyway).
-float castRay(vec2 u) {
+float castRayHit(vec2 u, out uint triangle) {
+  triangle = kNoTriangle;
   if (nodeCount == 0) return kNoHitDepth;
   // Light view: the point at depth t is a + t b (linear in t, -b.z = 1); the ray starts at the
   // near plane, so its parameter is the depth less nearPlane.
@@ -98,7 +108,13 @@ float castRay(vec2 u) {
     uint n = stack[top];
     if (entries[top] > best) continue;
     if (nodes[n].count > 0u) {
-      for (uint k = nodes[n].first; k < nodes[n].first + nodes[n].count; ++k) best = hitTriangle(k, o, d, 0.0, best);
+      for (uint k = nodes[n].first; k < nodes[n].first + nodes[n].count; ++k) {
+        float t = hitTriangle(k, o, d, 0.0, best);
+        if (t < best) {
+          best = t;
+          triangle = k;
+        }
+      }
       continue;
     }
     uint c0 = nodes[n].first, c1 = c0 + 1u;
@@ -120,7 +136,38 @@ float castRay(vec2 u) {
       entries[top++] = e0;
     }
   }
+  if (!(best < range)) triangle = kNoTriangle;
   return best < range ? nearPlane + best : kNoHitDepth;
+}
+float castRay(vec2 u) {
+  uint triangle;
+  return castRayHit(u, triangle);
+}
+
+// triangle_exit.h's triangleExit in float: the fraction of the way from -> to (texel coordinates)
+// at which the path leaves triangle k's image (>= 0, may exceed 1), or -1 where it has none.
+float triangleExit(uint k, vec2 from, vec2 to) {
+  vec2 dir = to - from;
+  if (dir == vec2(0.0)) return -1.0;
+  vec2 image[3];
+  for (int c = 0; c < 3; ++c) {
+    vec3 p = (worldToLightView * vec4(bvhCorners[3u * k + uint(c)].xyz, 1.0)).xyz;
+    if (projZW.z != 0.0 && !(-p.z > 1e-9 * farPlane)) return -1.0;  // at or behind a spot light's apex plane
+    image[c] = texelOf(p);
+  }
+  vec2 ab = image[1] - image[0], ac = image[2] - image[0];
+  float area2 = ab.x * ac.y - ab.y * ac.x;
+  float longest = 0.0;
+  for (int c = 0; c < 3; ++c) longest = max(longest, dot(image[(c + 1) % 3] - image[c], image[(c + 1) % 3] - image[c]));
+  if (!(abs(area2) > 1e-12 * longest)) return -1.0;
+  float t = kNoHitDepth;
+  for (int c = 0; c < 3; ++c) {
+    vec2 a = image[c], e = image[(c + 1) % 3] - a;
+    vec2 n = area2 > 0.0 ? vec2(e.y, -e.x) : vec2(-e.y, e.x);
+    float rate = dot(n, dir);
+    if (rate > 0.0) t = min(t, dot(n, a - from) / rate);
+  }
+  return t == kNoHitDepth ? -1.0 : max(t, 0.0);
 }
 
 void refineEdge(ivec2 P, int axis, uint e) {
@@ -143,10 +190,38 @@ void refineEdge(ivec2 P, int axis, uint e) {
     }
   }
   // bisectWith's crossing: the bracket's middle; a near depth on the far plane (blur) falls back
-  // to the near end's final sheet depth.
-  float s = 0.5 * (lo + hi);
+  // to the near end's final sheet depth. The snap (crossing_snap.h) moves s and the far depth.
+  float s = -1.0, probeFar = farPlane;
+  if (snapCrossings != 0) {
+    for (int round = 0; round < kSnapRounds; ++round) {
+      vec2 from = mix(vec2(N), vec2(R), lo);
+      uint triangle;
+      castRayHit(from, triangle);
+      if (triangle == kNoTriangle) break;
+      float t = triangleExit(triangle, from, mix(vec2(N), vec2(R), hi));
+      if (!(t >= 0.0 && t <= 1.0 + kSnapEndSlack)) break;
+      float se = min(lo + t * (hi - lo), hi);
+      if (se == hi) {
+        s = se;
+        break;
+      }
+      float sp = se + min(kSnapProbeTexels, 0.5 * (hi - se));  // an edge is one texel long
+      if (!(sp > se && sp < hi)) break;
+      float d = ofSample(castRay(mix(vec2(N), vec2(R), sp)));
+      if (d != farPlane && (!surface || d < 0.5 * (dLo + dHi))) {  // the surface goes on
+        lo = sp;
+        dLo = d;
+        continue;
+      }
+      s = se;
+      probeFar = d;
+      break;
+    }
+  }
+  float margin = exp2(float(-(refineSteps + 2)));
+  s = s >= 0.0 ? clamp(s, margin, 1.0 - margin) : 0.5 * (lo + hi);
   float nearDepth = dLo != farPlane ? dLo : sheetDepth(N);
-  float farDepth = surface ? dHi : farPlane;
+  float farDepth = surface ? (probeFar != farPlane && probeFar > nearDepth ? probeFar : dHi) : farPlane;
   // In float the bracket's depths can meet (their middle rounds to the near one: a steep surface
   // at large K), which double never lets happen: the edge's fallback then, as the walk's
   // (gridCrossing), counted.

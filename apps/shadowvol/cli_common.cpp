@@ -146,6 +146,10 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_flag("--refine-grid-everywhere", o.refineGridEverywhere,
                "With --refine-grid: cut every quad with a boundary edge, also those whose straight wall already lies "
                "on the sub-grid's samples (which the default leaves plain); for comparison, more triangles");
+  cmd.add_flag("--no-snap", o.noSnap,
+               "With --refine: leave each crossing in the middle of its last bisection bracket (within 2^-(K+1) "
+               "texel of the outline) instead of moving it to where the triangle recorded on its near side ends "
+               "(found by up to 6 more rays; exact on polygonal meshes), for comparison (docs/volume.md 'Snap')");
   return cmd
       .add_option("--refine", o.refine,
                   "Sub-texel silhouette refinement: K bisection rays (Embree, into the same scene) per boundary edge "
@@ -177,11 +181,13 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
                      "not with --chord-points: they are alternatives (the sub-grid bends the wall in every sub-cell)");
   if (o.refineGridEverywhere && o.refineGrid == 1)
     throw InputError("command line", "--refine-grid-everywhere", "", "needs --refine-grid 2, 4 or 8");
+  if (o.noSnap && o.refine == 0) throw InputError("command line", "--no-snap", "", "needs --refine");
   VolumeBuildOptions v;
   v.refineSteps = o.refine;
   v.refineChords = o.chordPoints;
   v.refineSubdivisions = o.refineGrid;
   v.refineGridEverywhere = o.refineGridEverywhere;
+  v.refineSnap = !o.noSnap;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;

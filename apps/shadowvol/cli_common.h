@@ -66,6 +66,7 @@ struct VolumeCliOptions {
   bool chordPoints = false;  ///< --chord-points: refinement with chord points (refineChords)
   int refineGrid = 1;        ///< --refine-grid S: the sub-grid (refineSubdivisions; 1 = off)
   bool refineGridEverywhere = false;  ///< --refine-grid-everywhere (refineGridEverywhere)
+  bool noSnap = false;                ///< --no-snap (refineSnap = false)
 };
 /// Adds the options; returns --refine's option (for excludes).
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);

@@ -121,6 +121,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       if (options.refineSteps > 0) {
         oracle = std::make_unique<EmbreeDepthOracle>(scene);
         options.depthOracle = oracle->oracle();
+        options.surfaceEnds = oracle->surfaceEnds();
       }
       const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
@@ -176,6 +177,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       "decided by a centre ray, %zu chord points), %zu rays\n",
                       options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, cube ? "cube" : "plane",
                       s.refinedCells, cube ? "cells" : "quads", s.ambiguousCells, s.chordPoints, s.raysCast);
+        if (options.refineSteps > 0)
+          std::printf("  %zu crossings snapped to where their triangle ends%s\n", s.snappedCrossings,
+                      !options.refineSnap ? " (--no-snap)" : cube ? " (not for a point light's cube)" : "");
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);

@@ -77,9 +77,11 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
     std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing found\n",
                 result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks);
   else if (result.volumeStats && result.volumeStats->refinedCells > 0)
-    std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %.2f ms\n",
+    std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %zu crossings snapped, "
+                "%.2f ms\n",
                 result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
-                result.volumeStats->crossingFallbacks, result.volumeStats->msRefine);
+                result.volumeStats->crossingFallbacks, result.volumeStats->snappedCrossings,
+                result.volumeStats->msRefine);
   if (v.meshCheck) {
     std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
     if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());

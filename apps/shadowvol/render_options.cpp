@@ -172,6 +172,7 @@ std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::Ren
     return nullptr;
   auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
   ro.volumeOptions.depthOracle = oracle->oracle();
+  ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
   return oracle;
 }
 

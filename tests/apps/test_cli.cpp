@@ -355,19 +355,32 @@ TEST(Cli, QuietAndVerbose) {
 TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "r.ply").string();
-  const CliResult r = runCli("build --json --resolution 64 --refine 3 --scene " + scene("plate.json") + " --out " + out);
+  const CliResult r =
+      runCli("build --json --resolution 64 --refine 3 --no-snap --scene " + scene("plate.json") + " --out " + out);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["refine"], 3);
   EXPECT_EQ(j["boundaryEdges"], 64);  // the plate spans 16 texels a side
   EXPECT_EQ(j["raysCast"], 3 * 64);
+  EXPECT_EQ(j["snappedCrossings"], 0);
   EXPECT_EQ(j["chordPoints"], 0);
-  const CliResult chords =
-      runCli("build --json --resolution 64 --refine 3 --chord-points --scene " + scene("plate.json") + " --out " + out);
+  const CliResult chords = runCli("build --json --resolution 64 --refine 3 --chord-points --no-snap --scene " +
+                                  scene("plate.json") + " --out " + out);
   ASSERT_EQ(chords.code, 0) << chords.out;
   const auto jc = nlohmann::json::parse(chords.out);
   EXPECT_EQ(jc["chordPoints"], 64);  // one per refined quad: each has two boundary edges here
   EXPECT_EQ(jc["raysCast"], 3 * (64 + 64));
+  // The snap (the default): the plate's edges lie halfway between texel centres, where its two
+  // big triangles end; the first bisection ray there hits (the bracket then ends at the edge: one
+  // more ray finds the end) or misses (the triangle ends at hi: one more ray, no probe).
+  const CliResult snapped =
+      runCli("build --json --resolution 64 --refine 3 --scene " + scene("plate.json") + " --out " + out);
+  ASSERT_EQ(snapped.code, 0) << snapped.out;
+  const auto js = nlohmann::json::parse(snapped.out);
+  EXPECT_EQ(js["snappedCrossings"], 64);
+  EXPECT_GE(js["raysCast"].get<int>(), 3 * 64 + 64);
+  EXPECT_LE(js["raysCast"].get<int>(), 3 * 64 + 2 * 64);
+  EXPECT_EQ(runCli("build --resolution 8 --no-snap --out " + out).code, 1);  // needs --refine
   EXPECT_EQ(runCli("build --resolution 8 --chord-points --out " + out).code, 1);  // needs --refine
   EXPECT_EQ(j["splitVertices"], 0);
   EXPECT_TRUE(j["ms"].contains("refine"));
@@ -386,8 +399,10 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
 TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "g.ply").string();
-  const CliResult r =
-      runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --scene " + scene("plate.json") + " --out " + out);
+  // Without the snap: with it the plate's crossings lie exactly halfway, on a lattice node, which
+  // puts every quad on the sub-grid (crossingOnNode).
+  const CliResult r = runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --no-snap --scene " +
+                             scene("plate.json") + " --out " + out);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["refineGrid"], 4);

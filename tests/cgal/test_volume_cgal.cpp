@@ -152,6 +152,7 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           o.refineSteps = 3;
           o.refineChords = c.triangulation == Triangulation::Perfect;  // both ways across the combinations
           o.depthOracle = oracle.oracle();
+          o.surfaceEnds = oracle.surfaceEnds();  // the snap (crossing_snap.h) where it applies
           const std::string what = file.filename().string() + " " + std::to_string(res) + " " + toString(mode) + " " +
                                    c.name() + " refine 3";
           const auto r = buildVolume(map, o);
@@ -257,6 +258,7 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
             vo.refineChords = steps < 0;
             vo.refineSubdivisions = steps == 40 ? 4 : 1;
             vo.depthOracle = oracle.oracle();
+            vo.surfaceEnds = oracle.surfaceEnds();
             const auto r = buildVolume(map, vo);
             MeshCheckOptions o;
             o.selfIntersections = true;

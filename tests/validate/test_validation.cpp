@@ -245,6 +245,7 @@ TEST(Validation, RefinedGpuVolumeByRaysIsTheExplicitVolumesBisection) {
         const EmbreeDepthOracle oracle(scene);
         VolumeBuildOptions vo = ro.volumeOptions;
         vo.depthOracle = oracle.oracle();
+        vo.surfaceEnds = oracle.surfaceEnds();  // both snap (refineSnap, the default)
         const VolumeMesh cpu = buildVolume(*r.depthMap, vo).mesh;
         const VolumeMesh& gpu = *r.frame.volume;
         ASSERT_EQ(cpu.triangles.size(), gpu.triangles.size());

@@ -21,4 +21,14 @@ namespace shadowvol {
 /// batch in parallel itself. ndc.size() == depth.size().
 using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth)>;
 
+/// Where the surface the capture records ends (refinement's snap, crossing_snap.h): for each k, the
+/// triangle the map's capture mode records on the light ray through light NDC from[k], followed in
+/// the light's image plane towards to[k]. Writes t[k] = the fraction of the way from[k] -> to[k] at
+/// which that straight path leaves the triangle's image (0 when from[k] lies on its edge already;
+/// may exceed 1), NaN where the capture records no single triangle there (no hit; midpoint
+/// capture, which records the middle of two surfaces; a triangle edge-on to the light or reaching
+/// behind a spot light's apex plane). Same calling rules as DepthOracle.
+using SurfaceEndOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> from,
+                                            std::span<const glm::dvec2> to, std::span<double> t)>;
+
 }  // namespace shadowvol

@@ -47,6 +47,7 @@ struct Refinement {
   double msRays = 0.0;              ///< time inside the oracle (ms), or the crossing source's
   std::size_t fallbacks = 0;        ///< CrossingSource only: edges whose crossing it could not find
                                     ///< (walk_crossings.h: they get the middle of the edge)
+  std::size_t snapped = 0;          ///< crossings snapped to where their triangle ends (crossing_snap.h)
 };
 
 /// Where refinement's crossings can come from instead of bisection with a depth oracle
@@ -87,21 +88,43 @@ struct RayBudget {
 /// s[k] of segment k, for every segment; `step` counts the batches from 0.
 using SegmentSampler = std::function<void(int step, std::span<const double> s, std::span<float> depth)>;
 
-/// The bisection of the header comment on any segments: `steps` >= 1 batches of `sample`; the
-/// segments' points are not read (the sampler places the parameters). bisectSegments samples
-/// texel points of one map with its oracle; a point light's cube samples directions
-/// (cube_refinement.h).
+/// A segment's last bisection bracket: the parameters lo (near side) and hi (off it), and the
+/// sheet depths d(lo), d(hi) of the header comment.
+struct BisectionBracket {
+  double lo = 0.0, hi = 1.0, dLo = 0.0, dHi = 0.0;
+};
+
+/// The brackets of the header comment's bisection on any segments: `steps` >= 1 batches of
+/// `sample`; the segments' points are not read (the sampler places the parameters).
+std::vector<BisectionBracket> bisectBrackets(std::span<const BisectionSegment> segments, const SheetDepthRule& rule,
+                                             bool blur, int steps, const SegmentSampler& sample);
+
+/// The crossing of the header comment from a segment's bracket: the bracket's middle, the near
+/// vertex at d(lo) (the segment's nearFallback where that is the far plane), the far vertex at d(hi)
+/// (surface segment) or the far plane.
+Crossing bracketCrossing(const BisectionSegment& segment, const BisectionBracket& bracket, double farPlane);
+
+/// bisectBrackets, each bracket's crossing (bracketCrossing). bisectSegments samples texel points of
+/// one map with its oracle; a point light's cube samples directions (cube_refinement.h).
 std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, const SheetDepthRule& rule, bool blur,
                                  int steps, const SegmentSampler& sample);
+
+/// Where each crossing found by bisection goes next (crossing_snap.h): nowhere (the bracket's
+/// middle), or to where the triangle recorded on its near side ends.
+struct CrossingSnap {
+  const SurfaceEndOracle* ends = nullptr;  ///< unset: no snap
+  std::size_t* snapped = nullptr;          ///< if set, incremented for each crossing snapped
+};
 
 /// Bisects every segment with `steps` >= 1 rays (one oracle batch per step for all of them); the
 /// crossings' s run from nearPoint to farPoint. The `extra` points (texel coordinates) are sampled
 /// in the first batch, their sheet depths (the far plane where nothing short of it is hit) written
 /// to *extraDepths. Adds what it spends to `budget`.
+/// With `snap.ends`, each crossing is then snapped (crossing_snap.h), its rays in `budget` too.
 std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
                                      const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
                                      RayBudget& budget, std::span<const glm::dvec2> extra = {},
-                                     std::vector<double>* extraDepths = nullptr);
+                                     std::vector<double>* extraDepths = nullptr, const CrossingSnap& snap = {});
 
 /// Refines every edge of `edges` with `steps` >= 1 bisection rays each (the header comment), and
 /// samples the sheet depth at the extra points `centres` (texel coordinates) in the first batch.
@@ -112,6 +135,6 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
 /// for findBoundaryEdges; not read without blur).
 Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule, bool blur,
                                std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
-                               std::span<const glm::dvec2> centres = {});
+                               std::span<const glm::dvec2> centres = {}, const CrossingSnap& snap = {});
 
 }  // namespace shadowvol

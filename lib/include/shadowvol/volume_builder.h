@@ -71,6 +71,12 @@ struct VolumeBuildOptions {
                                 ///< Needs depthOracle and the exact cap (docs/volume.md, "Refinement")
   DepthOracle depthOracle;      ///< refinement only: the captured depth anywhere in the light's image
                                 ///< (depth_oracle.h); unset = no refinement possible
+  SurfaceEndOracle surfaceEnds; ///< refinement with depthOracle: where the recorded triangle ends
+                                ///< (depth_oracle.h); set = every bisected crossing (edges, chord
+                                ///< points, the sub-grid's) is snapped there (crossing_snap.h: on a
+                                ///< polygonal mesh the wall stands on the silhouette's own light ray),
+                                ///< up to 2 x kSnapRounds more rays each; unset = the bracket's middle
+  bool refineSnap = true;       ///< false: no snap even with surfaceEnds (for comparison; --no-snap)
   CrossingSource crossingSource; ///< refinement only: the crossings and centre depths from elsewhere
                                 ///< instead of bisection with depthOracle (the renderer's GPU
                                 ///< silhouette walk, walk_crossings.h); with it refineSteps > 0 only
@@ -140,6 +146,8 @@ struct VolumeBuildStats {
   std::size_t raysCast = 0;           ///< refinement: depth-oracle queries (refineSteps per boundary
                                       ///< edge and per chord point, plus one per ambiguous cell; with the
                                       ///< sub-grid its samples, steps per boundary sub-edge and centres)
+  std::size_t snappedCrossings = 0;   ///< refinement with surfaceEnds: crossings snapped to where their
+                                      ///< triangle ends (the others stay in their bracket's middle)
   std::size_t crossingFallbacks = 0;  ///< refinement with a crossing source: edges it found no crossing
                                       ///< on (walk_crossings.h: a wall in the middle of the edge)
   std::size_t subgridQuads = 0;       ///< sub-grid: refined quads cut into sub-cells (the others stay plain)

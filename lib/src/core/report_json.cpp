@@ -68,6 +68,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridSplitTriangles", s.subgridSplitTriangles},
           {"raysCast", s.raysCast},
           {"crossingFallbacks", s.crossingFallbacks},
+          {"snappedCrossings", s.snappedCrossings},
           {"bias", s.biasUsed},
           {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};

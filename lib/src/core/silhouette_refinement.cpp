@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/crossing_snap.h"
 
 namespace shadowvol {
 
@@ -16,16 +17,12 @@ glm::dvec2 Crossing::texel(const BoundaryEdge& e, double s) {
   return {e.i + (e.axis == 0 ? t : 0.0), e.j + (e.axis == 1 ? t : 0.0)};
 }
 
-std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, const SheetDepthRule& rule, bool blur,
-                                 int steps, const SegmentSampler& sample) {
+std::vector<BisectionBracket> bisectBrackets(std::span<const BisectionSegment> segments, const SheetDepthRule& rule,
+                                             bool blur, int steps, const SegmentSampler& sample) {
   SV_CHECK_GE(steps, 1);
   const std::size_t n = segments.size();
   const double farPlane = rule.farPlane;
-  // Per segment: the bracket [lo, hi] of the parameter from the near point, and its ends' depths.
-  struct Bracket {
-    double lo = 0.0, hi = 1.0, dLo = 0.0, dHi = 0.0;
-  };
-  std::vector<Bracket> brackets(n);
+  std::vector<BisectionBracket> brackets(n);
   for (std::size_t k = 0; k < n; ++k) {
     brackets[k].dLo = segments[k].nearDepth;
     brackets[k].dHi = segments[k].surface ? segments[k].farDepth : farPlane;
@@ -37,7 +34,7 @@ std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, con
     depth.assign(n, DepthMap::kNoHit);
     sample(step, middle, depth);
     for (std::size_t k = 0; k < n; ++k) {
-      Bracket& b = brackets[k];
+      BisectionBracket& b = brackets[k];
       const double m = middle[k];
       const double d = rule.ofSample(depth[k], blur);
       const bool hit = d != farPlane;
@@ -50,25 +47,33 @@ std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, con
       }
     }
   }
-  std::vector<Crossing> out(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const Bracket& b = brackets[k];
-    Crossing& c = out[k];
-    c.s = 0.5 * (b.lo + b.hi);
-    // Never on the far plane: the segment's fallback (short of it) stands in.
-    c.nearDepth = b.dLo != farPlane ? b.dLo : segments[k].nearFallback;
-    c.farDepth = segments[k].surface ? b.dHi : farPlane;
-    // Bisection keeps d(lo) < d(hi): a surface segment starts with them in that order, both short
-    // of the far plane, and each step moves one end strictly between them.
-    SV_CHECK_LT(c.nearDepth, c.farDepth);
-  }
+  return brackets;
+}
+
+Crossing bracketCrossing(const BisectionSegment& segment, const BisectionBracket& b, double farPlane) {
+  Crossing c;
+  c.s = 0.5 * (b.lo + b.hi);
+  // Never on the far plane: the segment's fallback (short of it) stands in.
+  c.nearDepth = b.dLo != farPlane ? b.dLo : segment.nearFallback;
+  c.farDepth = segment.surface ? b.dHi : farPlane;
+  // Bisection keeps d(lo) < d(hi): a surface segment starts with them in that order, both short
+  // of the far plane, and each step moves one end strictly between them.
+  SV_CHECK_LT(c.nearDepth, c.farDepth);
+  return c;
+}
+
+std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, const SheetDepthRule& rule, bool blur,
+                                 int steps, const SegmentSampler& sample) {
+  const std::vector<BisectionBracket> brackets = bisectBrackets(segments, rule, blur, steps, sample);
+  std::vector<Crossing> out(segments.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = bracketCrossing(segments[k], brackets[k], rule.farPlane);
   return out;
 }
 
 std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
                                      const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
                                      RayBudget& budget, std::span<const glm::dvec2> extra,
-                                     std::vector<double>* extraDepths) {
+                                     std::vector<double>* extraDepths, const CrossingSnap& snap) {
   SV_CHECK(bool(oracle));
   const std::size_t n = segments.size();
   if (extraDepths) extraDepths->assign(extra.size(), rule.farPlane);
@@ -97,7 +102,12 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
     sample(0, {}, {});
     return {};
   }
-  return bisectWith(segments, rule, blur, steps, sample);
+  if (!snap.ends) return bisectWith(segments, rule, blur, steps, sample);
+  const std::vector<BisectionBracket> brackets = bisectBrackets(segments, rule, blur, steps, sample);
+  std::size_t snapped = 0;
+  std::vector<Crossing> out = snapCrossings(map, segments, brackets, rule, blur, steps, oracle, *snap.ends, budget, snapped);
+  if (snap.snapped) *snap.snapped += snapped;
+  return out;
 }
 
 BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,
@@ -123,7 +133,7 @@ BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const S
 
 Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundary, const SheetDepthRule& rule, bool blur,
                                std::span<const double> blurredSheetDepths, const DepthOracle& oracle, int steps,
-                               std::span<const glm::dvec2> centres) {
+                               std::span<const glm::dvec2> centres, const CrossingSnap& snap) {
   const std::vector<BoundaryEdge>& edges = boundary.edges;
   std::vector<BisectionSegment> segments(edges.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -132,7 +142,11 @@ Refinement refineBoundaryEdges(const DepthMap& map, const BoundaryEdges& boundar
   });
   Refinement result;
   RayBudget budget;
-  result.crossings = bisectSegments(map, segments, rule, blur, oracle, steps, budget, centres, &result.centreDepths);
+  CrossingSnap counted = snap;
+  counted.snapped = &result.snapped;
+  result.crossings =
+      bisectSegments(map, segments, rule, blur, oracle, steps, budget, centres, &result.centreDepths, counted);
+  if (snap.snapped) *snap.snapped += result.snapped;
   result.raysCast = budget.rays;
   result.msRays = budget.ms;
   return result;

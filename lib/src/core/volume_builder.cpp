@@ -137,6 +137,11 @@ void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
       std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
 }
 
+// The snap of refinement's bisected crossings, when the options bring a surface-end oracle.
+const SurfaceEndOracle* snapOf(const VolumeBuildOptions& options) {
+  return options.refineSnap && options.surfaceEnds && options.depthOracle ? &options.surfaceEnds : nullptr;
+}
+
 // Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
 // centre depths), then, with refineChords or `chordTest` (the adaptive sub-grid's choice, which
 // only measures with them), the chord points of the quads with two boundary edges; their counts go
@@ -154,9 +159,10 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     SV_CHECK_EQ(refinement.centreDepths.size(), centreList.size());
   } else {
     refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                     options.refineSteps, centreList);
+                                     options.refineSteps, centreList, {snapOf(options)});
   }
   stats.crossingFallbacks = refinement.fallbacks;
+  stats.snappedCrossings = refinement.snapped;
   countBoundaryEdges(edges, stats);
   stats.ambiguousCells = centres ? quads.centres.size() : 0;
   stats.raysCast = refinement.raysCast;
@@ -165,7 +171,8 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   chords = volume::planChordPoints(quads, sheet, edges, refinement);
   RayBudget budget;
   chords.crossings =
-      bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget);
+      bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget,
+                     {}, nullptr, {snapOf(options), &stats.snappedCrossings});
   stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
   stats.raysCast += budget.rays;
   stats.msRays += budget.ms;
@@ -192,6 +199,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   o.blur = options.blur;
   o.perfect = options.triangulation == Triangulation::Perfect;
   o.exact = options.cap == FarCap::Exact;
+  o.ends = snapOf(options);
   volume::SubgridCells sub =
       volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, firstVertex, plain);
   // Vertex indices stay below kNone: the sheet, the sub-grid's and one centroid per split side at most.
@@ -207,6 +215,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   stats.subgridBoundaryEdges = sub.boundaryEdges;
   stats.subgridFarBoundaryEdges = sub.farBoundaryEdges;
   stats.raysCast += sub.raysCast;
+  stats.snappedCrossings += sub.snapped;
   stats.msRays += sub.msRays;
   return sub;
 }

@@ -65,16 +65,25 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
+CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
+  if (mode == CaptureMode::Midpoint) return {};
   RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
   CaptureContext c;
   rtcInitIntersectContext(&c.ctx);
   if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
-  if (mode == CaptureMode::Midpoint) c.ctx.filter = twoLayerFilter;
   rtcIntersect1(scene, &c.ctx, &rh);
-  if (mode == CaptureMode::Midpoint)
-    return std::isfinite(c.t1) ? 0.5f * (c.t1 + (std::isfinite(c.t2) ? c.t2 : tFar)) : DepthMap::kNoHit;
-  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : DepthMap::kNoHit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
+}
+
+float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
+  if (mode != CaptureMode::Midpoint) return captureHit(scene, ray, tNear, tFar, mode).depth;
+  RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
+  CaptureContext c;
+  rtcInitIntersectContext(&c.ctx);
+  c.ctx.filter = twoLayerFilter;
+  rtcIntersect1(scene, &c.ctx, &rh);
+  return std::isfinite(c.t1) ? 0.5f * (c.t1 + (std::isfinite(c.t2) ? c.t2 : tFar)) : DepthMap::kNoHit;
 }
 
 namespace {

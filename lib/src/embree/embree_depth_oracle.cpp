@@ -1,11 +1,15 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 
+#include <array>
+#include <cmath>
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/triangle_exit.h"
 
 namespace shadowvol {
 
@@ -34,6 +38,39 @@ DepthOracle EmbreeDepthOracle::oracle() const {
         // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
         const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
         depth[k] = captureRay(impl->scene.get(), unproject.ray(i, j), tNear, tFar, map.capture);
+      }
+    });
+    impl->device.throwIfError();
+  };
+}
+
+SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
+  const Impl* impl = impl_.get();
+  return [impl](const DepthMap& map, std::span<const glm::dvec2> from, std::span<const glm::dvec2> to,
+                std::span<double> t) {
+    SV_CHECK_EQ(from.size(), to.size());
+    SV_CHECK_EQ(from.size(), t.size());
+    const TexelUnprojector unproject(map);
+    const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
+    const auto texel = [&map](glm::dvec2 ndc) {
+      return glm::dvec2((ndc.x + 1.0) * 0.5 * map.width - 0.5, (ndc.y + 1.0) * 0.5 * map.height - 0.5);
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const glm::dvec2 a = texel(from[k]), b = texel(to[k]);
+        const CapturedHit hit = captureHit(impl->scene.get(), unproject.ray(a.x, a.y), tNear, tFar, map.capture);
+        t[k] = std::nan("");
+        if (hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+          RTCGeometry geom = rtcGetGeometry(impl->scene.get(), hit.geomID);
+          const auto* index = static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
+          const auto* vertex = static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
+          std::array<glm::dvec3, 3> corners;
+          for (int c = 0; c < 3; ++c) {
+            const float* v = vertex + 3 * std::size_t(index[3 * std::size_t(hit.primID) + std::size_t(c)]);
+            corners[std::size_t(c)] = glm::dvec3(v[0], v[1], v[2]);
+          }
+          t[k] = triangleExit(map, corners, a, b);
+        }
       }
     });
     impl->device.throwIfError();

@@ -1097,7 +1097,7 @@ struct Renderer::Impl {
       const Program& p = byRays ? rays.program() : walk.program();
       p.use();
       p.set("rawDepth", 3);
-      if (byRays) rays.dispatchGrid(in, vo.refineSteps, capture, indirectOffset);
+      if (byRays) rays.dispatchGrid(in, vo.refineSteps, capture, vo.refineSnap, indirectOffset);
       else walk.dispatchGrid(in, hitLimit, indirectOffset);
     });
   }

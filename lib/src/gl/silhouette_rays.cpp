@@ -60,13 +60,16 @@ void SilhouetteRays::ensureHierarchy() {
   built_ = true;
 }
 
-void SilhouetteRays::dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, GLintptr indirectOffset) {
+void SilhouetteRays::dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, bool snap,
+                                  GLintptr indirectOffset) {
   SV_CHECK(capture == CaptureMode::Back || capture == CaptureMode::Front);
   ensureHierarchy();
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, triangles_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, nodes_.id()));
   program_.use();
   program_.set("lightViewToWorld", in.lightViewToWorld);
+  program_.set("worldToLightView", in.worldToLightView);
+  program_.set("snapCrossings", snap ? 1 : 0);
   program_.set("refineSteps", steps);
   program_.set("backCapture", capture == CaptureMode::Back ? 1 : 0);
   program_.set("nodeCount", int(std::min<std::size_t>(nodeCount_, 0x7fffffff)));

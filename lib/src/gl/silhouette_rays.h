@@ -24,8 +24,9 @@ class SilhouetteRays {
   /// walk_slots.comp's list, `steps` rays per boundary edge by `capture`'s rule (back or front);
   /// the caller binds the boundary flags (SSBO 5), the counters (SSBO 6), the list (SSBO 7) and
   /// the crossing records (image unit 0) and orders the memory barrier. Of `in` it reads
-  /// lightViewToWorld (the triangles are the hierarchy's own copy).
-  void dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, GLintptr indirectOffset);
+  /// lightViewToWorld and worldToLightView (the triangles are the hierarchy's own copy).
+  /// With `snap`, each crossing is then snapped as crossing_snap.h does (VolumeBuildOptions::refineSnap).
+  void dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, bool snap, GLintptr indirectOffset);
 
  private:
   void ensureHierarchy();

@@ -12,4 +12,13 @@ namespace shadowvol {
 /// TexelUnprojector::ray), within [tNear, tFar]; DepthMap::kNoHit when nothing is recorded.
 float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode);
 
+/// The hit captureRay records, for front and back capture: its depth, geometry and triangle;
+/// geomID RTC_INVALID_GEOMETRY_ID when nothing is recorded (and always for midpoint capture, whose
+/// record is the middle of two hits, no triangle's).
+struct CapturedHit {
+  float depth = DepthMap::kNoHit;
+  unsigned geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;
+};
+CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode);
+
 }  // namespace shadowvol

@@ -22,6 +22,9 @@ class EmbreeDepthOracle {
   EmbreeDepthOracle& operator=(const EmbreeDepthOracle&) = delete;
 
   DepthOracle oracle() const;
+  /// The SurfaceEndOracle (depth_oracle.h) of the same scene and capture rule: one ray per query
+  /// (captureHit), then triangleExit (triangle_exit.h) on the triangle it records.
+  SurfaceEndOracle surfaceEnds() const;
 
  private:
   struct Impl;

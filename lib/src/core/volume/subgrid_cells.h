@@ -97,6 +97,7 @@ struct SubgridOptions {
   bool blur = false;
   bool perfect = true;   ///< the diagonal rule in sub-cells without a boundary side
   bool exact = true;     ///< drop triangles with three far vertices (the sub-grid needs the exact cap)
+  const SurfaceEndOracle* ends = nullptr;  ///< snap the sub-edges' crossings (crossing_snap.h); null: no snap
 };
 
 /// One side of an unrefined quad that carries virtual nodes: its corner vertices and the nodes'
@@ -120,7 +121,8 @@ struct SubgridCells {
   std::size_t farBoundaryEdges = 0;      ///< of which one end is far
   std::size_t ambiguousCells = 0;        ///< sub-cells with 3 or 4 boundary sides
   std::size_t footprintTriangles = 0;    ///< kept triangles that are not walls
-  std::size_t raysCast = 0;              ///< oracle queries: samples, bisection, centres
+  std::size_t raysCast = 0;              ///< oracle queries: samples, bisection, snap, centres
+  std::size_t snapped = 0;               ///< boundary sub-edges' crossings snapped (crossing_snap.h)
   double msRays = 0.0;                   ///< time inside the oracle (ms)
 };
 
