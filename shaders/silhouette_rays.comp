@@ -177,13 +177,16 @@ void refineEdge(ivec2 P, int axis, uint e) {
   // edgeSegment: the ends' depths by the rule for one sample (the ring is the far plane).
   float dLo = unblurredDepth(N), dHi = surface ? unblurredDepth(R) : farPlane;
   float lo = 0.0, hi = 1.0;
+  uint triangleLo = kNoTriangle;  // the triangle recorded at lo, once a ray has been cast there
   for (int step = 0; step < refineSteps; ++step) {
     float m = 0.5 * (lo + hi);
-    float d = ofSample(castRay(mix(vec2(N), vec2(R), m)));
+    uint triangle;
+    float d = ofSample(castRayHit(mix(vec2(N), vec2(R), m), triangle));
     bool hit = d != farPlane;
     if (hit && (!surface || d < 0.5 * (dLo + dHi))) {
       lo = m;
       dLo = d;
+      triangleLo = triangle;
     } else {
       hi = m;
       if (hit && surface) dHi = d;
@@ -194,11 +197,12 @@ void refineEdge(ivec2 P, int axis, uint e) {
   float s = -1.0, probeFar = farPlane;
   if (snapCrossings != 0) {
     for (int round = 0; round < kSnapRounds; ++round) {
+      // The triangle at lo: the ray that put lo there recorded it (the same ray, the same answer
+      // as crossing_snap.h's surface-end ray); at the near end itself one ray finds it.
       vec2 from = mix(vec2(N), vec2(R), lo);
-      uint triangle;
-      castRayHit(from, triangle);
-      if (triangle == kNoTriangle) break;
-      float t = triangleExit(triangle, from, mix(vec2(N), vec2(R), hi));
+      if (triangleLo == kNoTriangle) castRayHit(from, triangleLo);
+      if (triangleLo == kNoTriangle) break;
+      float t = triangleExit(triangleLo, from, mix(vec2(N), vec2(R), hi));
       if (!(t >= 0.0 && t <= 1.0 + kSnapEndSlack)) break;
       float se = min(lo + t * (hi - lo), hi);
       if (se == hi) {
@@ -207,10 +211,12 @@ void refineEdge(ivec2 P, int axis, uint e) {
       }
       float sp = se + min(kSnapProbeTexels, 0.5 * (hi - se));  // an edge is one texel long
       if (!(sp > se && sp < hi)) break;
-      float d = ofSample(castRay(mix(vec2(N), vec2(R), sp)));
+      uint triangle;
+      float d = ofSample(castRayHit(mix(vec2(N), vec2(R), sp), triangle));
       if (d != farPlane && (!surface || d < 0.5 * (dLo + dHi))) {  // the surface goes on
         lo = sp;
         dLo = d;
+        triangleLo = triangle;
         continue;
       }
       s = se;

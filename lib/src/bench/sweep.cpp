@@ -96,6 +96,17 @@ SweepMethod refinedGpuWalk(CaptureMode capture) {
   return m;
 }
 
+// The refined volume, explicit or GPU, back capture, without the snap (crossing_snap.h,
+// VolumeBuildOptions::refineSnap = false): each crossing in the middle of its last bisection
+// bracket, as every refined method before 2026-12-04; for what the snap costs and gains.
+SweepMethod refinedNoSnap(gl::VolumeSource source) {
+  SweepMethod m = source == gl::VolumeSource::Gpu ? refinedGpu(CaptureMode::Back) : refined(CaptureMode::Back);
+  m.key = std::string("hybrid-refined-nosnap/") + gl::toString(source);
+  m.options.volumeOptions.refineSnap = false;
+  m.description += "; no snap (each crossing in the middle of its last bisection bracket)";
+  return m;
+}
+
 // The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
 // boundary edge), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
@@ -273,6 +284,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));
+    for (auto source : {gl::VolumeSource::Explicit, gl::VolumeSource::Gpu}) v.push_back(refinedNoSnap(source));
     v.push_back(cubeShadowMap("cube-shadowmap", gl::ShadowMethod::ShadowMap,
                               "a point light's cube shadow map, one hardware depth compare, back-face depths"));
     v.push_back(cubeShadowMap("cube-pcf3", gl::ShadowMethod::Pcf3,
