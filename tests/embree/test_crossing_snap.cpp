@@ -15,6 +15,8 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/triangle_exit.h"
+#include "shadowvol/cube_volume.h"
+#include "shadowvol/volume_builder.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -136,6 +138,41 @@ TEST(CrossingSnap, TriangleExitIsCyrusBeckOnTheTrianglesImage) {
   const glm::dvec3 behind = spot.position - 2.0 * spot.direction;
   const std::array<glm::dvec3, 3> reaching = {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), behind};
   EXPECT_TRUE(std::isnan(triangleExit(spotMap, reaching, spotMap.texelOf(glm::dvec3(0.3, 0, 0.1)), glm::dvec2(32.0))));
+}
+
+// Distinct vertices of a volume that share one float position (toTriangleMesh, the writers).
+std::size_t floatCollisions(const VolumeMesh& mesh) {
+  const TriangleMesh f = mesh.toTriangleMesh();
+  std::vector<std::array<float, 3>> p;
+  for (const auto& v : f.positions) p.push_back({v.x, v.y, v.z});
+  std::sort(p.begin(), p.end());
+  return std::size_t(std::distance(std::unique(p.begin(), p.end()), p.end()));
+}
+
+// Regression (a hostile-input probe): at K = 16 on the sub-grid's 1/8-texel sub-edges a crossing
+// came within float spacing of a lattice node (2^-18 texel), and the exported volume had pairs of
+// vertices at one float position, with zero-area triangles; a point light's cube too. Crossings
+// now keep floatSafeTexels from the segments' ends.
+TEST(CrossingSnap, RefinedVolumesStayApartInFloatAtTheFinestSettings) {
+  for (const char* name : {"bunny.json", "point/room.json"}) {
+    SCOPED_TRACE(name);
+    Scene scene = loadScene(test::sourceDir() / "data/scenes" / name).scene;
+    fitLightAndCamera(scene);
+    const EmbreeDepthOracle oracle(scene);
+    VolumeBuildOptions o;
+    o.refineSteps = kMaxRefineSteps;
+    o.depthOracle = oracle.oracle();
+    o.surfaceEnds = oracle.surfaceEnds();
+    VolumeBuildResult r;
+    if (scene.light.type == LightType::Point) {
+      r = buildCubeVolume(captureCubeEmbree(scene, 512, CaptureMode::Back), o);
+    } else {
+      o.refineSubdivisions = kMaxRefineSubdivisions;
+      r = buildVolume(captureDepthEmbree(scene, 512, 512, CaptureMode::Back), o);
+    }
+    ASSERT_GT(r.stats.boundaryEdges, 100u);
+    EXPECT_EQ(floatCollisions(r.mesh), 0u);
+  }
 }
 
 }  // namespace

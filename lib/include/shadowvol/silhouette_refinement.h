@@ -78,6 +78,13 @@ struct BisectionSegment {
 BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,
                              std::span<const double> blurredSheetDepths);
 
+/// How close to a texel-grid point a crossing may come, in texels, for its world position to stay
+/// apart from that point's in float: kFloatSafeSpacings spacings of float at the largest coordinate
+/// of the map's frustum (the light's apex or window, and the far plane's corners, in the map's own
+/// coordinates) over the texel footprint at the near plane (the smallest, at the map's centre).
+double floatSafeTexels(const DepthMap& map);
+inline constexpr double kFloatSafeSpacings = 4.0;
+
 /// Rays spent, and the time inside the oracle (ms).
 struct RayBudget {
   std::size_t rays = 0;
@@ -121,6 +128,9 @@ struct CrossingSnap {
 /// in the first batch, their sheet depths (the far plane where nothing short of it is hit) written
 /// to *extraDepths. Adds what it spends to `budget`.
 /// With `snap.ends`, each crossing is then snapped (crossing_snap.h), its rays in `budget` too.
+/// Every crossing is kept floatSafeTexels(map) from its segment's ends (in texels, as s times the
+/// segment's length), so that the volume's float copy (VolumeMesh::toTriangleMesh, the writers)
+/// never puts it on an end's vertex: that takes K = 16 on a sub-grid's 1/8-texel sub-edges at 512^2.
 std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
                                      const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
                                      RayBudget& budget, std::span<const glm::dvec2> extra = {},

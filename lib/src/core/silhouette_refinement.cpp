@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -70,6 +71,17 @@ std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, con
   return out;
 }
 
+double floatSafeTexels(const DepthMap& map) {
+  const TexelUnprojector unproject(map);
+  double largest = 0.0;
+  for (double d : {map.nearPlane, map.farPlane})
+    for (double i : {-0.5, map.width - 0.5})
+      for (double j : {-0.5, map.height - 0.5}) largest = std::max(largest, glm::length(unproject.worldPoint(i, j, d)));
+  const double nearFootprint = TexelFootprint::of(map).at(map.nearPlane);
+  if (!(nearFootprint > 0.0)) return 0.0;
+  return kFloatSafeSpacings * largest * std::ldexp(1.0, -23) / nearFootprint;
+}
+
 std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const BisectionSegment> segments,
                                      const SheetDepthRule& rule, bool blur, const DepthOracle& oracle, int steps,
                                      RayBudget& budget, std::span<const glm::dvec2> extra,
@@ -102,11 +114,22 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
     sample(0, {}, {});
     return {};
   }
-  if (!snap.ends) return bisectWith(segments, rule, blur, steps, sample);
-  const std::vector<BisectionBracket> brackets = bisectBrackets(segments, rule, blur, steps, sample);
-  std::size_t snapped = 0;
-  std::vector<Crossing> out = snapCrossings(map, segments, brackets, rule, blur, steps, oracle, *snap.ends, budget, snapped);
-  if (snap.snapped) *snap.snapped += snapped;
+  std::vector<Crossing> out;
+  if (!snap.ends) {
+    out = bisectWith(segments, rule, blur, steps, sample);
+  } else {
+    const std::vector<BisectionBracket> brackets = bisectBrackets(segments, rule, blur, steps, sample);
+    std::size_t snapped = 0;
+    out = snapCrossings(map, segments, brackets, rule, blur, steps, oracle, *snap.ends, budget, snapped);
+    if (snap.snapped) *snap.snapped += snapped;
+  }
+  // Apart from the segments' ends in float as well (the header's floatSafeTexels).
+  const double safe = floatSafeTexels(map);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double length = glm::length(segments[k].farPoint - segments[k].nearPoint);
+    const double m = std::min(0.25, safe / length);
+    if (length > 0.0 && m > 0.0) out[k].s = std::clamp(out[k].s, m, 1.0 - m);
+  }
   return out;
 }
 

@@ -221,6 +221,10 @@ CubeRefinement refineCube(const CubeDepthMap& cube, const Grid& cells, const She
     sampleDirections(cube, rays, oracle, depth, r.budget);
   };
   r.crossings = bisectWith(segments, rule, blur, steps, sample);
+  // Apart from the edges' ends in float (silhouette_refinement.h's floatSafeTexels; every edge,
+  // across a face's seam too, joins neighbouring texels about one texel apart).
+  const double safe = std::min(0.25, floatSafeTexels(cube.faces[0]));
+  for (Crossing& c : r.crossings) c.s = std::clamp(c.s, safe, 1.0 - safe);
   r.directions.resize(m);
   r.faceTexel.assign(m, glm::dvec2(0.0));
   auto texel = [&](std::uint32_t id) {  // texel coordinates on its face
