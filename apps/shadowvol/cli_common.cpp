@@ -232,6 +232,18 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   if (std::filesystem::is_directory(p, ec)) throw InputError("command line", option, path, "is a folder, not a file");
 }
 
+void checkNotAnInput(const std::string& option, const std::string& value, const std::filesystem::path& output,
+                     const std::vector<std::filesystem::path>& inputs, const std::string& what) {
+  std::error_code ec;
+  if (!std::filesystem::exists(output, ec)) return;  // a file not there yet is read by no one
+  for (const auto& input : inputs)
+    if (std::filesystem::equivalent(output, input, ec))
+      throw InputError("command line", option, value,
+                       (what.empty() ? std::string("is") : what + " " + output.string() + " is") +
+                           " an input of this command (" + input.string() +
+                           "): writing it would destroy it; choose another output path");
+}
+
 namespace {
 std::string gCommandLine = "shadowvol";
 }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <filesystem>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -90,6 +91,14 @@ void checkResolution(const std::string& option, int resolution);
 
 /// Refuses an output path whose folder does not exist (before any work is done).
 void checkOutputPath(const std::string& option, const std::string& path);
+
+/// Refuses to write `output` (named by `option`) where it is one of the command's input files (the
+/// same file, through any path or link): writing would destroy the input. A regression of a
+/// hostile-input probe: `depth --out X.pfm` replaced a scene file X.pfm.json, `build --out` a mesh
+/// the scene reads.
+/// `what` names a file the option's value implies (its side file, say) when `output` is that file.
+void checkNotAnInput(const std::string& option, const std::string& value, const std::filesystem::path& output,
+                     const std::vector<std::filesystem::path>& inputs, const std::string& what = "");
 
 /// The command line as typed (set by main), for reports that say how to reproduce them.
 const std::string& commandLine();

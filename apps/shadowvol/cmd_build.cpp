@@ -90,6 +90,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       Scene scene;
       double msCapture = 0.0;
       if (!o->depth.empty()) {
+        checkNotAnInput("--out", o->out, o->out, {o->depth, depthSidecarPath(o->depth)});
         map = readDepthMap(o->depth);
         if (map.width < kMinVolumeMapSide || map.height < kMinVolumeMapSide)
           throw InputError(o->depth, "size", std::to_string(map.width) + "x" + std::to_string(map.height),
@@ -102,6 +103,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         CaptureMode mode{};
         parseCaptureMode(o->capture, mode);
         scene = loadSceneOrDefault(o->scene.scene);
+        checkNotAnInput("--out", o->out, o->out, scene.files);
         chooseLight(scene, o->light);
         j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);
         j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);

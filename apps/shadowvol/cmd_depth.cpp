@@ -49,6 +49,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       CaptureMode mode{};
       parseCaptureMode(o->capture, mode);
       Scene scene = loadSceneOrDefault(o->scene.scene);
+      checkNotAnInput("--out", o->out, o->out, scene.files);
+      checkNotAnInput("--out", o->out, depthSidecarPath(o->out), scene.files, "its side file");
       chooseLight(scene, o->light);
       const nlohmann::json lightFit = applyLightFit(scene, o->scene, o->resolution);
       const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);

@@ -71,6 +71,11 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           throw InputError("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
+      checkNotAnInput("--out", o->out, o->out, scene.files);
+      if (!o->stencil.empty()) {
+        checkNotAnInput("--stencil", o->stencil, o->stencil, scene.files);
+        checkNotAnInput("--stencil", o->stencil, stencilCountsPath(o->stencil), scene.files, "its counts file");
+      }
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);

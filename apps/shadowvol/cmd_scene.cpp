@@ -25,6 +25,7 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
     run = [opts, exportPath, worldCoords] {
       if (!exportPath->empty()) checkOutputPath("--export", *exportPath);
       const Scene scene = loadSceneOrDefault(opts->scene);
+      if (!exportPath->empty()) checkNotAnInput("--export", *exportPath, *exportPath, scene.files);
       if (!exportPath->empty()) exportSceneMesh(scene, *exportPath, *worldCoords);
       nlohmann::json j = describeScene(scene);
       j["shadowvolVersion"] = SHADOWVOL_VERSION;

@@ -162,6 +162,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       const std::filesystem::path dir(o->reportDir);
       checkOutputFolder("--report", o->reportDir);
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
+      for (const char* name : {"report.json", "frame.png", "exact.png", "stencil.png", "count.png", "overlay.png",
+                               "overlay.svg"})
+        checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);

@@ -396,6 +396,42 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
 }
 
+// Regression (a hostile-input probe): an output that is one of the command's inputs was written
+// over it: depth's side file over a scene named X.pfm.json, build's mesh over the mesh the scene
+// reads. Now refused (exit 1, naming both), the input left as it was.
+TEST(Cli, OutputsNeverOverwriteTheirInputs) {
+  const auto dir = test::tempDir();
+  const auto read = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  std::filesystem::copy_file(scene("default.json"), dir / "X.pfm.json");
+  const std::string sceneText = read(dir / "X.pfm.json");
+  const CliResult depth = runCli("depth --scene " + (dir / "X.pfm.json").string() + " --resolution 16 --out " +
+                                 (dir / "X.pfm").string());
+  EXPECT_EQ(depth.code, 1) << depth.out;
+  EXPECT_TRUE(contains(depth.out, "side file")) << depth.out;
+  EXPECT_EQ(read(dir / "X.pfm.json"), sceneText);
+  EXPECT_FALSE(std::filesystem::exists(dir / "X.pfm"));
+  {
+    std::ofstream mesh(dir / "tri.off");
+    mesh << "OFF\n3 1 0\n0 1 0\n1 1 0\n0 1 1\n3 0 1 2\n";
+    std::ofstream s(dir / "s.json");
+    s << R"({"objects": [{"type": "plane", "size": 10}, {"type": "mesh", "file": "tri.off"}],
+             "light": {"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0]},
+             "camera": {"eye": [0, 3, 6], "target": [0, 0, 0]}})";
+  }
+  const std::string meshText = read(dir / "tri.off");
+  for (const std::string& args : {"build --resolution 16 --scene " + (dir / "s.json").string() + " --out " +
+                                      (dir / "tri.off").string(),
+                                  "scene --scene " + (dir / "s.json").string() + " --export " + (dir / "tri.off").string()}) {
+    const CliResult r = runCli(args);
+    EXPECT_EQ(r.code, 1) << args << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "is an input of this command")) << r.out;
+    EXPECT_EQ(read(dir / "tri.off"), meshText) << args;
+  }
+}
+
 TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "g.ply").string();

@@ -33,6 +33,10 @@ inline constexpr double kMaxSceneMagnitude = 1e12;
 
 struct Scene {
   std::string source = "default";  ///< file path it was loaded from, or "default"
+  /// The files it was read from: the scene file (loadScene), then each mesh object's file, as
+  /// opened (relative paths resolved against the scene's folder); empty for the built-in scene.
+  /// The command line refuses to write over any of them.
+  std::vector<std::filesystem::path> files;
   /// Local origin, world units, double: every position in this struct (objects, light, camera,
   /// bounds) is relative to it, world = stored + origin. loadScene picks the centre of the
   /// objects' bounds when that centre lies further from the world origin than the bounds' radius

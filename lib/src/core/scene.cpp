@@ -197,6 +197,7 @@ std::vector<glm::dvec3> applyTransform(TriangleMesh& mesh, const glm::dmat4& m) 
 struct ReadObject {
   SceneObject obj;
   std::vector<glm::dvec3> world;
+  std::filesystem::path file;  ///< a mesh object's file, as read
 };
 
 // The mesh of a built-in primitive type. Each refuses, before generating anything, a tessellation
@@ -268,6 +269,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
     const std::string file = r.string("file");
     std::filesystem::path p(file);
     if (p.is_relative()) p = baseDir / p;
+    read.file = p;
     try {
       obj.mesh = readTriangleMesh(p);
     } catch (const InputError& e) {
@@ -671,6 +673,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
     ReadObject read = readObject(objects[k], k, source, baseDir, budget);
     budget -= read.obj.mesh.triangleCount();
     scene.objects.push_back(std::move(read.obj));
+    if (!read.file.empty()) scene.files.push_back(read.file);
     world.push_back(std::move(read.world));
   }
   readLights(top, scene, source);
@@ -707,7 +710,9 @@ SceneLoadResult loadScene(const std::filesystem::path& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) throw InputError(path.string(), "", "", "cannot read the scene file");
-  return parseScene(ss.str(), path.string(), path.parent_path());
+  SceneLoadResult r = parseScene(ss.str(), path.string(), path.parent_path());
+  r.scene.files.insert(r.scene.files.begin(), path);
+  return r;
 }
 
 Scene defaultScene() {
