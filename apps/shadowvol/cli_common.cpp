@@ -228,7 +228,9 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   const auto dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   if (!std::filesystem::is_directory(dir, ec))
-    throw InputError("command line", option, path, "the folder " + dir.string() + " does not exist");
+    throw InputError("command line", option, path,
+                     std::filesystem::exists(dir, ec) ? dir.string() + " is not a folder"
+                                                      : "the folder " + dir.string() + " does not exist");
   if (std::filesystem::is_directory(p, ec)) throw InputError("command line", option, path, "is a folder, not a file");
 }
 

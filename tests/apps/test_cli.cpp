@@ -215,6 +215,13 @@ TEST(Cli, MissingOutputFolderIsRefused) {
   const CliResult r = runCli("depth --resolution 8 --out /nonexistent-folder/d.pfm");
   EXPECT_EQ(r.code, 1);
   EXPECT_TRUE(contains(r.out, "/nonexistent-folder"));
+  EXPECT_TRUE(contains(r.out, "does not exist")) << r.out;
+  // A "folder" that is a file is said to be one (a probe saw "does not exist" for it).
+  const auto dir = test::tempDir();
+  { std::ofstream(dir / "file") << "x"; }
+  const CliResult f = runCli("depth --resolution 8 --out " + (dir / "file" / "d.pfm").string());
+  EXPECT_EQ(f.code, 1);
+  EXPECT_TRUE(contains(f.out, "is not a folder")) << f.out;
 }
 
 TEST(Cli, SceneDescribesAndExports) {
