@@ -58,6 +58,7 @@ struct FrameRenderer {
     if (ro.volumeOptions.refineSteps > 0) {
       oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
+      ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line
     }
     renderer.setScene(scene);
   }

@@ -53,6 +53,7 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
     if (refine > 0) {
       oracle = std::make_unique<EmbreeDepthOracle>(scene->scene);
       o.depthOracle = oracle->oracle();
+      o.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line (crossing_snap.h)
     }
     r = buildVolume(depth, o);
   }

@@ -101,6 +101,7 @@ def test_from_array_rebuilds_the_same_volume(depth):
 def test_refinement_casts_rays_and_stays_closed(scene, depth):
     V, F, stats = sv.build_volume(depth, refine=4, scene=scene)
     assert stats["boundaryEdges"] > 0 and stats["raysCast"] >= 4 * stats["boundaryEdges"]
+    assert 0 < stats["snappedCrossings"] <= stats["boundaryEdges"]  # the snap, as the command line's
     assert_closed_oriented(V, F)
     Vg, Fg, grid = sv.build_volume(depth, refine=4, refine_grid=4, scene=scene)
     assert grid["subgridSamples"] > 0 and 0 < grid["subgridQuads"] <= grid["refinedCells"]
