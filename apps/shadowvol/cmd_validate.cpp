@@ -40,6 +40,7 @@ nlohmann::json describeLightValidation(const LightValidation& c, const gl::Rende
   if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
     j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
                           {"crossingFallbacks", result.gpuCrossingFallbacks},
+                          {"cpuRuleDifferences", result.cpuRuleEdgeDifferences},
                           {"volumeTriangles", result.volumeTriangles}};
   if (!result.faceVolumes.empty()) j["gpuRefinement"]["faceVolumes"] = result.faceVolumes.size();  // a point light's
   j.update(describeValidation(c.validation, vo, ro.method == gl::ShadowMethod::Silhouette));
@@ -70,12 +71,15 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
               v.facingAway, v.outsideLight, v.background);
   if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
     std::printf("  refinement on the GPU: %zu boundary edges refined, %zu without a crossing found; the CPU "
-                "rule's %zu boundary edges of the read-back map, %zu of them not among the GPU's\n",
+                "mesh has the GPU's edges (%zu, %zu of them without a crossing), the CPU rule on the read-back "
+                "map differs on %zu\n",
                 result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
-                result.volumeStats->crossingFallbacks);
+                result.volumeStats->crossingFallbacks, result.cpuRuleEdgeDifferences);
   else if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)  // a point light's six face volumes
-    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing found\n",
-                result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks);
+    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing "
+                "found; the CPU rule on the read-back maps differs on %zu\n",
+                result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks,
+                result.cpuRuleEdgeDifferences);
   else if (result.volumeStats && result.volumeStats->refinedCells > 0)
     std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %zu crossings snapped, "
                 "%.2f ms\n",

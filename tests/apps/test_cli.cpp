@@ -785,7 +785,8 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
   EXPECT_EQ(g["options"]["volume"], "gpu");
   EXPECT_EQ(g["gpuRefinement"]["boundaryEdges"], 64);
   EXPECT_EQ(g["gpuRefinement"]["crossingFallbacks"], 0);
-  EXPECT_EQ(g["volume"]["boundaryEdges"], 64);  // the CPU rule on the read-back map: the same edges
+  EXPECT_EQ(g["gpuRefinement"]["cpuRuleDifferences"], 0);  // the CPU rule on the read-back map: the same edges
+  EXPECT_EQ(g["volume"]["boundaryEdges"], 64);               // the CPU mesh's, the GPU's
   EXPECT_EQ(g["volume"]["crossingFallbacks"], 0);
   EXPECT_TRUE(g["gpuVolumeMeshChecks"]["valid"].get<bool>()) << gpu.out;
   EXPECT_TRUE(g["passed"].get<bool>());

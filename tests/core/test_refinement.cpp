@@ -223,6 +223,86 @@ TEST(Refinement, RaysGoOnlyToBoundaryEdges) {
   EXPECT_TRUE(closedOrientedManifold(c.mesh));
 }
 
+// The GPU's boundary flags (refine_common.glsl's bits) of an edge set, as boundary_edges.comp writes them.
+std::vector<std::uint32_t> flagsOf(const BoundaryEdges& edges, int w, int h) {
+  std::vector<std::uint32_t> flags(std::size_t(w) * std::size_t(h), 0);
+  for (const BoundaryEdge& e : edges.edges)
+    flags[std::size_t(e.j) * std::size_t(w) + std::size_t(e.i)] |=
+        (kFlagBoundary | (e.nearAtP ? kFlagNearAtP : 0u) | (e.surface ? kFlagSurface : 0u)) << e.axis;
+  return flags;
+}
+
+// An edge set read from the GPU's flags is the one the flags were written from, with the same
+// split bits, and the count of differing edges sees each kind of difference.
+TEST(Refinement, BoundaryEdgesFromFlagsAreTheEdgesFlagged) {
+  // Front capture of the plate over the ground: far edges (the ring) and surface edges.
+  const DepthMap map = plate(30.0, true).depthMap(test::directionalDown(6.0), 64, 48, CaptureMode::Front);
+  const SheetDepthRule rule(map, 0.0, 0.0);
+  std::vector<std::uint8_t> split(std::size_t(64) * 48, 0xFF), splitFromFlags(split.size(), 0xFF);
+  const BoundaryEdges edges = findBoundaryEdges(map, rule, false, {}, split.data());
+  std::vector<std::uint32_t> flags = flagsOf(edges, 64, 48);
+  flags[100] |= 0xFFFFFFC0u;  // the unfolding's round bits and above: ignored
+  const BoundaryEdges read = boundaryEdgesFromFlags(64, 48, flags, splitFromFlags.data());
+  ASSERT_GT(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return e.surface; }), 0);
+  EXPECT_EQ(differingBoundaryEdges(edges, read), 0u);
+  EXPECT_EQ(read.edges.size(), edges.edges.size());
+  EXPECT_EQ(read.rowStart, edges.rowStart);
+  EXPECT_EQ(splitFromFlags, split);
+  for (std::size_t k = 0; k < edges.edges.size(); ++k)
+    EXPECT_EQ(read.find(edges.edges[k].i, edges.edges[k].j, edges.edges[k].axis), k);
+  // One edge dropped, one near end turned, one kind changed, one edge added: four.
+  BoundaryEdges other = read;
+  other.edges.erase(other.edges.begin() + 3);
+  other.edges[10].nearAtP = !other.edges[10].nearAtP;
+  other.edges[20].surface = !other.edges[20].surface;
+  std::vector<std::uint32_t> moreFlags = flagsOf(other, 64, 48);
+  ASSERT_EQ(moreFlags[std::size_t(5) * 64 + 5], 0u);
+  moreFlags[std::size_t(5) * 64 + 5] = kFlagBoundary << 1;
+  EXPECT_EQ(differingBoundaryEdges(edges, boundaryEdgesFromFlags(64, 48, moreFlags)), 4u);
+  EXPECT_EQ(differingBoundaryEdges(boundaryEdgesFromFlags(64, 48, moreFlags), edges), 4u);
+}
+
+// A boundary-edge source replaces the rule: the build refines the edges it gives. Here the rule's
+// own edges (the same volume), then those and a false split on a sphere (a surface edge on a
+// continuous surface, which the rule's comment calls harmless: one more wall, still closed).
+TEST(Refinement, BoundaryEdgeSourceDecidesTheEdges) {
+  AnalyticScene s;
+  s.spheres.push_back({{0.0, 2.0, 0.0}, 1.3});
+  const DepthMap map = s.depthMap(test::directionalDown(6.0), 64, 64, CaptureMode::Back);
+  // Texels P = (i, 32), Q = (i + 1, 32) on the sphere (its far side: back capture), inside its rim,
+  // at different depths; their edge is no boundary edge.
+  const int i = 36, j = 32;
+  ASSERT_LT(map.depth[map.index(i + 2, j)], map.farPlane);
+  const bool nearAtP = map.depth[map.index(i, j)] < map.depth[map.index(i + 1, j)];
+  ASSERT_NE(map.depth[map.index(i, j)], map.depth[map.index(i + 1, j)]);
+  VolumeBuildOptions o;
+  o.refineSteps = 4;
+  o.depthOracle = s.oracle();
+  const VolumeBuildResult viaRule = buildVolume(map, o);
+  ASSERT_GT(viaRule.stats.boundaryEdges, 0u);
+  std::size_t calls = 0;
+  bool falseSplit = false;
+  o.boundaryEdgeSource = [&](const DepthMap& m, const SheetDepthRule& rule, bool blur, std::span<const double> blurred,
+                             std::uint8_t* splitBits) {
+    ++calls;
+    const BoundaryEdges found = findBoundaryEdges(m, rule, blur, blurred);
+    EXPECT_EQ(found.find(i, j, 0), found.edges.size());
+    std::vector<std::uint32_t> flags = flagsOf(found, m.width, m.height);
+    if (falseSplit) flags[m.index(i, j)] |= kFlagBoundary | (nearAtP ? kFlagNearAtP : 0u) | kFlagSurface;
+    return boundaryEdgesFromFlags(m.width, m.height, flags, splitBits);
+  };
+  const VolumeBuildResult viaSource = buildVolume(map, o);
+  EXPECT_EQ(calls, 1u);
+  EXPECT_EQ(viaSource.stats.boundaryEdges, viaRule.stats.boundaryEdges);
+  EXPECT_EQ(viaSource.mesh.positions, viaRule.mesh.positions);
+  EXPECT_EQ(viaSource.mesh.triangles, viaRule.mesh.triangles);
+  falseSplit = true;
+  const VolumeBuildResult split = buildVolume(map, o);
+  EXPECT_EQ(split.stats.boundaryEdges, viaRule.stats.boundaryEdges + 1);
+  EXPECT_EQ(split.stats.refinedCells, viaRule.stats.refinedCells + 2);  // the quads on both sides of the edge
+  EXPECT_TRUE(closedOrientedManifold(split.mesh));
+}
+
 // The topmost (nearest the light) surface of a volume over texel point (u, v): the smallest
 // light-view depth among its triangles whose light-space footprint contains the point; the far
 // plane when none does (outside the volume).

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "shadowvol/boundary_edges.h"
 #include "shadowvol/crossing_snap.h"
 #include "test_util.h"
 
@@ -36,6 +37,20 @@ TEST(ShaderConstants, SnapConstantsMatchTheShader) {
   ASSERT_TRUE(std::regex_match(probe, m, std::regex("1\\.0\\s*/\\s*([0-9.]+)"))) << probe;
   EXPECT_EQ(1.0 / std::stod(m[1].str()), kSnapProbeTexels);
   EXPECT_EQ(std::stod(constantOf(rays, "kSnapEndSlack")), kSnapEndSlack);
+}
+
+// The value of `<name> = <digits>u` in the shader (one of several uints declared on one line).
+long uintOf(const std::string& text, const std::string& name) {
+  std::smatch m;
+  return std::regex_search(text, m, std::regex("\\b" + name + "\\s*=\\s*([0-9]+)u")) ? std::stol(m[1].str()) : -1;
+}
+
+TEST(ShaderConstants, BoundaryFlagBitsMatchTheShader) {
+  const std::string common = shaderText("refine_common.glsl");
+  ASSERT_FALSE(common.empty());
+  EXPECT_EQ(uintOf(common, "kBoundaryBit"), long(kFlagBoundary));
+  EXPECT_EQ(uintOf(common, "kNearAtPBit"), long(kFlagNearAtP));
+  EXPECT_EQ(uintOf(common, "kSurfaceBit"), long(kFlagSurface));
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -80,5 +81,29 @@ struct BoundaryEdges {
 BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
                                 std::span<const double> blurredSheetDepths = {}, std::uint8_t* splitBits = nullptr,
                                 bool ring = true);
+
+/// The refined GPU volume's boundary flags (refine_common.glsl), one word per texel t = j W + i:
+/// bit `axis` = the edge from t along axis is a boundary edge, bit 2 + axis = its near end is P,
+/// bit 4 + axis = a surface edge. The shader's constants are checked against these by
+/// tests/core/test_shader_constants.cpp.
+inline constexpr std::uint32_t kFlagBoundary = 1, kFlagNearAtP = 4, kFlagSurface = 16;
+
+/// The boundary edges that the flags of a width x height map name (the GPU's own edge set, so that
+/// a CPU mesh of the GPU's crossings has the walls the GPU drew), in findBoundaryEdges' order, and
+/// splitBits (one byte per texel, optional) as it writes them. Other bits of a word are ignored.
+BoundaryEdges boundaryEdgesFromFlags(int width, int height, std::span<const std::uint32_t> flags,
+                                     std::uint8_t* splitBits = nullptr);
+
+/// How many edges two edge sets of one map disagree on: in one and not the other, or in both with
+/// another near end or kind.
+std::size_t differingBoundaryEdges(const BoundaryEdges& a, const BoundaryEdges& b);
+
+/// Where refinement's boundary edges can come from instead of findBoundaryEdges
+/// (VolumeBuildOptions::boundaryEdgeSource): the edges of `map`, with splitBits (one byte per
+/// texel) written as findBoundaryEdges writes them. The arguments are findBoundaryEdges' own, so a
+/// source can run the rule as well (to compare).
+using BoundaryEdgeSource = std::function<BoundaryEdges(const DepthMap& map, const SheetDepthRule& rule, bool blur,
+                                                       std::span<const double> blurredSheetDepths,
+                                                       std::uint8_t* splitBits)>;
 
 }  // namespace shadowvol

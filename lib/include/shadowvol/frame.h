@@ -195,6 +195,9 @@ struct RenderResult {
   std::size_t gpuBoundaryEdges = 0;     ///< refined GPU volume: boundary edges walked
   std::size_t gpuCrossingFallbacks = 0; ///< refined GPU volume: of them, walls in the middle of the
                                         ///< edge (no crossing found, walk_crossings.h)
+  std::size_t cpuRuleEdgeDifferences = 0; ///< refined GPU volume with keepVolume: edges on which the
+                                          ///< CPU's rule (boundary_edges.h, in double) on the read-back
+                                          ///< map differs from the GPU's flags (float); `volume` takes the GPU's
   std::optional<VolumeBuildStats> volumeStats;  ///< explicit volume: the CPU build's counts and times
                                                 ///< (its time, refinement rays included, is the
                                                 ///< "build" pass)

@@ -39,6 +39,7 @@
 #include <optional>
 #include <string>
 
+#include "shadowvol/boundary_edges.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/depth_oracle.h"
 #include "shadowvol/silhouette_refinement.h"
@@ -82,6 +83,9 @@ struct VolumeBuildOptions {
                                 ///< silhouette walk, walk_crossings.h); with it refineSteps > 0 only
                                 ///< switches refinement on. Not with refineChords or the sub-grid,
                                 ///< whose extra points need depthOracle
+  BoundaryEdgeSource boundaryEdgeSource; ///< refinement only: the boundary edges from elsewhere instead
+                                ///< of findBoundaryEdges' rule (the refined GPU volume's debug mesh
+                                ///< takes the GPU's own flags, so that it has the walls the GPU drew)
   bool refineChords = false;    ///< refinement only: bend the wall of a quad with two boundary edges
                                 ///< at one more crossing inside it (refineSteps more rays per such
                                 ///< quad), so it follows a curved outline. Off by default: about 15 %

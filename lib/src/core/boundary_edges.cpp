@@ -214,4 +214,46 @@ BoundaryEdges findBoundaryEdges(const DepthMap& map, const SheetDepthRule& rule,
   return result;
 }
 
+BoundaryEdges boundaryEdgesFromFlags(int width, int height, std::span<const std::uint32_t> flags,
+                                     std::uint8_t* splitBits) {
+  SV_CHECK(width > 0 && height > 0);
+  SV_CHECK_EQ(flags.size(), std::size_t(width) * std::size_t(height));
+  BoundaryEdges result;
+  result.rowStart.assign(std::size_t(height) + 1, 0);
+  for (int j = 0; j < height; ++j) {
+    for (int i = 0; i < width; ++i) {
+      const std::size_t t = std::size_t(j) * std::size_t(width) + std::size_t(i);
+      std::uint8_t bits = 0;
+      for (int axis = 0; axis < 2; ++axis) {
+        const std::uint32_t f = flags[t] >> axis;
+        if (!(f & kFlagBoundary)) continue;
+        SV_CHECK(axis == 0 ? i + 1 < width : j + 1 < height);  // an edge to a texel off the grid
+        result.edges.push_back({i, j, std::uint8_t(axis), bool(f & kFlagNearAtP), bool(f & kFlagSurface)});
+        bits |= std::uint8_t(1 << axis);
+      }
+      if (splitBits) splitBits[t] = bits;
+    }
+    result.rowStart[std::size_t(j) + 1] = result.edges.size();
+  }
+  return result;
+}
+
+std::size_t differingBoundaryEdges(const BoundaryEdges& a, const BoundaryEdges& b) {
+  const auto before = [](const BoundaryEdge& x, const BoundaryEdge& y) {
+    return std::tie(x.j, x.i, x.axis) < std::tie(y.j, y.i, y.axis);
+  };
+  std::size_t differing = 0, k = 0, l = 0;
+  while (k < a.edges.size() || l < b.edges.size()) {
+    if (l == b.edges.size() || (k < a.edges.size() && before(a.edges[k], b.edges[l]))) {
+      ++differing, ++k;
+    } else if (k == a.edges.size() || before(b.edges[l], a.edges[k])) {
+      ++differing, ++l;
+    } else {
+      const BoundaryEdge &x = a.edges[k++], &y = b.edges[l++];
+      differing += x.nearAtP != y.nearAtP || x.surface != y.surface;
+    }
+  }
+  return differing;
+}
+
 }  // namespace shadowvol

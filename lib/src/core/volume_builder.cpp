@@ -308,7 +308,10 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
       options.blur ? std::span<const double>(scratch_->blurred.data(), texels) : std::span<const double>();
   if (refine) {
     sizeBuffer(scratch_->splitBits, texels);
-    edges = findBoundaryEdges(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data());
+    edges = options.boundaryEdgeSource
+                ? options.boundaryEdgeSource(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data())
+                : findBoundaryEdges(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data());
+    SV_CHECK_EQ(edges.rowStart.size(), std::size_t(h) + 1);
     refinedQuads = findRefinedQuads(edges, w, h);
   }
   double msRefine = msSince(t0);

@@ -30,7 +30,6 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
   const std::size_t texels = std::size_t(map.width) * std::size_t(map.height);
   SV_CHECK_EQ(flags.size(), texels);
   SV_CHECK_EQ(records.size(), 3 * texels);
-  constexpr std::uint32_t kBoundaryBit = 1, kNearAtPBit = 4, kSurfaceBit = 16;  // refine_common.glsl
   const double farPlane = rule.farPlane;
   auto depth = [&](float d) { return recordDepth(d, farPlane); };
   Refinement r;
@@ -39,7 +38,7 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
     const BoundaryEdge& e = edges.edges[k];
     const std::size_t t = map.index(e.i, e.j);
     const std::uint32_t f = flags[t] >> e.axis;
-    const bool same = (f & kBoundaryBit) && bool(f & kNearAtPBit) == e.nearAtP && bool(f & kSurfaceBit) == e.surface;
+    const bool same = (f & kFlagBoundary) && bool(f & kFlagNearAtP) == e.nearAtP && bool(f & kFlagSurface) == e.surface;
     Crossing& c = r.crossings[k];
     if (!same) {
       const BisectionSegment g = edgeSegment(map, e, rule, blur, blurredSheetDepths);

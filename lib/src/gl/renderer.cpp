@@ -1467,6 +1467,15 @@ struct Renderer::Impl {
     result.depthMap = readBack(o.capture);
     VolumeBuildOptions v = vo;
     v.crossingSource = gpuCrossingSource();
+    // The GPU's own boundary edges (its float rule can differ from the CPU's double one where a
+    // jump equals the threshold); the CPU rule's edges on the same map are counted against them.
+    v.boundaryEdgeSource = [flags = refined->readFlags(), &result](const DepthMap& map, const SheetDepthRule& rule,
+                                                                  bool blur, std::span<const double> blurred,
+                                                                  std::uint8_t* splitBits) {
+      BoundaryEdges gpu = boundaryEdgesFromFlags(map.width, map.height, flags, splitBits);
+      result.cpuRuleEdgeDifferences = differingBoundaryEdges(gpu, findBoundaryEdges(map, rule, blur, blurred));
+      return gpu;
+    };
     VolumeBuildResult built = buildVolume(*result.depthMap, v);
     result.volume = std::move(built.mesh);
     result.volumeStats = built.stats;
@@ -1560,6 +1569,7 @@ struct Renderer::Impl {
       result.gpuCrossingFallbacks += face.gpuCrossingFallbacks;
       if (o.keepVolume) {
         refinedGpuDebugMeshes(cam, o, *depth, face);
+        result.cpuRuleEdgeDifferences += face.cpuRuleEdgeDifferences;
         result.faceVolumes[std::size_t(f)] = std::move(*face.volume);
         result.faceGpuVolumes[std::size_t(f)] = std::move(*face.gpuVolume);
       }
