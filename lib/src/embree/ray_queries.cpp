@@ -70,6 +70,24 @@ CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
   return h;
 }
 
+std::vector<double> visibleDepths(const EmbreeScene& scene, const Camera& camera,
+                                  const std::vector<std::size_t>& pixels, const std::vector<glm::dvec2>& offsets) {
+  const PrimaryRays rays(camera);
+  std::vector<double> out(pixels.size() * offsets.size(), INFINITY);
+  for (std::size_t p = 0; p < pixels.size(); ++p) {
+    const int x = int(pixels[p] % std::size_t(camera.width)), row = int(pixels[p] / std::size_t(camera.width));
+    for (std::size_t o = 0; o < offsets.size(); ++o) {
+      const TexelUnprojector::Ray pr = rays.ray(x, row, offsets[o].x, offsets[o].y);
+      RTCRayHit rh = makeRayHit(pr.origin, pr.direction, float(camera.nearPlane), float(camera.farPlane));
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      rtcIntersect1(scene.get(), &ctx, &rh);
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) out[p * offsets.size() + o] = rh.ray.tfar;
+    }
+  }
+  return out;
+}
+
 double shadowRayOffset(const Scene& scene) { return 1e-4 * std::max(scene.bounds().radius(), 1e-9); }
 
 double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale) {

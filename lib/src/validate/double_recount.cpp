@@ -11,6 +11,8 @@
 #include <CGAL/Simple_cartesian.h>
 #include <glm/geometric.hpp>
 
+#include "shadowvol/check.h"
+
 namespace shadowvol {
 namespace {
 
@@ -130,22 +132,43 @@ std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& ca
   return pixels.size();
 }
 
+std::vector<glm::dvec2> imagePlaneTieCorners() {
+  std::vector<glm::dvec2> corners;
+  for (double dx : {-kImagePlaneTie, kImagePlaneTie})
+    for (double dy : {-kImagePlaneTie, kImagePlaneTie}) corners.emplace_back(dx, dy);
+  return corners;
+}
+
 std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
-                                const std::vector<std::size_t>& pixels, CrossingCounts& counts) {
+                                const std::vector<std::size_t>& pixels, CrossingCounts& counts,
+                                const std::vector<double>& cornerDepths) {
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
+  const std::vector<glm::dvec2> corners = imagePlaneTieCorners();
+  SV_CHECK(cornerDepths.empty() || cornerDepths.size() == corners.size() * pixels.size());
   DoubleCounter counter(volume, trianglesNear(volume, camera, pixels));
   const PrimaryRays rays(camera);
   std::size_t widened = 0;
-  for (std::size_t k : pixels) {
+  std::vector<double> depths;
+  for (std::size_t p = 0; p < pixels.size(); ++p) {
+    const std::size_t k = pixels[p];
     if (hits.isBackground(k)) continue;
     const int x = int(k % std::size_t(hits.width)), row = int(k / std::size_t(hits.width));
+    // The depths to split at: the pixel's own, and each other surface a corner sees.
+    const double own = hits.depth[k];
+    depths.assign(1, own);
+    for (std::size_t c = 0; c < (cornerDepths.empty() ? 0 : corners.size()); ++c) {
+      const double d = cornerDepths[p * corners.size() + c];
+      if (d < INFINITY && std::abs(d - own) > tieTolerance(camera, own) * own) depths.push_back(d);
+    }
     int lo = counts.zfailMin[k], hi = counts.zfailMax[k];
-    for (double dx : {-kImagePlaneTie, kImagePlaneTie})
-      for (double dy : {-kImagePlaneTie, kImagePlaneTie}) {
-        const PixelCounts pc = counter.count(rays.ray(x, row, dx, dy), camera, hits.depth[k]);
-        lo = std::min(lo, pc.zfailMin);
-        hi = std::max(hi, pc.zfailMax);
-      }
+    auto admit = [&](const TexelUnprojector::Ray& ray, double depth) {
+      const PixelCounts pc = counter.count(ray, camera, depth);
+      lo = std::min(lo, pc.zfailMin);
+      hi = std::max(hi, pc.zfailMax);
+    };
+    for (const glm::dvec2& c : corners)
+      for (double d : depths) admit(rays.ray(x, row, c.x, c.y), d);
+    for (std::size_t d = 1; d < depths.size(); ++d) admit(rays.ray(x, row), depths[d]);
     widened += lo < counts.zfailMin[k] || hi > counts.zfailMax[k];
     counts.zfailMin[k] = lo;
     counts.zfailMax[k] = hi;

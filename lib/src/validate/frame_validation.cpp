@@ -244,8 +244,12 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     for (std::size_t k = 0; k < n; ++k)
       if (compared(k) && !admissible(k)) outside.push_back(k);
     if (!outside.empty()) {
+      // The scene's visible depth at the tie square's corners (its own silhouettes snap too).
+      const auto cornerDepthsOf = [&](const std::vector<std::size_t>& pixels) {
+        return visibleDepths(sceneRt, scene.camera, pixels, imagePlaneTieCorners());
+      };
       if (volume) {
-        widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts);
+        widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts, cornerDepthsOf(outside));
       } else {  // a cube's face volumes: each pixel by the volumes of its faces (pixelFaces)
         std::array<std::vector<std::size_t>, kCubeFaces> byFace;
         for (std::size_t k : outside) {
@@ -254,7 +258,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
           if (second != first) byFace[std::size_t(second)].push_back(k);
         }
         for (int f = 0; f < kCubeFaces; ++f)
-          widenImagePlaneTies(frame.faceVolumes[std::size_t(f)], scene.camera, hits, byFace[std::size_t(f)], *v.counts);
+          widenImagePlaneTies(frame.faceVolumes[std::size_t(f)], scene.camera, hits, byFace[std::size_t(f)], *v.counts,
+                              cornerDepthsOf(byFace[std::size_t(f)]));
       }
       for (std::size_t k : outside) v.stencilVsCount.imagePlaneTies += admissible(k);
     }

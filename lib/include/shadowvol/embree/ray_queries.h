@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "shadowvol/camera.h"
@@ -31,6 +32,12 @@ struct CameraHits {
 /// Casts one primary ray per pixel centre, limited to the camera's [near, far] (the GL clip
 /// range), through the scene's geometry. Parallel and deterministic.
 CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera);
+
+/// The visible depth (CameraHits::depth's meaning: camera view depth within [near, far], +inf =
+/// background) along the ray of each of `pixels` (indices, rows top first) moved by each of
+/// `offsets` (pixels, as PrimaryRays::ray's dx, dy): offsets.size() depths per pixel, pixel-major.
+std::vector<double> visibleDepths(const EmbreeScene& scene, const Camera& camera,
+                                  const std::vector<std::size_t>& pixels, const std::vector<glm::dvec2>& offsets);
 
 enum class PixelClass : std::uint8_t {
   Background = 0,    ///< the camera ray hits nothing

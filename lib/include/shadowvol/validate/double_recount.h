@@ -12,6 +12,9 @@
 //   pixels whose stencil lies outside their admissible range, the range is widened by the counts
 //   of four rays through the corners of a square of +-kImagePlaneTie pixels around the centre:
 //   every edge that passes within kImagePlaneTie of the centre separates it from one corner.
+//   The scene's own edges snap too: where the camera sees another surface at a corner (a
+//   silhouette of the scene within kImagePlaneTie of the centre), the rasteriser may have drawn
+//   that surface at the pixel, so the counts split at the corner's visible depth are admitted too.
 #pragma once
 
 #include <cstddef>
@@ -32,10 +35,18 @@ inline constexpr double kImagePlaneTie = 1.0 / 256.0;
 std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
                                       int expectedNet, CrossingCounts& counts);
 
+/// The four corners of the square of image-plane ties, in pixels (PrimaryRays::ray's dx, dy), in
+/// the order widenImagePlaneTies reads cornerDepths in.
+std::vector<glm::dvec2> imagePlaneTieCorners();
+
 /// Widens the admissible z-fail range (zfailMin, zfailMax) of each of `pixels` (indices into the
 /// frame, rows top first) by the counts of the four rays +-kImagePlaneTie pixels off its centre,
-/// each split at the pixel's visible depth. Returns the number of pixels whose range grew.
+/// each split at the pixel's visible depth. With `cornerDepths` (four per pixel: the scene's
+/// visible depth along those rays, visibleDepths with imagePlaneTieCorners), where a corner sees
+/// another surface (outside the tie band of the pixel's depth; not background), the centre's and
+/// the corners' rays are split at that depth as well. Returns the number of pixels whose range grew.
 std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
-                                const std::vector<std::size_t>& pixels, CrossingCounts& counts);
+                                const std::vector<std::size_t>& pixels, CrossingCounts& counts,
+                                const std::vector<double>& cornerDepths = {});
 
 }  // namespace shadowvol

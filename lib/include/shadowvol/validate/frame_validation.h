@@ -69,7 +69,8 @@ struct Agreement {
   std::size_t agree = 0;   ///< including ties
   std::size_t ties = 0;    ///< agreeing only through the tie band (CrossingCounts::zfailMin/Max)
   /// Of the ties, those admitted only by the image-plane band (double_recount.h: a pixel centre
-  /// within kImagePlaneTie pixels of a projected edge of the volume).
+  /// within kImagePlaneTie pixels of a projected edge of the volume, or of a silhouette of the
+  /// scene, where the counts split at the other surface's depth are admitted too).
   std::size_t imagePlaneTies = 0;
   /// A pixel where stencil and count disagree (stencil vs count only): where, and the numbers.
   struct Miss {
