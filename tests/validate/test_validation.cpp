@@ -1,6 +1,7 @@
 // Issue 5: the GPU stencil against Embree's crossing counts of the explicit volume, on every
 // shipped scene and option combination, and the plate against the exact shadow.
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 
 #include <glm/geometric.hpp>
@@ -550,31 +551,49 @@ TEST(Validation, ThresholdsOutsideZeroToOneAreRefused) {
   EXPECT_NO_THROW(validateFrame(scene, map, {}, frame, {}));
 }
 
-// A pixel centre on a projected edge of the volume is an image-plane tie: a rasteriser may cover
-// it from either side, so its admissible range takes both counts; a pixel well inside a triangle
-// keeps its one count. One triangle with an edge through the centre ray of a 63 x 63 camera.
-TEST(Validation, ImagePlaneTiesWidenOnlyPixelsOnAnEdge) {
+// The 63 x 63 camera of the image-plane tie tests, looking down -z from (0, 0, 5).
+Camera tieCamera() {
   Camera camera;
   camera.eye = {0.0, 0.0, 5.0};
   camera.target = {0.0, 0.0, 0.0};
   camera.width = camera.height = 63;
   camera.nearPlane = 1.0;
   camera.farPlane = 10.0;
-  VolumeMesh volume;  // in z = 0, its edge x = 0 through the view axis, facing away from the eye
-  volume.positions = {{0.0, -1.0, 0.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}};
-  volume.triangles = {{0u, 1u, 2u}};
+  return camera;
+}
+
+// Its hits: background but for `pixels`, each with a visible point at depth 2 (in front of z = 0).
+CameraHits tieHits(std::initializer_list<std::size_t> pixels) {
   CameraHits hits;
   hits.width = hits.height = 63;
   hits.depth.assign(63 * 63, INFINITY);
   hits.point.assign(63 * 63, glm::dvec3(0.0));
-  const std::size_t onEdge = 31 * 63 + 31, inside = 31 * 63 + 40;  // row 31, columns 31 and 40
-  hits.depth[onEdge] = hits.depth[inside] = 2.0f;  // a visible point in front of the triangle
+  for (std::size_t k : pixels) hits.depth[k] = 2.0f;
+  return hits;
+}
+
+// Counts of one crossing behind every pixel (z-fail 1, no tie).
+CrossingCounts oneCrossingEach() {
   CrossingCounts counts;
   counts.width = counts.height = 63;
   counts.zfail.assign(63 * 63, 1);
   counts.zpass.assign(63 * 63, 0);
   counts.zfailMin = counts.zfail;
   counts.zfailMax = counts.zfail;
+  return counts;
+}
+
+// A pixel centre on a projected edge of the volume is an image-plane tie: a rasteriser may cover
+// it from either side, so its admissible range takes both counts; a pixel well inside a triangle
+// keeps its one count. One triangle with an edge through the centre ray of a 63 x 63 camera.
+TEST(Validation, ImagePlaneTiesWidenOnlyPixelsOnAnEdge) {
+  const Camera camera = tieCamera();
+  VolumeMesh volume;  // in z = 0, its edge x = 0 through the view axis, facing away from the eye
+  volume.positions = {{0.0, -1.0, 0.0}, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}};
+  volume.triangles = {{0u, 1u, 2u}};
+  const std::size_t onEdge = 31 * 63 + 31, inside = 31 * 63 + 40;  // row 31, columns 31 and 40
+  const CameraHits hits = tieHits({onEdge, inside});
+  CrossingCounts counts = oneCrossingEach();
   EXPECT_EQ(widenImagePlaneTies(volume, camera, hits, {onEdge, inside}, counts), 1u);
   EXPECT_EQ(counts.zfailMin[onEdge], 0);  // the rays left of the edge miss the triangle
   EXPECT_EQ(counts.zfailMax[onEdge], 1);
@@ -618,27 +637,13 @@ void expectRecountRestoresCounts(const Scene& scene, int expectedNet) {
 // the volume's triangle, the counts split there are admitted too; a corner that sees the pixel's
 // own surface, or the background, adds nothing.
 TEST(Validation, ImagePlaneTiesAdmitTheSurfaceBehindASceneSilhouette) {
-  Camera camera;
-  camera.eye = {0.0, 0.0, 5.0};
-  camera.target = {0.0, 0.0, 0.0};
-  camera.width = camera.height = 63;
-  camera.nearPlane = 1.0;
-  camera.farPlane = 10.0;
+  const Camera camera = tieCamera();
   VolumeMesh volume;  // in z = 0, covering the view axis's neighbourhood, facing away from the eye
   volume.positions = {{-1.0, -1.0, 0.0}, {1.0, -1.0, 0.0}, {0.0, 1.0, 0.0}};
   volume.triangles = {{0u, 2u, 1u}};
-  CameraHits hits;
-  hits.width = hits.height = 63;
-  hits.depth.assign(63 * 63, INFINITY);
-  hits.point.assign(63 * 63, glm::dvec3(0.0));
   const std::size_t centre = 31 * 63 + 31;
-  hits.depth[centre] = 2.0f;  // a visible point in front of the triangle: z-fail counts its crossing
-  CrossingCounts counts;
-  counts.width = counts.height = 63;
-  counts.zfail.assign(63 * 63, 1);
-  counts.zpass.assign(63 * 63, 0);
-  counts.zfailMin = counts.zfail;
-  counts.zfailMax = counts.zfail;
+  const CameraHits hits = tieHits({centre});  // in front of the triangle: z-fail counts its crossing
+  CrossingCounts counts = oneCrossingEach();
   ASSERT_EQ(imagePlaneTieCorners().size(), 4u);
   // Corners on the pixel's own surface or on the background: nothing to widen.
   CrossingCounts same = counts;
