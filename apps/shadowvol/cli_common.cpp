@@ -165,11 +165,11 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
 
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   if (o.blurOffset != 0.0 && !o.blur)
-    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "needs --blur");
+    throw InputError("command line", "--blur-offset", numberText(o.blurOffset), "needs --blur");
   if (!std::isfinite(o.blurOffset))
-    throw InputError("command line", "--blur-offset", std::to_string(o.blurOffset), "must be finite");
+    throw InputError("command line", "--blur-offset", numberText(o.blurOffset), "must be finite");
   if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
-    throw InputError("command line", "--bias", std::to_string(*o.bias), "must be finite and >= 0");
+    throw InputError("command line", "--bias", numberText(*o.bias), "must be finite and >= 0");
   if (o.refine > 0 && o.cap != "exact")
     throw InputError("command line", "--refine", std::to_string(o.refine),
                      "needs --cap exact (the quad cap keeps the far-plane sheet that refinement replaces by walls)");

@@ -113,9 +113,9 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   checkResolution("--resolution", o.resolution);
   if (o.shadowBias && (!std::isfinite(*o.shadowBias) || *o.shadowBias < 0.0))
-    throw InputError("command line", "--shadow-bias", std::to_string(*o.shadowBias), "must be finite and >= 0");
+    throw InputError("command line", "--shadow-bias", numberText(*o.shadowBias), "must be finite and >= 0");
   if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)
-    throw InputError("command line", "--shadow-slope", std::to_string(o.shadowSlope), "must be finite and >= 0");
+    throw InputError("command line", "--shadow-slope", numberText(o.shadowSlope), "must be finite and >= 0");
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
   gl::parseVolumeSource(o.volume == "auto" ? "gpu" : o.volume, ro.volume);  // auto: the GPU volume

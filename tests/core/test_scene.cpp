@@ -57,6 +57,20 @@ std::string withObject(const std::string& object) {
          R"(],"light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,0,5],"target":[0,0,0]}})";
 }
 
+// Numbers in messages read back as the numbers they name (numberText), where std::to_string's six
+// decimals printed a near plane of 2e-7 as 0.000000 (a hostile-input probe's finding).
+TEST(SceneParser, MessagesShowSmallAndLargeNumbersExactly) {
+  EXPECT_EQ(numberText(2e-7), "2e-07");
+  EXPECT_EQ(numberText(0.1), "0.1");
+  EXPECT_EQ(numberText(3.0), "3");
+  EXPECT_EQ(numberText(1e30), "1e+30");
+  EXPECT_EQ(numberText(0.1f), "0.1");
+  EXPECT_EQ(numberText(std::nan("")), "nan");
+  EXPECT_EQ(numberText(-INFINITY), "-inf");
+  expectError(withLight(R"({"type":"spot","position":[0,5,0],"target":[0,0,0],"near":2e-7,"far":1e-7})"),
+              "/light/far", "far must be greater than near (2e-07)");
+}
+
 TEST(SceneParser, ReadsAllPrimitivesAndFields) {
   const auto r = parse(kGood);
   const Scene& s = r.scene;

@@ -60,7 +60,7 @@ void checkDepthValues(const DepthMap& map, const std::string& source) {
     const float d = map.depth[k];
     if (std::isnan(d) || d < 0)
       throw InputError(source, "texel " + std::to_string(k % map.width) + "," + std::to_string(k / map.width),
-                       std::to_string(d), "depth must be >= 0 or +inf (no hit)");
+                       numberText(d), "depth must be >= 0 or +inf (no hit)");
   }
 }
 
@@ -74,11 +74,11 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
                      "a depth map needs at least 2 x 2 texels");
   const double tol = 1e-6;
   if (!(std::isfinite(map.nearPlane) && map.nearPlane >= 0.0))
-    throw InputError(sfile, "/near", std::to_string(map.nearPlane), "near must be finite and >= 0");
+    throw InputError(sfile, "/near", numberText(map.nearPlane), "near must be finite and >= 0");
   if (!(map.farPlane > map.nearPlane && map.farPlane < 1e30))
-    throw InputError(sfile, "/far", std::to_string(map.farPlane), "far must be greater than near and below 1e30");
+    throw InputError(sfile, "/far", numberText(map.farPlane), "far must be greater than near and below 1e30");
   if (map.lightType == LightType::Spot && !(map.nearPlane > 0.0))
-    throw InputError(sfile, "/near", std::to_string(map.nearPlane), "a spot light needs near > 0");
+    throw InputError(sfile, "/near", numberText(map.nearPlane), "a spot light needs near > 0");
   const glm::dmat4& v = map.lightView;
   const glm::dmat3 r(v);
   const glm::dmat3 rrt = r * glm::transpose(r);
@@ -183,7 +183,7 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   if (magic != "Pf") throw InputError(file, "header", magic, "not a single-channel PFM (expected \"Pf\")");
   if (!in || w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw InputError(file, "header", std::to_string(w) + "x" + std::to_string(h), "bad PFM size");
-  if (!(scale < 0)) throw InputError(file, "header", std::to_string(scale), "only little-endian PFM is supported");
+  if (!(scale < 0)) throw InputError(file, "header", numberText(scale), "only little-endian PFM is supported");
   if (in.get() == '\r')  // the single whitespace after the scale
     throw InputError(file, "header", "CR LF", "a PFM header's lines end with a single newline (\\n), not CR LF "
                                               "(the depths would be read one byte off)");

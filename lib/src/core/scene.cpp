@@ -430,7 +430,7 @@ void readLightPlanes(ObjectReader& r, Light& light) {
   if (r.has("far")) {
     light.farPlane = r.number("far");
     if (r.has("near") && !(light.farPlane > light.nearPlane))
-      r.fail("far", json(light.farPlane), "far must be greater than near (" + std::to_string(light.nearPlane) + ")");
+      r.fail("far", json(light.farPlane), "far must be greater than near (" + numberText(light.nearPlane) + ")");
     if (light.type != LightType::Directional && !(light.farPlane > 0.0))
       r.fail("far", json(light.farPlane), "must be greater than zero");
   }
@@ -594,7 +594,7 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
     warnings.push_back(std::move(note));
   }
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
-    throw InputError(source, pointer + "/far", std::to_string(given.farPlane), "far lies before the fitted near plane");
+    throw InputError(source, pointer + "/far", numberText(given.farPlane), "far lies before the fitted near plane");
 }
 
 // The warnings about light k (as scene.light): inside a closed mesh; a directional light's plane

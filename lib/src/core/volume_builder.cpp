@@ -83,7 +83,7 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
   const EmptyingOffset e = volumeOffsetEmptiesRange(bias, options.blurOffset, options.blur, nearPlane, farPlane);
   if (!e.why.empty())
     throw InputError("volume options", e.blurOffset ? "blur offset" : "bias",
-                     std::to_string(e.blurOffset ? options.blurOffset : bias), e.why);
+                     numberText(e.blurOffset ? options.blurOffset : bias), e.why);
 }
 
 namespace {

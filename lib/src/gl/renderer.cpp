@@ -1332,11 +1332,11 @@ struct Renderer::Impl {
     const EmptyingOffset e = volumeOffsetEmptiesRange(bias, v.blurOffset, v.blur, light.nearPlane, light.farPlane);
     if (o.method == ShadowMethod::Hybrid && !e.why.empty())
       throw InputError("RenderOptions", e.blurOffset ? "volumeOptions.blurOffset" : "volumeOptions.bias",
-                       std::to_string(e.blurOffset ? v.blurOffset : bias), e.why);
+                       numberText(e.blurOffset ? v.blurOffset : bias), e.why);
     const bool oneMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
     if (oneMap && light.type != LightType::Point && o.shadowBiasConstant)
       if (const std::string why = offsetEmptiesRange(*o.shadowBiasConstant, light.nearPlane, light.farPlane); !why.empty())
-        throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant), why);
+        throw InputError("RenderOptions", "shadowBiasConstant", numberText(*o.shadowBiasConstant), why);
   }
 
   void validate(const RenderOptions& o, const CameraSetup& cam) const {
@@ -1346,18 +1346,18 @@ struct Renderer::Impl {
       throw InputError("RenderOptions", "imageWidth x imageHeight", std::to_string(cam.w) + "x" + std::to_string(cam.h),
                        "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
     if (!std::isfinite(o.ambient) || !std::isfinite(o.diffuse) || o.ambient < 0 || o.diffuse < 0)
-      throw InputError("RenderOptions", "ambient/diffuse", std::to_string(o.ambient) + "/" + std::to_string(o.diffuse),
+      throw InputError("RenderOptions", "ambient/diffuse", numberText(o.ambient) + "/" + numberText(o.diffuse),
                        "must be finite and >= 0");
     if (o.shadowBiasConstant && (!std::isfinite(*o.shadowBiasConstant) || *o.shadowBiasConstant < 0.0))
-      throw InputError("RenderOptions", "shadowBiasConstant", std::to_string(*o.shadowBiasConstant),
+      throw InputError("RenderOptions", "shadowBiasConstant", numberText(*o.shadowBiasConstant),
                        "must be finite and >= 0 (a negative bias moves receivers in front of themselves: acne)");
     if (!std::isfinite(o.shadowBiasSlope))
-      throw InputError("RenderOptions", "shadowBiasSlope", std::to_string(o.shadowBiasSlope), "must be finite");
+      throw InputError("RenderOptions", "shadowBiasSlope", numberText(o.shadowBiasSlope), "must be finite");
     if (!std::isfinite(o.volumeOptions.blurOffset))
-      throw InputError("RenderOptions", "volumeOptions.blurOffset", std::to_string(o.volumeOptions.blurOffset),
+      throw InputError("RenderOptions", "volumeOptions.blurOffset", numberText(o.volumeOptions.blurOffset),
                        "must be finite");
     if (o.volumeOptions.bias && !std::isfinite(*o.volumeOptions.bias))
-      throw InputError("RenderOptions", "volumeOptions.bias", std::to_string(*o.volumeOptions.bias), "must be finite");
+      throw InputError("RenderOptions", "volumeOptions.bias", numberText(*o.volumeOptions.bias), "must be finite");
     checkOffsetRanges(o);
     if (light.type == LightType::Point) validatePointLight(o);
     if (light.type != LightType::Point && o.method == ShadowMethod::Dpsm)
@@ -2021,7 +2021,7 @@ void Renderer::setScene(const Scene& scene) {
     if (!(l.farPlane > l.nearPlane))
       throw InputError(scene.source, scene.lightPointer(k), "", "near and far planes are not set (fitLightAndCamera)");
     if (l.type != LightType::Directional && !(l.nearPlane > 0.0))
-      throw InputError(scene.source, scene.lightPointer(k) + "/near", std::to_string(l.nearPlane),
+      throw InputError(scene.source, scene.lightPointer(k) + "/near", numberText(l.nearPlane),
                        std::string("a ") + toString(l.type) + " light needs near > 0");
   }
   using Vertex = SceneVertex;

@@ -160,9 +160,9 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   if (frame.hybrid) SV_CHECK_EQ(frame.stencil.size(), n);
   if (!frame.shadowed.empty()) SV_CHECK_EQ(frame.shadowed.size(), n);
   if (!(options.maxError >= 0.0 && options.maxError <= 1.0))  // NaN too: it would pass every frame
-    throw InputError("ValidationOptions", "maxError", std::to_string(options.maxError), "must be in [0, 1]");
+    throw InputError("ValidationOptions", "maxError", numberText(options.maxError), "must be in [0, 1]");
   if (!(options.maxMissedShare >= 0.0 && options.maxMissedShare <= 1.0))
-    throw InputError("ValidationOptions", "maxMissedShare", std::to_string(options.maxMissedShare),
+    throw InputError("ValidationOptions", "maxMissedShare", numberText(options.maxMissedShare),
                      "must be in [0, 1]");
 
   FrameValidation v;

@@ -56,7 +56,7 @@ TriangleMesh collect(const aiScene& scene, const std::string& source) {
       const aiVector3D& p = am.mVertices[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         throw InputError(source, "mesh " + std::to_string(m) + " vertex " + std::to_string(v),
-                         std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z),
+                         numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z),
                          "position is not finite");
     }
     for (unsigned f = 0; f < am.mNumFaces; ++f) {

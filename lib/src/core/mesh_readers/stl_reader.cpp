@@ -34,7 +34,7 @@ TriangleMesh readBinary(const std::string& source, std::string_view bytes, std::
       if (!p)
         throw InputError(
             source, "triangle " + std::to_string(t),
-            std::to_string(v[3 + 3 * c]) + " " + std::to_string(v[4 + 3 * c]) + " " + std::to_string(v[5 + 3 * c]),
+            numberText(v[3 + 3 * c]) + " " + numberText(v[4 + 3 * c]) + " " + numberText(v[5 + 3 * c]),
             "non-finite vertex coordinate");
       tri[c] = weld.vertex(*p);
     }
