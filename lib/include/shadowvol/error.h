@@ -4,25 +4,17 @@
 
 #include <charconv>
 #include <cmath>
+#include <concepts>
 #include <stdexcept>
 #include <string>
 
 namespace shadowvol {
 
-/// A number as a message shows it: the shortest text that reads back as the same double
-/// (std::to_chars): 2e-07, 0.1, 1e+30, nan, inf. (std::to_string's six decimals print 2e-7 as
-/// 0.000000, and a spread of 1e-9 as two equal numbers.)
-inline std::string numberText(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, v).ptr;
-  return std::string(text, end);
-}
-
-/// A float as a message shows it: the shortest text that reads back as the same float (0.1, not
-/// the double 0.10000000149011612).
-inline std::string numberText(float v) {
+/// A number as a message shows it: the shortest text that reads back as the same value of its type
+/// (std::to_chars): 2e-07, 0.1 (a float's 0.1 too, not the double 0.10000000149011612), 1e+30,
+/// nan, inf. (std::to_string's six decimals print 2e-7 as 0.000000.)
+template <std::floating_point T>
+std::string numberText(T v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   char text[32];
