@@ -64,11 +64,11 @@ def main():
     err = lambda r: float(r["error"])
     label = lambda k: k[1] + (f" {k[2]}" if k[2] else "")
     scenes = list(dict.fromkeys(k[0] for k in rows))
+    excluded = set(m for m in args.exclude.split(",") if m)
     on = []
     print(f"| scene | {args.method} | rivals at least as accurate (median ms over {args.rounds} interleaved rounds) | on the front |")
     print("|---|---|---|---|")
     for s in scenes:
-        excluded = set(m for m in args.exclude.split(",") if m)
         cells = [k for k in rows if k[0] == s and k[1] not in excluded]
         mine = [k for k in cells if k[1] == args.method]
         if not mine:

@@ -40,9 +40,9 @@ struct RefinedGpuCounts {
   std::uint32_t boundaryEdges = 0, fallbacks = 0;
 };
 
-/// The debug path: the CPU builder's Refinement for `edges` (its own boundary edges of the
-/// read-back map) from the GPU's flags and records (readFlags, readRecords): an edge the GPU also
-/// found takes its crossing (s from the record's texel coordinates, its near and far depths); one
+/// The debug path: the CPU builder's Refinement for `edges` (the renderer passes the GPU's own,
+/// boundaryEdgesFromFlags of the same flags, so every edge is found) from the GPU's flags and
+/// records (readFlags, readRecords): an edge the GPU also found takes its crossing (s from the record's texel coordinates, its near and far depths); one
 /// it did not gets the fallback of walk_crossings.h (the middle of the edge with the ends'
 /// depths), counted in `fallbacks`. Centres: the record's depth where the GPU's flags give the quad
 /// 3 or 4 boundary sides (it walked there), else the far plane, counted in `fallbacks` too.
