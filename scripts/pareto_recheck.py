@@ -13,6 +13,9 @@ ROUNDS rounds, the order rotated each round. The cell is on the front when its m
 rounds is below every rival's median. A resolution of METHOD with no rival at least as accurate is
 on the front without measuring. Two candidate resolutions at most per scene. The methods named by
 --exclude are not rivals (by default the snap's ablation keys: the same method with the snap off).
+METHOD may name several methods, comma-separated (variants of one volume, such as its depth map from
+the light pass or from rays): each scene's candidates are then the cells of any of them, and none
+of them is a rival of another.
 
     python3 scripts/pareto_recheck.py out/sweep-snap/results.csv --out out/pareto-recheck
 """
@@ -48,7 +51,8 @@ def bench(shadowvol, scene_file, method, resolution, out, args):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("results")
-    p.add_argument("--method", default="hybrid-refined/explicit")
+    p.add_argument("--method", default="hybrid-refined/explicit",
+                   help="the method, or several (comma-separated) whose cells are candidates and not rivals")
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--size", default="640x480")
@@ -65,17 +69,18 @@ def main():
     label = lambda k: k[1] + (f" {k[2]}" if k[2] else "")
     scenes = list(dict.fromkeys(k[0] for k in rows))
     excluded = set(m for m in args.exclude.split(",") if m)
+    methods = set(m for m in args.method.split(",") if m)
     on = []
     print(f"| scene | {args.method} | rivals at least as accurate (median ms over {args.rounds} interleaved rounds) | on the front |")
     print("|---|---|---|---|")
     for s in scenes:
         cells = [k for k in rows if k[0] == s and k[1] not in excluded]
-        mine = [k for k in cells if k[1] == args.method]
+        mine = [k for k in cells if k[1] in methods]
         if not mine:
             continue
         candidates = []
         for k in mine:
-            rivals = sorted((c for c in cells if c[1] != args.method and err(rows[c]) <= err(rows[k])),
+            rivals = sorted((c for c in cells if c[1] not in methods and err(rows[c]) <= err(rows[k])),
                             key=lambda c: ms(rows[c]))
             ratio = ms(rows[k]) / ms(rows[rivals[0]]) if rivals else 0.0
             candidates.append((ratio, k, rivals))

@@ -26,6 +26,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"Renderer::captureCube", "n x n", "--resolution"},
     LibraryFieldFlag{"cube map", "N", "--resolution"},
     LibraryFieldFlag{"RenderOptions", "refineCrossings", "--crossings"},
+    LibraryFieldFlag{"RenderOptions", "explicitDepth", "--depth-from"},
     LibraryFieldFlag{"ContextOptions", "platform", "--platform"},
     LibraryFieldFlag{"SweepOptions", "methods", "--methods"},
     LibraryFieldFlag{"SweepOptions", "resolutions", "--resolutions"},

@@ -197,6 +197,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       j["gl"] = describeContext(renderer.info());
       j["options"] = {{"method", o->render.method},
                       {"volume", hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
+                      {"depthFrom", o->render.depthFrom},
                       {"resolution", o->render.resolution},
                       {"capture", o->render.capture},
                       {"triangulation", o->render.shape.triangulation},

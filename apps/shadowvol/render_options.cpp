@@ -60,6 +60,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "gpu-rays for --volume gpu")
       ->check(CLI::IsMember({"auto", "rays", "gpu-walk", "gpu-rays"}))
       ->capture_default_str();
+  cmd.add_option("--depth-from", o.depthFrom,
+                 "hybrid with --volume explicit: where its depth map comes from: gpu (the light pass, read back) or "
+                 "rays (one Embree ray per texel centre on the CPU, the rays refinement casts: no light pass, no "
+                 "read-back; on a software GL such as llvmpipe cheaper than rasterising the scene once more at "
+                 "small maps; README 'Silhouette refinement')")
+      ->check(CLI::IsMember({"gpu", "rays"}))
+      ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
                  "near rectangle provably lies outside the volume, else z-fail), zfail (always, with the cap), zpass "
@@ -126,6 +133,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
                                                    : gl::GpuVolumeDraw::Auto;
   gl::parseVolumeCount(o.count, ro.volumeCount);
   if (o.crossings != "auto") parseRefineCrossings(o.crossings, ro.refineCrossings);
+  parseExplicitDepth(o.depthFrom, ro.explicitDepth);
   ro.depthWidth = ro.depthHeight = o.resolution;
   parseCaptureMode(o.capture, ro.capture);
   ro.volumeOptions = toVolumeBuildOptions(o.shape);
@@ -161,15 +169,19 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
   if (o.crossings == "gpu-rays" && !refinedGpu)
     throw CLI::ValidationError("--crossings", "gpu-rays refines the GPU volume: add --method hybrid --volume gpu "
                                               "--refine K (the explicit volume casts Embree's rays: --crossings rays)");
+  if (o.depthFrom == "rays" && (o.method != "hybrid" || o.volume != "explicit"))
+    throw CLI::ValidationError("--depth-from", "rays casts the explicit volume's depth map: add --method hybrid "
+                                               "--volume explicit");
+  if (o.depthFrom == "rays" && o.crossings == "gpu-walk")
+    throw CLI::ValidationError("--depth-from", "rays leaves out the light pass, whose triangle record the walk "
+                                               "(--crossings gpu-walk) follows: use --crossings rays");
   if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
     throw CLI::ValidationError("--crossings", "gpu-walk gives the boundary edges' crossings alone: --chord-points "
                                               "and --refine-grid need --crossings rays");
 }
 
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro) {
-  if (ro.volumeOptions.refineSteps <= 0 || ro.refineCrossings != gl::RefineCrossings::Rays ||
-      ro.volume != gl::VolumeSource::Explicit)
-    return nullptr;
+  if (!needsDepthOracle(ro)) return nullptr;
   auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
   ro.volumeOptions.depthOracle = oracle->oracle();
   ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();

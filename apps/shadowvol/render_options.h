@@ -18,6 +18,7 @@ struct RenderCliOptions {
   std::string gpuDraw = "auto";
   std::string count = "auto";  ///< --count: auto | zfail | zpass
   std::string crossings = "auto";  ///< --crossings: auto | rays | gpu-walk
+  std::string depthFrom = "gpu";   ///< --depth-from: gpu | rays (the explicit volume's depth map)
   int resolution = 512;
   std::string capture = "back";
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
@@ -29,7 +30,7 @@ struct RenderCliOptions {
   std::string shaderDir;
 };
 
-/// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --count, --resolution, --capture, --triangulation, --blur,
+/// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --depth-from, --count, --resolution, --capture, --triangulation, --blur,
 /// --blur-offset, --bias, --cap, --refine, --size, --shadow-bias, --shadow-slope, --platform,
 /// --shader-dir.
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
@@ -44,8 +45,8 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
 /// volume. Throws CLI::ValidationError; call it from the subcommand's callback.
 void checkRenderOptionConflicts(const RenderCliOptions& o);
 
-/// With --refine and --crossings rays, the scene's Embree depth oracle, set as ro.volumeOptions.depthOracle; keep the
-/// returned object alive while rendering. Null otherwise.
+/// With --volume explicit and --refine with --crossings rays, or --depth-from rays, the scene's Embree depth
+/// oracle, set as ro.volumeOptions.depthOracle; keep the returned object alive while rendering. Null otherwise.
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro);
 
 /// The GL context as JSON (platform, device, vendors, renderer, version).

@@ -1,4 +1,5 @@
 // The shadowvol command line, run as a user runs it: exit codes, messages, outputs, no partial files.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -6,6 +7,7 @@
 #include <iterator>
 #include <cstdio>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
@@ -753,6 +755,39 @@ TEST(CliGl, FitViewNarrowsTheLightAndLowersTheError) {
     }
   }
   EXPECT_LT(error[1], 0.5 * error[0]) << error[0] << " " << error[1];
+}
+
+// --depth-from rays: the explicit volume's map from Embree's rays, with or without refinement;
+// refused with anything but the explicit hybrid volume (exit 2, nothing written).
+TEST(CliGl, DepthFromRays) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  for (const std::string& wrong : {std::string("--method shadowmap --volume explicit"), std::string("--volume gpu"),
+                                   std::string("--volume explicit --refine 4 --crossings gpu-walk")}) {
+    const CliResult r = runCli("render --depth-from rays " + wrong + " --resolution 32 --size 64x48 --out " +
+                               (dir / "w.png").string());
+    EXPECT_EQ(r.code, 2) << wrong << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "--depth-from")) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(dir / "w.png"));
+  }
+  for (const std::string refine : {"0", "4"}) {
+    const CliResult v = runCli("validate --json --volume explicit --depth-from rays --refine " + refine +
+                               " --resolution 32 --size 64x48 --report " + (dir / ("v" + refine)).string());
+    ASSERT_EQ(v.code, 0) << v.out;
+    const auto j = nlohmann::json::parse(v.out);
+    EXPECT_EQ(j["options"]["depthFrom"], "rays");
+    EXPECT_TRUE(j["passed"].get<bool>()) << v.out;
+  }
+  const CliResult r = runCli("render --json --volume explicit --depth-from rays --resolution 32 --size 64x48 --out " +
+                             (dir / "r.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["depthFrom"], "rays");
+  std::vector<std::string> passes;
+  for (const auto& p : j["passes"]) passes.push_back(p["name"]);
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "light"), 1) << ::testing::PrintToString(passes);
+  EXPECT_EQ(std::count(passes.begin(), passes.end(), "readback"), 0) << ::testing::PrintToString(passes);
+  EXPECT_TRUE(std::filesystem::exists(dir / "r.png"));
 }
 
 // --refine K on both volumes: the GPU volume refines with its walk (and refuses rays, which it has

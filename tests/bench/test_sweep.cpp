@@ -360,6 +360,34 @@ TEST(Sweep, RefusedCellsAreSkippedWithANote) {
   })) << ::testing::PrintToString(notes);
 }
 
+// The refined explicit volume with its depth map ray-cast: the sweep attaches the scene's oracle
+// (the cell is measured, not refused), the frame has a light pass (the rays) and no read-back, and
+// the error is the light-pass key's within a few pixels (the two maps differ only where the GPU's
+// rasteriser and Embree's rays split a texel centre on an edge).
+TEST(Sweep, RayCastDepthMethodHasNoReadBack) {
+  const auto dir = test::tempDir();
+  gl::Renderer renderer;
+  SweepOptions o = quickSweep({std::filesystem::path()}, {"hybrid-refined/explicit", "hybrid-refined-raycast/explicit"},
+                              64, 48, dir);
+  o.fits = {LightFit::Scene};
+  std::atomic<bool> stop{false};
+  std::vector<std::string> notes;
+  const auto rows = runSweep(renderer, o, stop, [](const SweepProgress&) {}, notes);
+  ASSERT_EQ(rows.size(), 2u) << ::testing::PrintToString(notes);
+  const auto phase = [](const SweepRow& r, const std::string& name) {
+    return std::any_of(r.phases.begin(), r.phases.end(), [&](const auto& p) { return p.first == name; });
+  };
+  const SweepRow& gpu = rows[0].method == "hybrid-refined/explicit" ? rows[0] : rows[1];
+  const SweepRow& rays = rows[0].method == "hybrid-refined/explicit" ? rows[1] : rows[0];
+  EXPECT_EQ(rays.method, "hybrid-refined-raycast/explicit");
+  EXPECT_TRUE(phase(gpu, "readback"));
+  EXPECT_TRUE(phase(rays, "light"));
+  EXPECT_FALSE(phase(rays, "readback"));
+  EXPECT_TRUE(phase(rays, "build"));
+  EXPECT_EQ(rays.pixels, gpu.pixels);
+  EXPECT_NEAR(rays.error * double(rays.pixels), gpu.error * double(gpu.pixels), 8.0);
+}
+
 TEST(Sweep, ResumesWithoutRedoingFinishedCells) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;

@@ -17,6 +17,7 @@
 #include "analytic_scene.h"
 #include "mesh_invariants.h"
 #include "shadowvol/boundary_edges.h"
+#include "shadowvol/depth_oracle.h"
 #include "shadowvol/error.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/volume_builder.h"
@@ -323,6 +324,27 @@ double topDepthAt(const VolumeMesh& mesh, const DepthMap& map, glm::dvec2 uv) {
     best = std::min(best, w[0] * d[0] + w[1] * d[1] + w[2] * d[2]);
   }
   return best;
+}
+
+// fillFromOracle: every texel is the oracle at its centre, asked once in one batch; a non-square
+// map keeps its own size and fields.
+TEST(Refinement, FillFromOracleAsksEachTexelCentreOnce) {
+  DepthMap map = makeDepthMap(test::directionalDown(6.0), 7, 5, CaptureMode::Front);
+  int calls = 0;
+  const DepthOracle oracle = [&](const DepthMap& m, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+    ++calls;
+    EXPECT_EQ(&m, &map);
+    for (std::size_t k = 0; k < ndc.size(); ++k) depth[k] = float(3.0 + ndc[k].x + 0.5 * ndc[k].y);
+  };
+  fillFromOracle(map, oracle);
+  EXPECT_EQ(calls, 1);
+  ASSERT_EQ(map.depth.size(), 35u);
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 7; ++i) {
+      const glm::dvec2 c = map.texelNdc(i, j);
+      EXPECT_EQ(map.at(i, j), float(3.0 + c.x + 0.5 * c.y)) << i << ", " << j;
+    }
+  EXPECT_EQ(map.capture, CaptureMode::Front);
 }
 
 TEST(Refinement, SaddleQuadDecidedByTheCentreRay) {

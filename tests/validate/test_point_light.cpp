@@ -121,6 +121,34 @@ TEST(PointLight, RefinedCubeVolumeMatchesCrossingCountsInEveryCombination) {
   expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource::Explicit, {24, 37}, gl::GpuVolumeDraw::Auto, 3);
 }
 
+// A point light's explicit cube volume from six ray-cast faces (ExplicitDepth::Rays, each face
+// the oracle at its texel centres): consistent with the crossing counts, refined and not.
+TEST(PointLight, RayCastCubeFacesMatchCrossingCounts) {
+  int frames = 0;
+  for (const Scene& scene : {room(), lampOverSphere()}) {
+    const EmbreeDepthOracle oracle(scene);
+    for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Midpoint})
+      for (int steps : {0, 3}) {
+        gl::RenderOptions ro;
+        ro.volume = gl::VolumeSource::Explicit;
+        ro.explicitDepth = gl::ExplicitDepth::Rays;
+        ro.depthWidth = ro.depthHeight = 24;
+        ro.capture = mode;
+        ro.volumeOptions.refineSteps = steps;
+        ro.volumeOptions.depthOracle = oracle.oracle();
+        SCOPED_TRACE(scene.source + " " + toString(mode) + " refine " + std::to_string(steps));
+        const FrameValidation v = renderAndValidate(scene, ro);
+        ASSERT_TRUE(v.meshCheck && v.meshCheck->valid()) << v.meshCheck->summary();
+        EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement)
+            << v.stencilVsCount.pixels - v.stencilVsCount.agree << " of " << v.stencilVsCount.pixels;
+        EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
+        EXPECT_GT(v.exactShadowed, 0u) << "the scene casts shadows";
+        ++frames;
+      }
+  }
+  EXPECT_EQ(frames, 2 * 2 * 2);
+}
+
 // The walls on the light's rays through the silhouette instead of slanting across a texel: on
 // the room at 128 texels a face, refinement (4 rays per boundary edge for the explicit volume, the
 // walk for the GPU's face volumes) misses or adds fewer than a third of the pixels that the

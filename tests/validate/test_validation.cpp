@@ -1,5 +1,6 @@
 // Issue 5: the GPU stencil against Embree's crossing counts of the explicit volume, on every
 // shipped scene and option combination, and the plate against the exact shadow.
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <memory>
@@ -146,6 +147,58 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
   EXPECT_GE(frames, 8 * 8);
 }
 
+// The explicit volume's depth map from the scene's rays (ExplicitDepth::Rays) at w x h: the map is
+// Embree's capture texel for texel (the oracle at the texel centres), no light pass or read-back
+// runs (the rays are the "light" pass), and the volume built from it agrees with the crossing
+// counts as the light pass's does.
+void expectRayCastDepth(const Scene& scene, const EmbreeDepthOracle& oracle, CaptureMode capture, int steps, int w,
+                        int h) {
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Explicit;
+  ro.explicitDepth = gl::ExplicitDepth::Rays;
+  ro.capture = capture;
+  ro.depthWidth = w;
+  ro.depthHeight = h;
+  ro.volumeOptions.refineSteps = steps;
+  ro.volumeOptions.depthOracle = oracle.oracle();
+  SCOPED_TRACE(scene.source + " " + toString(capture) + " refine " + std::to_string(steps) + " " +
+               std::to_string(w) + "x" + std::to_string(h));
+  renderer().setScene(scene);
+  const gl::RenderResult r = renderer().render(ro);
+  ASSERT_TRUE(r.depthMap.has_value());
+  const DepthMap embree = captureDepthEmbree(scene, w, h, capture);
+  ASSERT_EQ(r.depthMap->width, w);
+  ASSERT_EQ(r.depthMap->height, h);
+  EXPECT_EQ(r.depthMap->depth, embree.depth);
+  EXPECT_EQ(r.depthMap->origin, embree.origin);
+  const auto named = [&](const char* name) {
+    return std::count_if(r.passes.begin(), r.passes.end(), [&](const gl::PassTime& p) { return p.name == name; });
+  };
+  EXPECT_EQ(named("light"), 1);
+  EXPECT_EQ(named("readback"), 0);
+  expectConsistent(renderAndValidate(scene, ro));
+}
+
+// On every shipped scene, each capture mode, refined and not; and a map wider than tall.
+TEST(Validation, RayCastDepthIsTheEmbreeCaptureAndMatchesCrossingCounts) {
+  int frames = 0;
+  for (auto& [path, scene] : loadableScenes()) {
+    scene.camera.width = 128;
+    scene.camera.height = 96;
+    const EmbreeDepthOracle oracle(scene);
+    for (auto capture : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
+      for (int steps : {0, 4}) {
+        expectRayCastDepth(scene, oracle, capture, steps, 64, 64);
+        ++frames;
+      }
+  }
+  EXPECT_GE(frames, 8 * 6);
+  Scene wide = defaultScene();
+  wide.camera.width = 128;
+  wide.camera.height = 96;
+  expectRayCastDepth(wide, EmbreeDepthOracle(wide), CaptureMode::Back, 4, 64, 48);
+}
+
 // Every shipped scene with refinement by the GPU's walk (or `crossings`, `steps` per edge) at 64^2,
 // back and front capture (the walk refuses midpoint), both triangulations (blur with fixed);
 // `check` gets each frame's scene, options and validation. Returns the number of frames.
@@ -220,6 +273,39 @@ TEST(Validation, WalkRefusesWhatItCannotDo) {
   ro.capture = CaptureMode::Back;
   ro.volume = gl::VolumeSource::Explicit;
   EXPECT_NO_THROW(renderer().render(ro));
+}
+
+// Rays for the depth map need the explicit volume of a hybrid frame, a depth oracle, and a light
+// pass's triangle record is not there for the walk: each refused by name.
+TEST(Validation, RayCastDepthRefusesWhatItCannotDo) {
+  setSmallPlate();
+  const Scene scene = loadScene(test::sourceDir() / "data/scenes/plate.json").scene;
+  const EmbreeDepthOracle oracle(scene);
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Explicit;
+  ro.explicitDepth = gl::ExplicitDepth::Rays;
+  ro.depthWidth = ro.depthHeight = 32;
+  const auto refusal = [&](const gl::RenderOptions& o) -> std::string {
+    try {
+      renderer().render(o);
+    } catch (const InputError& e) {
+      return e.field() + ": " + e.problem();
+    }
+    return "rendered";
+  };
+  EXPECT_NE(refusal(ro).find("explicitDepth: needs volumeOptions.depthOracle"), std::string::npos) << refusal(ro);
+  ro.volumeOptions.depthOracle = oracle.oracle();
+  EXPECT_EQ(refusal(ro), "rendered");
+  gl::RenderOptions gpu = ro;
+  gpu.volume = gl::VolumeSource::Gpu;
+  EXPECT_NE(refusal(gpu).find("explicitDepth: casts the explicit volume's"), std::string::npos) << refusal(gpu);
+  gl::RenderOptions shadowMap = ro;
+  shadowMap.method = gl::ShadowMethod::ShadowMap;
+  EXPECT_NE(refusal(shadowMap).find("explicitDepth: casts the explicit volume's"), std::string::npos);
+  gl::RenderOptions walk = ro;
+  walk.volumeOptions.refineSteps = 2;
+  walk.refineCrossings = gl::RefineCrossings::GpuWalk;
+  EXPECT_NE(refusal(walk).find("explicitDepth: has no light pass"), std::string::npos) << refusal(walk);
 }
 
 // The refined GPU volume (--volume gpu --refine K): its stencil against the crossing counts of the

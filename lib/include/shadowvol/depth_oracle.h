@@ -31,4 +31,10 @@ using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm:
 using SurfaceEndOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> from,
                                             std::span<const glm::dvec2> to, std::span<double> t)>;
 
+/// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
+/// the oracle at the texel's centre, in one batch: the map a capture by the oracle's rays stores
+/// (with EmbreeDepthOracle, captureDepthEmbree's values). Throws what the oracle throws; an unset
+/// oracle is a logic error (SV_CHECK).
+void fillFromOracle(DepthMap& map, const DepthOracle& oracle);
+
 }  // namespace shadowvol

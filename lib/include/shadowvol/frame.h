@@ -87,6 +87,19 @@ enum class RefineCrossings {
 const char* toString(RefineCrossings c);  ///< "rays", "gpu-walk", "gpu-rays"
 bool parseRefineCrossings(const std::string& text, RefineCrossings& c);
 
+/// Where the explicit volume's depth map comes from (hybrid, VolumeSource::Explicit, any light).
+/// LightPass: the GPU's light pass, read back. Rays: one ray per texel centre from
+/// volumeOptions.depthOracle (Embree: the same rule as captureDepthEmbree, so the map is the one
+/// the refinement's rays see), on the CPU, no light pass and no read-back; its time is the frame's
+/// "light" pass (wall clock). Which is faster depends on the machine: on llvmpipe a small map's
+/// rays cost less than rasterising every triangle once more (README "Silhouette refinement").
+enum class ExplicitDepth {
+  LightPass,  ///< the GPU's light pass, read back (the default)
+  Rays,       ///< volumeOptions.depthOracle at every texel centre
+};
+const char* toString(ExplicitDepth d);  ///< "gpu", "rays"
+bool parseExplicitDepth(const std::string& text, ExplicitDepth& d);
+
 struct RenderOptions {
   ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
   VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
@@ -133,7 +146,14 @@ struct RenderOptions {
   /// hybrid with refinement: where the crossings come from (RefineCrossings: the explicit volume takes
   /// Embree's rays or the walk, the GPU volume its own rays or the walk).
   RefineCrossings refineCrossings = RefineCrossings::Rays;
+  /// hybrid with the explicit volume: its depth map from the GPU's light pass or from the depth
+  /// oracle's rays (ExplicitDepth; Rays needs volumeOptions.depthOracle).
+  ExplicitDepth explicitDepth = ExplicitDepth::LightPass;
 };
+
+/// Whether a frame with these options needs volumeOptions.depthOracle (the scene's rays): the
+/// explicit hybrid volume refined with RefineCrossings::Rays, or with its depth from rays.
+bool needsDepthOracle(const RenderOptions& o);
 
 struct PassTime {
   std::string name;  ///< light, resolve, blur, crossings (refined GPU volume: boundary edges and the walk),

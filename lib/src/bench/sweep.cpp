@@ -59,6 +59,18 @@ SweepMethod refined(CaptureMode capture) {
   return m;
 }
 
+// The refined explicit volume with its depth map from the scene's rays instead of the light pass
+// (ExplicitDepth::Rays: one ray per texel centre on the CPU, timed as the frame's light pass).
+SweepMethod refinedRayDepth() {
+  SweepMethod m = refined(CaptureMode::Back);
+  m.key = "hybrid-refined-raycast/explicit";
+  m.options.explicitDepth = gl::ExplicitDepth::Rays;
+  m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
+                  " rays per boundary edge, perfect triangulation), its depth map ray-cast on the CPU (one ray per "
+                  "texel centre, no light pass), " + captureWords(CaptureMode::Back);
+  return m;
+}
+
 // The refined explicit volume with its crossings from the GPU's silhouette walk instead of rays
 // (RefineCrossings::GpuWalk; the walk's time, with its read-back, is part of the build pass).
 SweepMethod refinedWalk(CaptureMode capture) {
@@ -280,6 +292,7 @@ const std::vector<SweepMethod>& sweepMethods() {
                         "where it is safe); perfect triangulation, back capture";
     v.push_back(zfail);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
+    v.push_back(refinedRayDepth());
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
@@ -479,8 +492,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     }
     report(label);
     gl::RenderOptions ro = c.method->options;
-    if (ro.volumeOptions.refineSteps > 0 && ro.refineCrossings == gl::RefineCrossings::Rays &&
-        ro.volume == gl::VolumeSource::Explicit) {
+    if (needsDepthOracle(ro)) {
       if (!oracle) oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();

@@ -93,6 +93,21 @@ bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
   return true;
 }
 
+const char* toString(ExplicitDepth d) { return d == ExplicitDepth::Rays ? "rays" : "gpu"; }
+
+bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) {
+  if (text == "gpu") d = ExplicitDepth::LightPass;
+  else if (text == "rays") d = ExplicitDepth::Rays;
+  else return false;
+  return true;
+}
+
+bool needsDepthOracle(const RenderOptions& o) {
+  if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit) return false;
+  return (o.volumeOptions.refineSteps > 0 && o.refineCrossings == RefineCrossings::Rays) ||
+         o.explicitDepth == ExplicitDepth::Rays;
+}
+
 std::vector<PassTime> passTotals(const std::vector<PassTime>& passes) {
   std::vector<PassTime> out;
   for (const PassTime& p : passes) {

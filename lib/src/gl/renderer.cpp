@@ -634,6 +634,25 @@ struct Renderer::Impl {
     return map;
   }
 
+  /// The map readBack would return for this light after a w x h light pass, each texel from the
+  /// oracle's ray at its centre instead (ExplicitDepth::Rays; no GL call).
+  DepthMap rayCast(int w, int h, CaptureMode mode, const DepthOracle& oracle) const {
+    DepthMap map = makeDepthMap(light, w, h, mode);
+    map.origin = scene.origin;
+    fillFromOracle(map, oracle);
+    return map;
+  }
+
+  /// A point light's six faces as captureCube's, each from the oracle's rays.
+  CubeDepthMap rayCastCube(int n, CaptureMode mode, const DepthOracle& oracle) const {
+    CubeDepthMap cube = makeCubeDepthMap(light, n, mode);
+    for (DepthMap& face : cube.faces) {
+      face.origin = scene.origin;
+      fillFromOracle(face, oracle);
+    }
+    return cube;
+  }
+
   struct CameraSetup {
     glm::dmat4 view, proj;
     int w, h;
@@ -1418,6 +1437,16 @@ struct Renderer::Impl {
       throw InputError("RenderOptions", "refineCrossings", "gpu-rays",
                        "the GPU's rays refine the GPU volume: it needs method hybrid, volume gpu and refineSteps > 0 "
                        "(the explicit volume casts Embree's rays: RefineCrossings::Rays)");
+    if (o.explicitDepth == ExplicitDepth::Rays) {
+      auto refuse = [](const std::string& why) { throw InputError("RenderOptions", "explicitDepth", "rays", why); };
+      if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit)
+        refuse("casts the explicit volume's depth map: it needs method hybrid and volume explicit");
+      if (!o.volumeOptions.depthOracle)
+        refuse("needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
+      if (o.refineCrossings == RefineCrossings::GpuWalk)
+        refuse("has no light pass, whose triangle record the silhouette walk follows: use the light pass "
+               "(ExplicitDepth::LightPass) or the crossings from rays");
+    }
   }
 
   /// This frame draws the refined GPU volume (refined_gpu_volume.h).
@@ -1855,7 +1884,8 @@ struct Renderer::Impl {
       TimedPass t(timer, "light");
       paraboloidPass(o.depthWidth, o.capture, o.paraboloidSubdivision);
     }
-    if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point) {
+    const bool rayDepth = hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
+    if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point && !rayDepth) {
       TimedPass t(timer, "light");
       // The triangle record for the walk (the GPU's rays do not read it).
       lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume,
@@ -1868,16 +1898,22 @@ struct Renderer::Impl {
       cubeVolumeDepthPass(o, timer, result);
     } else if (hybrid && !givenVolume && point && !refinedCube) {
       auto t0 = Clock::now();
-      const CubeDepthMap cube = captureCube(o.depthWidth, o.capture);
-      timer.cpu("light", msSince(t0));  // six light passes and their read-backs
+      const CubeDepthMap cube = rayDepth ? rayCastCube(o.depthWidth, o.capture, vo.depthOracle)
+                                         : captureCube(o.depthWidth, o.capture);
+      timer.cpu("light", msSince(t0));  // six light passes and their read-backs, or the faces' rays
       t0 = Clock::now();
       VolumeBuildResult built = buildCubeVolume(cube, vo);
       timer.cpu("build", msSince(t0));
       explicitTriangles = useBuiltVolume(std::move(built), o, timer, result);  // z-fail: the cap too
     } else if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
       auto t0 = Clock::now();
-      result.depthMap = readBack(o.capture);
-      timer.cpu("readback", msSince(t0));
+      if (rayDepth) {
+        result.depthMap = rayCast(o.depthWidth, o.depthHeight, o.capture, vo.depthOracle);
+        timer.cpu("light", msSince(t0));
+      } else {
+        result.depthMap = readBack(o.capture);
+        timer.cpu("readback", msSince(t0));
+      }
       t0 = Clock::now();
       VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
       timer.cpu("build", msSince(t0));
