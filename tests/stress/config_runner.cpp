@@ -24,6 +24,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.front && !c.refused) runs.push_back(RunKind::Front);
   if (c.refined && !c.refused) runs.push_back(RunKind::Refined);
   if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::Walk);  // rays only for the cube
+  if (c.refined && !c.refused) runs.push_back(RunKind::RayDepth);  // the map from rays, too (a point light's six)
   if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);  // a point light's: its face volumes
   runs.push_back(RunKind::Build);
   return runs;
@@ -54,6 +55,8 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, bool point, const fs::pat
       for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
     if (kind == RunKind::Walk)  // refinement with the crossings from the GPU's walk over the triangles
       for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
+    if (kind == RunKind::RayDepth)  // refinement of a depth map ray-cast on the CPU (no light pass)
+      for (const char* a : {"--refine", "6", "--depth-from", "rays"}) r.argv.push_back(a);
     if (kind == RunKind::GpuRefined)  // the refined GPU volume: edges, walk and cells on the GPU
       for (const char* a : {"--refine", "6"}) r.argv.push_back(a);
   }
@@ -90,6 +93,8 @@ const char* runName(RunKind k) {
       return "refined";
     case RunKind::Walk:
       return "walk";
+    case RunKind::RayDepth:
+      return "ray-depth";
     case RunKind::GpuRefined:
       return "gpu-refined";
     case RunKind::Build:

@@ -30,9 +30,10 @@ struct StressConfig {
   TwinRole twinRole = TwinRole::Informational;
   bool gpu = true;                ///< also validate with --volume gpu (legal configurations)
   bool front = false;             ///< also validate with --capture front
-  bool refined = false;           ///< also validate with --refine 6 --refine-grid 4 and with --refine 6
-                                  ///< --crossings gpu-walk (explicit volume); a point light's with
-                                  ///< --refine 6 alone (its cube volume takes rays only)
+  bool refined = false;           ///< also validate with --refine 6 --refine-grid 4, with --refine 6
+                                  ///< --crossings gpu-walk (explicit volume) and with --refine 6
+                                  ///< --depth-from rays; a point light's with --refine 6 alone (its
+                                  ///< cube volume takes rays only) and with --depth-from rays
   bool quick = false;             ///< part of the --quick subset (its twin is added automatically)
   std::optional<bool> eyeInside;  ///< where the geometry is clear: whether the eye lies in the shadow volume
 };
