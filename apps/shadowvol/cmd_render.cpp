@@ -164,8 +164,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         std::printf("GL: %s on %s (%s, EGL platform %s%s%s)\n", info.glVersion.c_str(), info.glRenderer.c_str(),
                     info.glVendor.c_str(), info.platform.c_str(), info.device.empty() ? "" : ", device ",
                     info.device.c_str());
-        std::printf("%s of %s: %dx%d image, %dx%d depth map%s, %s capture", o->render.method.c_str(), scene.source.c_str(),
-                    result.width, result.height, o->render.resolution, o->render.resolution,
+        std::printf("%s of %s: %dx%d image, %dx%d depth map%s, %s capture", o->render.method.c_str(),
+                    scene.source.c_str(), result.width, result.height, o->render.resolution, o->render.resolution,
                     ro.explicitDepth == gl::ExplicitDepth::Rays ? " (ray-cast)" : "", o->render.capture.c_str());
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",

@@ -30,9 +30,9 @@ struct RenderCliOptions {
   std::string shaderDir;
 };
 
-/// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --depth-from, --count, --resolution, --capture, --triangulation, --blur,
-/// --blur-offset, --bias, --cap, --refine, --size, --shadow-bias, --shadow-slope, --platform,
-/// --shader-dir.
+/// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --depth-from, --count, --resolution,
+/// --capture, --triangulation, --blur, --blur-offset, --bias, --cap, --refine, --size, --shadow-bias,
+/// --shadow-slope, --platform, --shader-dir.
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 
 /// Checks the values (InputError naming the option) and fills the renderer's options. --size, when

@@ -159,9 +159,10 @@ struct PassTime {
   std::string name;  ///< light, resolve, blur, crossings (refined GPU volume: boundary edges and the walk),
                      ///< readback, build, upload, camera, volume, lighting, shade;
                      ///< silhouette: connectivity (first frame only), build, upload, camera,
-                     ///< silhouette, lighting
+                     ///< silhouette, lighting; with ExplicitDepth::Rays "light" is the CPU's
+                     ///< rays and there is no readback
   double ms = 0.0;   ///< GPU time (timer query) or wall clock, see RenderResult::timing; CPU
-                     ///< passes (readback, build, upload) are always wall clock
+                     ///< passes (readback, build, upload, the rays' light) are always wall clock
 };
 
 /// One frame's passes with each name once, in the order the names first ran: a pass that runs

@@ -1884,7 +1884,8 @@ struct Renderer::Impl {
       TimedPass t(timer, "light");
       paraboloidPass(o.depthWidth, o.capture, o.paraboloidSubdivision);
     }
-    const bool rayDepth = hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
+    const bool rayDepth =
+        hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
     if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point && !rayDepth) {
       TimedPass t(timer, "light");
       // The triangle record for the walk (the GPU's rays do not read it).
