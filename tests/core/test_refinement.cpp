@@ -326,25 +326,34 @@ double topDepthAt(const VolumeMesh& mesh, const DepthMap& map, glm::dvec2 uv) {
   return best;
 }
 
-// fillFromOracle: every texel is the oracle at its centre, asked once in one batch; a non-square
-// map keeps its own size and fields.
+// fillFromOracle: every texel is the oracle at its centre, asked once; a small map in one batch, a
+// large one in batches of whole rows (300 x 300: 218 rows, then 82); a non-square map keeps its
+// own size and fields.
 TEST(Refinement, FillFromOracleAsksEachTexelCentreOnce) {
-  DepthMap map = makeDepthMap(test::directionalDown(6.0), 7, 5, CaptureMode::Front);
-  int calls = 0;
-  const DepthOracle oracle = [&](const DepthMap& m, std::span<const glm::dvec2> ndc, std::span<float> depth) {
-    ++calls;
-    EXPECT_EQ(&m, &map);
-    for (std::size_t k = 0; k < ndc.size(); ++k) depth[k] = float(3.0 + ndc[k].x + 0.5 * ndc[k].y);
-  };
-  fillFromOracle(map, oracle);
-  EXPECT_EQ(calls, 1);
-  ASSERT_EQ(map.depth.size(), 35u);
-  for (int j = 0; j < 5; ++j)
-    for (int i = 0; i < 7; ++i) {
-      const glm::dvec2 c = map.texelNdc(i, j);
-      EXPECT_EQ(map.at(i, j), float(3.0 + c.x + 0.5 * c.y)) << i << ", " << j;
-    }
-  EXPECT_EQ(map.capture, CaptureMode::Front);
+  for (auto [w, h, batches] : {std::tuple{7, 5, 1}, std::tuple{300, 300, 2}}) {
+    DepthMap map = makeDepthMap(test::directionalDown(6.0), w, h, CaptureMode::Front);
+    int calls = 0;
+    std::size_t asked = 0;
+    const DepthOracle oracle = [&](const DepthMap& m, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+      ++calls;
+      asked += ndc.size();
+      EXPECT_EQ(&m, &map);
+      EXPECT_EQ(ndc.size(), depth.size());
+      for (std::size_t k = 0; k < ndc.size(); ++k) depth[k] = float(3.0 + ndc[k].x + 0.5 * ndc[k].y);
+    };
+    fillFromOracle(map, oracle);
+    EXPECT_EQ(calls, batches);
+    EXPECT_EQ(asked, std::size_t(w) * std::size_t(h));
+    ASSERT_EQ(map.depth.size(), std::size_t(w) * std::size_t(h));
+    int wrong = 0;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const glm::dvec2 c = map.texelNdc(i, j);
+        wrong += map.at(i, j) != float(3.0 + c.x + 0.5 * c.y);
+      }
+    EXPECT_EQ(wrong, 0) << w << " x " << h;
+    EXPECT_EQ(map.capture, CaptureMode::Front);
+  }
 }
 
 TEST(Refinement, SaddleQuadDecidedByTheCentreRay) {

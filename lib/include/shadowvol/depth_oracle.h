@@ -32,9 +32,10 @@ using SurfaceEndOracle = std::function<void(const DepthMap& map, std::span<const
                                             std::span<const glm::dvec2> to, std::span<double> t)>;
 
 /// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
-/// the oracle at the texel's centre, in one batch: the map a capture by the oracle's rays stores
-/// (with EmbreeDepthOracle, captureDepthEmbree's values). Throws what the oracle throws; an unset
-/// oracle is a logic error (SV_CHECK).
+/// the oracle at the texel's centre: the map a capture by the oracle's rays stores (with
+/// EmbreeDepthOracle, captureDepthEmbree's values). Whole rows of up to 65,536 texels per oracle
+/// call (one call for maps up to 256 x 256), so the points asked for stay small beside the map.
+/// Throws what the oracle throws; an unset oracle is a logic error (SV_CHECK).
 void fillFromOracle(DepthMap& map, const DepthOracle& oracle);
 
 }  // namespace shadowvol
