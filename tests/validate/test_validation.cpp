@@ -275,6 +275,34 @@ TEST(Validation, WalkRefusesWhatItCannotDo) {
   EXPECT_NO_THROW(renderer().render(ro));
 }
 
+// Regression (2026-12-05): a map wider than tall on the fandisk at 128 x 96 left one pixel whose
+// stencil (-1) no count admitted: llvmpipe covered it from a volume edge 0.006 px away, beyond the
+// image-plane tie square of one sub-pixel step then (double_recount.h, kImagePlaneTie). Both map
+// sources.
+TEST(Validation, NonSquareMapOnTheFandiskAgreesWithTheCounts) {
+  Scene scene;
+  try {
+    scene = loadScene(test::sourceDir() / "data/scenes/fandisk.json").scene;
+  } catch (const InputError& e) {
+    GTEST_SKIP() << "the fandisk's mesh is fetched by scripts/fetch_meshes.sh: " << e.what();
+  }
+  scene.camera.width = 128;
+  scene.camera.height = 96;
+  const EmbreeDepthOracle oracle(scene);
+  for (auto source : {gl::ExplicitDepth::LightPass, gl::ExplicitDepth::Rays}) {
+    gl::RenderOptions ro;
+    ro.volume = gl::VolumeSource::Explicit;
+    ro.explicitDepth = source;
+    ro.depthWidth = 64;
+    ro.depthHeight = 48;
+    ro.volumeOptions.depthOracle = oracle.oracle();
+    SCOPED_TRACE(toString(source));
+    const Validated r = renderAndValidate(scene, ro);
+    expectConsistent(r);
+    EXPECT_GE(r.v.stencilVsCount.imagePlaneTies, 1u);  // the pixel, admitted as an image-plane tie
+  }
+}
+
 // Rays for the depth map need the explicit volume of a hybrid frame, a depth oracle, and a light
 // pass's triangle record is not there for the walk: each refused by name.
 TEST(Validation, RayCastDepthRefusesWhatItCannotDo) {

@@ -23,8 +23,10 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
 glm::dvec3 toGlm(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
-// Ray parameter and sign of the ray's crossing with triangle t (double Moeller-Trumbore, edges
-// included). The AABB tree reported an intersection, so only the parameter is computed here.
+// Ray parameter and sign of the ray's crossing with the plane of triangle t (the AABB tree
+// reported that the ray meets the triangle, edges included, so only the parameter is computed
+// here). The ray (o, d) may be another than the one that met the triangle: the pixel centre's,
+// where a rasteriser interpolates the depth of a triangle it covers from a nearby edge.
 bool crossing(const K::Triangle_3& t, const glm::dvec3& o, const glm::dvec3& d, VolumeCrossing& out) {
   const glm::dvec3 a = toGlm(t[0]), e1 = toGlm(t[1]) - a, e2 = toGlm(t[2]) - a;
   const glm::dvec3 n = glm::cross(e1, e2);
@@ -89,7 +91,10 @@ class DoubleCounter {
     tree_.build();
   }
 
-  PixelCounts count(const TexelUnprojector::Ray& r, const Camera& camera, double tVisible) {
+  /// The counts of the triangles ray `r` meets, each at its depth along `depth` (its plane's
+  /// crossing with that ray: the pixel centre's, for a ray beside it) or along `r` itself.
+  PixelCounts count(const TexelUnprojector::Ray& r, const Camera& camera, double tVisible,
+                    const TexelUnprojector::Ray* depth = nullptr) {
     crossings_.clear();
     const double band = tieTolerance(camera, tVisible) * tVisible;
     if (triangles_.empty()) return countPixel(crossings_, tVisible, band);  // no triangle near the pixels
@@ -97,9 +102,10 @@ class DoubleCounter {
                        K::Vector_3(r.direction.x, r.direction.y, r.direction.z));
     hit_.clear();
     tree_.all_intersected_primitives(ray, std::back_inserter(hit_));
+    const TexelUnprojector::Ray& along = depth ? *depth : r;
     VolumeCrossing c;
     for (const auto& id : hit_)
-      if (crossing(*id, r.origin, r.direction, c)) crossings_.push_back(c);
+      if (crossing(*id, along.origin, along.direction, c)) crossings_.push_back(c);
     return countPixel(crossings_, tVisible, band);
   }
 
@@ -161,14 +167,23 @@ std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, 
       if (d < INFINITY && std::abs(d - own) > tieTolerance(camera, own) * own) depths.push_back(d);
     }
     int lo = counts.zfailMin[k], hi = counts.zfailMax[k];
-    auto admit = [&](const TexelUnprojector::Ray& ray, double depth) {
-      const PixelCounts pc = counter.count(ray, camera, depth);
+    const TexelUnprojector::Ray centre = rays.ray(x, row);
+    auto admit = [&](const TexelUnprojector::Ray& ray, double depth, const TexelUnprojector::Ray* along) {
+      const PixelCounts pc = counter.count(ray, camera, depth, along);
       lo = std::min(lo, pc.zfailMin);
       hi = std::max(hi, pc.zfailMax);
     };
+    // A corner's triangles at their depths along the corner's ray, and along the centre's: the
+    // rasteriser that covers the pixel from a snapped edge takes the triangle's depth at the
+    // centre (two triangles of a fold, tied in depth on their shared edge there, part a few
+    // thousandths of a pixel inside it).
     for (const glm::dvec2& c : corners)
-      for (double d : depths) admit(rays.ray(x, row, c.x, c.y), d);
-    for (std::size_t d = 1; d < depths.size(); ++d) admit(rays.ray(x, row), depths[d]);
+      for (double d : depths) {
+        const TexelUnprojector::Ray corner = rays.ray(x, row, c.x, c.y);
+        admit(corner, d, nullptr);
+        admit(corner, d, &centre);
+      }
+    for (std::size_t d = 1; d < depths.size(); ++d) admit(centre, depths[d], nullptr);
     widened += lo < counts.zfailMin[k] || hi > counts.zfailMax[k];
     counts.zfailMin[k] = lo;
     counts.zfailMax[k] = hi;

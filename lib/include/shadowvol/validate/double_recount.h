@@ -11,7 +11,9 @@
 //   none or both where the edge is a silhouette of the volume as the camera sees it). For the
 //   pixels whose stencil lies outside their admissible range, the range is widened by the counts
 //   of four rays through the corners of a square of +-kImagePlaneTie pixels around the centre:
-//   every edge that passes within kImagePlaneTie of the centre separates it from one corner.
+//   every edge that passes within kImagePlaneTie of the centre separates it from one corner. A
+//   triangle a corner's ray meets counts at its depth there and at its plane's depth on the
+//   centre's ray, where the rasteriser evaluates it.
 //   The scene's own edges snap too: where the camera sees another surface at a corner (a
 //   silhouette of the scene within kImagePlaneTie of the centre), the rasteriser may have drawn
 //   that surface at the pixel, so the counts split at the corner's visible depth are admitted too.
@@ -26,8 +28,12 @@
 
 namespace shadowvol {
 
-/// Half the side of the square of image-plane ties, in pixels: one step of an 8-bit sub-pixel grid.
-inline constexpr double kImagePlaneTie = 1.0 / 256.0;
+/// Half the side of the square of image-plane ties, in pixels: two steps of an 8-bit sub-pixel
+/// grid. One step was too few: llvmpipe covered a pixel whose centre lies 0.006 px outside a
+/// projected volume edge (the fandisk under a 64 x 48 map at 128 x 96; moving that triangle
+/// sideways, its coverage of the pixel began 0.006 px before the exact edge reached the centre,
+/// 2026-12-05); the snap of an edge's two ends alone moves it by at most sqrt(2)/512 px.
+inline constexpr double kImagePlaneTie = 2.0 / 256.0;
 
 /// Recounts every non-background pixel whose zfail - zpass differs from `expectedNet` (0: the eye
 /// is outside the volume, 1: inside). Returns the number of pixels recounted. The recount uses the
@@ -41,7 +47,9 @@ std::vector<glm::dvec2> imagePlaneTieCorners();
 
 /// Widens the admissible z-fail range (zfailMin, zfailMax) of each of `pixels` (indices into the
 /// frame, rows top first) by the counts of the four rays +-kImagePlaneTie pixels off its centre,
-/// each split at the pixel's visible depth. With `cornerDepths` (four per pixel: the scene's
+/// each split at the pixel's visible depth, with each triangle a corner's ray meets taken at its
+/// depth along that ray and, as a rasteriser that covers the pixel interpolates it, at its plane's
+/// depth along the centre's ray. With `cornerDepths` (four per pixel: the scene's
 /// visible depth along those rays, visibleDepths with imagePlaneTieCorners), where a corner sees
 /// another surface (outside the tie band of the pixel's depth; not background), the centre's and
 /// the corners' rays are split at that depth as well. Returns the number of pixels whose range grew.
