@@ -177,12 +177,13 @@ std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, 
     // rasteriser that covers the pixel from a snapped edge takes the triangle's depth at the
     // centre (two triangles of a fold, tied in depth on their shared edge there, part a few
     // thousandths of a pixel inside it).
-    for (const glm::dvec2& c : corners)
+    for (const glm::dvec2& c : corners) {
+      const TexelUnprojector::Ray corner = rays.ray(x, row, c.x, c.y);
       for (double d : depths) {
-        const TexelUnprojector::Ray corner = rays.ray(x, row, c.x, c.y);
         admit(corner, d, nullptr);
         admit(corner, d, &centre);
       }
+    }
     for (std::size_t d = 1; d < depths.size(); ++d) admit(centre, depths[d], nullptr);
     widened += lo < counts.zfailMin[k] || hi > counts.zfailMax[k];
     counts.zfailMin[k] = lo;
