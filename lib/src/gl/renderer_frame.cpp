@@ -1,0 +1,249 @@
+// One frame: every light's passes in order (render, renderLight).
+#include "renderer_impl.h"
+
+namespace shadowvol::gl {
+
+bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
+  if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
+  if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
+    if (o.volumeCount == VolumeCount::ZPass)
+      throw InputError("RenderOptions", "volumeCount", "zpass", "a point light's volume is counted by z-fail only");
+    result.zPassRefused = "a point light's volume is counted by z-fail only";
+    return false;
+  }
+  Camera c = camera;
+  c.width = cam.w;
+  c.height = cam.h;
+  const ZPassSafety z = zPassSafety(light, double(o.depthWidth) / double(o.depthHeight), c, o.volumeOptions);
+  if (!z.safe && o.volumeCount == VolumeCount::ZPass)
+    throw InputError("RenderOptions", "volumeCount", "zpass", "z-pass is not safe for this camera: " + z.reason);
+  if (!z.safe) result.zPassRefused = z.reason;
+  return z.safe;
+}
+
+std::size_t Renderer::Impl::useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer, RenderResult& result) {
+  result.biasUsed = built.stats.biasUsed;
+  result.volumeStats = built.stats;
+  const auto t0 = Clock::now();
+  uploadVolume(built.mesh);
+  glFinish();
+  timer.cpu("upload", msSince(t0));
+  const std::size_t triangles = built.mesh.triangleCount();
+  if (o.keepVolume) result.volume = std::move(built.mesh);
+  return triangles;
+}
+
+RenderResult Renderer::Impl::render(const RenderOptions& o, const VolumeMesh* givenVolume) {
+  context.makeCurrent();
+  requireScene();
+  const CameraSetup cam = cameraSetup(o);
+  if (givenVolume && lights.size() > 1)
+    throw InputError("Renderer", "renderWithVolume", std::to_string(lights.size()) + " lights",
+                     "a caller-built volume is one light's: give a scene with one light");
+  for (std::size_t k = 0; k < lights.size(); ++k) withLight(k, [&] { validateForLight(o, cam, k); });
+  const bool gpuTimer = context.info().timerQueries && !context.info().softwareRenderer && !o.forceWallClock;
+  PassTimer timer(queryPool, gpuTimer);
+  RenderResult result = renderLight(o, cam, givenVolume, timer, false);
+  for (std::size_t k = 1; k < lights.size(); ++k) {
+    std::string suffix = "#";  // (not "#" + to_string: GCC 12's false -Wrestrict on that)
+    suffix += std::to_string(k);
+    timer.setSuffix(suffix);
+    withLight(k, [&] { result.otherLights.push_back(renderLight(o, cam, nullptr, timer, true)); });
+  }
+  readColour(cam, result);
+  result.timing = gpuTimer ? TimingMethod::GpuTimer : TimingMethod::WallClock;
+  result.passes = timer.results();
+  for (const auto& p : result.passes) result.totalMs += p.ms;
+  return result;
+}
+
+void Renderer::Impl::validateForLight(const RenderOptions& o, const CameraSetup& cam, std::size_t k) const {
+  if (lights.size() == 1) return validate(o, cam);
+  try {
+    validate(o, cam);
+  } catch (const InputError& e) {
+    throw InputError(e.source(), e.field(), e.value(),
+                     e.problem() + " (for light " + std::to_string(k) + " of the scene's " +
+                         std::to_string(lights.size()) + ")");
+  }
+}
+
+RenderResult Renderer::Impl::renderLight(const RenderOptions& o, const CameraSetup& cam, const VolumeMesh* givenVolume,
+                         PassTimer& timer, bool added) {
+  volumeTrianglesPending = false;  // a frame that threw may have left it set
+  volumeReadsWindowDepth = false;
+  RenderResult result;
+  zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
+  result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
+  const bool silhouette = !givenVolume && o.method == ShadowMethod::Silhouette;
+  const bool hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
+  const bool stencilShadows = hybrid || silhouette;
+  const VolumeBuildOptions& vo = o.volumeOptions;
+
+  const bool point = light.type == LightType::Point;
+  const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && !point;
+  const bool cubeGpu = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps == 0;
+  const bool refinedCube = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps > 0;
+  const bool refinedGpu = gpuVolume && refinedGpuVolume(o);
+  const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
+                                : refinedGpu             ? GpuVolumeDraw::Refined
+                                                         : GpuVolumeDraw::Auto;
+  // The refined GPU volume lists its unrefined quads as the indexed way does.
+  const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
+  occupancyValid = false;
+  const bool dpsm = point && o.method == ShadowMethod::Dpsm;
+  const bool cubeShadowMap = point && !hybrid && !silhouette && !dpsm && o.method != ShadowMethod::None;
+  if (cubeShadowMap) {
+    TimedPass t(timer, "light");
+    cubeShadowPass(o.depthWidth, o.capture);
+  }
+  if (dpsm) {
+    TimedPass t(timer, "light");
+    paraboloidPass(o.depthWidth, o.capture, o.paraboloidSubdivision);
+  }
+  const bool rayDepth =
+      hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
+  if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point && !rayDepth) {
+    TimedPass t(timer, "light");
+    // The triangle record for the walk (the GPU's rays do not read it).
+    lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume,
+              walkCrossings(o) || (refinedGpu && o.refineCrossings == RefineCrossings::GpuWalk));
+  }
+
+  std::size_t explicitTriangles = 0;
+  const Texture* volumeDepth = nullptr;
+  if (cubeGpu) {
+    cubeVolumeDepthPass(o, timer, result);
+  } else if (hybrid && !givenVolume && point && !refinedCube) {
+    auto t0 = Clock::now();
+    const CubeDepthMap cube = rayDepth ? rayCastCube(o.depthWidth, o.capture, vo.depthOracle)
+                                       : captureCube(o.depthWidth, o.capture);
+    timer.cpu("light", msSince(t0));  // six light passes and their read-backs, or the faces' rays
+    t0 = Clock::now();
+    VolumeBuildResult built = buildCubeVolume(cube, vo);
+    timer.cpu("build", msSince(t0));
+    explicitTriangles = useBuiltVolume(std::move(built), o, timer, result);  // z-fail: the cap too
+  } else if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
+    auto t0 = Clock::now();
+    if (rayDepth) {
+      result.depthMap = rayCast(o.depthWidth, o.depthHeight, o.capture, vo.depthOracle);
+      timer.cpu("light", msSince(t0));
+    } else {
+      result.depthMap = readBack(o.capture);
+      timer.cpu("readback", msSince(t0));
+    }
+    t0 = Clock::now();
+    VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
+    timer.cpu("build", msSince(t0));
+    // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
+    const std::size_t cap = zPassFrame ? built.stats.capTrianglesAfter : 0;
+    explicitTriangles = useBuiltVolume(std::move(built), o, timer, result) - cap;
+  } else if (silhouette) {
+    auto t0 = Clock::now();
+    if (!occluders) {
+      occluders.emplace(scene);  // throws InputError naming a non-manifold object
+      timer.cpu("connectivity", msSince(t0));
+      t0 = Clock::now();
+    }
+    SilhouetteVolume built = buildSilhouetteVolume(*occluders, light);
+    timer.cpu("build", msSince(t0));
+    t0 = Clock::now();
+    uploadVolume(built.mesh);
+    glFinish();
+    timer.cpu("upload", msSince(t0));
+    explicitTriangles = built.mesh.triangleCount();
+    result.receiversOnly = std::move(built.receiversOnly);
+    result.skippedCasters = std::move(built.skipped);
+  } else if (givenVolume) {
+    const auto t0 = Clock::now();
+    uploadVolume(*givenVolume);
+    glFinish();
+    timer.cpu("upload", msSince(t0));
+    explicitTriangles = givenVolume->triangleCount();
+  } else if (hybrid && !refinedCube) {
+    volumeDepth = gpuVolumeDepth(o, indexedVolume, timer);
+    result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
+    if (refinedGpu) {
+      TimedPass t(timer, "crossings");
+      findGpuCrossings(vo, result.biasUsed, *volumeDepth, o.refineCrossings, o.capture);
+    }
+  } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !point) {
+    TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
+    resolvePass(o.capture);
+  }
+
+  if (stencilShadows) {
+    // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
+    const int frustumW = silhouette ? o.depthWidth : std::max(lightW, 2);
+    const int frustumH = silhouette ? o.depthHeight : std::max(lightH, 2);
+    if (added) {
+      beginAddedLight(cam, false);
+    } else {
+      TimedPass t(timer, "camera");
+      beginCamera(cam, CameraExtra::Ambient);
+      setSceneUniforms(cam, o, 0, frustumW, frustumH);
+      drawScene();
+      SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
+    }
+    if (refinedCube) {
+      drawRefinedCubeFaces(o, cam, timer, result);
+    } else {
+      TimedPass t(timer, silhouette ? "silhouette" : "volume");
+      beginVolume(zPassFrame);
+      if (refinedGpu)
+        drawRefinedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
+      else if (volumeDepth)
+        drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
+      else if (cubeGpu)
+        drawCubeGpuVolume(cam);
+      else
+        drawExplicitVolume(cam, explicitTriangles, result);
+      endVolume();
+    }
+    {
+      TimedPass t(timer, "lighting");
+      if (added) addDiffusePass(cam, o, frustumW, frustumH);
+      else lightingPass(cam, double(frustumW) / double(frustumH));
+    }
+  } else {
+    TimedPass t(timer, "shade");
+    const int taps = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Dpsm ? 1
+                     : o.method == ShadowMethod::Pcf3    ? 3
+                     : o.method == ShadowMethod::Pcf5    ? 5
+                                                         : 0;
+    const bool writeVisibility = o.readVisibility && taps > 0;
+    if (added) beginAddedLight(cam, writeVisibility);
+    else beginCamera(cam, writeVisibility ? CameraExtra::Visibility : CameraExtra::None);
+    const int mw = dpsm ? paraboloidFrame.side : taps ? lightW : o.depthWidth;
+    const int mh = dpsm ? paraboloidFrame.side : taps ? lightH : o.depthHeight;
+    setSceneUniforms(cam, o, taps, mw, mh);
+    if (dpsm) setParaboloidUniforms(o);
+    sceneProgram.set("writeVisibility", writeVisibility ? 1 : 0);
+    if (added) addDiffuseState(false);
+    if (taps && !point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+    if (taps && point && dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
+    if (taps && point && !dpsm) bindCube(3, cubeShadow, shadowSampler);
+    drawScene();
+    bindTexture(2, Texture(), shadowSampler);
+    bindCube(3, Texture(), shadowSampler);
+    resetState();
+  }
+  const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
+                                      : stencilShadows                   ? VisibilitySource::FromStencil
+                                      : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
+                                                                         : VisibilitySource::FromAttachment;
+  readShadowImages(cam, stencilShadows && o.readStencil, visibility, result);
+  if (cubeGpu) std::tie(result.volumeTriangles, result.gpuVolumeQuadsDrawn) = cubeVolume.lastCounts();
+  if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
+    GLuint64 n = 0;
+    SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
+    result.volumeTriangles = std::size_t(n);
+    volumeTrianglesPending = false;
+  }
+  if (refinedGpu && o.keepVolume) refinedGpuDebugMeshes(cam, o, *volumeDepth, result);
+  if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette && !point)
+    result.depthMap = readBack(o.capture);
+  return result;
+}
+
+}  // namespace shadowvol::gl
