@@ -1,6 +1,6 @@
 // Shared by resolve.frag and volume_common.glsl (a version_*.glsl file comes first): the light
 // pass's reversed-Z window depth <-> light-view depth (world units, -z in light view). With
-// glClipControl ZERO_TO_ONE the window depth is clip z / w itself (renderer.cpp's
+// glClipControl ZERO_TO_ONE the window depth is clip z / w itself (renderer_impl.h's
 // viewDepthFromWindow is the double mirror).
 uniform vec4 depthParams;  // reversed-Z light projection P22, P32, P23, P33 (column-major m[col][row])
 

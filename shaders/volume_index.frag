@@ -15,7 +15,7 @@
 // vertices. The triangles' order varies from frame to frame; the wrapping stencil does not depend
 // on it. Past `capacity` indices nothing is written but the count still grows, so the renderer can
 // grow the buffer and run the pass again. At most 32 quads per block (one bit each in keptMask);
-// keep kBlock in step with renderer.cpp and light_mark.frag (the GL tests compare the counts with
+// keep kBlock in step with renderer_gpu_volume.cpp and light_mark.frag (the GL tests compare the counts with
 // the other ways of drawing). With skipRefined (the refined GPU volume) a quad with a boundary side
 // is left out: volume_refined.comp lists it, so
 // a block holding one never gets the fan cap (boundaryFlags: refine_common.glsl's bits).

@@ -4,7 +4,7 @@
 // unless all four corners lie on the far plane. Transform feedback captures keptQuad with the
 // rasteriser discarded; the volume pass then draws one point per kept quad (volume_gpu_kept.vert).
 // Several quads per invocation because a geometry-shader invocation costs far more than its four
-// texel fetches on a CPU rasteriser (llvmpipe); keep kQuadsPerKeepPoint in step with renderer.cpp.
+// texel fetches on a CPU rasteriser (llvmpipe); keep kQuadsPerKeepPoint in step with renderer_gpu_volume.cpp.
 const int kQuadsPerKeepPoint = 32;
 layout(points) in;
 layout(points, max_vertices = 32) out;

@@ -20,7 +20,7 @@ void put(uint v, vec3 p) {
 
 void main() {
   int quads = (size.x - 1) * (size.y - 1);
-  // Groups of 64 quads in rows of at most 65535 groups (renderer.cpp's dispatch).
+  // Groups of 64 quads in rows of at most 65535 groups (renderer_gpu_volume.cpp's dispatch).
   int q = int((gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationID.x);
   if (q >= quads) return;
   ivec2 t0 = quadCorner(q);

@@ -13,7 +13,7 @@
 //     all (an all-far one on the sheet and the cap, where the two cancel in the stencil). Used
 //     as well where the indexed way's worst case exceeds kMaxCubeIndices.
 // Either gives the surface of buildCubeVolume (cube_volume.h), in float, its cap triangulated
-// otherwise. Internal to the renderer (renderer.cpp owns one per context).
+// otherwise. Internal to the renderer (Renderer::Impl, renderer_impl.h, owns one per context).
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // A point light's dual-paraboloid shadow map on the GPU (dual_paraboloid.h): both hemispheres'
 // maps side by side in one DEPTH_COMPONENT32F texture of 2 side x side texels (front on the
-// left), drawn by shaders/light_paraboloid.vert and .geom. Internal to the renderer (renderer.cpp owns one
+// left), drawn by shaders/light_paraboloid.vert and .geom. Internal to the renderer (Renderer::Impl, renderer_impl.h, owns one
 // per context).
 #pragma once
 

@@ -13,7 +13,7 @@
 //   4. volume_refined.comp, dispatched indirectly over the refined quads, lists their triangles as
 //      vertex indices into the indexed GPU volume's buffer, where the renderer's listing pass
 //      (volume_index.frag with skipRefined) lists the other quads; volume_refined.vert places all.
-// Internal to the renderer (renderer.cpp owns one per context and sets the volume_common.glsl
+// Internal to the renderer (Renderer::Impl, renderer_impl.h, owns one per context and sets the volume_common.glsl
 // uniforms on every program before a frame).
 #pragma once
 

@@ -1,7 +1,7 @@
 // The refined GPU volume's crossings by bisection rays cast on the GPU (shaders/silhouette_rays.comp,
 // docs/gpu.md "Crossings from GPU rays"): the CPU builder's bisection, rule for rule, with each ray
 // traced through a hierarchy of the scene's triangles (triangle_bvh.h) instead of Embree's.
-// Internal to the renderer (renderer.cpp owns one per context).
+// Internal to the renderer (Renderer::Impl, renderer_impl.h, owns one per context).
 #pragma once
 
 #include "shadowvol/gl/gl_objects.h"

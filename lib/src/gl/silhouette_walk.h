@@ -1,7 +1,7 @@
 // The GPU's silhouette walk (RefineCrossings::GpuWalk): refinement's crossings found on the GPU by
 // walking over the scene's triangles (shaders/silhouette_walk.comp) instead of casting bisection
 // rays, and handed to the CPU builder as a CrossingSource (walk_crossings.h). Internal to the
-// renderer (renderer.cpp owns one per context).
+// renderer (Renderer::Impl, renderer_impl.h, owns one per context).
 #pragma once
 
 #include <cstdint>
