@@ -4,23 +4,29 @@
 
 namespace shadowvol::gl {
 
-Renderer::Impl::Impl(const RendererOptions& options) : context(EglContext::create(options.context)), shaders(options.shaderDir) {
+Renderer::Impl::Impl(const RendererOptions& options)
+    : context(EglContext::create(options.context)), shaders(options.shaderDir) {
   lightProgram = Program(shaders, "light.vert", "depth_only.frag");
   peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
-  resolveProgram = Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
+  resolveProgram =
+      Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
   blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");
-  sceneProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "paraboloid.glsl", "cube_face.glsl", "scene.frag"});
+  sceneProgram =
+      Program(shaders, {"scene.vert"}, {"version_330.glsl", "paraboloid.glsl", "cube_face.glsl", "scene.frag"});
   cubeFaceIdProgram = Program(shaders, {"scene.vert"}, {"version_330.glsl", "cube_face.glsl", "cube_face_id.frag"});
   cubeFaceMaskProgram = Program(shaders, "fullscreen.vert", "cube_face_mask.frag");
   paraboloid = DualParaboloidPass(shaders);
   ambientOverProgram = Program(shaders, "fullscreen.vert", "ambient_over.frag");
   volumeProgram = Program(shaders, "volume.vert", "depth_only.frag");
-  volumeGpuProgram =
-      Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
-  volumeKeepProgram =
-      Program(shaders, {"volume_gpu_points.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_keep.geom"}, {}, {"keptQuad"});
-  volumeGpuKeptProgram =
-      Program(shaders, {"volume_gpu_kept.vert"}, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
+  volumeGpuProgram = Program(shaders, {"volume_gpu_points.vert"},
+                             {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"},
+                             {"depth_only.frag"});
+  volumeKeepProgram = Program(shaders, {"volume_gpu_points.vert"},
+                              {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_keep.geom"},
+                              {}, {"keptQuad"});
+  volumeGpuKeptProgram = Program(
+      shaders, {"volume_gpu_kept.vert"},
+      {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_gpu.geom"}, {"depth_only.frag"});
   const ContextInfo& ci = context.info();
   // Every pass draws in reversed Z through glClipControl: core in 4.5, an extension before.
   if (!(ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 5)) && !epoxy_has_gl_extension("GL_ARB_clip_control"))
@@ -29,17 +35,21 @@ Renderer::Impl::Impl(const RendererOptions& options) : context(EglContext::creat
   hasCompute = ci.glMajor > 4 || (ci.glMajor == 4 && ci.glMinor >= 3);
   if (hasCompute) {
     cubeVolume = CubeGpuVolume(shaders);
-    volumeMeshProgram = Program::compute(shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_mesh.comp"});
+    volumeMeshProgram = Program::compute(
+        shaders, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_mesh.comp"});
     volumeMeshDrawProgram = Program(shaders, "volume_mesh.vert", "depth_only.frag");
     volumeIndexProgram =
-        Program(shaders, {"fullscreen.vert"}, {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.frag"});
+        Program(shaders, {"fullscreen.vert"},
+                {"version_430.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.frag"});
     volumeIndexedProgram =
-        Program(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.vert"}, {"depth_only.frag"});
+        Program(shaders, {"version_330.glsl", "light_window_depth.glsl", "volume_common.glsl", "volume_index.vert"},
+                {"depth_only.frag"});
     lightMarkProgram = Program(shaders, {"light.vert"}, {"version_430.glsl", "light_mark.glsl", "light_mark.frag"});
     lightTriangleProgram =
         Program(shaders, {"light.vert"}, {"version_330.glsl", "light_triangle.glsl", "light_triangle.frag"});
-    lightMarkTriangleProgram = Program(shaders, {"light.vert"},
-                                       {"version_430.glsl", "light_mark.glsl", "light_triangle.glsl", "light_mark_triangle.frag"});
+    lightMarkTriangleProgram =
+        Program(shaders, {"light.vert"},
+                {"version_430.glsl", "light_mark.glsl", "light_triangle.glsl", "light_mark_triangle.frag"});
     walk = SilhouetteWalk(shaders);
     rays = SilhouetteRays(shaders);
   }
@@ -284,7 +294,8 @@ std::vector<WalkResult> Renderer::walkSilhouettes(int width, int height, Capture
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
-  s.checkSize("Renderer::walkSilhouettes", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
+  s.checkSize("Renderer::walkSilhouettes", "width x height", width, height,
+              std::min(s.maxTextureSize, s.maxViewport[0]));
   if (!s.hasCompute)
     throw InputError("Renderer::walkSilhouettes", "OpenGL version", s.context.info().glVersion,
                      "the silhouette walk needs OpenGL 4.3 (compute shaders)");

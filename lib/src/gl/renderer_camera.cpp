@@ -15,12 +15,13 @@ Renderer::Impl::CameraSetup Renderer::Impl::cameraSetup(const RenderOptions& o) 
   return {cameraView(c), reversedZ(cameraProjection(c)), c.width, c.height};
 }
 
-void Renderer::Impl::setSceneUniforms(const CameraSetup& cam, const RenderOptions& o, int shadowTaps, int mapW, int mapH) {
+void Renderer::Impl::setSceneUniforms(const CameraSetup& cam, const RenderOptions& o, int shadowTaps, int mapW,
+                                      int mapH) {
   const double aspect = double(mapW) / double(mapH);
   // A point light has no one projection; its lit region is the shell between its near and far
   // cubes (scene.frag), and its cube shadow map compares with its faces' shared projection.
-  const glm::dmat4 lp = light.type == LightType::Point ? lightProjection(cubeFaceLight(light, 0), 1.0)
-                                                       : lightProjection(light, aspect);
+  const glm::dmat4 lp =
+      light.type == LightType::Point ? lightProjection(cubeFaceLight(light, 0), 1.0) : lightProjection(light, aspect);
   const glm::dmat4 lv = lightView(light);
   sceneProgram.use();
   sceneProgram.set("worldToClip", toFloat(cam.proj * cam.view));
@@ -39,8 +40,7 @@ void Renderer::Impl::setSceneUniforms(const CameraSetup& cam, const RenderOption
   sceneProgram.set("shadowMap", 2);
   sceneProgram.set("cubeShadowMap", 3);
   sceneProgram.set("shadowMapSize", glm::vec2(float(mapW), float(mapH)));
-  sceneProgram.set("biasConstant",
-                   float(o.shadowBiasConstant.value_or(defaultBias(light, mapW, mapH, o.capture))));
+  sceneProgram.set("biasConstant", float(o.shadowBiasConstant.value_or(defaultBias(light, mapW, mapH, o.capture))));
   sceneProgram.set("biasSlope", float(o.shadowBiasSlope));
   sceneProgram.set("texelFootprint", float(2.0 / (lp[1][1] * double(mapH))));
   sceneProgram.set("pointShadowMap", 0);
@@ -62,7 +62,7 @@ void Renderer::Impl::beginCamera(const CameraSetup& cam, CameraExtra extra) {
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
   SV_GL(glViewport(0, 0, cam.w, cam.h));
   SV_GL(glClearColor(0.10f, 0.12f, 0.15f, 1.0f));  // every enabled draw buffer, the ambient image too
-  SV_GL(glClearDepth(0.0));  // reversed Z: 0 is the far plane
+  SV_GL(glClearDepth(0.0));                        // reversed Z: 0 is the far plane
   SV_GL(glClearStencil(0));
   const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0,
                              extra == CameraExtra::Visibility ? GL_COLOR_ATTACHMENT1 : GLenum(GL_NONE),
@@ -79,8 +79,10 @@ void Renderer::Impl::beginVolume(bool zPass) {
   SV_GL(glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE));
   SV_GL(glDepthMask(GL_FALSE));
   SV_GL(glDepthFunc(GL_GREATER));
-  if (zPass) SV_GL(glDisable(GL_DEPTH_CLAMP));
-  else SV_GL(glEnable(GL_DEPTH_CLAMP));
+  if (zPass)
+    SV_GL(glDisable(GL_DEPTH_CLAMP));
+  else
+    SV_GL(glEnable(GL_DEPTH_CLAMP));
   SV_GL(glDisable(GL_CULL_FACE));
   SV_GL(glEnable(GL_STENCIL_TEST));
   SV_GL(glStencilMask(0xFF));

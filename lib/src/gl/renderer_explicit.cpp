@@ -40,7 +40,8 @@ void Renderer::Impl::readColour(const CameraSetup& cam, RenderResult& r) {
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
 }
 
-void Renderer::Impl::readShadowImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility, RenderResult& r) {
+void Renderer::Impl::readShadowImages(const CameraSetup& cam, bool stencil, VisibilitySource visibility,
+                                      RenderResult& r) {
   const int w = cam.w, h = cam.h;
   r.width = w;
   r.height = h;

@@ -3,7 +3,8 @@
 
 namespace shadowvol::gl {
 
-bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const {
+bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume,
+                                 RenderResult& result) const {
   if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
   if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
     if (o.volumeCount == VolumeCount::ZPass)
@@ -21,7 +22,8 @@ bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam,
   return z.safe;
 }
 
-std::size_t Renderer::Impl::useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer, RenderResult& result) {
+std::size_t Renderer::Impl::useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer,
+                                           RenderResult& result) {
   result.biasUsed = built.stats.biasUsed;
   result.volumeStats = built.stats;
   const auto t0 = Clock::now();
@@ -62,187 +64,232 @@ void Renderer::Impl::validateForLight(const RenderOptions& o, const CameraSetup&
   try {
     validate(o, cam);
   } catch (const InputError& e) {
-    throw InputError(e.source(), e.field(), e.value(),
-                     e.problem() + " (for light " + std::to_string(k) + " of the scene's " +
-                         std::to_string(lights.size()) + ")");
+    throw InputError(
+        e.source(), e.field(), e.value(),
+        e.problem() + " (for light " + std::to_string(k) + " of the scene's " + std::to_string(lights.size()) + ")");
   }
 }
 
-RenderResult Renderer::Impl::renderLight(const RenderOptions& o, const CameraSetup& cam, const VolumeMesh* givenVolume,
-                         PassTimer& timer, bool added) {
-  volumeTrianglesPending = false;  // a frame that threw may have left it set
-  volumeReadsWindowDepth = false;
-  RenderResult result;
-  zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
-  result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
-  const bool silhouette = !givenVolume && o.method == ShadowMethod::Silhouette;
-  const bool hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
-  const bool stencilShadows = hybrid || silhouette;
+Renderer::Impl::LightFrame Renderer::Impl::planLightFrame(const RenderOptions& o, bool givenVolume) const {
+  LightFrame f;
   const VolumeBuildOptions& vo = o.volumeOptions;
-
-  const bool point = light.type == LightType::Point;
-  const bool gpuVolume = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && !point;
-  const bool cubeGpu = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps == 0;
-  const bool refinedCube = hybrid && !givenVolume && o.volume == VolumeSource::Gpu && point && vo.refineSteps > 0;
-  const bool refinedGpu = gpuVolume && refinedGpuVolume(o);
-  const GpuVolumeDraw gpuDraw = gpuVolume && !refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
-                                : refinedGpu             ? GpuVolumeDraw::Refined
-                                                         : GpuVolumeDraw::Auto;
+  f.given = givenVolume;
+  f.silhouette = !givenVolume && o.method == ShadowMethod::Silhouette;
+  f.hybrid = givenVolume || o.method == ShadowMethod::Hybrid;
+  f.stencilShadows = f.hybrid || f.silhouette;
+  f.point = light.type == LightType::Point;
+  const bool gpuSource = f.hybrid && !givenVolume && o.volume == VolumeSource::Gpu;
+  f.gpuVolume = gpuSource && !f.point;
+  f.cubeGpu = gpuSource && f.point && vo.refineSteps == 0;
+  f.refinedCube = gpuSource && f.point && vo.refineSteps > 0;
+  f.refinedGpu = f.gpuVolume && refinedGpuVolume(o);
+  f.gpuDraw = f.gpuVolume && !f.refinedGpu ? chooseGpuVolumeDraw(o.gpuVolumeDraw, vo)
+              : f.refinedGpu               ? GpuVolumeDraw::Refined
+                                           : GpuVolumeDraw::Auto;
   // The refined GPU volume lists its unrefined quads as the indexed way does.
-  const bool indexedVolume = gpuDraw == GpuVolumeDraw::Indexed || refinedGpu;
+  f.indexedVolume = f.gpuDraw == GpuVolumeDraw::Indexed || f.refinedGpu;
+  f.dpsm = f.point && o.method == ShadowMethod::Dpsm;
+  f.cubeShadowMap = f.point && !f.hybrid && !f.silhouette && !f.dpsm && o.method != ShadowMethod::None;
+  f.rayDepth = f.hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
+  return f;
+}
+
+void Renderer::Impl::lightDepthPasses(const RenderOptions& o, const LightFrame& f, PassTimer& timer) {
   occupancyValid = false;
-  const bool dpsm = point && o.method == ShadowMethod::Dpsm;
-  const bool cubeShadowMap = point && !hybrid && !silhouette && !dpsm && o.method != ShadowMethod::None;
-  if (cubeShadowMap) {
+  if (f.cubeShadowMap) {
     TimedPass t(timer, "light");
     cubeShadowPass(o.depthWidth, o.capture);
   }
-  if (dpsm) {
+  if (f.dpsm) {
     TimedPass t(timer, "light");
     paraboloidPass(o.depthWidth, o.capture, o.paraboloidSubdivision);
   }
-  const bool rayDepth =
-      hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
-  if (!givenVolume && o.method != ShadowMethod::None && !silhouette && !point && !rayDepth) {
+  if (!f.given && o.method != ShadowMethod::None && !f.silhouette && !f.point && !f.rayDepth) {
     TimedPass t(timer, "light");
     // The triangle record for the walk (the GPU's rays do not read it).
-    lightPass(o.depthWidth, o.depthHeight, o.capture, indexedVolume,
-              walkCrossings(o) || (refinedGpu && o.refineCrossings == RefineCrossings::GpuWalk));
+    lightPass(o.depthWidth, o.depthHeight, o.capture, f.indexedVolume,
+              walkCrossings(o) || (f.refinedGpu && o.refineCrossings == RefineCrossings::GpuWalk));
   }
+}
 
-  std::size_t explicitTriangles = 0;
-  const Texture* volumeDepth = nullptr;
-  if (cubeGpu) {
+std::size_t Renderer::Impl::explicitCubeVolume(const RenderOptions& o, const LightFrame& f, PassTimer& timer,
+                                               RenderResult& result) {
+  const VolumeBuildOptions& vo = o.volumeOptions;
+  auto t0 = Clock::now();
+  const CubeDepthMap cube =
+      f.rayDepth ? rayCastCube(o.depthWidth, o.capture, vo.depthOracle) : captureCube(o.depthWidth, o.capture);
+  timer.cpu("light", msSince(t0));  // six light passes and their read-backs, or the faces' rays
+  t0 = Clock::now();
+  VolumeBuildResult built = buildCubeVolume(cube, vo);
+  timer.cpu("build", msSince(t0));
+  return useBuiltVolume(std::move(built), o, timer, result);  // z-fail: the cap too
+}
+
+std::size_t Renderer::Impl::explicitVolume(const RenderOptions& o, const LightFrame& f, PassTimer& timer,
+                                           RenderResult& result) {
+  const VolumeBuildOptions& vo = o.volumeOptions;
+  auto t0 = Clock::now();
+  if (f.rayDepth) {
+    result.depthMap = rayCast(o.depthWidth, o.depthHeight, o.capture, vo.depthOracle);
+    timer.cpu("light", msSince(t0));
+  } else {
+    result.depthMap = readBack(o.capture);
+    timer.cpu("readback", msSince(t0));
+  }
+  t0 = Clock::now();
+  VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
+  timer.cpu("build", msSince(t0));
+  // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
+  const std::size_t cap = zPassFrame ? built.stats.capTrianglesAfter : 0;
+  return useBuiltVolume(std::move(built), o, timer, result) - cap;
+}
+
+std::size_t Renderer::Impl::silhouetteVolume(PassTimer& timer, RenderResult& result) {
+  auto t0 = Clock::now();
+  if (!occluders) {
+    occluders.emplace(scene);  // throws InputError naming a non-manifold object
+    timer.cpu("connectivity", msSince(t0));
+    t0 = Clock::now();
+  }
+  SilhouetteVolume built = buildSilhouetteVolume(*occluders, light);
+  timer.cpu("build", msSince(t0));
+  t0 = Clock::now();
+  uploadVolume(built.mesh);
+  glFinish();
+  timer.cpu("upload", msSince(t0));
+  result.receiversOnly = std::move(built.receiversOnly);
+  result.skippedCasters = std::move(built.skipped);
+  return built.mesh.triangleCount();
+}
+
+void Renderer::Impl::volumeInput(const RenderOptions& o, LightFrame& f, const VolumeMesh* givenVolume, PassTimer& timer,
+                                 RenderResult& result) {
+  const VolumeBuildOptions& vo = o.volumeOptions;
+  if (f.cubeGpu) {
     cubeVolumeDepthPass(o, timer, result);
-  } else if (hybrid && !givenVolume && point && !refinedCube) {
-    auto t0 = Clock::now();
-    const CubeDepthMap cube = rayDepth ? rayCastCube(o.depthWidth, o.capture, vo.depthOracle)
-                                       : captureCube(o.depthWidth, o.capture);
-    timer.cpu("light", msSince(t0));  // six light passes and their read-backs, or the faces' rays
-    t0 = Clock::now();
-    VolumeBuildResult built = buildCubeVolume(cube, vo);
-    timer.cpu("build", msSince(t0));
-    explicitTriangles = useBuiltVolume(std::move(built), o, timer, result);  // z-fail: the cap too
-  } else if (hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
-    auto t0 = Clock::now();
-    if (rayDepth) {
-      result.depthMap = rayCast(o.depthWidth, o.depthHeight, o.capture, vo.depthOracle);
-      timer.cpu("light", msSince(t0));
-    } else {
-      result.depthMap = readBack(o.capture);
-      timer.cpu("readback", msSince(t0));
-    }
-    t0 = Clock::now();
-    VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
-    timer.cpu("build", msSince(t0));
-    // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
-    const std::size_t cap = zPassFrame ? built.stats.capTrianglesAfter : 0;
-    explicitTriangles = useBuiltVolume(std::move(built), o, timer, result) - cap;
-  } else if (silhouette) {
-    auto t0 = Clock::now();
-    if (!occluders) {
-      occluders.emplace(scene);  // throws InputError naming a non-manifold object
-      timer.cpu("connectivity", msSince(t0));
-      t0 = Clock::now();
-    }
-    SilhouetteVolume built = buildSilhouetteVolume(*occluders, light);
-    timer.cpu("build", msSince(t0));
-    t0 = Clock::now();
-    uploadVolume(built.mesh);
-    glFinish();
-    timer.cpu("upload", msSince(t0));
-    explicitTriangles = built.mesh.triangleCount();
-    result.receiversOnly = std::move(built.receiversOnly);
-    result.skippedCasters = std::move(built.skipped);
+  } else if (f.hybrid && !givenVolume && f.point && !f.refinedCube) {
+    f.explicitTriangles = explicitCubeVolume(o, f, timer, result);
+  } else if (f.hybrid && !givenVolume && o.volume == VolumeSource::Explicit) {
+    f.explicitTriangles = explicitVolume(o, f, timer, result);
+  } else if (f.silhouette) {
+    f.explicitTriangles = silhouetteVolume(timer, result);
   } else if (givenVolume) {
     const auto t0 = Clock::now();
     uploadVolume(*givenVolume);
     glFinish();
     timer.cpu("upload", msSince(t0));
-    explicitTriangles = givenVolume->triangleCount();
-  } else if (hybrid && !refinedCube) {
-    volumeDepth = gpuVolumeDepth(o, indexedVolume, timer);
+    f.explicitTriangles = givenVolume->triangleCount();
+  } else if (f.hybrid && !f.refinedCube) {
+    f.volumeDepth = gpuVolumeDepth(o, f.indexedVolume, timer);
     result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, lightW, lightH, o.capture);
-    if (refinedGpu) {
+    if (f.refinedGpu) {
       TimedPass t(timer, "crossings");
-      findGpuCrossings(vo, result.biasUsed, *volumeDepth, o.refineCrossings, o.capture);
+      findGpuCrossings(vo, result.biasUsed, *f.volumeDepth, o.refineCrossings, o.capture);
     }
-  } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !point) {
+  } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !f.point) {
     TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
     resolvePass(o.capture);
   }
+}
 
-  if (stencilShadows) {
-    // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
-    const int frustumW = silhouette ? o.depthWidth : std::max(lightW, 2);
-    const int frustumH = silhouette ? o.depthHeight : std::max(lightH, 2);
-    if (added) {
-      beginAddedLight(cam, false);
-    } else {
-      TimedPass t(timer, "camera");
-      beginCamera(cam, CameraExtra::Ambient);
-      setSceneUniforms(cam, o, 0, frustumW, frustumH);
-      drawScene();
-      SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
-    }
-    if (refinedCube) {
-      drawRefinedCubeFaces(o, cam, timer, result);
-    } else {
-      TimedPass t(timer, silhouette ? "silhouette" : "volume");
-      beginVolume(zPassFrame);
-      if (refinedGpu)
-        drawRefinedGpuVolume(cam, vo, result.biasUsed, *volumeDepth, result);
-      else if (volumeDepth)
-        drawGpuVolume(cam, vo, result.biasUsed, *volumeDepth, gpuDraw, result);
-      else if (cubeGpu)
-        drawCubeGpuVolume(cam);
-      else
-        drawExplicitVolume(cam, explicitTriangles, result);
-      endVolume();
-    }
-    {
-      TimedPass t(timer, "lighting");
-      if (added) addDiffusePass(cam, o, frustumW, frustumH);
-      else lightingPass(cam, double(frustumW) / double(frustumH));
-    }
+void Renderer::Impl::stencilPasses(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f,
+                                   PassTimer& timer, bool added, RenderResult& result) {
+  const VolumeBuildOptions& vo = o.volumeOptions;
+  // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
+  const int frustumW = f.silhouette ? o.depthWidth : std::max(lightW, 2);
+  const int frustumH = f.silhouette ? o.depthHeight : std::max(lightH, 2);
+  if (added) {
+    beginAddedLight(cam, false);
   } else {
-    TimedPass t(timer, "shade");
-    const int taps = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Dpsm ? 1
-                     : o.method == ShadowMethod::Pcf3    ? 3
-                     : o.method == ShadowMethod::Pcf5    ? 5
-                                                         : 0;
-    const bool writeVisibility = o.readVisibility && taps > 0;
-    if (added) beginAddedLight(cam, writeVisibility);
-    else beginCamera(cam, writeVisibility ? CameraExtra::Visibility : CameraExtra::None);
-    const int mw = dpsm ? paraboloidFrame.side : taps ? lightW : o.depthWidth;
-    const int mh = dpsm ? paraboloidFrame.side : taps ? lightH : o.depthHeight;
-    setSceneUniforms(cam, o, taps, mw, mh);
-    if (dpsm) setParaboloidUniforms(o);
-    sceneProgram.set("writeVisibility", writeVisibility ? 1 : 0);
-    if (added) addDiffuseState(false);
-    if (taps && !point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
-    if (taps && point && dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
-    if (taps && point && !dpsm) bindCube(3, cubeShadow, shadowSampler);
+    TimedPass t(timer, "camera");
+    beginCamera(cam, CameraExtra::Ambient);
+    setSceneUniforms(cam, o, 0, frustumW, frustumH);
     drawScene();
-    bindTexture(2, Texture(), shadowSampler);
-    bindCube(3, Texture(), shadowSampler);
-    resetState();
+    SV_GL(glDrawBuffer(GL_COLOR_ATTACHMENT0));  // the volume pass writes no colour
   }
-  const VisibilitySource visibility = !o.readVisibility                 ? VisibilitySource::NotRead
-                                      : stencilShadows                   ? VisibilitySource::FromStencil
-                                      : o.method == ShadowMethod::None   ? VisibilitySource::AllLit
-                                                                         : VisibilitySource::FromAttachment;
-  readShadowImages(cam, stencilShadows && o.readStencil, visibility, result);
-  if (cubeGpu) std::tie(result.volumeTriangles, result.gpuVolumeQuadsDrawn) = cubeVolume.lastCounts();
+  if (f.refinedCube) {
+    drawRefinedCubeFaces(o, cam, timer, result);
+  } else {
+    TimedPass t(timer, f.silhouette ? "silhouette" : "volume");
+    beginVolume(zPassFrame);
+    if (f.refinedGpu)
+      drawRefinedGpuVolume(cam, vo, result.biasUsed, *f.volumeDepth, result);
+    else if (f.volumeDepth)
+      drawGpuVolume(cam, vo, result.biasUsed, *f.volumeDepth, f.gpuDraw, result);
+    else if (f.cubeGpu)
+      drawCubeGpuVolume(cam);
+    else
+      drawExplicitVolume(cam, f.explicitTriangles, result);
+    endVolume();
+  }
+  TimedPass t(timer, "lighting");
+  if (added)
+    addDiffusePass(cam, o, frustumW, frustumH);
+  else
+    lightingPass(cam, double(frustumW) / double(frustumH));
+}
+
+void Renderer::Impl::shadeWithMap(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, PassTimer& timer,
+                                  bool added) {
+  TimedPass t(timer, "shade");
+  const int taps = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Dpsm ? 1
+                   : o.method == ShadowMethod::Pcf3                                      ? 3
+                   : o.method == ShadowMethod::Pcf5                                      ? 5
+                                                                                         : 0;
+  const bool writeVisibility = o.readVisibility && taps > 0;
+  if (added)
+    beginAddedLight(cam, writeVisibility);
+  else
+    beginCamera(cam, writeVisibility ? CameraExtra::Visibility : CameraExtra::None);
+  const int mw = f.dpsm ? paraboloidFrame.side : taps ? lightW : o.depthWidth;
+  const int mh = f.dpsm ? paraboloidFrame.side : taps ? lightH : o.depthHeight;
+  setSceneUniforms(cam, o, taps, mw, mh);
+  if (f.dpsm) setParaboloidUniforms(o);
+  sceneProgram.set("writeVisibility", writeVisibility ? 1 : 0);
+  if (added) addDiffuseState(false);
+  if (taps && !f.point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+  if (taps && f.point && f.dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
+  if (taps && f.point && !f.dpsm) bindCube(3, cubeShadow, shadowSampler);
+  drawScene();
+  bindTexture(2, Texture(), shadowSampler);
+  bindCube(3, Texture(), shadowSampler);
+  resetState();
+}
+
+void Renderer::Impl::lightFrameResults(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f,
+                                       RenderResult& result) {
+  const VisibilitySource visibility = !o.readVisibility                ? VisibilitySource::NotRead
+                                      : f.stencilShadows               ? VisibilitySource::FromStencil
+                                      : o.method == ShadowMethod::None ? VisibilitySource::AllLit
+                                                                       : VisibilitySource::FromAttachment;
+  readShadowImages(cam, f.stencilShadows && o.readStencil, visibility, result);
+  if (f.cubeGpu) std::tie(result.volumeTriangles, result.gpuVolumeQuadsDrawn) = cubeVolume.lastCounts();
   if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
     GLuint64 n = 0;
     SV_GL(glGetQueryObjectui64v(primitivesQuery.id(), GL_QUERY_RESULT, &n));
     result.volumeTriangles = std::size_t(n);
     volumeTrianglesPending = false;
   }
-  if (refinedGpu && o.keepVolume) refinedGpuDebugMeshes(cam, o, *volumeDepth, result);
-  if (o.readDepthMap && !result.depthMap && !givenVolume && o.method != ShadowMethod::None && !silhouette && !point)
+  if (f.refinedGpu && o.keepVolume) refinedGpuDebugMeshes(cam, o, *f.volumeDepth, result);
+  if (o.readDepthMap && !result.depthMap && !f.given && o.method != ShadowMethod::None && !f.silhouette && !f.point)
     result.depthMap = readBack(o.capture);
+}
+
+RenderResult Renderer::Impl::renderLight(const RenderOptions& o, const CameraSetup& cam, const VolumeMesh* givenVolume,
+                                         PassTimer& timer, bool added) {
+  volumeTrianglesPending = false;  // a frame that threw may have left it set
+  volumeReadsWindowDepth = false;
+  RenderResult result;
+  zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
+  result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
+  LightFrame f = planLightFrame(o, givenVolume != nullptr);
+  lightDepthPasses(o, f, timer);
+  volumeInput(o, f, givenVolume, timer, result);
+  if (f.stencilShadows)
+    stencilPasses(o, cam, f, timer, added, result);
+  else
+    shadeWithMap(o, cam, f, timer, added);
+  lightFrameResults(o, cam, f, result);
   return result;
 }
 

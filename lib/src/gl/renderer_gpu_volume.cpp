@@ -36,8 +36,8 @@ GpuVolumeDraw Renderer::Impl::chooseGpuVolumeDraw(GpuVolumeDraw how, const Volum
   return how;
 }
 
-void Renderer::Impl::drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
-                   GpuVolumeDraw how, RenderResult& result) {
+void Renderer::Impl::drawGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias,
+                                   const Texture& depth, GpuVolumeDraw how, RenderResult& result) {
   const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
   const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
   result.gpuVolumeQuads = std::size_t(quads);
@@ -57,8 +57,7 @@ void Renderer::Impl::drawGpuVolume(const CameraSetup& cam, const VolumeBuildOpti
   if (how == GpuVolumeDraw::Indexed || how == GpuVolumeDraw::ComputeMesh) how = GpuVolumeDraw::KeptQuads;
   if (how == GpuVolumeDraw::KeptQuads && quads > kMaxKeptQuads) how = GpuVolumeDraw::AllQuads;
   result.gpuVolumeDrawUsed = how;
-  if (how == GpuVolumeDraw::KeptQuads)
-    return drawCompactGpuVolume(lightViewToClip, vo, bias, depth, quads, result);
+  if (how == GpuVolumeDraw::KeptQuads) return drawCompactGpuVolume(lightViewToClip, vo, bias, depth, quads, result);
   setVolumeUniforms(volumeGpuProgram, vo, bias);
   volumeGpuProgram.set("lightViewToClip", toFloat(lightViewToClip));
   bindTexture(0, depth, fetchSampler);
@@ -82,7 +81,7 @@ void Renderer::Impl::drawGpuVolume(const CameraSetup& cam, const VolumeBuildOpti
 }
 
 bool Renderer::Impl::drawComputedGpuVolume(const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo, double bias,
-                           const Texture& depth, std::int64_t quads, RenderResult& result) {
+                                           const Texture& depth, std::int64_t quads, RenderResult& result) {
   constexpr std::int64_t kMaxMeshBytes = std::int64_t(1) << 29;  // 512 MiB
   constexpr std::int64_t kVertexBytes = 12;
   if (meshCapacity == 0) growMesh(std::min<std::int64_t>(quads * 12, 12 * 65536));
@@ -120,9 +119,9 @@ bool Renderer::Impl::drawComputedGpuVolume(const glm::dmat4& lightViewToClip, co
   return true;
 }
 
-bool Renderer::Impl::drawIndexedGpuVolume(const CameraSetup& cam, const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo,
-                          double bias, const Texture& depth, std::int64_t quads, RenderResult& result,
-                          RefinedGpuVolume* cells) {
+bool Renderer::Impl::drawIndexedGpuVolume(const CameraSetup& cam, const glm::dmat4& lightViewToClip,
+                                          const VolumeBuildOptions& vo, double bias, const Texture& depth,
+                                          std::int64_t quads, RenderResult& result, RefinedGpuVolume* cells) {
   std::array<GLuint, 2> counts{};  // indices, kept quads
   if (!listIndexedGpuVolume(cam, vo, bias, depth, quads, counts, cells)) return false;
   result.gpuVolumeQuadsDrawn = counts[1];
@@ -138,10 +137,11 @@ bool Renderer::Impl::drawIndexedGpuVolume(const CameraSetup& cam, const glm::dma
   return true;
 }
 
-bool Renderer::Impl::listIndexedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
-                          std::int64_t quads, std::array<GLuint, 2>& counts, RefinedGpuVolume* cells) {
+bool Renderer::Impl::listIndexedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias,
+                                          const Texture& depth, std::int64_t quads, std::array<GLuint, 2>& counts,
+                                          RefinedGpuVolume* cells) {
   constexpr std::int64_t kMaxIndexBytes = std::int64_t(1) << 29;  // 512 MiB
-  constexpr int kBlockX = 8, kBlockY = 4;                        // volume_index.frag's kBlock
+  constexpr int kBlockX = 8, kBlockY = 4;                         // volume_index.frag's kBlock
   // Indices and the count are 32-bit: 2 W H vertices (8 W H with the refined cells' crossings),
   // up to 12 indices per quad (60 in a refined cell).
   if (std::int64_t(lightW) * lightH * (cells ? 8 : 2) > std::int64_t(0x7fffffff) ||
@@ -204,8 +204,8 @@ std::vector<std::uint32_t> Renderer::Impl::readIndexList(GLuint count) {
   return out;
 }
 
-void Renderer::Impl::findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth, RefineCrossings crossings,
-                      CaptureMode capture) {
+void Renderer::Impl::findGpuCrossings(const VolumeBuildOptions& vo, double bias, const Texture& depth,
+                                      RefineCrossings crossings, CaptureMode capture) {
   if (!refined) refined.emplace(shaders);  // compiled on the first refined frame
   if (!footprint || footprintW != lightW || footprintH != lightH) {
     footprint = TexelFootprint::of(makeDepthMap(light, lightW, lightH, CaptureMode::Back));  // metadata only
@@ -229,13 +229,15 @@ void Renderer::Impl::findGpuCrossings(const VolumeBuildOptions& vo, double bias,
     const Program& p = byRays ? rays.program() : walk.program();
     p.use();
     p.set("rawDepth", 3);
-    if (byRays) rays.dispatchGrid(in, vo.refineSteps, capture, vo.refineSnap, indirectOffset);
-    else walk.dispatchGrid(in, hitLimit, indirectOffset);
+    if (byRays)
+      rays.dispatchGrid(in, vo.refineSteps, capture, vo.refineSnap, indirectOffset);
+    else
+      walk.dispatchGrid(in, hitLimit, indirectOffset);
   });
 }
 
-void Renderer::Impl::drawRefinedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias, const Texture& depth,
-                          RenderResult& result) {
+void Renderer::Impl::drawRefinedGpuVolume(const CameraSetup& cam, const VolumeBuildOptions& vo, double bias,
+                                          const Texture& depth, RenderResult& result) {
   const glm::dmat4 lightViewToClip = cam.proj * cam.view * glm::inverse(lightView(light));
   const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
   bindTexture(3, vo.blur ? linearDepth : depth, fetchSampler);
@@ -282,7 +284,7 @@ void Renderer::Impl::growMesh(std::int64_t vertices) {
 }
 
 void Renderer::Impl::drawCompactGpuVolume(const glm::dmat4& lightViewToClip, const VolumeBuildOptions& vo, double bias,
-                          const Texture& depth, std::int64_t quads, RenderResult& result) {
+                                          const Texture& depth, std::int64_t quads, RenderResult& result) {
   if (keptCapacity < quads) {
     SV_GL(glBindBuffer(GL_ARRAY_BUFFER, keptBuffer.id()));
     SV_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(quads * 4), nullptr, GL_DYNAMIC_COPY));

@@ -24,12 +24,16 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 
+#include "cube_gpu_volume.h"
+#include "dual_paraboloid_pass.h"
+#include "pass_timer.h"
+#include "refined_gpu_volume.h"
 #include "shadowvol/camera.h"
 #include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
 #include "shadowvol/cube_volume.h"
-#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/depth_blur.h"
+#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
 #include "shadowvol/gl/gl_objects.h"
@@ -38,12 +42,8 @@
 #include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_volume.h"
 #include "shadowvol/zpass.h"
-#include "refined_gpu_volume.h"
-#include "cube_gpu_volume.h"
-#include "dual_paraboloid_pass.h"
 #include "silhouette_rays.h"
 #include "silhouette_walk.h"
-#include "pass_timer.h"
 
 namespace shadowvol::gl {
 
@@ -133,28 +133,28 @@ struct Renderer::Impl {
   Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
   Program cubeFaceIdProgram, cubeFaceMaskProgram;  // the refined GPU cube volume's face image and masks
   Program volumeGpuProgram;
-  Program volumeKeepProgram, volumeGpuKeptProgram;  // GpuVolumeDraw::KeptQuads
-  Program volumeMeshProgram, volumeMeshDrawProgram; // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
-  Program volumeIndexProgram, volumeIndexedProgram; // GpuVolumeDraw::Indexed (GL 4.3 only)
+  Program volumeKeepProgram, volumeGpuKeptProgram;   // GpuVolumeDraw::KeptQuads
+  Program volumeMeshProgram, volumeMeshDrawProgram;  // GpuVolumeDraw::ComputeMesh (GL 4.3 only)
+  Program volumeIndexProgram, volumeIndexedProgram;  // GpuVolumeDraw::Indexed (GL 4.3 only)
   bool hasCompute = false;
-  Texture cubeShadow;      // a point light's shadow-map methods: DEPTH_COMPONENT32F cube map
+  Texture cubeShadow;  // a point light's shadow-map methods: DEPTH_COMPONENT32F cube map
   int cubeShadowSize = 0;
   Sampler fetchSampler, shadowSampler;
   VertexArray emptyVao;
   std::vector<Query> queryPool;
   Query primitivesQuery;  // GL_PRIMITIVES_GENERATED of the GPU volume's geometry shader
   bool volumeTrianglesPending = false;
-  bool zPassFrame = false;  // this frame's volume counted with z-pass: no far cap drawn
+  bool zPassFrame = false;              // this frame's volume counted with z-pass: no far cap drawn
   bool volumeReadsWindowDepth = false;  // this frame's GPU volume reads the light pass's depth itself
   GLint maxTextureSize = 0, maxRenderbufferSize = 0;
   GLint maxViewport[2] = {0, 0};
 
   // Scene
   bool hasScene = false;
-  Scene scene;                                  // kept for the silhouette method's connectivity
+  Scene scene;                                   // kept for the silhouette method's connectivity
   std::optional<SilhouetteOccluders> occluders;  // built on the first silhouette frame
-  std::vector<Light> lights;  // the scene's, first to last
-  Light light;                // the one whose passes run now (lights[0] between frames)
+  std::vector<Light> lights;                     // the scene's, first to last
+  Light light;                                   // the one whose passes run now (lights[0] between frames)
   Camera camera;
   VertexArray sceneVao;
   Buffer sceneVbo, sceneEbo;
@@ -181,23 +181,23 @@ struct Renderer::Impl {
   Buffer indexBuffer, indexCount;
   std::int64_t indexCapacity = 0;  // indices the buffer holds
   Framebuffer listFbo;
-  Program lightMarkProgram;       // the light pass that also writes the occupancy bits
-  Texture occupancy;              // R32UI, one bit per texel, a word per 8 x 4 texels (light_mark.frag)
-  Framebuffer occupancyFbo;       // to clear it
+  Program lightMarkProgram;  // the light pass that also writes the occupancy bits
+  Texture occupancy;         // R32UI, one bit per texel, a word per 8 x 4 texels (light_mark.frag)
+  Framebuffer occupancyFbo;  // to clear it
   int occupancyW = 0, occupancyH = 0;
-  bool occupancyValid = false;    // this frame's light pass wrote the occupancy bits
+  bool occupancyValid = false;  // this frame's light pass wrote the occupancy bits
 
   // Refinement by the silhouette walk (GL 4.3 only): the light pass records each texel's triangle
-  Program lightTriangleProgram;   // light.vert + light_triangle.frag
+  Program lightTriangleProgram;      // light.vert + light_triangle.frag
   Program lightMarkTriangleProgram;  // both: the refined GPU volume's light pass
   SilhouetteWalk walk;
-  SilhouetteRays rays;            // the refined GPU volume's bisection rays (all but RefineCrossings::GpuWalk)
-  DualParaboloidPass paraboloid;  // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
-  CubeGpuVolume cubeVolume;       // a point light's GPU cube volume (GL 4.3: glCopyImageSubData)
+  SilhouetteRays rays;             // the refined GPU volume's bisection rays (all but RefineCrossings::GpuWalk)
+  DualParaboloidPass paraboloid;   // a point light's dual-paraboloid shadow map (ShadowMethod::Dpsm)
+  CubeGpuVolume cubeVolume;        // a point light's GPU cube volume (GL 4.3: glCopyImageSubData)
   DualParaboloid paraboloidFrame;  // of the last paraboloid pass
   Bounds3 sceneBounds;             // the scene's (setScene): the paraboloid frame looks at its centre
-  Texture triangleIds;            // R32UI, triangle index + 1 (0 = none), at the light targets' size
-  Framebuffer layer0IdFbo;        // layer0's depth and triangleIds
+  Texture triangleIds;             // R32UI, triangle index + 1 (0 = none), at the light targets' size
+  Framebuffer layer0IdFbo;         // layer0's depth and triangleIds
   std::optional<RefinedGpuVolume> refined;  // the refined GPU volume's passes, made on its first frame
   std::optional<TexelFootprint> footprint;  // of the light's map at footprintW x footprintH (setScene resets)
   int footprintW = 0, footprintH = 0;
@@ -211,11 +211,11 @@ struct Renderer::Impl {
   // Camera targets
   int camW = 0, camH = 0;
   Renderbuffer colorRb, depthStencilRb, visibilityRb;  // visibilityRb: R8, written only on request
-  Texture ambientImage;      // RGBA8: the camera pass's ambient term (stencil methods)
-  Framebuffer cameraFbo;     // colour, visibility, ambient image, depth + stencil
-  Framebuffer shadowOverFbo; // colour and depth + stencil only: the lighting pass samples ambientImage
-  Texture cubeFaceImage;     // R8UI: the refined GPU cube volume's face per pixel (made on its first frame)
-  Framebuffer cubeFaceFbo;   // cubeFaceImage and the camera's depth + stencil
+  Texture ambientImage;                                // RGBA8: the camera pass's ambient term (stencil methods)
+  Framebuffer cameraFbo;                               // colour, visibility, ambient image, depth + stencil
+  Framebuffer shadowOverFbo;  // colour and depth + stencil only: the lighting pass samples ambientImage
+  Texture cubeFaceImage;      // R8UI: the refined GPU cube volume's face per pixel (made on its first frame)
+  Framebuffer cubeFaceFbo;    // cubeFaceImage and the camera's depth + stencil
   int cubeFaceW = 0, cubeFaceH = 0;
 
   Impl(const RendererOptions& options);
@@ -549,6 +549,60 @@ struct Renderer::Impl {
 
   /// validate() for light k (the renderer's light now), its errors naming the light.
   void validateForLight(const RenderOptions& o, const CameraSetup& cam, std::size_t k) const;
+
+  /// What one light's passes are, decided from the options (planLightFrame), and what the volume
+  /// stage leaves for the stencil stage.
+  struct LightFrame {
+    bool given = false;           // a caller-built volume (renderWithVolume)
+    bool silhouette = false;      // ShadowMethod::Silhouette
+    bool hybrid = false;          // the depth-map volume, or a given one
+    bool stencilShadows = false;  // hybrid or silhouette: a volume counted in the stencil
+    bool point = false;           // a point light
+    bool gpuVolume = false;       // a spot or directional light's volume drawn from the depth texture
+    bool cubeGpu = false;         // a point light's GPU cube volume
+    bool refinedCube = false;     // a point light's refined GPU face volumes
+    bool refinedGpu = false;      // the refined GPU volume
+    bool indexedVolume = false;   // its light pass marks occupancy (indexed or refined GPU volume)
+    bool dpsm = false;            // a point light's dual-paraboloid maps
+    bool cubeShadowMap = false;   // a point light's cube shadow map (or PCF)
+    bool rayDepth = false;        // the explicit volume's map from the oracle's rays (ExplicitDepth::Rays)
+    GpuVolumeDraw gpuDraw = GpuVolumeDraw::Auto;
+    std::size_t explicitTriangles = 0;     // of an uploaded volume (drawExplicitVolume)
+    const Texture* volumeDepth = nullptr;  // what a GPU volume reads (gpuVolumeDepth)
+  };
+
+  LightFrame planLightFrame(const RenderOptions& o, bool givenVolume) const;
+
+  /// The light's depth passes this frame needs: the cube shadow map, the dual-paraboloid maps, or
+  /// the light pass (none for a ray-cast map, the silhouette method or a given volume).
+  void lightDepthPasses(const RenderOptions& o, const LightFrame& f, PassTimer& timer);
+
+  /// A point light's explicit cube volume: six maps (light passes or rays), built and uploaded;
+  /// returns its triangle count.
+  std::size_t explicitCubeVolume(const RenderOptions& o, const LightFrame& f, PassTimer& timer, RenderResult& result);
+
+  /// The explicit volume: the map read back (or ray-cast), built and uploaded; returns the
+  /// triangles to draw (the sheet alone with z-pass).
+  std::size_t explicitVolume(const RenderOptions& o, const LightFrame& f, PassTimer& timer, RenderResult& result);
+
+  /// The silhouette volume of the scene's closed objects, built and uploaded; returns its triangles.
+  std::size_t silhouetteVolume(PassTimer& timer, RenderResult& result);
+
+  /// The volume's input after the depth passes: built and uploaded on the CPU, or the GPU volume's
+  /// depth texture and crossings, or (shadow maps, midpoint) the resolved depth.
+  void volumeInput(const RenderOptions& o, LightFrame& f, const VolumeMesh* givenVolume, PassTimer& timer,
+                   RenderResult& result);
+
+  /// The stencil methods' passes: the camera pass (the first light), the volume into the
+  /// stencil, and the lighting (or a further light's diffuse) pass.
+  void stencilPasses(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, PassTimer& timer, bool added,
+                     RenderResult& result);
+
+  /// The shadow-map methods' one shade pass (and none: no shadow test).
+  void shadeWithMap(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, PassTimer& timer, bool added);
+
+  /// After the light's passes: the images and counts the options ask for.
+  void lightFrameResults(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, RenderResult& result);
 
   /// The passes of the renderer's light. `added`: a further light of the frame (render()): no
   /// camera pass, its diffuse term added to the image.

@@ -13,8 +13,8 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
       throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
     if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
   }
-  const bool shadowMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 ||
-                         o.method == ShadowMethod::Pcf5;
+  const bool shadowMap =
+      o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
   if (shadowMap && !hasCompute)
     throw InputError("RenderOptions", "method", toString(o.method),
                      "a point light's cube shadow map needs OpenGL 4.3 (glCopyImageSubData); this context has " +
@@ -29,8 +29,10 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     const int side = dualParaboloidSide(o.depthWidth);
     if (2 * side > std::min(maxTextureSize, maxViewport[0]))
       throw InputError("RenderOptions", "depthWidth", std::to_string(o.depthWidth),
-                       "its dual-paraboloid maps (2 x " + std::to_string(side) + " texels wide) exceed this "
-                       "context's largest texture or viewport, " + std::to_string(std::min(maxTextureSize, maxViewport[0])));
+                       "its dual-paraboloid maps (2 x " + std::to_string(side) +
+                           " texels wide) exceed this "
+                           "context's largest texture or viewport, " +
+                           std::to_string(std::min(maxTextureSize, maxViewport[0])));
   }
   if (o.depthWidth != o.depthHeight)
     throw InputError("RenderOptions", "depthWidth x depthHeight",
@@ -56,15 +58,18 @@ void Renderer::Impl::checkOffsetRanges(const RenderOptions& o) const {
   if (o.method == ShadowMethod::Hybrid && !e.why.empty())
     throw InputError("RenderOptions", e.blurOffset ? "volumeOptions.blurOffset" : "volumeOptions.bias",
                      numberText(e.blurOffset ? v.blurOffset : bias), e.why);
-  const bool oneMap = o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
+  const bool oneMap =
+      o.method == ShadowMethod::ShadowMap || o.method == ShadowMethod::Pcf3 || o.method == ShadowMethod::Pcf5;
   if (oneMap && light.type != LightType::Point && o.shadowBiasConstant)
-    if (const std::string why = offsetEmptiesRange(*o.shadowBiasConstant, light.nearPlane, light.farPlane); !why.empty())
+    if (const std::string why = offsetEmptiesRange(*o.shadowBiasConstant, light.nearPlane, light.farPlane);
+        !why.empty())
       throw InputError("RenderOptions", "shadowBiasConstant", numberText(*o.shadowBiasConstant), why);
 }
 
 void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) const {
   requireScene();
-  checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight, std::min(maxTextureSize, maxViewport[0]));
+  checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight,
+            std::min(maxTextureSize, maxViewport[0]));
   if (cam.w < 1 || cam.h < 1 || cam.w > maxRenderbufferSize || cam.h > maxRenderbufferSize)
     throw InputError("RenderOptions", "imageWidth x imageHeight", std::to_string(cam.w) + "x" + std::to_string(cam.h),
                      "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
@@ -84,9 +89,9 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
   checkOffsetRanges(o);
   if (light.type == LightType::Point) validatePointLight(o);
   if (light.type != LightType::Point && o.method == ShadowMethod::Dpsm)
-    throw InputError("RenderOptions", "method", "dpsm",
-                     std::string("dual-paraboloid maps are a point light's; this scene's light is ") +
-                         toString(light.type));
+    throw InputError(
+        "RenderOptions", "method", "dpsm",
+        std::string("dual-paraboloid maps are a point light's; this scene's light is ") + toString(light.type));
   if (refinedGpuVolume(o)) {
     auto refuse = [&](const std::string& why) {
       throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
@@ -94,13 +99,15 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     };
     if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
     if (o.capture == CaptureMode::Midpoint)
-      refuse("finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use "
-             "back or front capture, or the explicit volume with rays");
+      refuse(
+          "finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use "
+          "back or front capture, or the explicit volume with rays");
     if (o.volumeOptions.cap != FarCap::Exact)
       refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
-      refuse("finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
-             "with rays");
+      refuse(
+          "finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
+          "with rays");
     // The maps it walks: one W x H, or a point light's six faces with their guard band
     // (drawRefinedCubeFaces), each (N + 2 G)^2.
     const bool point = light.type == LightType::Point;
@@ -128,14 +135,17 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     };
     if (o.method != ShadowMethod::Hybrid || o.volumeOptions.refineSteps == 0)
       refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0");
-    if (!hasCompute) refuse("gpu-walk", "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
-                                            context.info().glVersion);
+    if (!hasCompute)
+      refuse("gpu-walk",
+             "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
     if (o.capture == CaptureMode::Midpoint)
-      refuse("gpu-walk", "the silhouette walk follows one layer; midpoint capture is the mean of two: use rays "
-                         "(RefineCrossings::Rays) or back or front capture");
+      refuse("gpu-walk",
+             "the silhouette walk follows one layer; midpoint capture is the mean of two: use rays "
+             "(RefineCrossings::Rays) or back or front capture");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
-      refuse("gpu-walk", "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
-                         "edges' crossings alone");
+      refuse("gpu-walk",
+             "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
+             "edges' crossings alone");
   }
   if (o.refineCrossings == RefineCrossings::GpuRays && !refinedGpuVolume(o))
     throw InputError("RenderOptions", "refineCrossings", "gpu-rays",
@@ -145,11 +155,11 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     auto refuse = [](const std::string& why) { throw InputError("RenderOptions", "explicitDepth", "rays", why); };
     if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit)
       refuse("casts the explicit volume's depth map: it needs method hybrid and volume explicit");
-    if (!o.volumeOptions.depthOracle)
-      refuse("needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
+    if (!o.volumeOptions.depthOracle) refuse("needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
     if (o.refineCrossings == RefineCrossings::GpuWalk)
-      refuse("has no light pass, whose triangle record the silhouette walk follows: use the light pass "
-             "(ExplicitDepth::LightPass) or the crossings from rays");
+      refuse(
+          "has no light pass, whose triangle record the silhouette walk follows: use the light pass "
+          "(ExplicitDepth::LightPass) or the crossings from rays");
   }
 }
 

@@ -15,9 +15,8 @@ bool Renderer::Impl::walkCrossings(const RenderOptions& o) {
 
 VolumeBuildOptions Renderer::Impl::withWalk(const VolumeBuildOptions& vo) {
   VolumeBuildOptions v = vo;
-  v.crossingSource = [this](const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule,
-                                            bool blur, std::span<const double> blurred,
-                                            std::span<const glm::dvec2> centres) {
+  v.crossingSource = [this](const DepthMap& map, const BoundaryEdges& edges, const SheetDepthRule& rule, bool blur,
+                            std::span<const double> blurred, std::span<const glm::dvec2> centres) {
     return walk.run(walkInputs(), map, edges, rule, blur, blurred, centres);
   };
   return v;
@@ -38,7 +37,7 @@ WalkInputs Renderer::Impl::walkInputs() {
 }
 
 void Renderer::Impl::refinedGpuDebugMeshes(const CameraSetup& cam, const RenderOptions& o, const Texture& volumeDepth,
-                           RenderResult& result) {
+                                           RenderResult& result) {
   const VolumeBuildOptions& vo = o.volumeOptions;
   result.depthMap = readBack(o.capture);
   VolumeBuildOptions v = vo;
@@ -46,8 +45,8 @@ void Renderer::Impl::refinedGpuDebugMeshes(const CameraSetup& cam, const RenderO
   // The GPU's own boundary edges (its float rule can differ from the CPU's double one where a
   // jump equals the threshold); the CPU rule's edges on the same map are counted against them.
   v.boundaryEdgeSource = [flags = refined->readFlags(), &result](const DepthMap& map, const SheetDepthRule& rule,
-                                                                bool blur, std::span<const double> blurred,
-                                                                std::uint8_t* splitBits) {
+                                                                 bool blur, std::span<const double> blurred,
+                                                                 std::uint8_t* splitBits) {
     BoundaryEdges gpu = boundaryEdgesFromFlags(map.width, map.height, flags, splitBits);
     result.cpuRuleEdgeDifferences = differingBoundaryEdges(gpu, findBoundaryEdges(map, rule, blur, blurred));
     return gpu;
@@ -62,8 +61,8 @@ void Renderer::Impl::refinedGpuDebugMeshes(const CameraSetup& cam, const RenderO
   for (const Program* p : refined->programs()) setVolumeUniforms(*p, vo, result.biasUsed);
   bindTexture(3, vo.blur ? linearDepth : volumeDepth, fetchSampler);
   std::array<GLuint, 2> listed{};
-  SV_CHECK(listIndexedGpuVolume(cam, vo, result.biasUsed, volumeDepth, std::int64_t(lightW - 1) * (lightH - 1),
-                                listed, &*refined));
+  SV_CHECK(listIndexedGpuVolume(cam, vo, result.biasUsed, volumeDepth, std::int64_t(lightW - 1) * (lightH - 1), listed,
+                                &*refined));
   bindTexture(3, Texture(), fetchSampler);
   const std::vector<std::uint32_t> indices = readIndexList(listed[0]);
   result.gpuVolume = decodeRefinedGpuVolume(*result.depthMap, rule, vo.blur, indices, refined->readRecords());
@@ -86,7 +85,8 @@ const Texture* Renderer::Impl::gpuVolumeDepth(const RenderOptions& o, bool index
   return depth;
 }
 
-void Renderer::Impl::drawRefinedCubeFaces(const RenderOptions& o, const CameraSetup& cam, PassTimer& timer, RenderResult& result) {
+void Renderer::Impl::drawRefinedCubeFaces(const RenderOptions& o, const CameraSetup& cam, PassTimer& timer,
+                                          RenderResult& result) {
   const VolumeBuildOptions& vo = o.volumeOptions;
   const int n = o.depthWidth, m = n + 2 * kCubeGuardTexels;
   result.biasUsed = vo.bias ? *vo.bias : defaultBias(light, n, n, o.capture);
