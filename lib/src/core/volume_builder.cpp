@@ -5,13 +5,13 @@
 #include <memory>
 #include <sstream>
 
-#include <glm/geometric.hpp>
 #include <tbb/task_group.h>
+#include <glm/geometric.hpp>
 
+#include "shadowvol/boundary_edges.h"
 #include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
 #include "shadowvol/error.h"
-#include "shadowvol/boundary_edges.h"
 #include "shadowvol/far_cap.h"
 #include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_refinement.h"
@@ -19,8 +19,8 @@
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/grid_unprojector.h"
-#include "volume/refined_cells.h"
 #include "volume/quad_codes.h"
+#include "volume/refined_cells.h"
 #include "volume/sheet_depths.h"
 #include "volume/sheet_emit.h"
 #include "volume/sheet_vertices.h"
@@ -29,12 +29,17 @@
 
 namespace shadowvol {
 
-const char* toString(FarCap c) { return c == FarCap::Exact ? "exact" : "quad"; }
+const char* toString(FarCap c) {
+  return c == FarCap::Exact ? "exact" : "quad";
+}
 
 bool parseFarCap(const std::string& text, FarCap& c) {
-  if (text == "exact") c = FarCap::Exact;
-  else if (text == "quad") c = FarCap::Quad;
-  else return false;
+  if (text == "exact")
+    c = FarCap::Exact;
+  else if (text == "quad")
+    c = FarCap::Quad;
+  else
+    return false;
   return true;
 }
 
@@ -110,8 +115,7 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
                      "source gives the boundary edges' crossings alone");
   const int s = options.refineSubdivisions;
   if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
-    throw InputError("volume options", "refine subdivisions", std::to_string(s),
-                     "must be 1 (off), 2, 4 or 8");
+    throw InputError("volume options", "refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
   if (s > 1 && options.refineSteps == 0)
     throw InputError("volume options", "refine subdivisions", std::to_string(s),
                      "the sub-grid is part of refinement: it needs refine steps of at least 1");
@@ -133,8 +137,8 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
 // The texel grid's boundary edges, and those of them with one end on the far plane, into `stats`.
 void countBoundaryEdges(const BoundaryEdges& edges, VolumeBuildStats& stats) {
   stats.boundaryEdges = edges.edges.size();
-  stats.farBoundaryEdges =
-      std::size_t(std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
+  stats.farBoundaryEdges = std::size_t(
+      std::count_if(edges.edges.begin(), edges.edges.end(), [](const BoundaryEdge& e) { return !e.surface; }));
 }
 
 // The snap of refinement's bisected crossings, when the options bring a surface-end oracle.
@@ -151,8 +155,8 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
                         const VolumeBuildOptions& options, Refinement& refinement, volume::ChordPoints& chords,
                         VolumeBuildStats& stats) {
   const DepthMap& map = sheet.map();
-  const std::span<const glm::dvec2> centreList = centres ? std::span<const glm::dvec2>(quads.centres)
-                                                          : std::span<const glm::dvec2>();
+  const std::span<const glm::dvec2> centreList =
+      centres ? std::span<const glm::dvec2>(quads.centres) : std::span<const glm::dvec2>();
   if (options.crossingSource) {
     refinement = options.crossingSource(map, edges, sheet.rule(), options.blur, blurred, centreList);
     SV_CHECK_EQ(refinement.crossings.size(), edges.edges.size());
@@ -190,9 +194,11 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   const std::uint64_t nodes = std::uint64_t(quads.quads.size()) * std::uint64_t((s + 1) * (s + 1));
   if (nodes > kMaxSubgridNodes)
     throw InputError("volume options", "refine subdivisions", std::to_string(s),
-                     "the sub-grid of the " + std::to_string(quads.quads.size()) + " quads with a boundary edge would "
-                     "hold up to " + std::to_string(nodes) + " nodes, more than " + std::to_string(kMaxSubgridNodes) +
-                     ": use fewer subdivisions or a smaller map");
+                     "the sub-grid of the " + std::to_string(quads.quads.size()) +
+                         " quads with a boundary edge would "
+                         "hold up to " +
+                         std::to_string(nodes) + " nodes, more than " + std::to_string(kMaxSubgridNodes) +
+                         ": use fewer subdivisions or a smaller map");
   volume::SubgridOptions o;
   o.subdivisions = s;
   o.steps = refineSubEdgeSteps(options.refineSteps, s);
@@ -231,14 +237,121 @@ volume::RefinedQuads plainQuadsOf(const volume::RefinedQuads& quads, const std::
   return plain;  // two boundary sides each: no centres
 }
 
+// What refinement finds before the vertices are laid out: the boundary edges, the quads they
+// touch, the crossings and the chord points (all empty without refinement).
+struct RefinementFound {
+  BoundaryEdges edges;
+  volume::RefinedQuads quads;
+  Refinement refinement;
+  volume::ChordPoints chords;
+};
+
+// Stage 1r: the boundary edges (the options' source, else findBoundaryEdges' rule), their bits per
+// texel in splitBits (resized to the map), and the quads they touch.
+RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBuildOptions& options,
+                               std::span<const double> blurred, volume::Scratch<std::uint8_t>& splitBits) {
+  const DepthMap& map = sheet.map();
+  volume::sizeBuffer(splitBits, std::size_t(map.width) * map.height);
+  RefinementFound found;
+  found.edges = options.boundaryEdgeSource
+                    ? options.boundaryEdgeSource(map, sheet.rule(), options.blur, blurred, splitBits.data())
+                    : findBoundaryEdges(map, sheet.rule(), options.blur, blurred, splitBits.data());
+  SV_CHECK_EQ(found.edges.rowStart.size(), std::size_t(map.height) + 1);
+  found.quads = volume::findRefinedQuads(found.edges, map.width, map.height);
+  return found;
+}
+
+// Where the vertex numbering of each kind begins after the sheet's: the plain crossings (two per
+// boundary edge), the chord points (two each), the sub-grid's (after the plain crossings and chord
+// points with the adaptive sub-grid, else after the sheet's).
+struct VertexBases {
+  std::uint32_t crossing = 0, chord = 0, subgrid = 0;
+};
+
+// Stages 3r and 4r: the refined quads' triangles and walls (plain refinement, the sub-grid, or the
+// adaptive sub-grid's mix of both) and the far edges that bound the cap.
+struct RefinedStage {
+  volume::RefinedCells cells;
+  volume::SubgridCells sub;
+  volume::RefinedQuads plainQuads;  // the adaptive sub-grid's plain quads
+  std::vector<CapEdge> capEdges;
+};
+
+RefinedStage buildRefinedCells(const RefinementFound& found, const volume::TexelUse& use,
+                               const volume::SheetVertices& vertices, const volume::SheetDepths& sheet,
+                               const VolumeBuildOptions& options, const VertexBases& base, VolumeBuildStats& stats) {
+  const bool subgrid = options.refineSubdivisions > 1;
+  const bool adaptive = subgrid && !options.refineGridEverywhere;
+  const bool perfect = options.triangulation == Triangulation::Perfect;
+  const bool exact = options.cap == FarCap::Exact;
+  RefinedStage r;
+  if (!subgrid) {
+    const volume::ChordPoints* chordPoints = options.refineChords ? &found.chords : nullptr;  // as vertices
+    r.cells = volume::triangulateRefinedCells(found.quads, use, vertices, sheet, found.edges, found.refinement,
+                                              chordPoints, perfect, exact, base.crossing, base.chord);
+    r.capEdges = r.cells.capEdges;
+    return r;
+  }
+  const volume::PlainRefinement plain{found.edges, found.refinement, base.crossing, &found.chords, options.refineSteps};
+  r.sub = subgridCells(found.quads, use, vertices, sheet, found.edges, options, base.subgrid,
+                       adaptive ? &plain : nullptr, stats);
+  if (adaptive) {
+    r.plainQuads = plainQuadsOf(found.quads, r.sub.gridded);
+    r.cells = volume::triangulateRefinedCells(r.plainQuads, use, vertices, sheet, found.edges, found.refinement,
+                                              nullptr, perfect, exact, base.crossing, base.chord);
+    r.capEdges = std::move(r.cells.capEdges);
+  }
+  r.cells.triangles.insert(r.cells.triangles.end(), r.sub.triangles.begin(), r.sub.triangles.end());
+  r.capEdges.insert(r.capEdges.end(), r.sub.capEdges.begin(), r.sub.capEdges.end());
+  return r;
+}
+
+// Stage 5r, after the sheet is emitted: the refined quads' vertices (crossings, chord points, the
+// sub-grid's) and triangles into the mesh, and the sheet triangles beside the sub-grid split at its
+// side nodes. quadTri: each quad's first sheet triangle (emitSheet).
+void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const RefinedStage& r,
+                      const VolumeBuildOptions& options, const VertexBases& base, std::uint64_t sheetTriangles,
+                      const volume::Scratch<std::uint32_t>& quadTri, VolumeMesh& mesh, VolumeBuildStats& stats) {
+  using volume::QuadSlots;
+  const bool subgrid = options.refineSubdivisions > 1;
+  const bool adaptive = subgrid && !options.refineGridEverywhere;
+  if (subgrid)
+    std::copy(r.sub.positions.begin(), r.sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(base.subgrid));
+  if (!subgrid || adaptive) {
+    const volume::ChordPoints* chordPoints = options.refineChords ? &found.chords : nullptr;
+    volume::emitCrossingVertices(map, found.edges, found.refinement, chordPoints, base.crossing, base.chord, mesh);
+  }
+  std::copy(r.cells.triangles.begin(), r.cells.triangles.end(),
+            mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
+  if (!subgrid) return;
+  // One centroid vertex per split triangle.
+  volume::splitQuadTriangles(
+      r.sub.splits,
+      [&](std::uint32_t quad) {
+        return QuadSlots{quadTri[quad], 2};
+      },
+      mesh);
+  const std::vector<std::uint32_t>& plain = r.plainQuads.quads;
+  volume::splitQuadTriangles(
+      r.sub.plainSplits,
+      [&](std::uint32_t quad) {
+        const auto p = std::size_t(std::lower_bound(plain.begin(), plain.end(), quad) - plain.begin());
+        SV_CHECK(p < plain.size() && plain[p] == quad);
+        const std::vector<std::uint32_t>& first = r.cells.firstTriangle;
+        return QuadSlots{sheetTriangles + first[p], first[p + 1] - first[p]};
+      },
+      mesh);
+  stats.subgridSplitTriangles = mesh.positions.size() - (base.subgrid + r.sub.positions.size());
+}
+
 }  // namespace
 
 // Grid-sized scratch kept by a VolumeBuilder between builds.
 struct VolumeBuilder::Scratch {
-  volume::Scratch<double> blurred;        // sheet depths when materialised
-  volume::Scratch<std::uint8_t> code;     // one code byte per quad
-  volume::Scratch<std::uint32_t> quadTri; // index of each kept quad's first triangle
-  volume::Scratch<std::uint8_t> splitBits; // refinement: boundary edges per texel
+  volume::Scratch<double> blurred;          // sheet depths when materialised
+  volume::Scratch<std::uint8_t> code;       // one code byte per quad
+  volume::Scratch<std::uint32_t> quadTri;   // index of each kept quad's first triangle
+  volume::Scratch<std::uint8_t> splitBits;  // refinement: boundary edges per texel
 };
 
 VolumeBuilder::VolumeBuilder() : scratch_(std::make_unique<Scratch>()) {}
@@ -302,26 +415,17 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
 
   // 1r. Refinement: the boundary edges and the quads they touch.
   t0 = Clock::now();
-  BoundaryEdges edges;
-  RefinedQuads refinedQuads;
   const std::span<const double> blurred =
       options.blur ? std::span<const double>(scratch_->blurred.data(), texels) : std::span<const double>();
-  if (refine) {
-    sizeBuffer(scratch_->splitBits, texels);
-    edges = options.boundaryEdgeSource
-                ? options.boundaryEdgeSource(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data())
-                : findBoundaryEdges(map, sheet.rule(), options.blur, blurred, scratch_->splitBits.data());
-    SV_CHECK_EQ(edges.rowStart.size(), std::size_t(h) + 1);
-    refinedQuads = findRefinedQuads(edges, w, h);
-  }
+  RefinementFound found = refine ? findRefinement(sheet, options, blurred, scratch_->splitBits) : RefinementFound{};
   double msRefine = msSince(t0);
 
   // 2. Quad codes: diagonals and kept triangles (refined quads marked). Every stored depth is
   // checked here, before any ray is cast.
   t0 = Clock::now();
   const GridUnprojector unproject(map);
-  const QuadCodes codes =
-      computeQuadCodes(sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr}, scratch_->code);
+  const QuadCodes codes = computeQuadCodes(
+      sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr}, scratch_->code);
   const QuadGrid grid{w - 1, h - 1, scratch_->code.data()};
   stats.flippedQuads = codes.flipped;
   stats.droppedQuads = codes.dropped;
@@ -329,11 +433,10 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   double msSheet = msSince(t0);
 
   // 2r. Refinement: the crossings (the oracle's rays).
-  Refinement refinement;
-  ChordPoints chords;
   if (refine && (!subgrid || adaptive)) {
     const auto tr = Clock::now();
-    castRefinementRays(sheet, edges, refinedQuads, !subgrid, adaptive, blurred, options, refinement, chords, stats);
+    castRefinementRays(sheet, found.edges, found.quads, !subgrid, adaptive, blurred, options, found.refinement,
+                       found.chords, stats);
     msRefine += msSince(tr);
   }
   t0 = Clock::now();
@@ -343,37 +446,20 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // or the refined quads' triangles and walls, whose far edges bound the cap.
   const TexelUse use(grid, codes);
   const SheetVertices vertices = countSheetVertices(use, !refine);
-  const auto tRuns = Clock::now();
+  VertexBases base;
+  base.crossing = std::uint32_t(vertices.count());
+  base.chord = std::uint32_t(base.crossing + 2 * found.edges.edges.size());
+  base.subgrid = adaptive ? base.chord : base.crossing;  // after the plain crossings, if any
   CapBoundary boundary;
-  RefinedCells cells;
-  const auto crossingBase = std::uint32_t(vertices.count());
-  const auto chordBase = std::uint32_t(crossingBase + 2 * edges.edges.size());
-  const ChordPoints* chordPoints = refine && options.refineChords ? &chords : nullptr;  // as vertices
+  RefinedStage refined;
   double msEdges = 0.0;
-  SubgridCells sub;
-  RefinedQuads plainQuads;  // the adaptive sub-grid's plain quads
-  const auto subgridBase = adaptive ? chordBase : crossingBase;  // after the plain crossings, if any
-  if (subgrid) {
+  if (refine) {
     const auto tc = Clock::now();
-    const PlainRefinement plain{edges, refinement, crossingBase, &chords, options.refineSteps};
-    sub = subgridCells(refinedQuads, use, vertices, sheet, edges, options, subgridBase, adaptive ? &plain : nullptr,
-                       stats);
-    if (adaptive) {
-      plainQuads = plainQuadsOf(refinedQuads, sub.gridded);
-      cells = triangulateRefinedCells(plainQuads, use, vertices, sheet, edges, refinement, nullptr, perfect, exact,
-                                      crossingBase, chordBase);
-      boundary.edges = std::move(cells.capEdges);
-    }
-    cells.triangles.insert(cells.triangles.end(), sub.triangles.begin(), sub.triangles.end());
-    boundary.edges.insert(boundary.edges.end(), sub.capEdges.begin(), sub.capEdges.end());
-    msRefine += msSince(tc);
-  } else if (refine) {
-    const auto tc = Clock::now();
-    cells = triangulateRefinedCells(refinedQuads, use, vertices, sheet, edges, refinement, chordPoints, perfect, exact,
-                                    crossingBase, chordBase);
-    boundary.edges = cells.capEdges;
+    refined = buildRefinedCells(found, use, vertices, sheet, options, base, stats);
+    boundary.edges = std::move(refined.capEdges);
     msRefine += msSince(tc);
   } else {
+    const auto tRuns = Clock::now();
     boundary = findCapBoundary(use, vertices, sheet);
     msEdges = msSince(tRuns);
   }
@@ -395,13 +481,15 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // vertices and triangles. Room for the cap too (a flattened cap has about as many triangles as
   // boundary edges), so that appending it rarely reallocates.
   VolumeMesh& mesh = result.mesh;
+  const SubgridCells& sub = refined.sub;
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
-  const std::uint64_t triangles = sheetTriangles + cells.triangles.size();
+  const std::uint64_t triangles = sheetTriangles + refined.cells.triangles.size();
   if (subgrid)
-    sizeBuffer(mesh.positions, subgridBase + sub.positions.size(),
-               subgridBase + sub.positions.size() + sub.splits.size() + sub.plainSplits.size());
+    sizeBuffer(mesh.positions, base.subgrid + sub.positions.size(),
+               base.subgrid + sub.positions.size() + sub.splits.size() + sub.plainSplits.size());
   else
-    sizeBuffer(mesh.positions, vertices.count() + boundary.copies + 2 * edges.edges.size() + 2 * chords.segments.size());
+    sizeBuffer(mesh.positions,
+               vertices.count() + boundary.copies + 2 * found.edges.edges.size() + 2 * found.chords.segments.size());
   sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
   sizeBuffer(scratch_->quadTri, stats.quads);
   try {
@@ -412,22 +500,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   }
   if (refine) {
     const auto tc = Clock::now();
-    if (subgrid)
-      std::copy(sub.positions.begin(), sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(subgridBase));
-    if (!subgrid || adaptive)
-      emitCrossingVertices(map, edges, refinement, chordPoints, crossingBase, chordBase, mesh);
-    std::copy(cells.triangles.begin(), cells.triangles.end(), mesh.triangles.begin() + std::ptrdiff_t(sheetTriangles));
-    if (subgrid) {  // one centroid vertex per split triangle
-      const volume::Scratch<std::uint32_t>& quadTri = scratch_->quadTri;
-      splitQuadTriangles(sub.splits, [&](std::uint32_t quad) { return QuadSlots{quadTri[quad], 2}; }, mesh);
-      splitQuadTriangles(sub.plainSplits, [&](std::uint32_t quad) {
-        const auto p = std::size_t(std::lower_bound(plainQuads.quads.begin(), plainQuads.quads.end(), quad) -
-                                   plainQuads.quads.begin());
-        SV_CHECK(p < plainQuads.quads.size() && plainQuads.quads[p] == quad);
-        return QuadSlots{sheetTriangles + cells.firstTriangle[p], cells.firstTriangle[p + 1] - cells.firstTriangle[p]};
-      }, mesh);
-      stats.subgridSplitTriangles = mesh.positions.size() - (subgridBase + sub.positions.size());
-    }
+    emitRefinedCells(map, found, refined, options, base, sheetTriangles, scratch_->quadTri, mesh, stats);
     msRefine += msSince(tc);
   } else {
     emitPinchCopies(grid, boundary, scratch_->quadTri, mesh);
@@ -437,20 +510,21 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
 
   // 6. The far cap.
   t0 = Clock::now();
-  stats.capTrianglesBefore = sheetTriangles + cells.footprint.size() + sub.footprintTriangles;
+  stats.capTrianglesBefore = sheetTriangles + refined.cells.footprint.size() + sub.footprintTriangles;
   if (flatCap) {
     capTask.wait();
     appendFlatCap(cap, mesh);
     stats.capTrianglesAfter = cap.size();
   } else {
-    const RefinedFootprint footprint{cells, edges, refinement, chordPoints, crossingBase, chordBase};
-    stats.capTrianglesAfter = appendMirroredCap(grid, scratch_->quadTri, boundary.edges, unproject, map,
-                                                refine ? &footprint : nullptr, mesh);
+    const ChordPoints* chords = refine && options.refineChords ? &found.chords : nullptr;
+    const RefinedFootprint fp{refined.cells, found.edges, found.refinement, chords, base.crossing, base.chord};
+    stats.capTrianglesAfter =
+        appendMirroredCap(grid, scratch_->quadTri, boundary.edges, unproject, map, refine ? &fp : nullptr, mesh);
   }
   stats.msCap = msSince(t0) + msEdges + msCapTask;  // the cap's own work, partly run during the sheet
-  if (adaptive) {  // the plain crossings of edges between two gridded quads
+  if (adaptive) {                                   // drop the plain crossings of edges between two gridded quads
     const auto tc = Clock::now();
-    dropUnusedVertices(mesh, crossingBase);
+    dropUnusedVertices(mesh, base.crossing);
     stats.msRefine += msSince(tc);
   }
   stats.msTotal = msSince(tStart);
