@@ -1,5 +1,6 @@
 // Issue 5: the GPU stencil against Embree's crossing counts of the explicit volume, on every
 // shipped scene and option combination, and the plate against the exact shadow.
+#include <numbers>
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
@@ -713,6 +714,80 @@ TEST(Validation, ImagePlaneTiesWidenOnlyPixelsOnAnEdge) {
   EXPECT_EQ(counts.zfailMax[onEdge], 1);
   EXPECT_EQ(counts.zfailMin[inside], 1);
   EXPECT_EQ(counts.zfailMax[inside], 1);
+}
+
+// The agreement check has teeth: the stencil of one frame against the crossing counts of another
+// closed volume (the same scene's at a coarser map, its shadow edge some pixels away) fails it,
+// image-plane ties and all.
+TEST(Validation, AStencilFromAnotherVolumeFailsTheAgreement) {
+  Scene scene = defaultScene();
+  scene.camera.width = 160;
+  scene.camera.height = 120;
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Explicit;
+  ro.depthWidth = ro.depthHeight = 64;
+  Validated fine = renderAndValidate(scene, ro);
+  expectConsistent(fine);
+  ro.depthWidth = ro.depthHeight = 8;
+  const Validated coarse = renderAndValidate(scene, ro);
+  expectConsistent(coarse);
+  fine.frame.volume = coarse.frame.volume;  // counted against a volume it was not drawn with
+  const FrameValidation v = validateFrame(scene, *fine.depthMap, ro.volumeOptions, fine.frame);
+  EXPECT_FALSE(v.consistent);
+  EXPECT_LT(v.stencilVsCount.fraction(), kRequiredAgreement);
+  EXPECT_GT(v.stencilVsCount.pixels - v.stencilVsCount.agree, 20u);
+}
+
+// World units per pixel of tieCamera at z = 0 (5 units from the eye).
+double tiePixel() { return 2.0 * 5.0 * std::tan(45.0 * std::numbers::pi / 360.0) / 63.0; }
+
+// A triangle smaller than the tie square, beside the centre ray but inside the square, is missed
+// by the centre's and the corners' rays; a rasteriser that snaps its vertices may still cover the
+// pixel (a sub-grid's wall at a 2048^2 map on a 640 x 480 image: 16 pixels of the lion head), and
+// turn it over (it is smaller than the snap), so the range admits both of its counts; the same
+// triangle a hundred squares away admits nothing.
+TEST(Validation, ImagePlaneTiesAdmitTrianglesSmallerThanTheSquare) {
+  const Camera camera = tieCamera();
+  const double px = tiePixel(), r = kImagePlaneTie * px;
+  for (double offset : {0.5 * r, 100.0 * r}) {
+    SCOPED_TRACE(offset);
+    VolumeMesh volume;  // in z = 0, a fifth of the square across, facing away from the eye
+    const double x = offset, y = 0.3 * r, e = 0.4 * r;
+    volume.positions = {{x, y, 0.0}, {x, y + e, 0.0}, {x + e, y, 0.0}};
+    volume.triangles = {{0u, 1u, 2u}};
+    const std::size_t centre = 31 * 63 + 31;
+    const CameraHits hits = tieHits({centre});
+    CrossingCounts counts = oneCrossingEach();
+    counts.zfail[centre] = counts.zfailMin[centre] = counts.zfailMax[centre] = 0;  // no ray meets it
+    const bool near = offset < r;
+    EXPECT_EQ(widenImagePlaneTies(volume, camera, hits, {centre}, counts), near ? 1u : 0u);
+    EXPECT_EQ(counts.zfailMin[centre], near ? -1 : 0);
+    EXPECT_EQ(counts.zfailMax[centre], near ? 1 : 0);
+  }
+}
+
+// A sliver through the square may be turned over by the snap of its vertices: both of its counts
+// are admitted, with its depth there taken over every such snap.
+TEST(Validation, ImagePlaneTiesAdmitASliverEitherWayRound) {
+  const Camera camera = tieCamera();
+  const double px = tiePixel();
+  VolumeMesh volume;  // in z = 0, ten pixels long and a thousandth of a pixel high, over the centre
+  volume.positions = {{-5.0 * px, 0.0, 0.0}, {5.0 * px, 0.0, 0.0}, {0.0, 0.001 * px, 0.0}};
+  volume.triangles = {{0u, 1u, 2u}};
+  const std::size_t centre = 31 * 63 + 31;
+  const CameraHits hits = tieHits({centre});
+  CrossingCounts counts = oneCrossingEach();
+  EXPECT_EQ(widenImagePlaneTies(volume, camera, hits, {centre}, counts), 1u);
+  EXPECT_EQ(counts.zfailMin[centre], -1);
+  EXPECT_EQ(counts.zfailMax[centre], 1);
+}
+
+// The counting rule ends on any depth, even one that compares false with itself minus itself.
+TEST(Validation, CountPixelTakesAnInfiniteDepth) {
+  std::vector<VolumeCrossing> crossings{{1.0, -1}, {INFINITY, 1}, {INFINITY, 1}};
+  const PixelCounts c = countPixel(crossings, 2.0, 1e-4);
+  EXPECT_EQ(c.zpass, 1);
+  EXPECT_GE(c.zfail, 1);
 }
 
 // Counts that contradict the eye's side are recounted in double and come back as Embree counted

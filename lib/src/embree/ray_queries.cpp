@@ -158,7 +158,8 @@ PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, 
     const double t0 = crossings[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
     int sum = 0;
     std::size_t e = g;
-    while (e < crossings.size() && crossings[e].t - t0 <= tol) sum += crossings[e++].sign;
+    do sum += crossings[e++].sign;  // the first always (an infinite t0 compares false below)
+    while (e < crossings.size() && crossings[e].t - t0 <= tol);
     const int sign = (sum > 0) - (sum < 0);
     if (std::abs(t0 - tVisible) <= band) {
       zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)

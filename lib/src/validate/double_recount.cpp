@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include <CGAL/AABB_traits.h>
@@ -21,7 +24,9 @@ using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
-glm::dvec3 toGlm(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+glm::dvec3 toGlm(const K::Point_3& p) {
+  return {p.x(), p.y(), p.z()};
+}
 
 // Ray parameter and sign of the ray's crossing with the plane of triangle t (the AABB tree
 // reported that the ray meets the triangle, edges included, so only the parameter is computed
@@ -116,6 +121,200 @@ class DoubleCounter {
   std::vector<VolumeCrossing> crossings_;
 };
 
+// A triangle's projection onto the camera's image (pixels, rows from the top): the part in front
+// of the eye (clipped at a small positive clip w, as a rasteriser with depth clamp draws it), a
+// convex polygon of up to four points; empty when the triangle lies wholly behind the eye.
+struct ImagePolygon {
+  glm::dvec2 p[4];
+  double w[4] = {0.0, 0.0, 0.0, 0.0};  // clip w of each point: the camera view depth
+  int n = 0;
+  bool clipped = false;                                                 // a vertex lay behind the eye
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;  // its bounding box
+};
+
+ImagePolygon projectTriangle(const glm::dmat4& toClip, const VolumeMesh& volume, std::size_t t, int w, int h) {
+  constexpr double kMinW = 1e-9;
+  glm::dvec4 c[3];
+  for (int k = 0; k < 3; ++k) c[k] = toClip * glm::dvec4(volume.positions[volume.triangles[t][std::size_t(k)]], 1.0);
+  ImagePolygon out;
+  auto add = [&](const glm::dvec4& v) {
+    const glm::dvec2 q((v.x / v.w + 1.0) * 0.5 * w, (1.0 - v.y / v.w) * 0.5 * h);
+    out.w[out.n] = v.w;
+    out.p[out.n++] = q;
+    out.x0 = std::min(out.x0, q.x), out.x1 = std::max(out.x1, q.x);
+    out.y0 = std::min(out.y0, q.y), out.y1 = std::max(out.y1, q.y);
+  };
+  for (int k = 0; k < 3; ++k) {  // Sutherland-Hodgman against w = kMinW
+    const glm::dvec4 &a = c[k], &b = c[(k + 1) % 3];
+    const bool aIn = a.w > kMinW, bIn = b.w > kMinW;
+    if (aIn) add(a);
+    if (aIn != bIn) add(a + (b - a) * ((kMinW - a.w) / (b.w - a.w)));
+    out.clipped = out.clipped || !aIn;
+  }
+  return out;
+}
+
+double cross2(const glm::dvec2& a, const glm::dvec2& b) {
+  return a.x * b.y - a.y * b.x;
+}
+
+// How a projected polygon lies against the square of image-plane ties around `centre`: apart,
+// overlapping it, or holding all of it (strictly; a polygon of no area never holds it).
+enum class SquareCover { Apart, Overlaps, Holds };
+
+SquareCover coverOfSquare(const ImagePolygon& poly, const glm::dvec2& centre) {
+  const double r = kImagePlaneTie;
+  if (poly.n < 3 || poly.x1 < centre.x - r || poly.x0 > centre.x + r || poly.y1 < centre.y - r ||
+      poly.y0 > centre.y + r)
+    return SquareCover::Apart;
+  double area = 0.0;
+  for (int k = 0; k < poly.n; ++k) area += cross2(poly.p[k], poly.p[(k + 1) % poly.n]);
+  const double orient = area > 0.0 ? 1.0 : -1.0;
+  bool holds = area != 0.0;
+  for (int k = 0; k < poly.n; ++k) {  // separating axes: the polygon's edges (the box's are above)
+    const glm::dvec2 a = poly.p[k], e = poly.p[(k + 1) % poly.n] - a;
+    const double reach = r * (std::abs(e.x) + std::abs(e.y));  // the square's half-extent along e's normal
+    const double side = orient * cross2(e, centre - a);        // > 0: the centre on the inner side
+    if (side < -reach) return SquareCover::Apart;
+    holds = holds && side > reach;
+  }
+  return holds ? SquareCover::Holds : SquareCover::Overlaps;
+}
+
+// Whether a rasteriser could turn the polygon over: its vertices snapped by up to a sub-pixel step
+// (kImagePlaneTie covers two), a sliver whose height is within that could change its winding.
+bool mayFlip(const ImagePolygon& poly) {
+  double area2 = 0.0, longest = 0.0;
+  for (int k = 0; k < poly.n; ++k) {
+    area2 += cross2(poly.p[k], poly.p[(k + 1) % poly.n]);
+    longest = std::max(longest, glm::length(poly.p[(k + 1) % poly.n] - poly.p[k]));
+  }
+  return std::abs(area2) <= 2.0 * kImagePlaneTie * longest;  // twice the area over the base: the height
+}
+
+// The view depths a rasteriser may give an unclipped projected triangle at image point q: 1 / depth
+// is affine in the image, evaluated with each vertex moved by up to kImagePlaneTie pixels along
+// each axis (its snap and the float transform), the extremes of 64 such moves. A sliver's depth
+// gradient across it is ill-conditioned, so its range is wide where a small move tilts its plane.
+// (kAnyDepth stands for "any depth behind", finite so that countPixel can sort and merge it.)
+constexpr double kAnyDepth = std::numeric_limits<double>::max();
+
+std::pair<double, double> depthRangeAt(const ImagePolygon& poly, const glm::dvec2& q) {
+  double lo = INFINITY, hi = -INFINITY;
+  const double r = kImagePlaneTie;
+  for (int m = 0; m < 64; ++m) {
+    glm::dvec2 v[3];
+    for (int k = 0; k < 3; ++k)
+      v[k] = poly.p[k] + glm::dvec2((m >> (2 * k) & 1) ? r : -r, (m >> (2 * k + 1) & 1) ? r : -r);
+    const double area = cross2(v[1] - v[0], v[2] - v[0]);
+    if (area == 0.0) continue;
+    const double l1 = cross2(q - v[0], v[2] - v[0]) / area;
+    const double l2 = cross2(v[1] - v[0], q - v[0]) / area;
+    const double l0 = 1.0 - l1 - l2;
+    const double inv = l0 / poly.w[0] + l1 / poly.w[1] + l2 / poly.w[2];
+    if (!(inv > 0.0)) return {0.0, kAnyDepth};  // the plane passes the eye near q: any depth
+    const double d = 1.0 / inv;
+    lo = std::min(lo, d), hi = std::max(hi, d);
+  }
+  if (!(lo <= hi)) return {0.0, kAnyDepth};
+  return {lo, hi};
+}
+
+// The admissible z-fail range of a pixel from every volume triangle whose projection meets the
+// square of image-plane ties around its centre, however small: one that holds the whole square is
+// drawn at the pixel, one that only overlaps it may be drawn or not, and a sliver may be drawn
+// turned over; each is counted at its plane's depth along the centre's ray (where the rasteriser
+// evaluates it), an edge-on one at the pixel's own depth (a tie). The corners' rays miss a
+// triangle smaller than the square (a sub-grid's wall at a large map), which this does not.
+struct SquareRange {
+  int lo = 0, hi = 0;
+};
+
+SquareRange squareRange(const std::vector<const ImagePolygon*>& polys, const std::vector<std::size_t>& ids,
+                        const VolumeMesh& volume, const TexelUnprojector::Ray& centreRay, const glm::dvec2& centre,
+                        double tVisible, double band) {
+  std::vector<VolumeCrossing> low, high;
+  for (std::size_t k = 0; k < polys.size(); ++k) {
+    const ImagePolygon& poly = *polys[k];
+    const SquareCover cover = coverOfSquare(poly, centre);
+    if (cover == SquareCover::Apart) continue;
+    const auto& tri = volume.triangles[ids[k]];
+    const glm::dvec3 a = volume.positions[tri[0]];
+    const glm::dvec3 n = glm::cross(volume.positions[tri[1]] - a, volume.positions[tri[2]] - a);
+    const double denom = glm::dot(n, centreRay.direction);
+    // The depths it may have at the centre: its plane's there (a clipped one), else the range of
+    // its snapped planes (depthRangeAt); an edge-on one: a tie with the pixel's own depth.
+    double t0 = tVisible, t1 = tVisible;
+    if (denom != 0.0 && poly.clipped)
+      t0 = t1 = glm::dot(n, a - centreRay.origin) / denom;
+    else if (denom != 0.0)
+      std::tie(t0, t1) = depthRangeAt(poly, centre);
+    if (!(t1 >= 0.0)) continue;  // behind the eye
+    const int sign = denom > 0.0 ? 1 : -1;
+    const bool flips = denom == 0.0 || mayFlip(poly);
+    // Its contribution is lowest as a -1 at its farthest depth or a +1 at its nearest (or not
+    // drawn, unless it holds the square), highest the other way round.
+    if (cover == SquareCover::Holds && !flips) {
+      low.push_back({sign < 0 ? t1 : t0, sign});
+      high.push_back({sign > 0 ? t1 : t0, sign});
+      continue;
+    }
+    if (sign < 0 || flips) low.push_back({t1, -1});
+    if (sign > 0 || flips) high.push_back({t1, 1});
+  }
+  return {countPixel(low, tVisible, band).zfailMin, countPixel(high, tVisible, band).zfailMax};
+}
+
+// The projected polygons of the triangles near each of a few pixels (widenImagePlaneTies): each
+// triangle of `near` projected once, listed for every pixel whose square of ties its bounding box
+// reaches.
+class PolygonsNear {
+ public:
+  PolygonsNear(const VolumeMesh& volume, const Camera& camera, const std::vector<std::size_t>& near,
+               const std::vector<std::size_t>& pixels)
+      : of_(pixels.size()), ids_(pixels.size()) {
+    const int w = camera.width, h = camera.height;
+    const glm::dmat4 toClip = cameraProjection(camera) * cameraView(camera);
+    std::unordered_map<std::size_t, std::size_t> slot;  // pixel index -> position in `pixels`
+    for (std::size_t p = 0; p < pixels.size(); ++p) slot.emplace(pixels[p], p);
+    polygons_.reserve(near.size());
+    for (std::size_t t : near) polygons_.push_back(projectTriangle(toClip, volume, t, w, h));
+    const double r = kImagePlaneTie;
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      const ImagePolygon& poly = polygons_[k];
+      if (poly.n < 3) continue;
+      auto list = [&](std::size_t p) {
+        of_[p].push_back(&polygons_[k]);
+        ids_[p].push_back(near[k]);
+      };
+      // Pixel centres (x + 0.5, row + 0.5) within r of the box.
+      const double cx0 = std::max(0.0, std::ceil(poly.x0 - r - 0.5)),
+                   cx1 = std::min(w - 1.0, std::floor(poly.x1 + r - 0.5));
+      const double cy0 = std::max(0.0, std::ceil(poly.y0 - r - 0.5)),
+                   cy1 = std::min(h - 1.0, std::floor(poly.y1 + r - 0.5));
+      if (cx0 > cx1 || cy0 > cy1) continue;
+      if ((cx1 - cx0 + 1.0) * (cy1 - cy0 + 1.0) <= double(pixels.size())) {
+        for (int row = int(cy0); row <= int(cy1); ++row)
+          for (int x = int(cx0); x <= int(cx1); ++x)
+            if (auto it = slot.find(std::size_t(row) * std::size_t(w) + std::size_t(x)); it != slot.end())
+              list(it->second);
+      } else {
+        for (std::size_t p = 0; p < pixels.size(); ++p) {
+          const double x = double(pixels[p] % std::size_t(w)), row = double(pixels[p] / std::size_t(w));
+          if (x >= cx0 && x <= cx1 && row >= cy0 && row <= cy1) list(p);
+        }
+      }
+    }
+  }
+  const std::vector<const ImagePolygon*>& of(std::size_t p) const { return of_[p]; }
+  const std::vector<std::size_t>& ids(std::size_t p) const { return ids_[p]; }
+
+ private:
+  std::vector<ImagePolygon> polygons_;
+  std::vector<std::vector<const ImagePolygon*>> of_;
+  std::vector<std::vector<std::size_t>> ids_;
+};
+
 }  // namespace
 
 std::size_t recountInconsistentPixels(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
@@ -151,8 +350,10 @@ std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, 
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
   const std::vector<glm::dvec2> corners = imagePlaneTieCorners();
   SV_CHECK(cornerDepths.empty() || cornerDepths.size() == corners.size() * pixels.size());
-  DoubleCounter counter(volume, trianglesNear(volume, camera, pixels));
+  const std::vector<std::size_t> near = trianglesNear(volume, camera, pixels);
+  DoubleCounter counter(volume, near);
   const PrimaryRays rays(camera);
+  const PolygonsNear polygons(volume, camera, near, pixels);
   std::size_t widened = 0;
   std::vector<double> depths;
   for (std::size_t p = 0; p < pixels.size(); ++p) {
@@ -185,6 +386,11 @@ std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, 
       }
     }
     for (std::size_t d = 1; d < depths.size(); ++d) admit(centre, depths[d], nullptr);
+    const glm::dvec2 centrePx(x + 0.5, row + 0.5);
+    const SquareRange square =
+        squareRange(polygons.of(p), polygons.ids(p), volume, centre, centrePx, own, tieTolerance(camera, own) * own);
+    lo = std::min(lo, square.lo);
+    hi = std::max(hi, square.hi);
     widened += lo < counts.zfailMin[k] || hi > counts.zfailMax[k];
     counts.zfailMin[k] = lo;
     counts.zfailMax[k] = hi;

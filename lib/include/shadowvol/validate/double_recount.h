@@ -14,6 +14,11 @@
 //   every edge that passes within kImagePlaneTie of the centre separates it from one corner. A
 //   triangle a corner's ray meets counts at its depth there and at its plane's depth on the
 //   centre's ray, where the rasteriser evaluates it.
+//   A triangle smaller than the square can lie between those rays (a sub-grid's wall at a large
+//   map is a few hundredths of a pixel across): every triangle whose projection meets the square
+//   also widens the range, drawn or not where it only meets it, either way round where its height
+//   in the image is within the snap, at any depth its plane can have at the centre with its
+//   vertices moved by up to kImagePlaneTie pixels.
 //   The scene's own edges snap too: where the camera sees another surface at a corner (a
 //   silhouette of the scene within kImagePlaneTie of the centre), the rasteriser may have drawn
 //   that surface at the pixel, so the counts split at the corner's visible depth are admitted too.
