@@ -214,12 +214,12 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
   return w;
 }
 
-void checkResolution(const std::string& option, int resolution) {
-  if (resolution == 2)  // checkDepthMapSize names the others
+void checkResolution(const std::string& option, int resolution, DepthMapUse use) {
+  if (resolution == 2)  // checkDepthMapSize names the others; a depth file is made for a volume too
     throw InputError("command line", option, "2",
                      "must be at least " + std::to_string(kMinVolumeMapSide) +
                          ": a map's outermost ring of texels lies on the far plane, so a 2 x 2 map's volume is empty");
-  checkDepthMapSize(resolution, resolution, "command line", option);
+  checkDepthMapSize(resolution, resolution, "command line", option, use);
 }
 
 void checkOutputPath(const std::string& option, const std::string& path) {

@@ -85,9 +85,9 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
 /// Largest side accepted for a depth map (texels).
 inline constexpr int kMaxResolution = kMaxDepthMapSide;
 
-/// checkDepthMapSize (depth_map.h) of an N x N map, naming the option, and N >= kMinVolumeMapSide
-/// (volume_builder.h): a smaller map's volume is empty.
-void checkResolution(const std::string& option, int resolution);
+/// checkDepthMapSize (depth_map.h) of an N x N map for `use` (its memory), naming the option, and
+/// N >= kMinVolumeMapSide (volume_builder.h): a smaller map's volume is empty (a depth file's too).
+void checkResolution(const std::string& option, int resolution, DepthMapUse use = DepthMapUse::Volume);
 
 /// Refuses an output path whose folder does not exist (before any work is done).
 void checkOutputPath(const std::string& option, const std::string& path);

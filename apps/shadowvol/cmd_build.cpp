@@ -46,7 +46,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                                    "Build from this depth map (PFM + side file from 'shadowvol depth') instead of "
                                    "capturing one from the scene");
   auto* resOpt = cmd->add_option("--resolution", o->resolution,
-                                 "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution) +
+                                 "Depth map size N (N x N texels), " + std::to_string(kMinVolumeMapSide) + ".." + std::to_string(kMaxResolution) +
                                      " (a point light: six faces of N x N, N up to " +
                                      std::to_string(kMaxResolution / kCubeFaces) + ")")
                      ->capture_default_str();

@@ -7,10 +7,10 @@
 
 #include "capture_device.h"
 #include "cli_common.h"
-#include "shadowvol/version.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
+#include "shadowvol/version.h"
 
 namespace shadowvol::cli {
 
@@ -24,13 +24,16 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     CaptureDeviceOptions device;
   };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("depth", "Capture the light's depth map (by ray casting with Embree, or on the GPU "
-                                          "with --device gpu) and write it as a PFM with a JSON side file (matrices, "
-                                          "near/far, capture mode)");
+  auto* cmd = app.add_subcommand("depth",
+                                 "Capture the light's depth map (by ray casting with Embree, or on the GPU "
+                                 "with --device gpu) and write it as a PFM with a JSON side file (matrices, "
+                                 "near/far, capture mode)");
   addSceneOptions(*cmd, o->scene);
   addLightFitOption(*cmd, o->scene.fit);
   addLightChoiceOption(*cmd, o->light);
-  cmd->add_option("--resolution", o->resolution, "Depth map size N (N x N texels), 2.." + std::to_string(kMaxResolution))
+  cmd->add_option("--resolution", o->resolution,
+                  "Depth map size N (N x N texels), " + std::to_string(kMinVolumeMapSide) + ".." +
+                      std::to_string(kMaxResolution))
       ->capture_default_str();
   cmd->add_option("--capture", o->capture,
                   "Which surface each texel records: back (first back face: the thesis's default; single-sided "
@@ -42,7 +45,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
   cmd->callback([&run, o] {
     run = [o] {
-      checkResolution("--resolution", o->resolution);
+      checkResolution("--resolution", o->resolution, DepthMapUse::MapOnly);
       checkOutputPath("--out", o->out);
       if (std::filesystem::path(o->out).extension() != ".pfm")
         throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");

@@ -145,6 +145,14 @@ TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
     EXPECT_TRUE(contains(r.out, res)) << r.out;
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir));
+  // The largest map the help names is accepted by `depth`, which builds no volume (its memory was
+  // estimated with a volume's: 16384 refused on a 24 GiB machine); the error is the missing folder.
+  const CliResult largest = runCli("depth --resolution 16384 --out " + (dir / "missing" / "d.pfm").string());
+  EXPECT_EQ(largest.code, 1) << largest.out;
+  EXPECT_TRUE(contains(largest.out, "--out")) << largest.out;
+  EXPECT_FALSE(contains(largest.out, "MiB")) << largest.out;
+  for (const char* cmd : {"depth", "build"})  // the help names the smallest map accepted
+    EXPECT_TRUE(contains(runCli(std::string(cmd) + " --help").out, "3..16384")) << cmd;
 }
 
 // Regression (a hostile-input probe): --bias 1e6 wrote an empty volume with exit 0, and

@@ -98,16 +98,21 @@ class TexelUnprojector {
 /// Makes an empty depth map (all kNoHit) for the light at W x H; aspect is W / H.
 DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode capture);
 
+/// What a map is made for, for the memory it needs: a shadow volume built from it (its vertices
+/// and triangles too), or the map alone (a depth file, a shadow map).
+enum class DepthMapUse { Volume, MapOnly };
+
 /// Bytes a W x H depth map and its derived buffers would need, to refuse absurd resolutions
 /// before allocating. Limits of the command line: see maxResolution in README.
-std::uint64_t depthMapBytes(int width, int height);
+std::uint64_t depthMapBytes(int width, int height, DepthMapUse use = DepthMapUse::Volume);
 
 /// Largest side of a depth map (texels).
 inline constexpr int kMaxDepthMapSide = 16384;
 
 /// Refuses, before anything is allocated, a W x H map with a side below 2 or above
-/// kMaxDepthMapSide, or whose buffers (depthMapBytes) need more than half of this machine's
-/// memory: InputError naming `source` and `field` with the value and the memory it would need.
-void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field);
+/// kMaxDepthMapSide, or whose buffers (depthMapBytes for `use`) need more than half of this
+/// machine's memory: InputError naming `source` and `field` with the value and the memory it would need.
+void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
+                       DepthMapUse use = DepthMapUse::Volume);
 
 }  // namespace shadowvol

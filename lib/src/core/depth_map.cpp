@@ -102,18 +102,21 @@ DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode cap
   return map;
 }
 
-std::uint64_t depthMapBytes(int width, int height) {
+std::uint64_t depthMapBytes(int width, int height, DepthMapUse use) {
   const std::uint64_t texels = std::uint64_t(width) * std::uint64_t(height);
-  // depths (4 B) + volume vertices (3 doubles) + ~2 triangles per texel (2 x 3 x 4 B)
-  return texels * (4 + 24 + 24);
+  // depths (4 B) + volume vertices (3 doubles) + ~2 triangles per texel (2 x 3 x 4 B); the map
+  // alone: its depths, the read-back copy and a file's row buffers (12 B; `shadowvol depth` at
+  // 15000^2 peaked at 0.9 GB, 4 B a texel, 2026-12-05)
+  return texels * (use == DepthMapUse::Volume ? 4 + 24 + 24 : 12);
 }
 
-void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field) {
+void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
+                       DepthMapUse use) {
   const std::string value = width == height ? std::to_string(width) : std::to_string(width) + "x" + std::to_string(height);
   if (width < 2 || height < 2) throw InputError(source, field, value, "the resolution must be at least 2");
   if (width > kMaxDepthMapSide || height > kMaxDepthMapSide)
     throw InputError(source, field, value, "above the limit of " + std::to_string(kMaxDepthMapSide) + " texels a side");
-  const std::uint64_t need = depthMapBytes(width, height);
+  const std::uint64_t need = depthMapBytes(width, height, use);
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   const std::uint64_t physical = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
   if (physical > 0 && need > physical / 2)

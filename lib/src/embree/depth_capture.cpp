@@ -110,7 +110,7 @@ DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMo
   if (scene.light.type == LightType::Point)
     throw InputError(scene.source, "/light/type", "point",
                      "a point light has six depth maps, one per cube face: capture them with captureCubeEmbree");
-  checkDepthMapSize(width, height, "captureDepthEmbree", "width x height");
+  checkDepthMapSize(width, height, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
   DepthMap map = makeDepthMap(scene.light, width, height, mode);
   map.origin = scene.origin;
   const EmbreeDevice device;
