@@ -8,15 +8,15 @@
 
 #include "cli_verbosity.h"
 #include "render_options.h"
-#include "shadowvol/version.h"
+#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/report_json.h"
-#include "shadowvol/dual_paraboloid.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "shadowvol/validate/gl_frame.h"
 #include "shadowvol/validate/validation_report.h"
+#include "shadowvol/version.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -29,7 +29,6 @@ nlohmann::json crossingsUsed(const gl::RenderOptions& ro) {
   if (ro.volume == gl::VolumeSource::Explicit) return gl::toString(ro.refineCrossings);
   return ro.refineCrossings == gl::RefineCrossings::GpuWalk ? "gpu-walk" : "gpu-rays";
 }
-
 
 // The report's fields of one light's checks (all of them at the top level for one light).
 nlohmann::json describeLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
@@ -70,30 +69,32 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   std::printf("  pixels: %zu visible, %zu facing away, %zu outside the light, %zu background\n", v.visible,
               v.facingAway, v.outsideLight, v.background);
   if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined && result.volumeStats)
-    std::printf("  refinement on the GPU: %zu boundary edges refined, %zu without a crossing found; the CPU "
-                "mesh has the GPU's edges (%zu, %zu of them without a crossing), the CPU rule on the read-back "
-                "map differs on %zu\n",
-                result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
-                result.volumeStats->crossingFallbacks, result.cpuRuleEdgeDifferences);
+    std::printf(
+        "  refinement on the GPU: %zu boundary edges refined, %zu without a crossing found; the CPU "
+        "mesh has the GPU's edges (%zu, %zu of them without a crossing), the CPU rule on the read-back "
+        "map differs on %zu\n",
+        result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.volumeStats->boundaryEdges,
+        result.volumeStats->crossingFallbacks, result.cpuRuleEdgeDifferences);
   else if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)  // a point light's six face volumes
-    std::printf("  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing "
-                "found; the CPU rule on the read-back maps differs on %zu\n",
-                result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks,
-                result.cpuRuleEdgeDifferences);
+    std::printf(
+        "  refinement on the GPU, %zu face volumes: %zu boundary edges refined, %zu without a crossing "
+        "found; the CPU rule on the read-back maps differs on %zu\n",
+        result.faceVolumes.size(), result.gpuBoundaryEdges, result.gpuCrossingFallbacks, result.cpuRuleEdgeDifferences);
   else if (result.volumeStats && result.volumeStats->refinedCells > 0)
-    std::printf("  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %zu crossings snapped, "
-                "%.2f ms\n",
-                result.volumeStats->boundaryEdges, result.volumeStats->raysCast,
-                result.volumeStats->crossingFallbacks, result.volumeStats->snappedCrossings,
-                result.volumeStats->msRefine);
+    std::printf(
+        "  refinement: %zu boundary edges, %zu rays, %zu without a crossing found, %zu crossings snapped, "
+        "%.2f ms\n",
+        result.volumeStats->boundaryEdges, result.volumeStats->raysCast, result.volumeStats->crossingFallbacks,
+        result.volumeStats->snappedCrossings, result.volumeStats->msRefine);
   if (v.meshCheck) {
     std::printf("  mesh: %s\n", v.meshCheck->summary().c_str());
     if (v.gpuMeshCheck) std::printf("  GPU volume's own mesh: %s\n", v.gpuMeshCheck->summary().c_str());
-    std::printf("  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface, "
-                "%zu in the image plane)\n",
-                gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
-                v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
-                v.stencilVsCount.ties - v.stencilVsCount.imagePlaneTies, v.stencilVsCount.imagePlaneTies);
+    std::printf(
+        "  stencil (%s) vs count: %.4f%% agree (%zu of %zu%s, %zu of them ties on the visible surface, "
+        "%zu in the image plane)\n",
+        gl::toString(result.volumeCountUsed), 100 * v.stencilVsCount.fraction(), v.stencilVsCount.agree,
+        v.stencilVsCount.pixels, v.stencilOverLitFrustumOnly ? " inside the light's frustum" : "",
+        v.stencilVsCount.ties - v.stencilVsCount.imagePlaneTies, v.stencilVsCount.imagePlaneTies);
     for (const Agreement::Miss& m : v.stencilVsCount.firstMisses)
       std::printf("    disagrees at pixel (%d, %d) (row 0 at the top): stencil %d, count %d (admissible %d to %d)\n",
                   m.x, m.row, m.stencil, m.zfail, m.zfailMin, m.zfailMax);
@@ -106,18 +107,20 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
               v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
               100 * v.methodError.falseFraction(), v.methodError.pixels);
   if (v.errorCauses)
-    std::printf("  errors by cause: %zu of resolution (the same capture at unlimited resolution gets them right: a "
-                "finer map, refinement or --fit view can help), %zu of capture (it gets them wrong too: capture mode, "
-                "bias or mesh)\n",
-                v.errorCauses->resolution, v.errorCauses->capture);
+    std::printf(
+        "  errors by cause: %zu of resolution (the same capture at unlimited resolution gets them right: a "
+        "finer map, refinement or --fit view can help), %zu of capture (it gets them wrong too: capture mode, "
+        "bias or mesh)\n",
+        v.errorCauses->resolution, v.errorCauses->capture);
   if (ro.method == gl::ShadowMethod::Dpsm) {
     const nlohmann::json& d = j["dualParaboloid"];
-    std::printf("  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "
-                "(x%.2f); the cube map at %d^2: %.3g to %.3g sr (x%.2f); coarsest texel x%.2f the cube's\n",
-                d["side"].get<int>(), 100 * d["usedFraction"].get<double>(), d["smallestTexelSr"].get<double>(),
-                d["largestTexelSr"].get<double>(), d["largestOverSmallest"].get<double>(), ro.depthWidth,
-                d["cubeMap"]["smallestTexelSr"].get<double>(), d["cubeMap"]["largestTexelSr"].get<double>(),
-                d["cubeMap"]["largestOverSmallest"].get<double>(), d["largestTexelOverCubes"].get<double>());
+    std::printf(
+        "  dual-paraboloid maps: 2 x %d^2 texels, %.1f%% in use, texel solid angle %.3g to %.3g sr "
+        "(x%.2f); the cube map at %d^2: %.3g to %.3g sr (x%.2f); coarsest texel x%.2f the cube's\n",
+        d["side"].get<int>(), 100 * d["usedFraction"].get<double>(), d["smallestTexelSr"].get<double>(),
+        d["largestTexelSr"].get<double>(), d["largestOverSmallest"].get<double>(), ro.depthWidth,
+        d["cubeMap"]["smallestTexelSr"].get<double>(), d["cubeMap"]["largestTexelSr"].get<double>(),
+        d["cubeMap"]["largestOverSmallest"].get<double>(), d["largestTexelOverCubes"].get<double>());
   }
   if (ro.method == gl::ShadowMethod::Silhouette && !result.receiversOnly.empty()) {
     std::printf("  cast no silhouette shadow (open, receivers only):");
@@ -126,6 +129,29 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   }
   if (!v.meshChecksNotApplicable.empty()) std::printf("  not applicable: %s\n", v.meshChecksNotApplicable.c_str());
   for (const auto& f : v.failures) std::printf("  failed: %s\n", f.c_str());
+}
+
+// The files validate writes in its report folder (and in each light-K folder of several lights),
+// the report first: removeReportFiles takes it before the images it describes.
+constexpr const char* kReportFiles[] = {"report.json", "frame.png",   "exact.png",  "stencil.png",
+                                        "count.png",   "overlay.png", "overlay.svg"};
+
+// Removes what an earlier run (or this one, failing) wrote in `dir`: the files of kReportFiles
+// there and in its light-K folders, and a light-K folder left empty. Nothing else is touched.
+void removeReportFiles(const std::filesystem::path& dir) {
+  std::error_code ec;
+  auto removeIn = [&](const std::filesystem::path& d) {
+    for (const char* name : kReportFiles) std::filesystem::remove(d / name, ec);
+  };
+  removeIn(dir);
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_directory(ec) || name.rfind("light-", 0) != 0 || name.size() == 6 ||
+        name.find_first_not_of("0123456789", 6) != std::string::npos)
+      continue;
+    removeIn(e.path());
+    if (std::filesystem::is_empty(e.path(), ec)) std::filesystem::remove(e.path(), ec);
+  }
 }
 
 }  // namespace
@@ -166,8 +192,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       const std::filesystem::path dir(o->reportDir);
       checkOutputFolder("--report", o->reportDir);
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
-      for (const char* name : {"report.json", "frame.png", "exact.png", "stencil.png", "count.png", "overlay.png",
-                               "overlay.svg"})
+      for (const char* name : kReportFiles)
         checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
@@ -211,7 +236,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},
                       {"selfIntersections", o->selfIntersections}};
-      std::vector<std::string> images = {"frame.png", "exact.png", "stencil.png", "count.png", "overlay.png", "overlay.svg"};
+      std::vector<std::string> images = {"frame.png", "exact.png",   "stencil.png",
+                                         "count.png", "overlay.png", "overlay.svg"};
       if (!hybrid) images = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};
       std::vector<nlohmann::json> sections;
       for (std::size_t k = 0; k < checks.size(); ++k) sections.push_back(describeLightValidation(checks[k], ro, vo));
@@ -239,29 +265,37 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       j["images"] = checks.size() == 1 ? images : std::vector<std::string>{"frame.png"};
 
-      // Everything is computed; now write. Images first, the report last (its presence means done).
+      // Everything is computed; now write. A previous run's files go first (its report before
+      // its images), then the images, the report last (its presence means done); a write that
+      // fails takes this run's files with it.
       createFolders(dir);
-      if (checks.size() == 1) {
-        writeValidationImages(dir, checks[0].validation, checks[0].frame);
-      } else {
-        writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
-        for (std::size_t k = 0; k < checks.size(); ++k) {
-          const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
-          createFolders(sub);
-          writeValidationImages(sub, checks[k].validation, checks[k].frame);
+      removeReportFiles(dir);
+      try {
+        if (checks.size() == 1) {
+          writeValidationImages(dir, checks[0].validation, checks[0].frame);
+        } else {
+          writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
+          for (std::size_t k = 0; k < checks.size(); ++k) {
+            const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
+            createFolders(sub);
+            writeValidationImages(sub, checks[k].validation, checks[k].frame);
+          }
         }
+        writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
+          std::ofstream out(tmp);
+          out << j.dump(2) << '\n';
+          out.flush();
+          if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
+        });
+      } catch (...) {
+        removeReportFiles(dir);
+        throw;
       }
-      writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
-        std::ofstream out(tmp);
-        out << j.dump(2) << '\n';
-        out.flush();
-        if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
-      });
       if (o->render.scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
-        std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(),
-                    hybrid ? ", " : "", hybrid ? gl::toString(ro.volume) : "", renderer.info().glRenderer.c_str());
+        std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(), hybrid ? ", " : "",
+                    hybrid ? gl::toString(ro.volume) : "", renderer.info().glRenderer.c_str());
         for (std::size_t k = 0; k < checks.size(); ++k) {
           if (checks.size() > 1)
             std::printf(" light %zu (%s, %s): %s\n", k, toString(scene.lightAt(k).type), scene.lightPointer(k).c_str(),

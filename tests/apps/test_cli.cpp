@@ -580,6 +580,28 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   EXPECT_FALSE(jv["verdict"]["failures"].empty());
 }
 
+// A report folder holds one run: a shadow-map run after a volume's leaves no stencil or count
+// image of the volume's, a one-light run after a two-light one no light-K folder; files of the
+// user's own are kept (found by an adversarial run: the old images stayed beside the new report).
+TEST(CliGl, ValidateReportFolderHoldsOneRun) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string rep = (dir / "rep").string();
+  const std::string two = (test::sourceDir() / "data/scenes/lights/spot-and-point.json").string();
+  ASSERT_EQ(runCli("validate --resolution 32 --size 80x60 --scene " + two + " --report " + rep).code, 0);
+  ASSERT_TRUE(std::filesystem::exists(dir / "rep" / "light-1" / "stencil.png"));
+  test::writeText(dir / "rep" / "notes.txt", "mine");
+  ASSERT_EQ(runCli("validate --resolution 32 --size 80x60 --report " + rep).code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "rep" / "light-0"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "rep" / "light-1"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "stencil.png"));
+  const CliResult s = runCli("validate --method shadowmap --resolution 32 --size 80x60 --report " + rep);
+  ASSERT_EQ(s.code, 0) << s.out;
+  for (const char* gone : {"stencil.png", "count.png"}) EXPECT_FALSE(std::filesystem::exists(dir / "rep" / gone)) << gone;
+  for (const char* kept : {"report.json", "frame.png", "exact.png", "overlay.png", "notes.txt"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "rep" / kept)) << kept;
+}
+
 // A point light (README "Point lights"): build writes its closed cube volume, validate passes
 // with the explicit cube volume chosen by --volume auto, what it cannot do is refused plainly.
 TEST(CliGl, PointLightBuildsAndValidates) {
