@@ -59,6 +59,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
   depthOpt->excludes(resOpt)->excludes(capOpt)->excludes(cmd->get_option("--device"));
   cmd->get_option("--scene")->excludes(depthOpt);
   cmd->get_option("--light")->excludes(depthOpt);
+  cmd->get_option("--fit")->excludes(depthOpt);  // the depth file's side file holds its light frustum
   addVolumeOptions(*cmd, o->volume)->excludes(depthOpt);  // refinement casts rays into the scene
   cmd->add_flag("--no-flatten", o->noFlatten, "Keep two cap triangles per kept quad instead of the flattened cap");
   cmd->add_option("--out", o->out, "Output mesh: .ply (binary), .obj, .off, .stl, .gltf (one JSON file) or .glb (binary glTF)")->required();

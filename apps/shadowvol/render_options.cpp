@@ -102,10 +102,12 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
 
 namespace {
 
-constexpr const char* kGpuWalksOnly = "the refined GPU volume finds its crossings on the GPU: use --crossings "
-                                      "gpu-rays (or auto) or gpu-walk, or --volume explicit for Embree's rays";
-constexpr const char* kGpuCrossingsOnly = "needs rays (--volume explicit --crossings rays): the refined GPU volume "
-                                          "refines the boundary edges' crossings alone";
+constexpr const char* kGpuWalksOnly =
+    "the refined GPU volume finds its crossings on the GPU: use --crossings "
+    "gpu-rays (or auto) or gpu-walk, or --volume explicit for Embree's rays";
+constexpr const char* kGpuCrossingsOnly =
+    "needs rays (--volume explicit --crossings rays): the refined GPU volume "
+    "refines the boundary edges' crossings alone";
 
 // The flag of the refined GPU volume's refusals (kGpuWalksOnly, kGpuCrossingsOnly) that `o` sets, or null.
 const char* refinedGpuConflict(const RenderCliOptions& o) {
@@ -155,6 +157,54 @@ gl::RendererOptions toRendererOptions(const RenderCliOptions& o) {
   return r;
 }
 
+namespace {
+
+// Options that would change nothing in the frame the other options ask for, refused by name
+// rather than ignored (found by an adversarial run: --bias with --method shadowmap, --shadow-bias
+// with hybrid, --gpu-draw with the explicit volume were accepted and did nothing). A value equal
+// to the default changes nothing either way and is let through.
+void checkIneffectiveOptions(const RenderCliOptions& o) {
+  const VolumeCliOptions& v = o.shape;
+  const VolumeCliOptions none;
+  if (o.method != "hybrid") {
+    const std::pair<bool, const char*> volumeOnly[] = {{o.volume != "auto", "--volume"},
+                                                       {o.gpuDraw != "auto", "--gpu-draw"},
+                                                       {o.count != "auto", "--count"},
+                                                       {o.crossings != "auto", "--crossings"},
+                                                       {v.triangulation != none.triangulation, "--triangulation"},
+                                                       {v.blur, "--blur"},
+                                                       {v.blurOffset != 0.0, "--blur-offset"},
+                                                       {v.bias.has_value(), "--bias"},
+                                                       {v.cap != none.cap, "--cap"},
+                                                       {v.chordPoints, "--chord-points"},
+                                                       {v.refineGrid != none.refineGrid, "--refine-grid"},
+                                                       {v.refineGridEverywhere, "--refine-grid-everywhere"},
+                                                       {v.noSnap, "--no-snap"}};
+    for (const auto& [given, flag] : volumeOnly)
+      if (given)
+        throw CLI::ValidationError(flag, std::string("shapes or draws the hybrid method's shadow volume; --method ") +
+                                             o.method + " has none: add --method hybrid or leave out " + flag);
+  }
+  if (o.method == "hybrid" || o.method == "silhouette" || o.method == "none") {
+    if (o.shadowBias)
+      throw CLI::ValidationError("--shadow-bias", "offsets a shadow map's depth comparison; --method " + o.method +
+                                                      " has no shadow map (the hybrid volume's offset is --bias)");
+    if (o.shadowSlope != 1.0)
+      throw CLI::ValidationError("--shadow-slope",
+                                 "scales a shadow map's bias; --method " + o.method + " has no shadow map");
+  }
+  if (o.dpsmSubdivide != 1 && o.method != "dpsm")
+    throw CLI::ValidationError("--dpsm-subdivide", "cuts triangles in the dual-paraboloid pass; --method " + o.method +
+                                                       " has none: add --method dpsm or leave it out");
+  if (o.method == "hybrid" && o.volume == "explicit" && o.gpuDraw != "auto")
+    throw CLI::ValidationError(
+        "--gpu-draw", "chooses how the GPU volume is drawn; --volume explicit draws the mesh built on the CPU");
+  if (o.method == "hybrid" && o.crossings == "rays" && v.refine == 0)
+    throw CLI::ValidationError("--crossings", "chooses where refinement finds its crossings: add --refine K");
+}
+
+}  // namespace
+
 void checkRenderOptionConflicts(const RenderCliOptions& o) {
   // Before the scene is read: --volume auto is the GPU volume for every scene.
   const bool refinedGpu = o.shape.refine > 0 && o.method == "hybrid" && (o.volume == "gpu" || o.volume == "auto");
@@ -167,17 +217,22 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
   if (o.crossings == "gpu-walk" && (o.shape.refine == 0 || o.method != "hybrid"))
     throw CLI::ValidationError("--crossings", "gpu-walk refines a hybrid volume: add --method hybrid --refine K");
   if (o.crossings == "gpu-rays" && !refinedGpu)
-    throw CLI::ValidationError("--crossings", "gpu-rays refines the GPU volume: add --method hybrid --volume gpu "
-                                              "--refine K (the explicit volume casts Embree's rays: --crossings rays)");
+    throw CLI::ValidationError("--crossings",
+                               "gpu-rays refines the GPU volume: add --method hybrid --volume gpu "
+                               "--refine K (the explicit volume casts Embree's rays: --crossings rays)");
   if (o.depthFrom == "rays" && (o.method != "hybrid" || o.volume != "explicit"))
-    throw CLI::ValidationError("--depth-from", "rays casts the explicit volume's depth map: add --method hybrid "
-                                               "--volume explicit");
+    throw CLI::ValidationError("--depth-from",
+                               "rays casts the explicit volume's depth map: add --method hybrid "
+                               "--volume explicit");
   if (o.depthFrom == "rays" && o.crossings == "gpu-walk")
-    throw CLI::ValidationError("--depth-from", "rays leaves out the light pass, whose triangle record the walk "
-                                               "(--crossings gpu-walk) follows: use --crossings rays");
+    throw CLI::ValidationError("--depth-from",
+                               "rays leaves out the light pass, whose triangle record the walk "
+                               "(--crossings gpu-walk) follows: use --crossings rays");
   if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
-    throw CLI::ValidationError("--crossings", "gpu-walk gives the boundary edges' crossings alone: --chord-points "
-                                              "and --refine-grid need --crossings rays");
+    throw CLI::ValidationError("--crossings",
+                               "gpu-walk gives the boundary edges' crossings alone: --chord-points "
+                               "and --refine-grid need --crossings rays");
+  checkIneffectiveOptions(o);
 }
 
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro) {

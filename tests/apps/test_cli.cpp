@@ -580,6 +580,39 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   EXPECT_FALSE(jv["verdict"]["failures"].empty());
 }
 
+// An option that changes nothing in the frame the others ask for is refused by name before any
+// work (found by an adversarial run: each of these was accepted and ignored); the default's own
+// value is accepted.
+TEST(Cli, OptionsThatChangeNothingAreRefused) {
+  const auto dir = test::tempDir();
+  const std::string out = " --resolution 16 --size 32x24 --out " + (dir / "x.png").string();
+  const std::pair<const char*, const char*> refused[] = {
+      {"render --method shadowmap --bias 0.3", "--bias"},
+      {"render --method pcf3 --triangulation fixed", "--triangulation"},
+      {"render --method shadowmap --gpu-draw indexed", "--gpu-draw"},
+      {"render --method pcf5 --count zfail", "--count"},
+      {"render --method silhouette --volume explicit", "--volume"},
+      {"render --shadow-bias 0.1", "--shadow-bias"},
+      {"render --shadow-slope 2", "--shadow-slope"},
+      {"render --dpsm-subdivide 4", "--dpsm-subdivide"},
+      {"render --volume explicit --gpu-draw indexed", "--gpu-draw"},
+      {"render --volume explicit --crossings rays", "--crossings"}};
+  for (const auto& [args, flag] : refused) {
+    const CliResult r = runCli(args + out);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, flag)) << args << ": " << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+  const CliResult d = runCli("depth --resolution 16 --out " + (dir / "d.pfm").string());
+  ASSERT_EQ(d.code, 0) << d.out;
+  const CliResult fit = runCli("build --depth " + (dir / "d.pfm").string() + " --fit view --out " + (dir / "v.ply").string());
+  EXPECT_EQ(fit.code, 2) << fit.out;
+  EXPECT_TRUE(contains(fit.out, "--fit")) << fit.out;
+  if (!hasGl()) return;
+  const CliResult same = runCli("render --method shadowmap --triangulation perfect --count auto" + out);
+  EXPECT_EQ(same.code, 0) << same.out;
+}
+
 // A report folder holds one run: a shadow-map run after a volume's leaves no stencil or count
 // image of the volume's, a one-light run after a two-light one no light-K folder; files of the
 // user's own are kept (found by an adversarial run: the old images stayed beside the new report).
