@@ -95,6 +95,18 @@ TEST(MeshReaders, OffDeclaringTenMillionVerticesInFortyBytesIsRefusedAtOnce) {
           {"line 2 = \"10000000 1 0\"", "declares 10000000 vertices", "14 bytes follow"});
 }
 
+// Data on the counts' line (an adversarial run: it was called 0 bytes after the header); counts
+// on the keyword's line, with or without the edge count, stay accepted.
+TEST(MeshReaders, OffDataOnTheCountsLineIsNamed) {
+  refusal("one.off", "OFF 3 1 0 0 0 0 1 0 0 0 0 1 3 0 1 2\n",
+          {"line 1 = \"OFF 3 1 0 0 0 0 1", "holds more than \"V F [E]\"", "a line of its own"});
+  refusal("two.off", "OFF\n3 1 0 0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", {"line 2", "holds more than"});
+  for (const char* header : {"OFF 3 1 0\n", "OFF 3 1\n", "OFF\n3 1 0\n"}) {
+    EXPECT_EQ(readBack("ok.off", std::string(header) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").triangles.size(), 1u)
+        << header;
+  }
+}
+
 TEST(MeshReaders, OffDeclaringTwoBillionVerticesIsRefusedWithoutAllocating) {
   refusal("bad.off", "OFF\n2000000000 2000000000 0\n0 0 0\n", {"line 2 = \"2000000000 2000000000 0\"", "declares"});
   refusal("huge.off", "OFF\n5000000000 1 0\n0 0 0\n", {"line 2", "32-bit indices"});

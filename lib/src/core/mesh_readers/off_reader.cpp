@@ -66,6 +66,10 @@ Counts readHeader(const std::string& source, LineReader& lines) {
   if (!v || !f || *v < 0 || *f < 0) at.fail("expected the vertex and face counts \"V F [E]\"");
   constexpr std::int64_t kMaxIndex = std::numeric_limits<std::uint32_t>::max();
   if (*v > kMaxIndex || *f > kMaxIndex) at.fail("more vertices or faces than 32-bit indices can address");
+  // The edge count (ignored) may follow; anything after it is data on the counts' line, which
+  // this line-based reader does not take (it would read the next line as the first vertex).
+  if (const std::string_view edges = nextToken(rest); !edges.empty() && !isBlank(rest))
+    at.fail("the line of the counts holds more than \"V F [E]\": put each vertex and each face on a line of its own");
   // The shortest vertex line is "0 0 0\n" (6 bytes), the shortest face line "0\n" (2: too few
   // vertices, but the face loop says so at its line); the last line may lack its newline. Refusing
   // here keeps a hostile count from reserving memory.
