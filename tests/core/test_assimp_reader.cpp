@@ -138,6 +138,14 @@ TEST(AssimpReader, SingularNodeTransformationsAreRefused) {
   const TriangleMesh moved = readTriangleMesh(withNode("moved.gltf", {{"translation", {10.0, 0.0, 0.0}}}));
   ASSERT_FALSE(moved.positions.empty());
   for (const auto& p : moved.positions) EXPECT_GT(p.x, 9.0f);
+  // A large uniform scale is not singular (an adversarial run: its float determinant, 1e39,
+  // overflowed and was called 0): the mesh is placed, 1e13 times larger.
+  const TriangleMesh large = readTriangleMesh(withNode("large.gltf", {{"scale", {1e13, 1e13, 1e13}}}));
+  ASSERT_FALSE(large.positions.empty());
+  float extent = 0.0f;
+  for (const auto& p : large.positions) extent = std::max(extent, std::abs(p.x));
+  EXPECT_GT(extent, 1e12f);
+  EXPECT_TRUE(std::isfinite(extent));
 }
 
 TEST(AssimpReader, BrokenFilesAreRefusedNamingTheFile) {

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include <glm/matrix.hpp>
+
 #include "mesh_readers/corner_welder.h"
 #include "mesh_readers/isolated_call.h"
 #include "mesh_readers/own_formats.h"
@@ -38,10 +40,16 @@ void checkNodes(const aiNode& node, const aiMatrix4x4& parent, const std::string
     bool finite = true;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(m[r][c]);
-    const double det = finite ? double(m.Determinant()) : 0.0;
-    if (!finite || det == 0.0 || !std::isfinite(det))
+    glm::dmat4 d(1.0);  // in double: a float determinant overflows at a uniform scale of 1e13
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) d[c][r] = double(m[r][c]);
+    const double det = finite ? glm::determinant(d) : 0.0;
+    if (!finite || det == 0.0)
       throw InputError(source, "node " + here + " transformation", finite ? "determinant 0" : "not finite",
                        "it would collapse the node's meshes (a matrix of zeros, a scale of 0, or a NaN)");
+    if (!std::isfinite(det))
+      throw InputError(source, "node " + here + " transformation", "determinant " + numberText(det),
+                       "its scale is too large to place the node's meshes in float coordinates");
   }
   for (unsigned k = 0; k < node.mNumChildren; ++k) checkNodes(*node.mChildren[k], m, here, source);
 }
