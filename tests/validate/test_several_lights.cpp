@@ -200,6 +200,12 @@ TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
   gl::RenderOptions dpsm;
   dpsm.method = gl::ShadowMethod::Dpsm;  // the spot light has no paraboloid maps
   expectRefused(dpsm, "method", "light 0 of the scene's 2");
+  gl::RenderOptions grid;  // the spot light's explicit volume takes the sub-grid, the point light's not
+  grid.volume = gl::VolumeSource::Explicit;
+  grid.volumeOptions.refineSteps = 4;
+  grid.volumeOptions.refineSubdivisions = 4;
+  grid.volumeOptions.depthOracle = [](const DepthMap&, std::span<const glm::dvec2>, std::span<float>) {};  // never asked
+  expectRefused(grid, "refine subdivisions", "light 1 of the scene's 2");
   const Scene spots = twoSpots();
   renderer().setScene(spots);
   try {

@@ -9,6 +9,13 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     // volume does; the explicit cube volume only Embree's rays.
     if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays && o.volume != VolumeSource::Gpu)
       throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
+    // Refused here, before any pass, rather than by buildCubeVolume mid-frame: with several
+    // lights validateForLight then names the point light.
+    if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineChords)
+      throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+    if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineSubdivisions > 1)
+      throw InputError("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
+                       kCubeRefinementRule);
     if (o.volumeOptions.cap != FarCap::Exact)
       throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
     if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
