@@ -24,9 +24,7 @@ using Triangles = std::vector<K::Triangle_3>;
 using Primitive = CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
 
-glm::dvec3 toGlm(const K::Point_3& p) {
-  return {p.x(), p.y(), p.z()};
-}
+glm::dvec3 toGlm(const K::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
 // Ray parameter and sign of the ray's crossing with the plane of triangle t (the AABB tree
 // reported that the ray meets the triangle, edges included, so only the parameter is computed
@@ -223,9 +221,10 @@ std::pair<double, double> depthRangeAt(const ImagePolygon& poly, const glm::dvec
 // The admissible z-fail range of a pixel from every volume triangle whose projection meets the
 // square of image-plane ties around its centre, however small: one that holds the whole square is
 // drawn at the pixel, one that only overlaps it may be drawn or not, and a sliver may be drawn
-// turned over; each is counted at its plane's depth along the centre's ray (where the rasteriser
-// evaluates it), an edge-on one at the pixel's own depth (a tie). The corners' rays miss a
-// triangle smaller than the square (a sub-grid's wall at a large map), which this does not.
+// turned over; each is counted at any depth its snapped plane may have at the centre (where the
+// rasteriser evaluates it: depthRangeAt; a clipped one at its plane's depth there), an edge-on one
+// at the pixel's own depth (a tie). The corners' rays miss a triangle smaller than the square (a
+// sub-grid's wall at a large map), which this does not.
 struct SquareRange {
   int lo = 0, hi = 0;
 };
