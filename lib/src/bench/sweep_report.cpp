@@ -150,9 +150,9 @@ constexpr std::array<const char*, 3> kDashes = {"", "7,3", "2,2"};
 
 struct Series {
   std::string name;
-  int style = 0;                           ///< colour = style % 8, dash and marker = style / 8
-  std::vector<std::array<double, 2>> pts;  ///< data coordinates, all positive and finite
-  std::vector<std::string> labels;         ///< one per point, may be empty strings
+  int style = 0;                              ///< colour = style % 8, dash and marker = style / 8
+  std::vector<std::array<double, 2>> pts;     ///< data coordinates, all positive and finite
+  std::vector<std::string> labels;            ///< one per point, may be empty strings
   std::vector<std::array<double, 2>> xRange;  ///< per point: whisker from x min to x max (empty: none)
 };
 
@@ -234,57 +234,57 @@ void marker(std::ostringstream& o, int shape, double x, double y, const char* co
   }
 }
 
-std::string svgPlot(const PlotSpec& spec) {
-  constexpr double W = 980, H = 640, X0 = 80, X1 = 700, Y0 = 50, Y1 = 560;
-  std::vector<double> xs, ys;
-  for (const auto& s : spec.series) {
-    for (const auto& p : s.pts) xs.push_back(p[0]), ys.push_back(p[1]);
-    for (const auto& r : s.xRange)
-      for (double x : r)
-        if (x > 0 && std::isfinite(x)) xs.push_back(x);
+// The plot's frame: its size, the plot area's corners and the log axes fitted to what it shows.
+struct PlotFrame {
+  static constexpr double W = 980, H = 640, X0 = 80, X1 = 700, Y0 = 50, Y1 = 560;
+  LogAxis ax, ay;
+  explicit PlotFrame(const PlotSpec& spec) {
+    std::vector<double> xs, ys;
+    for (const auto& s : spec.series) {
+      for (const auto& p : s.pts) xs.push_back(p[0]), ys.push_back(p[1]);
+      for (const auto& r : s.xRange)
+        for (double x : r)
+          if (x > 0 && std::isfinite(x)) xs.push_back(x);
+    }
+    for (const auto& p : spec.front) xs.push_back(p[0]), ys.push_back(p[1]);
+    ax = LogAxis::fit(xs);
+    ay = LogAxis::fit(ys);
   }
-  for (const auto& p : spec.front) xs.push_back(p[0]), ys.push_back(p[1]);
-  const LogAxis ax = LogAxis::fit(xs), ay = LogAxis::fit(ys);
-  auto X = [&](double v) { return ax.map(v, X0, X1); };
-  auto Y = [&](double v) { return ay.map(v, Y1, Y0); };
+  double X(double v) const { return ax.map(v, X0, X1); }
+  double Y(double v) const { return ay.map(v, Y1, Y0); }
+};
 
-  std::ostringstream o;
-  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << W << "\" height=\"" << H
-    << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
-  o << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
-  o << "<text x=\"" << num1((X0 + X1) / 2)
-    << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" << xmlEscape(spec.title)
-    << "</text>\n";
-
-  // Grid, ticks and tick labels.
+// Grid, ticks, tick labels, the plot area's box and the axis labels.
+void svgAxes(std::ostringstream& o, const PlotFrame& f, const PlotSpec& spec) {
+  constexpr double X0 = PlotFrame::X0, X1 = PlotFrame::X1, Y0 = PlotFrame::Y0, Y1 = PlotFrame::Y1;
   o << "<g stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
-  for (const Tick& t : ticks(ax))
+  for (const Tick& t : ticks(f.ax))
     if (t.major || t.labelled)
-      o << "<line x1=\"" << num1(X(t.v)) << "\" y1=\"" << Y0 << "\" x2=\"" << num1(X(t.v)) << "\" y2=\"" << Y1
+      o << "<line x1=\"" << num1(f.X(t.v)) << "\" y1=\"" << Y0 << "\" x2=\"" << num1(f.X(t.v)) << "\" y2=\"" << Y1
         << "\"/>\n";
-  for (const Tick& t : ticks(ay))
+  for (const Tick& t : ticks(f.ay))
     if (t.major || t.labelled)
-      o << "<line x1=\"" << X0 << "\" y1=\"" << num1(Y(t.v)) << "\" x2=\"" << X1 << "\" y2=\"" << num1(Y(t.v))
+      o << "<line x1=\"" << X0 << "\" y1=\"" << num1(f.Y(t.v)) << "\" x2=\"" << X1 << "\" y2=\"" << num1(f.Y(t.v))
         << "\"/>\n";
   o << "</g>\n<g stroke=\"black\" stroke-width=\"1\">\n";
-  for (const Tick& t : ticks(ax)) {
+  for (const Tick& t : ticks(f.ax)) {
     const double len = t.major || t.labelled ? 6 : 3;
-    o << "<line x1=\"" << num1(X(t.v)) << "\" y1=\"" << Y1 << "\" x2=\"" << num1(X(t.v)) << "\" y2=\"" << num1(Y1 + len)
-      << "\"/>\n";
+    o << "<line x1=\"" << num1(f.X(t.v)) << "\" y1=\"" << Y1 << "\" x2=\"" << num1(f.X(t.v)) << "\" y2=\""
+      << num1(Y1 + len) << "\"/>\n";
   }
-  for (const Tick& t : ticks(ay)) {
+  for (const Tick& t : ticks(f.ay)) {
     const double len = t.major || t.labelled ? 6 : 3;
-    o << "<line x1=\"" << num1(X0 - len) << "\" y1=\"" << num1(Y(t.v)) << "\" x2=\"" << X0 << "\" y2=\"" << num1(Y(t.v))
-      << "\"/>\n";
+    o << "<line x1=\"" << num1(X0 - len) << "\" y1=\"" << num1(f.Y(t.v)) << "\" x2=\"" << X0 << "\" y2=\""
+      << num1(f.Y(t.v)) << "\"/>\n";
   }
   o << "</g>\n";
-  for (const Tick& t : ticks(ax))
+  for (const Tick& t : ticks(f.ax))
     if (t.labelled)
-      o << "<text x=\"" << num1(X(t.v)) << "\" y=\"" << num1(Y1 + 20) << "\" text-anchor=\"middle\">" << tickText(t.v)
+      o << "<text x=\"" << num1(f.X(t.v)) << "\" y=\"" << num1(Y1 + 20) << "\" text-anchor=\"middle\">" << tickText(t.v)
         << "</text>\n";
-  for (const Tick& t : ticks(ay))
+  for (const Tick& t : ticks(f.ay))
     if (t.labelled)
-      o << "<text x=\"" << num1(X0 - 9) << "\" y=\"" << num1(Y(t.v) + 4) << "\" text-anchor=\"end\">" << tickText(t.v)
+      o << "<text x=\"" << num1(X0 - 9) << "\" y=\"" << num1(f.Y(t.v) + 4) << "\" text-anchor=\"end\">" << tickText(t.v)
         << "</text>\n";
   o << "<rect x=\"" << X0 << "\" y=\"" << Y0 << "\" width=\"" << X1 - X0 << "\" height=\"" << Y1 - Y0
     << "\" fill=\"none\" stroke=\"black\"/>\n";
@@ -292,60 +292,62 @@ std::string svgPlot(const PlotSpec& spec) {
     << xmlEscape(spec.xLabel) << "</text>\n";
   o << "<text transform=\"translate(22," << num1((Y0 + Y1) / 2) << ") rotate(-90)\" text-anchor=\"middle\">"
     << xmlEscape(spec.yLabel) << "</text>\n";
-
   if (spec.zeroLine) {
-    const double y = Y(*spec.zeroLine);
+    const double y = f.Y(*spec.zeroLine);
     o << "<line x1=\"" << X0 << "\" y1=\"" << num1(y) << "\" x2=\"" << X1 << "\" y2=\"" << num1(y)
       << "\" stroke=\"#888888\" stroke-dasharray=\"1,3\"/>\n";
     o << "<text x=\"" << num1(X0 + 4) << "\" y=\"" << num1(y + 12) << "\" font-size=\"10\" "
       << "fill=\"#666666\">zero error drawn here</text>\n";
   }
+}
 
-  // Pareto front: a thick grey step line (the best error for a time budget) and rings.
-  if (!spec.front.empty()) {
-    o << "<polyline class=\"front\" fill=\"none\" stroke=\"#c4c4c4\" stroke-width=\"8\" stroke-linejoin=\"round\" "
-         "stroke-linecap=\"round\" points=\"";
-    for (std::size_t i = 0; i < spec.front.size(); ++i) {
-      if (i > 0) o << num1(X(spec.front[i][0])) << "," << num1(Y(spec.front[i - 1][1])) << " ";
-      o << num1(X(spec.front[i][0])) << "," << num1(Y(spec.front[i][1])) << " ";
-    }
-    o << "\"/>\n";
-    for (const auto& p : spec.front)
-      o << "<circle cx=\"" << num1(X(p[0])) << "\" cy=\"" << num1(Y(p[1]))
-        << "\" r=\"8\" fill=\"none\" stroke=\"#888888\" stroke-width=\"1.5\"/>\n";
+// The Pareto front: a thick grey step line (the best error for a time budget) and rings.
+void svgFront(std::ostringstream& o, const PlotFrame& f, const std::vector<std::array<double, 2>>& front) {
+  if (front.empty()) return;
+  o << "<polyline class=\"front\" fill=\"none\" stroke=\"#c4c4c4\" stroke-width=\"8\" stroke-linejoin=\"round\" "
+       "stroke-linecap=\"round\" points=\"";
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    if (i > 0) o << num1(f.X(front[i][0])) << "," << num1(f.Y(front[i - 1][1])) << " ";
+    o << num1(f.X(front[i][0])) << "," << num1(f.Y(front[i][1])) << " ";
   }
+  o << "\"/>\n";
+  for (const auto& p : front)
+    o << "<circle cx=\"" << num1(f.X(p[0])) << "\" cy=\"" << num1(f.Y(p[1]))
+      << "\" r=\"8\" fill=\"none\" stroke=\"#888888\" stroke-width=\"1.5\"/>\n";
+}
 
-  // One curve per series, markers and point labels.
-  for (const auto& s : spec.series) {
-    const char* colour = kColours[std::size_t(s.style) % kColours.size()];
-    const std::size_t kind = std::size_t(s.style) / kColours.size() % kDashes.size();
-    if (s.pts.size() >= 2) {
-      o << "<polyline class=\"curve\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\"";
-      if (*kDashes[kind]) o << " stroke-dasharray=\"" << kDashes[kind] << "\"";
-      o << " points=\"";
-      for (const auto& p : s.pts) o << num1(X(p[0])) << "," << num1(Y(p[1])) << " ";
-      o << "\"><title>" << xmlEscape(s.name) << "</title></polyline>\n";
-    }
-    for (std::size_t i = 0; i < s.pts.size(); ++i) {
-      if (i < s.xRange.size() && s.xRange[i][1] > s.xRange[i][0]) {  // min..max whisker with end ticks
-        const double y = Y(s.pts[i][1]), a = X(s.xRange[i][0]), b = X(s.xRange[i][1]);
-        o << "<path class=\"whisker\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1\" d=\"M" << num1(a)
-          << "," << num1(y) << "H" << num1(b) << "M" << num1(a) << "," << num1(y - 3) << "V" << num1(y + 3) << "M"
-          << num1(b) << "," << num1(y - 3) << "V" << num1(y + 3) << "\"/>\n";
-      }
-      marker(o, int(kind), X(s.pts[i][0]), Y(s.pts[i][1]), colour, s.pts.size() == 1 ? 4.5 : 3.0);
-      if (i < s.labels.size() && !s.labels[i].empty())
-        o << "<text x=\"" << num1(X(s.pts[i][0]) + 5) << "\" y=\"" << num1(Y(s.pts[i][1]) - 5)
-          << "\" font-size=\"9\" fill=\"" << colour << "\">" << xmlEscape(s.labels[i]) << "</text>\n";
-    }
+// One series: its curve, min..max whiskers, markers and point labels.
+void svgSeries(std::ostringstream& o, const PlotFrame& f, const Series& s) {
+  const char* colour = kColours[std::size_t(s.style) % kColours.size()];
+  const std::size_t kind = std::size_t(s.style) / kColours.size() % kDashes.size();
+  if (s.pts.size() >= 2) {
+    o << "<polyline class=\"curve\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.8\"";
+    if (*kDashes[kind]) o << " stroke-dasharray=\"" << kDashes[kind] << "\"";
+    o << " points=\"";
+    for (const auto& p : s.pts) o << num1(f.X(p[0])) << "," << num1(f.Y(p[1])) << " ";
+    o << "\"><title>" << xmlEscape(s.name) << "</title></polyline>\n";
   }
+  for (std::size_t i = 0; i < s.pts.size(); ++i) {
+    if (i < s.xRange.size() && s.xRange[i][1] > s.xRange[i][0]) {  // min..max whisker with end ticks
+      const double y = f.Y(s.pts[i][1]), a = f.X(s.xRange[i][0]), b = f.X(s.xRange[i][1]);
+      o << "<path class=\"whisker\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1\" d=\"M" << num1(a)
+        << "," << num1(y) << "H" << num1(b) << "M" << num1(a) << "," << num1(y - 3) << "V" << num1(y + 3) << "M"
+        << num1(b) << "," << num1(y - 3) << "V" << num1(y + 3) << "\"/>\n";
+    }
+    marker(o, int(kind), f.X(s.pts[i][0]), f.Y(s.pts[i][1]), colour, s.pts.size() == 1 ? 4.5 : 3.0);
+    if (i < s.labels.size() && !s.labels[i].empty())
+      o << "<text x=\"" << num1(f.X(s.pts[i][0]) + 5) << "\" y=\"" << num1(f.Y(s.pts[i][1]) - 5)
+        << "\" font-size=\"9\" fill=\"" << colour << "\">" << xmlEscape(s.labels[i]) << "</text>\n";
+  }
+}
 
-  // Legend, right of the plot.
+// The legend, right of the plot: one entry per series, then the front's.
+void svgLegend(std::ostringstream& o, const PlotSpec& spec) {
   const std::size_t entries = spec.series.size() + (spec.front.empty() ? 0 : 1);
-  const double lh = std::min(18.0, (Y1 - Y0) / double(std::max<std::size_t>(entries, 1)));
+  const double lh = std::min(18.0, (PlotFrame::Y1 - PlotFrame::Y0) / double(std::max<std::size_t>(entries, 1)));
   const double fs = std::min(12.0, lh - 2);
-  const double lx = X1 + 20;
-  double ly = Y0 + lh / 2;
+  const double lx = PlotFrame::X1 + 20;
+  double ly = PlotFrame::Y0 + lh / 2;
   for (const auto& s : spec.series) {
     const char* colour = kColours[std::size_t(s.style) % kColours.size()];
     const std::size_t kind = std::size_t(s.style) / kColours.size() % kDashes.size();
@@ -364,6 +366,22 @@ std::string svgPlot(const PlotSpec& spec) {
     o << "<text x=\"" << num1(lx + 34) << "\" y=\"" << num1(ly + fs / 3) << "\" font-size=\"" << num1(fs)
       << "\">Pareto front (ringed points)</text>\n";
   }
+}
+
+std::string svgPlot(const PlotSpec& spec) {
+  const PlotFrame f(spec);
+  constexpr double W = PlotFrame::W, H = PlotFrame::H;
+  std::ostringstream o;
+  o << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << W << "\" height=\"" << H
+    << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"12\">\n";
+  o << "<rect x=\"0\" y=\"0\" width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n";
+  o << "<text x=\"" << num1((PlotFrame::X0 + PlotFrame::X1) / 2)
+    << "\" y=\"28\" text-anchor=\"middle\" font-size=\"15\" font-weight=\"bold\">" << xmlEscape(spec.title)
+    << "</text>\n";
+  svgAxes(o, f, spec);
+  svgFront(o, f, spec.front);
+  for (const auto& s : spec.series) svgSeries(o, f, s);
+  svgLegend(o, spec);
   o << "</svg>\n";
   return o.str();
 }
