@@ -29,7 +29,9 @@ using Point = K::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-Point toPoint(const glm::dvec3& p) { return {p.x, p.y, p.z}; }
+Point toPoint(const glm::dvec3& p) {
+  return {p.x, p.y, p.z};
+}
 
 // Whether a closed 2-manifold is outward. PMP::is_outward_oriented decides from the faces around
 // one extreme vertex, which is ambiguous where a closed volume touches itself at that point (the
@@ -119,27 +121,27 @@ std::string MeshCheckReport::summary() const {
     << ", overused edges " << overusedEdges << ", non-manifold vertices " << nonManifoldVertices << ", isolated "
     << isolatedVertices << ", coincident " << coincidentVertices << "; outward " << (outward ? "yes" : "no")
     << ", volume " << volume << "; self-intersecting pairs ";
-  if (selfIntersectingPairs) s << *selfIntersectingPairs << " (allowed touching " << allowedTouchingPairs << ")";
-  else s << "not checked";
+  if (selfIntersectingPairs)
+    s << *selfIntersectingPairs << " (allowed touching " << allowedTouchingPairs << ")";
+  else
+    s << "not checked";
   return s.str();
 }
 
-MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options) {
-  MeshCheckReport r;
-  const std::size_t nv = mesh.positions.size();
-  r.vertices = nv;
-  r.triangles = mesh.triangles.size();
-  for (const auto& p : mesh.positions)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ++r.nonFiniteVertices;
+namespace {
 
-  // Index sanity and degenerate faces.
+// One corner of a triangle (v, a, b): the link of v gets the edge a -> b.
+struct Corner {
+  std::uint32_t v, a, b;
+};
+
+// Index sanity and degenerate faces into `r`; the directed edges (from << 32 | to) and the
+// corners of the sound triangles.
+void checkTriangles(const VolumeMesh& mesh, MeshCheckReport& r, std::vector<std::uint64_t>& directed,
+                    std::vector<Corner>& corners) {
+  const std::size_t nv = mesh.positions.size();
   std::vector<bool> used(nv, false);
-  std::vector<std::uint64_t> directed;
   directed.reserve(mesh.triangles.size() * 3);
-  struct Corner {
-    std::uint32_t v, a, b;  // triangle (v, a, b): the link of v gets the edge a -> b
-  };
-  std::vector<Corner> corners;
   corners.reserve(mesh.triangles.size() * 3);
   for (const auto& t : mesh.triangles) {
     if (t[0] >= nv || t[1] >= nv || t[2] >= nv || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
@@ -156,8 +158,10 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
       ++r.degenerateTriangles;
   }
   r.isolatedVertices = std::size_t(std::count(used.begin(), used.end(), false));
+}
 
-  // Directed edges: each once, its opposite present.
+// Directed edges: each once, its opposite present.
+void checkEdges(std::vector<std::uint64_t>& directed, MeshCheckReport& r) {
   std::sort(directed.begin(), directed.end());
   for (std::size_t k = 0; k < directed.size(); ++k) {
     if (k > 0 && directed[k] == directed[k - 1]) {
@@ -167,45 +171,103 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
     const std::uint64_t opposite = (directed[k] << 32) | (directed[k] >> 32);
     if (!std::binary_search(directed.begin(), directed.end(), opposite)) ++r.boundaryEdges;
   }
+}
 
-  // Vertex fans: the link edges a -> b of a vertex must form exactly one cycle.
-  std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
-    return x.v != y.v ? x.v < y.v : x.a < y.a;
-  });
+// Whether the link edges a -> b of one vertex's corners [s, e) (sorted by a) form exactly one cycle.
+bool oneFan(const std::vector<Corner>& corners, std::size_t s, std::size_t e) {
+  for (std::size_t k = s + 1; k < e; ++k)
+    if (corners[k].a == corners[k - 1].a) return false;  // one edge out of each a
+  std::size_t steps = 0;
+  std::uint32_t at = corners[s].a;
+  do {
+    auto it = std::lower_bound(corners.begin() + std::ptrdiff_t(s), corners.begin() + std::ptrdiff_t(e), at,
+                               [](const Corner& c, std::uint32_t a) { return c.a < a; });
+    if (it == corners.begin() + std::ptrdiff_t(e) || it->a != at) return false;
+    at = it->b;
+    ++steps;
+  } while (at != corners[s].a && steps <= e - s);
+  return at == corners[s].a && steps == e - s;
+}
+
+// Vertex fans: the vertices whose link is not one cycle.
+void checkFans(std::vector<Corner>& corners, MeshCheckReport& r) {
+  std::sort(corners.begin(), corners.end(),
+            [](const Corner& x, const Corner& y) { return x.v != y.v ? x.v < y.v : x.a < y.a; });
   for (std::size_t s = 0; s < corners.size();) {
     std::size_t e = s;
     while (e < corners.size() && corners[e].v == corners[s].v) ++e;
-    bool ok = true;
-    for (std::size_t k = s + 1; k < e; ++k) ok = ok && corners[k].a != corners[k - 1].a;  // one edge out of each a
-    if (ok) {
-      std::size_t steps = 0;
-      std::uint32_t at = corners[s].a;
-      do {
-        auto it = std::lower_bound(corners.begin() + std::ptrdiff_t(s), corners.begin() + std::ptrdiff_t(e), at,
-                                   [](const Corner& c, std::uint32_t a) { return c.a < a; });
-        if (it == corners.begin() + std::ptrdiff_t(e) || it->a != at) {
-          ok = false;
-          break;
-        }
-        at = it->b;
-        ++steps;
-      } while (at != corners[s].a && steps <= e - s);
-      ok = ok && at == corners[s].a && steps == e - s;
-    }
-    if (!ok) ++r.nonManifoldVertices;
+    if (!oneFan(corners, s, e)) ++r.nonManifoldVertices;
     s = e;
   }
+}
 
-  // Coincident positions.
-  std::vector<std::uint32_t> order(nv);
+// Vertices at the same position as another.
+std::size_t coincidentVertices(const VolumeMesh& mesh) {
+  std::vector<std::uint32_t> order(mesh.positions.size());
   std::iota(order.begin(), order.end(), 0u);
-  auto less = [&](std::uint32_t x, std::uint32_t y) {
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
     const auto &p = mesh.positions[x], &q = mesh.positions[y];
     return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+  });
+  std::size_t n = 0;
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (mesh.positions[order[k]] == mesh.positions[order[k - 1]]) ++n;
+  return n;
+}
+
+// Whether the exact intersection of two triangles lies wholly where touching is allowed. It is
+// constructed exactly (touching triangles meet in exactly one point or segment, which inexact
+// constructions may miss), then tested point by point.
+bool touchAllowed(const K::Triangle_3& a, const K::Triangle_3& b, const MeshCheckOptions& options) {
+  const CGAL::Cartesian_converter<K, EK> toExact;
+  const auto x = CGAL::intersection(toExact(a), toExact(b));
+  if (!x) return false;
+  std::vector<EK::Point_3> pts;
+  if (const auto* p = boost::get<EK::Point_3>(&*x))
+    pts = {*p};
+  else if (const auto* s = boost::get<EK::Segment_3>(&*x))
+    pts = {s->source(), s->target()};
+  else if (const auto* t = boost::get<EK::Triangle_3>(&*x))
+    pts = {t->vertex(0), t->vertex(1), t->vertex(2)};
+  else if (const auto* v = boost::get<std::vector<EK::Point_3>>(&*x))
+    pts = *v;
+  return !pts.empty() && std::all_of(pts.begin(), pts.end(), [&](const EK::Point_3& p) {
+    return options.allowedTouch({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+  });
+}
+
+// CGAL's self-intersecting face pairs, those that only touch where allowed counted apart.
+void checkSelfIntersections(const Mesh& sm, const MeshCheckOptions& options, MeshCheckReport& r) {
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+  PMP::self_intersections(sm, std::back_inserter(pairs));
+  auto triangleOf = [&](Mesh::Face_index f) {
+    auto h = sm.halfedge(f);
+    return K::Triangle_3(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
   };
-  std::sort(order.begin(), order.end(), less);
-  for (std::size_t k = 1; k < nv; ++k)
-    if (mesh.positions[order[k]] == mesh.positions[order[k - 1]]) ++r.coincidentVertices;
+  std::size_t counted = 0;
+  for (const auto& [f, g] : pairs) {
+    if (options.allowedTouch && touchAllowed(triangleOf(f), triangleOf(g), options))
+      ++r.allowedTouchingPairs;
+    else
+      ++counted;
+  }
+  r.selfIntersectingPairs = counted;
+}
+
+}  // namespace
+
+MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options) {
+  MeshCheckReport r;
+  r.vertices = mesh.positions.size();
+  r.triangles = mesh.triangles.size();
+  for (const auto& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) ++r.nonFiniteVertices;
+  std::vector<std::uint64_t> directed;
+  std::vector<Corner> corners;
+  checkTriangles(mesh, r, directed, corners);
+  checkEdges(directed, r);
+  checkFans(corners, r);
+  r.coincidentVertices = coincidentVertices(mesh);
 
   if (!r.closedManifold() || r.nonFiniteVertices > 0 || mesh.triangles.empty()) return r;
   Mesh sm;
@@ -215,38 +277,7 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
   }
   r.outward = isOutward(sm);
   r.volume = CGAL::to_double(PMP::volume(sm));
-  if (options.selfIntersections && r.degenerateTriangles == 0) {
-    std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
-    PMP::self_intersections(sm, std::back_inserter(pairs));
-    std::size_t counted = 0;
-    auto triangleOf = [&](Mesh::Face_index f) {
-      auto h = sm.halfedge(f);
-      return K::Triangle_3(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))));
-    };
-    for (const auto& [f, g] : pairs) {
-      bool allowed = false;
-      if (options.allowedTouch) {
-        // The intersection is constructed exactly (touching triangles meet in exactly one point or
-        // segment, which inexact constructions may miss), then tested point by point.
-        const CGAL::Cartesian_converter<K, EK> toExact;
-        const auto x = CGAL::intersection(toExact(triangleOf(f)), toExact(triangleOf(g)));
-        if (x) {
-          std::vector<EK::Point_3> pts;
-          if (const auto* p = boost::get<EK::Point_3>(&*x)) pts = {*p};
-          else if (const auto* s = boost::get<EK::Segment_3>(&*x)) pts = {s->source(), s->target()};
-          else if (const auto* t = boost::get<EK::Triangle_3>(&*x)) pts = {t->vertex(0), t->vertex(1), t->vertex(2)};
-          else if (const auto* v = boost::get<std::vector<EK::Point_3>>(&*x)) pts = *v;
-          allowed = !pts.empty() && std::all_of(pts.begin(), pts.end(), [&](const EK::Point_3& p) {
-            return options.allowedTouch(
-                {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
-          });
-        }
-      }
-      if (allowed) ++r.allowedTouchingPairs;
-      else ++counted;
-    }
-    r.selfIntersectingPairs = counted;
-  }
+  if (options.selfIntersections && r.degenerateTriangles == 0) checkSelfIntersections(sm, options, r);
   return r;
 }
 
@@ -266,9 +297,12 @@ VolumeClassifier& VolumeClassifier::operator=(VolumeClassifier&&) noexcept = def
 
 VolumeClassifier::Side VolumeClassifier::classify(const glm::dvec3& point) const {
   switch ((*impl_->side)(toPoint(point))) {
-    case CGAL::ON_BOUNDED_SIDE: return Side::Inside;
-    case CGAL::ON_BOUNDARY: return Side::Boundary;
-    default: return Side::Outside;
+    case CGAL::ON_BOUNDED_SIDE:
+      return Side::Inside;
+    case CGAL::ON_BOUNDARY:
+      return Side::Boundary;
+    default:
+      return Side::Outside;
   }
 }
 
