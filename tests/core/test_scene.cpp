@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/primitives.h"
 #include "shadowvol/scene.h"
 #include "test_util.h"
 
@@ -333,6 +334,51 @@ TEST(SceneParser, MissingUnreadableAndBadMeshes) {
   expectMeshError("mesh.xyz", "unsupported");
   test::writeText(dir / "ok.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_EQ(parseScene(sceneWith("ok.obj"), "test.json", dir).scene.triangleCount(), 1u);
+}
+
+// A closed mesh from a file that is inside out is reversed on loading, with a warning naming the
+// object and the way to keep it (mesh_orientation.h); "orient": "as-stored" keeps the file's.
+TEST(SceneParser, ClosedMeshesAreOrientedOutward) {
+  const auto dir = test::tempDir();
+  const TriangleMesh box = makeBox(1.0, 2.0, 3.0);
+  std::string obj;
+  for (const auto& p : box.positions)
+    obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+  for (const auto& t : box.triangles)  // wound clockwise seen from outside: inside out
+    obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[2] + 1) + " " + std::to_string(t[1] + 1) + "\n";
+  test::writeText(dir / "inside-out.obj", obj);
+  auto volumeOf = [](const TriangleMesh& m) {
+    double v = 0.0;
+    for (const auto& t : m.triangles)
+      v += glm::dot(glm::dvec3(m.positions[t[0]]),
+                    glm::cross(glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]]))) / 6.0;
+    return v;
+  };
+  auto load = [&](const std::string& extra) {
+    return parseScene(withObject(R"({"type":"mesh","name":"crate","file":"inside-out.obj")" + extra + "}"),
+                      "test.json", dir);
+  };
+  const SceneLoadResult oriented = load("");
+  EXPECT_NEAR(volumeOf(oriented.scene.objects[0].mesh), 6.0, 1e-4);
+  ASSERT_EQ(oriented.warnings.size(), 1u);
+  for (const char* phrase : {"test.json: /objects/0/orient", "\"crate\"", "inside out", "12 of its 12 triangles",
+                             "\"as-stored\""})
+    EXPECT_NE(oriented.warnings[0].find(phrase), std::string::npos) << oriented.warnings[0];
+  // Mirrored by its transform it stays inside out (a mirror keeps the stored facing): repaired alike.
+  const SceneLoadResult mirrored = load(R"(,"transform":{"scale":[-1,1,1]})");
+  EXPECT_NEAR(volumeOf(mirrored.scene.objects[0].mesh), 6.0, 1e-4);
+  EXPECT_EQ(mirrored.warnings.size(), 1u);
+  const SceneLoadResult stored = load(R"(,"orient":"as-stored")");
+  EXPECT_NEAR(volumeOf(stored.scene.objects[0].mesh), -6.0, 1e-4);
+  EXPECT_TRUE(stored.warnings.empty());
+  try {
+    load(R"(,"orient":"inward")");
+    FAIL() << "orient \"inward\" accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "/objects/0/orient");
+    EXPECT_NE(std::string(e.what()).find("inward"), std::string::npos) << e.what();
+  }
+  expectError(withObject(R"({"type":"box","orient":"outward"})"), "/objects/0/orient");  // built outward
 }
 
 TEST(SceneParser, BadLights) {

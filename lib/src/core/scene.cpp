@@ -18,6 +18,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/eye_plane_split.h"
 #include "shadowvol/mesh_io.h"
+#include "shadowvol/mesh_orientation.h"
 #include "shadowvol/primitives.h"
 #include "clip_volume.h"
 #include "scene_fit_range.h"
@@ -198,7 +199,29 @@ struct ReadObject {
   SceneObject obj;
   std::vector<glm::dvec3> world;
   std::filesystem::path file;  ///< a mesh object's file, as read
+  std::string note;            ///< a warning about the object (its winding repaired), or empty
 };
+
+// A mesh object's "orient": "outward" (the default: mesh_orientation.h's repair) or "as-stored".
+// The note says what was reversed, or is empty.
+std::string orientMesh(ObjectReader& r, ReadObject& read, const std::string& source) {
+  const std::string orient = r.string("orient", std::string("outward"));
+  if (orient == "as-stored") return {};
+  if (orient != "outward") r.fail("orient", json(orient), "expected \"outward\" or \"as-stored\"");
+  const OrientationResult o = orientOutward(read.obj.mesh, read.world);
+  if (o.reversed == 0) return {};
+  std::string what;
+  if (o.repairedComponents > 0)
+    what = "had faces wound against their neighbours (in " + std::to_string(o.repairedComponents) +
+           (o.repairedComponents == 1 ? " connected part)" : " connected parts)");
+  char volume[32];
+  std::snprintf(volume, sizeof volume, "%.4g", o.volumeBefore);
+  if (o.insideOut) what += std::string(what.empty() ? "" : " and ") + "was inside out (signed volume " + volume + ")";
+  return source + ": " + r.pointer("orient") + ": the closed mesh \"" + read.obj.name + "\" " + what + ": " +
+         std::to_string(o.reversed) + " of its " + std::to_string(read.obj.mesh.triangleCount()) +
+         " triangles were reversed so that it faces outward (set \"orient\": \"as-stored\" to keep the file's "
+         "winding)";
+}
 
 // The mesh of a built-in primitive type. Each refuses, before generating anything, a tessellation
 // whose triangle count (an upper bound) exceeds `budget`, the triangles the scene may still hold.
@@ -282,6 +305,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
     r.fail("", json(), std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " +
                            std::to_string(budget) + " the scene may still hold");
   read.world = applyTransform(obj.mesh, readTransform(r));
+  if (obj.type == "mesh") read.note = orientMesh(r, read, source);
   r.finish();
   for (const auto& p : read.world)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -674,6 +698,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
     budget -= read.obj.mesh.triangleCount();
     scene.objects.push_back(std::move(read.obj));
     if (!read.file.empty()) scene.files.push_back(read.file);
+    if (!read.note.empty()) result.warnings.push_back(std::move(read.note));
     world.push_back(std::move(read.world));
   }
   readLights(top, scene, source);

@@ -1,0 +1,53 @@
+// Orienting a closed mesh read from a file: consistent winding, faces outward.
+//
+// Back capture, silhouette volumes and the lighting all take a triangle's winding as its facing
+// (triangle_mesh.h). Meshes from other tools are not always wound so: a whole file inside out
+// (the ellipsoid of data/scenes/unseen), or single faces wound against their neighbours (the
+// shuffled blob). orientOutward repairs what it can prove wrong and leaves everything else as
+// stored:
+//
+// - Only a closed, edge-manifold mesh is touched: after welding exactly equal positions
+//   (triangle_adjacency.h's rule), every edge of every non-degenerate triangle has exactly one
+//   neighbour. Open meshes, edges of three or more triangles and non-orientable surfaces are left
+//   as they are (OrientationResult::left says why).
+// - A connected component whose faces disagree (two neighbours run their edge the same way) is
+//   wound consistently with its first triangle and then, if its signed volume is negative,
+//   reversed: a repaired component is made to face outward on its own.
+// - Then, if the whole mesh's signed volume is negative, every triangle is reversed. Components
+//   that already agreed within themselves are only reversed together, so a hollow solid stored as
+//   an outward shell around an inward one keeps its inner shell inward.
+// - A signed volume counts as negative only below -1e-9 times the sum of its terms' magnitudes
+//   (kOrientationVolumeTolerance), so a flat or double-sided closed sheet (volume 0 up to
+//   rounding) is never reversed by rounding.
+//
+// Deterministic: components in the order of their first triangle, the volume summed in that order,
+// in double about the box centre of `world`.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol {
+
+/// A signed volume below -kOrientationVolumeTolerance * (sum of |terms|) is negative.
+inline constexpr double kOrientationVolumeTolerance = 1e-9;
+
+struct OrientationResult {
+  std::size_t reversed = 0;            ///< triangles whose winding was reversed
+  std::size_t repairedComponents = 0;  ///< components whose faces disagreed, now wound alike
+  bool insideOut = false;              ///< the whole mesh was reversed (its signed volume was negative)
+  double volumeBefore = 0.0;           ///< the mesh's signed volume before (after the component repair)
+  std::string left;                    ///< not closed, edge-manifold or orientable: why (else empty)
+};
+
+/// Orients `mesh` in place (the rules above). `world` holds its vertices' positions in double
+/// (the volume is measured there; mesh.positions are only compared for welding); world.size() ==
+/// mesh.positions.size().
+OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3>& world);
+
+}  // namespace shadowvol
