@@ -74,6 +74,51 @@ TEST(MeshOrientation, HollowSolidKeepsItsInnerShellInward) {
   EXPECT_EQ(m.triangles, hollow.triangles);
 }
 
+TriangleMesh movedBy(TriangleMesh m, const glm::vec3& d) {
+  for (auto& p : m.positions) p += d;
+  return m;
+}
+
+TEST(MeshOrientation, PartInsideOutOnItsOwnIsReversed) {
+  // An assembly of two separate parts, one stored inside out (a mirrored part exported as is):
+  // a smaller one, then a larger one (the whole volume is then negative).
+  for (const double big : {0.5, 3.0}) {
+    TriangleMesh outward = makeIcoSphere(1.0, 2);
+    outward.append(movedBy(makeIcoSphere(big, 2), {6.0f, 0.0f, 0.0f}));
+    TriangleMesh m = makeIcoSphere(1.0, 2);
+    m.append(movedBy(reversedAll(makeIcoSphere(big, 2)), {6.0f, 0.0f, 0.0f}));
+    const OrientationResult r = orientOutward(m, worldOf(m));
+    EXPECT_EQ(r.looseParts, 1u) << "second part's radius " << big;
+    EXPECT_EQ(r.insideOut, big > 1.0);
+    EXPECT_EQ(r.reversed, makeIcoSphere(1.0, 2).triangleCount());
+    EXPECT_EQ(m.triangles, outward.triangles);
+  }
+}
+
+TEST(MeshOrientation, ContainmentBudgetLeavesTheRestAsStoredAndCountsThem) {
+  // Three inside-out spheres inside one box's bounds: each test casts against the other parts.
+  TriangleMesh m = makeIcoSphere(3.0, 2);
+  for (const float x : {-1.0f, 0.0f, 1.0f}) m.append(movedBy(reversedAll(makeIcoSphere(0.3, 1)), {x, 0.0f, 0.0f}));
+  const TriangleMesh stored = m;
+  const OrientationResult r = orientOutward(m, worldOf(m), 10);  // fewer tests than one sphere's triangles
+  EXPECT_EQ(r.partsNotChecked, 3u);
+  EXPECT_EQ(r.looseParts, 0u);
+  EXPECT_EQ(m.triangles, stored.triangles);
+  // With the default budget they are found inside the large sphere: inner shells, kept.
+  const OrientationResult full = orientOutward(m, worldOf(m));
+  EXPECT_EQ(full.partsNotChecked, 0u);
+  EXPECT_EQ(full.reversed, 0u);
+}
+
+TEST(MeshOrientation, PartPushedIntoAnotherIsLeftAlone) {
+  // A small outward sphere half sunk into a large one (an eye in a head): both outward, untouched.
+  TriangleMesh head = makeIcoSphere(2.0, 2);
+  head.append(movedBy(makeIcoSphere(0.5, 2), {2.0f, 0.0f, 0.0f}));
+  TriangleMesh m = head;
+  EXPECT_EQ(orientOutward(m, worldOf(m)).reversed, 0u);
+  EXPECT_EQ(m.triangles, head.triangles);
+}
+
 TEST(MeshOrientation, OpenAndNonManifoldMeshesAreLeftAsStored) {
   TriangleMesh open = reversedAll(makeBox(1.0, 1.0, 1.0));
   open.triangles.pop_back();  // a hole

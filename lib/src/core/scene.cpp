@@ -202,25 +202,40 @@ struct ReadObject {
   std::string note;            ///< a warning about the object (its winding repaired), or empty
 };
 
+// The warning about what orientOutward changed in object `name` (empty when nothing).
+std::string orientationNote(const OrientationResult& o, const std::string& name, std::size_t triangles) {
+  std::vector<std::string> what;
+  if (o.repairedComponents > 0)
+    what.push_back("had faces wound against their neighbours (in " + std::to_string(o.repairedComponents) +
+                   (o.repairedComponents == 1 ? " connected part)" : " connected parts)"));
+  char volume[32];
+  std::snprintf(volume, sizeof volume, "%.4g", o.volumeBefore);
+  if (o.insideOut) what.push_back("was inside out (signed volume " + std::string(volume) + ")");
+  if (o.looseParts > 0)
+    what.push_back("had " + std::to_string(o.looseParts) +
+                   (o.looseParts == 1 ? " part inside out on its own" : " parts inside out on their own"));
+  std::string text = "the closed mesh \"" + name + "\"";
+  for (std::size_t k = 0; k < what.size(); ++k) text += (k == 0 ? " " : k + 1 == what.size() ? " and " : ", ") + what[k];
+  if (o.reversed > 0)
+    text += ": " + std::to_string(o.reversed) + " of its " + std::to_string(triangles) +
+            " triangles were reversed so that it faces outward (set \"orient\": \"as-stored\" to keep the file's "
+            "winding)";
+  if (o.partsNotChecked > 0)
+    text += std::string(o.reversed > 0 ? "; " : ": ") + std::to_string(o.partsNotChecked) +
+            " parts that enclose a negative volume were left as stored (too many triangles to test whether they "
+            "are inner shells)";
+  return o.reversed > 0 || o.partsNotChecked > 0 ? text : std::string();
+}
+
 // A mesh object's "orient": "outward" (the default: mesh_orientation.h's repair) or "as-stored".
-// The note says what was reversed, or is empty.
+// Returns the warning about what was reversed, or nothing.
 std::string orientMesh(ObjectReader& r, ReadObject& read, const std::string& source) {
   const std::string orient = r.string("orient", std::string("outward"));
   if (orient == "as-stored") return {};
   if (orient != "outward") r.fail("orient", json(orient), "expected \"outward\" or \"as-stored\"");
   const OrientationResult o = orientOutward(read.obj.mesh, read.world);
-  if (o.reversed == 0) return {};
-  std::string what;
-  if (o.repairedComponents > 0)
-    what = "had faces wound against their neighbours (in " + std::to_string(o.repairedComponents) +
-           (o.repairedComponents == 1 ? " connected part)" : " connected parts)");
-  char volume[32];
-  std::snprintf(volume, sizeof volume, "%.4g", o.volumeBefore);
-  if (o.insideOut) what += std::string(what.empty() ? "" : " and ") + "was inside out (signed volume " + volume + ")";
-  return source + ": " + r.pointer("orient") + ": the closed mesh \"" + read.obj.name + "\" " + what + ": " +
-         std::to_string(o.reversed) + " of its " + std::to_string(read.obj.mesh.triangleCount()) +
-         " triangles were reversed so that it faces outward (set \"orient\": \"as-stored\" to keep the file's "
-         "winding)";
+  const std::string note = orientationNote(o, read.obj.name, read.obj.mesh.triangleCount());
+  return note.empty() ? note : source + ": " + r.pointer("orient") + ": " + note;
 }
 
 // The mesh of a built-in primitive type. Each refuses, before generating anything, a tessellation
