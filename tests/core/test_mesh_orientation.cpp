@@ -140,6 +140,21 @@ TEST(MeshOrientation, OpenAndNonManifoldMeshesAreLeftAsStored) {
   EXPECT_FALSE(orientOutward(m, worldOf(m)).left.empty());
 }
 
+TEST(MeshOrientation, OpenMeshPartsAgreeWithMostOfTheirTriangles) {
+  TriangleMesh dome = makeHemisphere(1.0, 16, 4);
+  dome.triangles.resize(dome.triangleCount() - 16);  // without its base disc's fan: open
+  for (const bool mostFlipped : {false, true}) {
+    TriangleMesh m = mostFlipped ? reversedAll(dome) : dome;
+    for (std::size_t t = 0; t < m.triangleCount(); t += 5) reverse(m, t);  // a fifth wound the other way
+    const OrientationResult r = orientOutward(m, worldOf(m));
+    EXPECT_TRUE(r.open);
+    EXPECT_FALSE(r.insideOut);
+    EXPECT_EQ(r.repairedComponents, 1u);
+    EXPECT_EQ(r.reversed, (dome.triangleCount() + 4) / 5);
+    EXPECT_EQ(m.triangles, mostFlipped ? reversedAll(dome).triangles : dome.triangles);
+  }
+}
+
 TEST(MeshOrientation, NonOrientableSurfaceIsLeftAsStored) {
   // The six-vertex projective plane: closed, every edge in two triangles, no consistent winding.
   TriangleMesh rp2;

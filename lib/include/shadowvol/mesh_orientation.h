@@ -1,4 +1,5 @@
-// Orienting a closed mesh read from a file: consistent winding, faces outward.
+// Orienting a mesh read from a file: faces that agree with their neighbours, and a closed mesh's
+// facing outward.
 //
 // Back capture, silhouette volumes and the lighting all take a triangle's winding as its facing
 // (triangle_mesh.h). Meshes from other tools are not always wound so: a whole file inside out
@@ -6,13 +7,15 @@
 // shuffled blob). orientOutward repairs what it can prove wrong and leaves everything else as
 // stored:
 //
-// - Only a closed, edge-manifold mesh is touched: after welding exactly equal positions
+// - Closed means edge-manifold and without border: after welding exactly equal positions
 //   (triangle_adjacency.h's rule), every edge of every non-degenerate triangle has exactly one
-//   neighbour. Open meshes, edges of three or more triangles and non-orientable surfaces are left
-//   as they are (OrientationResult::left says why).
-// - A connected component whose faces disagree (two neighbours run their edge the same way) is
-//   wound consistently with its first triangle and then, if its signed volume is negative,
-//   reversed: a repaired component is made to face outward on its own.
+//   neighbour. A non-orientable surface is left as it is (OrientationResult::left says why).
+// - An open mesh (a border, or edges of three or more triangles) has no outside: only each of its
+//   connected parts (across edges of exactly two triangles) whose faces disagree is wound as most
+//   of its triangles are (as its first triangle on a tie), and nothing more.
+// - In a closed mesh, a connected component whose faces disagree (two neighbours run their edge
+//   the same way) is wound consistently with its first triangle and then, if its signed volume is
+//   negative, reversed: a repaired component is made to face outward on its own.
 // - Then, if the whole mesh's signed volume is negative, every triangle is reversed. Components
 //   that already agreed within themselves are reversed together, so a hollow solid stored as an
 //   outward shell around an inward one keeps its inner shell inward.
@@ -52,6 +55,7 @@ struct OrientationResult {
   std::size_t partsNotChecked = 0;     ///< negative parts left as stored: the containment budget ran out
   bool insideOut = false;              ///< the whole mesh was reversed (its signed volume was negative)
   double volumeBefore = 0.0;           ///< the mesh's signed volume before (after the component repair)
+  bool open = false;                   ///< not closed: only its parts' faces were made to agree
   std::string left;                    ///< not closed, edge-manifold or orientable: why (else empty)
 };
 

@@ -58,6 +58,7 @@ Components windComponents(const TriangleMesh& mesh, const std::vector<std::int32
       stack.pop_back();
       for (int k = 0; k < 3; ++k) {
         const std::int32_t link = neighbours[3 * t + std::size_t(k)];
+        if (link == kNoNeighbour) continue;  // an open or non-manifold edge
         const std::size_t other = std::size_t(link & ~kFlippedNeighbour);
         const std::int8_t want = std::int8_t(c.flip[t] ^ ((link & kFlippedNeighbour) ? 1 : 0));
         if (c.flip[other] == kUnknown) {
@@ -143,21 +144,44 @@ class PartContainment {
 
 }  // namespace
 
+// An open mesh: each part whose faces disagree takes the winding of most of its triangles (of
+// its first triangle on a tie); its outside is not defined, so nothing more.
+void orientOpenParts(TriangleMesh& mesh, const Components& c, OrientationResult& r) {
+  std::vector<std::size_t> against(c.count, 0), size(c.count, 0);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (c.flip[t] == kUnknown) continue;
+    ++size[c.component[t]];
+    against[c.component[t]] += c.flip[t] == 1;
+  }
+  for (std::uint32_t q = 0; q < c.count; ++q) r.repairedComponents += against[q] > 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (c.flip[t] == kUnknown) continue;
+    const std::uint32_t q = c.component[t];
+    const bool keepFirst = 2 * against[q] <= size[q];
+    if ((c.flip[t] == 1) == keepFirst) {
+      std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+      ++r.reversed;
+    }
+  }
+}
+
 OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3>& world,
                                 std::size_t containmentTests) {
   OrientationResult r;
   const std::vector<std::int32_t> neighbours = triangleNeighbours(mesh);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (degenerate(mesh, mesh.triangles[t])) continue;
-    for (int k = 0; k < 3; ++k)
-      if (neighbours[3 * t + std::size_t(k)] == kNoNeighbour) {
-        r.left = "not closed (an edge with one triangle, or with three or more)";
-        return r;
-      }
-  }
+  bool closed = true;
+  for (std::size_t t = 0; t < mesh.triangles.size() && closed; ++t)
+    for (int k = 0; k < 3 && !degenerate(mesh, mesh.triangles[t]); ++k)
+      closed = closed && neighbours[3 * t + std::size_t(k)] != kNoNeighbour;
   Components c = windComponents(mesh, neighbours);
   if (c.flip.empty()) {
     r.left = "not orientable (no winding makes every pair of neighbours agree)";
+    return r;
+  }
+  if (!closed) {
+    r.left = "not closed (an edge with one triangle, or with three or more): its outside is not defined";
+    r.open = true;
+    orientOpenParts(mesh, c, r);
     return r;
   }
   Bounds3 box;

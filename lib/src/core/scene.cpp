@@ -214,12 +214,13 @@ std::string orientationNote(const OrientationResult& o, const std::string& name,
   if (o.looseParts > 0)
     what.push_back("had " + std::to_string(o.looseParts) +
                    (o.looseParts == 1 ? " part inside out on its own" : " parts inside out on their own"));
-  std::string text = "the closed mesh \"" + name + "\"";
-  for (std::size_t k = 0; k < what.size(); ++k) text += (k == 0 ? " " : k + 1 == what.size() ? " and " : ", ") + what[k];
+  std::string text = std::string(o.open ? "the open mesh" : "the closed mesh") + " \"" + name + "\"";
+  for (std::size_t k = 0; k < what.size(); ++k)
+    text += (k == 0 ? " " : k + 1 == what.size() ? " and " : ", ") + what[k];
   if (o.reversed > 0)
-    text += ": " + std::to_string(o.reversed) + " of its " + std::to_string(triangles) +
-            " triangles were reversed so that it faces outward (set \"orient\": \"as-stored\" to keep the file's "
-            "winding)";
+    text += ": " + std::to_string(o.reversed) + " of its " + std::to_string(triangles) + " triangles were reversed " +
+            (o.open ? "to agree with most of their part (open, it has no outside to face)" : "so that it faces outward") +
+            " (set \"orient\": \"as-stored\" to keep the file's winding)";
   if (o.partsNotChecked > 0)
     text += std::string(o.reversed > 0 ? "; " : ": ") + std::to_string(o.partsNotChecked) +
             " parts that enclose a negative volume were left as stored (too many triangles to test whether they "
