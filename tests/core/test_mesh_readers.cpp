@@ -410,6 +410,25 @@ TEST(MeshReaders, StlAsciiIsReadAndItsMistakesNamed) {
 
 // Every prefix of a valid file of each format is read or refused with InputError, never a crash
 // or another exception; the whole file reads.
+// A UTF-8 byte-order mark before the first line (Windows editors write one) is skipped: it once
+// hid an OBJ file's first vertex, so every index pointed one vertex further (a probe's finding).
+TEST(MeshReaders, Utf8ByteOrderMarkIsSkipped) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const TriangleMesh obj = readBack("bom.obj", bom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n");
+  ASSERT_EQ(obj.triangleCount(), 1u);
+  EXPECT_EQ(obj.positions[obj.triangles[0][0]], glm::vec3(0, 0, 0));
+  EXPECT_EQ(obj.positions[obj.triangles[0][2]], glm::vec3(0, 1, 0));
+  EXPECT_EQ(readBack("bom.off", bom + "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").triangleCount(), 1u);
+  EXPECT_EQ(readBack("bom.ply", bom + "ply\nformat ascii 1.0\n" + kPlyXyz + kPlyFace +
+                                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+                .triangleCount(),
+            1u);
+  EXPECT_EQ(readBack("bom.stl", bom + "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                                    "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n")
+                .triangleCount(),
+            1u);
+}
+
 TEST(MeshReaders, EveryPrefixOfAValidFileIsReadOrRefused) {
   const auto dir = test::tempDir();
   const TriangleMesh box = makeBox(1, 2, 3);

@@ -85,7 +85,7 @@ TriangleMesh readAscii(const std::string& source, std::string_view text) {
 }
 
 bool beginsWithSolid(std::string_view bytes) {
-  std::string_view rest = bytes.substr(0, 512);
+  std::string_view rest = withoutBom(bytes).substr(0, 512);
   return nextToken(rest) == "solid";
 }
 

@@ -10,11 +10,21 @@
 
 namespace shadowvol::mesh_readers {
 
+/// The UTF-8 byte-order mark some editors write at the start of a text file.
+inline constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+/// `bytes` without a UTF-8 byte-order mark at its start.
+inline std::string_view withoutBom(std::string_view bytes) {
+  return bytes.substr(0, kUtf8Bom.size()) == kUtf8Bom ? bytes.substr(kUtf8Bom.size()) : bytes;
+}
+
 /// Walks the lines of `text` from byte `offset`. A line ends at "\n", "\r\n" or a lone "\r"; the
-/// terminator is not part of the line. The last line may lack one.
+/// terminator is not part of the line. The last line may lack one. From offset 0, a UTF-8
+/// byte-order mark is skipped (offsets stay those of `text`).
 class LineReader {
  public:
-  explicit LineReader(std::string_view text, std::size_t offset = 0) : text_(text), pos_(offset) {}
+  explicit LineReader(std::string_view text, std::size_t offset = 0)
+      : text_(text), pos_(offset == 0 ? text.size() - withoutBom(text).size() : offset) {}
 
   /// The next line, or nullopt at the end of the text.
   std::optional<std::string_view> next();
