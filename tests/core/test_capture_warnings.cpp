@@ -50,6 +50,15 @@ TEST(CaptureWarnings, SplitVerticesOfAClosedMeshAreNotOpen) {
   EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"stl box", "mesh", stl}}), 64, 64, CaptureMode::Back).empty());
 }
 
+// A degenerate triangle (a repeated corner) in a closed mesh bounds nothing: the mesh is not called
+// open (it once was, in a probe, while the orientation on loading called it closed).
+TEST(CaptureWarnings, DegenerateTrianglesDoNotOpenAClosedMesh) {
+  TriangleMesh box = makeBox(1.0, 1.0, 1.0);
+  box.triangles.push_back({3, 3, 3});
+  box.triangles.push_back({0, 0, 1});
+  EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"box", "mesh", box}}), 64, 64, CaptureMode::Back).empty());
+}
+
 TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatchesIt) {
   // The 8 x 8 window at 16^2: texels 0.5 apart. A 0.2-wide box centred between two texel centres.
   const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);

@@ -15,10 +15,14 @@ namespace shadowvol {
 namespace {
 
 // Every undirected edge used by exactly two triangles, with vertices identified by `id`.
+// Degenerate triangles (two corners of one id) bound nothing and are skipped, as the orientation
+// on loading skips them (mesh_orientation.h).
 bool closedBy(const TriangleMesh& m, const std::vector<std::uint32_t>& id) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const auto& t : m.triangles)
+  for (const auto& t : m.triangles) {
+    if (id[t[0]] == id[t[1]] || id[t[1]] == id[t[2]] || id[t[2]] == id[t[0]]) continue;
     for (int k = 0; k < 3; ++k) ++edges[std::minmax(id[t[k]], id[t[(k + 1) % 3]])];
+  }
   if (edges.empty()) return false;
   return std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
 }

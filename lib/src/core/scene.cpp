@@ -582,14 +582,14 @@ bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
   return crossings % 2 == 1;
 }
 
-// Every undirected edge used by exactly two triangles. A sorted array of edge keys, 8 bytes per
-// edge (a std::map here took 64 and, under ASan, passed the fuzzer's 500 MB on a legal 118,000
-// triangle hemisphere).
+// Every undirected edge used by exactly two triangles (degenerate triangles, with a repeated
+// index, skipped). A sorted array of edge keys, 8 bytes per edge (a std::map here took 64 and,
+// under ASan, passed the fuzzer's 500 MB on a legal 118,000 triangle hemisphere).
 bool isClosed(const TriangleMesh& m) {
   std::vector<std::uint64_t> edges;
   edges.reserve(3 * m.triangles.size());
   for (const auto& t : m.triangles)
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; ++k) {
       const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
       edges.push_back(std::uint64_t(a) << 32 | b);
     }
