@@ -25,25 +25,31 @@ constexpr unsigned kRemovedComponents = aiComponent_NORMALS | aiComponent_TANGEN
                                         aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
                                         aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS |
                                         aiComponent_MATERIALS;
-// The steps before the node check (checkNodes); aiProcess_PreTransformVertices then bakes the
-// nodes' transformations into the vertices.
+// The steps before the node check (checkNodes); collect then places each node's meshes by its
+// transformation (in double, a mirror reversing the winding).
 constexpr unsigned kSteps = aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_SortByPType |
                             aiProcess_ValidateDataStructure;
 
+// A node's transformation in double.
+glm::dmat4 toDouble(const aiMatrix4x4& m) {
+  glm::dmat4 d(1.0);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) d[c][r] = double(m[r][c]);
+  return d;
+}
+
 // Refuses a node that places meshes by a transformation that is not finite or is singular
-// (determinant 0, say a glTF matrix of zeros), accumulated from the root: it would collapse them
-// to a plane, a line or a point, or make their positions NaN. Named by the node's path.
-void checkNodes(const aiNode& node, const aiMatrix4x4& parent, const std::string& path, const std::string& source) {
-  const aiMatrix4x4 m = parent * node.mTransformation;
+// (determinant 0, say a glTF matrix of zeros), accumulated from the root in double (a float
+// determinant overflows at a uniform scale of 1e13): it would collapse them to a plane, a line or
+// a point, or make their positions NaN. Named by the node's path.
+void checkNodes(const aiNode& node, const glm::dmat4& parent, const std::string& path, const std::string& source) {
+  const glm::dmat4 m = parent * toDouble(node.mTransformation);
   const std::string here = path + "/" + (node.mName.length > 0 ? std::string(node.mName.C_Str()) : "(unnamed)");
   if (node.mNumMeshes > 0) {
     bool finite = true;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) finite = finite && std::isfinite(m[r][c]);
-    glm::dmat4 d(1.0);  // in double: a float determinant overflows at a uniform scale of 1e13
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) d[c][r] = double(m[r][c]);
-    const double det = finite ? glm::determinant(d) : 0.0;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(m[c][r]) && std::abs(m[c][r]) <= 3.4e38;
+    const double det = finite ? glm::determinant(m) : 0.0;
     if (!finite || det == 0.0)
       throw InputError(source, "node " + here + " transformation", finite ? "determinant 0" : "not finite",
                        "it would collapse the node's meshes (a matrix of zeros, a scale of 0, or a NaN)");
@@ -54,33 +60,59 @@ void checkNodes(const aiNode& node, const aiMatrix4x4& parent, const std::string
   for (unsigned k = 0; k < node.mNumChildren; ++k) checkNodes(*node.mChildren[k], m, here, source);
 }
 
-// The scene's triangles, welded (CornerWelder), in world units as the file's nodes place them.
+// Mesh m's triangles, its positions placed by `place`, into `mesh` (welded by `weld`). A mirroring
+// placement (negative determinant) reverses the winding, as glTF asks and as the scene file's own
+// mirrors do, so that faces keep facing the side they faced in the mesh.
+void collectMesh(const aiMesh& am, unsigned m, const glm::dmat4& place, const std::string& source, CornerWelder& weld,
+                 TriangleMesh& mesh) {
+  std::vector<glm::vec3> placed(am.mNumVertices);
+  for (unsigned v = 0; v < am.mNumVertices; ++v) {
+    const aiVector3D& p = am.mVertices[v];
+    const glm::dvec3 w(place * glm::dvec4(p.x, p.y, p.z, 1.0));
+    placed[v] = glm::vec3(w);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(placed[v].x) ||
+        !std::isfinite(placed[v].y) || !std::isfinite(placed[v].z))
+      throw InputError(source, "mesh " + std::to_string(m) + " vertex " + std::to_string(v),
+                       numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z),
+                       "position is not finite (as stored, or as its node places it)");
+  }
+  const bool mirrored = glm::determinant(glm::dmat3(place)) < 0.0;
+  for (unsigned f = 0; f < am.mNumFaces; ++f) {
+    const aiFace& face = am.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // SortByPType removed points and lines; none are left
+    std::array<std::uint32_t, 3> t{};
+    for (int c = 0; c < 3; ++c) {
+      const unsigned k = face.mIndices[c];
+      if (k >= am.mNumVertices)
+        throw InputError(source, "mesh " + std::to_string(m) + " face " + std::to_string(f), std::to_string(k),
+                         "vertex index out of range");
+      t[c] = weld.vertex(placed[k]);
+    }
+    if (mirrored) std::swap(t[1], t[2]);
+    mesh.triangles.push_back(t);
+  }
+}
+
+// Every mesh of `node` and its children, placed by their transformations accumulated in double.
+void collectNode(const aiScene& scene, const aiNode& node, const glm::dmat4& parent, const std::string& source,
+                 CornerWelder& weld, TriangleMesh& mesh) {
+  const glm::dmat4 place = parent * toDouble(node.mTransformation);
+  for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+    const unsigned m = node.mMeshes[k];
+    if (m < scene.mNumMeshes) collectMesh(*scene.mMeshes[m], m, place, source, weld, mesh);
+  }
+  for (unsigned k = 0; k < node.mNumChildren; ++k) collectNode(scene, *node.mChildren[k], place, source, weld, mesh);
+}
+
+// The scene's triangles, welded (CornerWelder), in world units as the file's nodes place them
+// (every mesh as stored when the file has no nodes).
 TriangleMesh collect(const aiScene& scene, const std::string& source) {
   TriangleMesh mesh;
   CornerWelder weld(mesh);
-  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
-    const aiMesh& am = *scene.mMeshes[m];
-    for (unsigned v = 0; v < am.mNumVertices; ++v) {
-      const aiVector3D& p = am.mVertices[v];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        throw InputError(source, "mesh " + std::to_string(m) + " vertex " + std::to_string(v),
-                         numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z),
-                         "position is not finite");
-    }
-    for (unsigned f = 0; f < am.mNumFaces; ++f) {
-      const aiFace& face = am.mFaces[f];
-      if (face.mNumIndices != 3) continue;  // SortByPType removed points and lines; none are left
-      std::array<std::uint32_t, 3> t{};
-      for (int c = 0; c < 3; ++c) {
-        const unsigned k = face.mIndices[c];
-        if (k >= am.mNumVertices)
-          throw InputError(source, "mesh " + std::to_string(m) + " face " + std::to_string(f), std::to_string(k),
-                           "vertex index out of range");
-        const aiVector3D& p = am.mVertices[k];
-        t[c] = weld.vertex(glm::vec3(p.x, p.y, p.z));
-      }
-      mesh.triangles.push_back(t);
-    }
+  if (scene.mRootNode) {
+    collectNode(scene, *scene.mRootNode, glm::dmat4(1.0), source, weld, mesh);
+  } else {
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) collectMesh(*scene.mMeshes[m], m, glm::dmat4(1.0), source, weld, mesh);
   }
   return mesh;
 }
@@ -155,9 +187,7 @@ TriangleMesh readWithAssimp(const std::string& source, const std::filesystem::pa
     if (!scene) throw InputError(source, "", "", std::string("Assimp cannot read it: ") + importer.GetErrorString());
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
       throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
-    if (scene->mRootNode) checkNodes(*scene->mRootNode, aiMatrix4x4(), "", source);
-    scene = importer.ApplyPostProcessing(aiProcess_PreTransformVertices);
-    if (!scene) throw InputError(source, "", "", std::string("Assimp cannot place its nodes: ") + importer.GetErrorString());
+    if (scene->mRootNode) checkNodes(*scene->mRootNode, glm::dmat4(1.0), "", source);
     return serialize(collect(*scene, source));
   });
   if (!r.ok) {
