@@ -63,6 +63,7 @@ void weld(const TriangleMesh& in, std::vector<glm::dvec3>& positions, std::vecto
 
 struct Object {
   SilhouetteObjectInfo info;
+  std::string pointer;                // "/objects/K": where the scene file holds it
   OMesh mesh;                         // casters only: the welded mesh with half-edge connectivity
   std::vector<glm::dvec3> positions;  // welded, double (= OpenMesh vertex idx)
   std::vector<Tri> triangles;         // = OpenMesh face idx
@@ -151,12 +152,14 @@ std::string classify(Object& o) {
 
 SilhouetteOccluders::SilhouetteOccluders(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->source = scene.source;
-  for (const auto& so : scene.objects) {
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& so = scene.objects[k];
     // Closedness is decided on the mesh's own topology first (two vertices of a closed mesh may
     // share a position); only a mesh that is not closed as stored is welded by position (an STL
     // or soup stores every triangle's corners apart) and classified again.
     Object stored, welded;
     stored.info.name = welded.info.name = so.name;
+    stored.pointer = welded.pointer = "/objects/" + std::to_string(k);
     asStored(so.mesh, stored.positions, stored.triangles);
     const std::string storedWhy = classify(stored);
     Object* chosen = nullptr;
@@ -170,7 +173,7 @@ SilhouetteOccluders::SilhouetteOccluders(const Scene& scene) : impl_(std::make_u
       else if (storedWhy.empty()) chosen = &stored;  // an open sheet as stored
     }
     if (!chosen)
-      throw InputError(scene.source, "/objects/" + so.name, "",
+      throw InputError(scene.source, stored.pointer, "",
                        "object '" + so.name + "' is neither a closed 2-manifold (a shadow caster) nor an open sheet " +
                            "(a receiver only), so silhouette shadow volumes cannot use it: " + why);
     impl_->infos.push_back(chosen->info);
@@ -257,12 +260,12 @@ SilhouetteVolume buildSilhouetteVolume(const SilhouetteOccluders& occluders, con
       continue;
     }
     if (spot && lo <= 0.0)
-      throw InputError(impl.source, "/objects/" + o.info.name, "",
+      throw InputError(impl.source, o.pointer, "",
                        "object '" + o.info.name +
                            "' reaches behind the spot light (light-view depth <= 0 at some vertex); silhouette "
                            "shadow volumes need each casting object entirely in front of the light");
     if (point && lo < light.nearPlane)
-      throw InputError(impl.source, "/objects/" + o.info.name, "",
+      throw InputError(impl.source, o.pointer, "",
                        "object '" + o.info.name +
                            "' reaches into the point light's near cube (a vertex closer than its near plane along "
                            "every axis): silhouette shadow volumes need each casting object clear of the light");
