@@ -81,33 +81,54 @@ TriangleMesh movedBy(TriangleMesh m, const glm::vec3& d) {
 
 TEST(MeshOrientation, PartInsideOutOnItsOwnIsReversed) {
   // An assembly of two separate parts, one stored inside out (a mirrored part exported as is):
-  // a smaller one, then a larger one (the whole volume is then negative).
-  for (const double big : {0.5, 3.0}) {
+  // smaller than, as large as and larger than the other (the whole volume then negative, zero up to
+  // rounding, positive); only that part is reversed (a probe reversed the other with the whole).
+  for (const double radius : {0.5, 1.0, 3.0}) {
     TriangleMesh outward = makeIcoSphere(1.0, 2);
-    outward.append(movedBy(makeIcoSphere(big, 2), {6.0f, 0.0f, 0.0f}));
+    outward.append(movedBy(makeIcoSphere(radius, 2), {6.0f, 0.0f, 0.0f}));
     TriangleMesh m = makeIcoSphere(1.0, 2);
-    m.append(movedBy(reversedAll(makeIcoSphere(big, 2)), {6.0f, 0.0f, 0.0f}));
+    m.append(movedBy(reversedAll(makeIcoSphere(radius, 2)), {6.0f, 0.0f, 0.0f}));
     const OrientationResult r = orientOutward(m, worldOf(m));
-    EXPECT_EQ(r.looseParts, 1u) << "second part's radius " << big;
-    EXPECT_EQ(r.insideOut, big > 1.0);
+    EXPECT_EQ(r.looseParts, 1u) << "second part's radius " << radius;
+    EXPECT_FALSE(r.insideOut);
     EXPECT_EQ(r.reversed, makeIcoSphere(1.0, 2).triangleCount());
     EXPECT_EQ(m.triangles, outward.triangles);
   }
 }
 
-TEST(MeshOrientation, ContainmentBudgetLeavesTheRestAsStoredAndCountsThem) {
-  // Three inside-out spheres inside one box's bounds: each test casts against the other parts.
-  TriangleMesh m = makeIcoSphere(3.0, 2);
-  for (const float x : {-1.0f, 0.0f, 1.0f}) m.append(movedBy(reversedAll(makeIcoSphere(0.3, 1)), {x, 0.0f, 0.0f}));
-  const TriangleMesh stored = m;
-  const OrientationResult r = orientOutward(m, worldOf(m), 10);  // fewer tests than one sphere's triangles
-  EXPECT_EQ(r.partsNotChecked, 3u);
-  EXPECT_EQ(r.looseParts, 0u);
-  EXPECT_EQ(m.triangles, stored.triangles);
-  // With the default budget they are found inside the large sphere: inner shells, kept.
+TEST(MeshOrientation, IntersectingOrTouchingPartsAreOrientedEachOnItsOwn) {
+  // Two spheres overlapping by a fifth of their size, the second inside out: the second alone is
+  // reversed, whatever the sign of the whole (a probe saw it decided by rounding).
+  TriangleMesh overlapping = makeIcoSphere(1.0, 2);
+  overlapping.append(movedBy(makeIcoSphere(1.0, 2), {1.6f, 0.0f, 0.0f}));
+  TriangleMesh m = makeIcoSphere(1.0, 2);
+  m.append(movedBy(reversedAll(makeIcoSphere(1.0, 2)), {1.6f, 0.0f, 0.0f}));
+  orientOutward(m, worldOf(m));
+  EXPECT_EQ(m.triangles, overlapping.triangles);
+  // Two tetrahedra touching at a corner, one inside out.
+  TriangleMesh bowtie;
+  bowtie.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  bowtie.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  TriangleMesh b = bowtie;
+  for (std::size_t t = 4; t < 8; ++t) reverse(b, t);
+  const OrientationResult r = orientOutward(b, worldOf(b));
+  EXPECT_EQ(r.reversed, 4u);
+  EXPECT_EQ(b.triangles, bowtie.triangles);
+}
+
+TEST(MeshOrientation, ContainmentBudgetTakesUncheckedPartsAsNotNested) {
+  // A hollow solid with three cavities (inward spheres inside a large outward one).
+  TriangleMesh hollow = makeIcoSphere(3.0, 2);
+  for (const float x : {-1.0f, 0.0f, 1.0f}) hollow.append(movedBy(reversedAll(makeIcoSphere(0.3, 1)), {x, 0.0f, 0.0f}));
+  TriangleMesh m = hollow;
   const OrientationResult full = orientOutward(m, worldOf(m));
   EXPECT_EQ(full.partsNotChecked, 0u);
-  EXPECT_EQ(full.reversed, 0u);
+  EXPECT_EQ(full.reversed, 0u);  // found inside the large sphere: cavities, kept inward
+  // With fewer tests than one sphere's triangles, none is checked: each taken as a solid of its own.
+  const OrientationResult r = orientOutward(m, worldOf(m), 10);
+  EXPECT_EQ(r.partsNotChecked, 3u);
+  EXPECT_EQ(r.looseParts, 3u);
+  EXPECT_EQ(r.reversed, 3 * makeIcoSphere(0.3, 1).triangleCount());
 }
 
 TEST(MeshOrientation, PartPushedIntoAnotherIsLeftAlone) {
@@ -117,6 +138,11 @@ TEST(MeshOrientation, PartPushedIntoAnotherIsLeftAlone) {
   TriangleMesh m = head;
   EXPECT_EQ(orientOutward(m, worldOf(m)).reversed, 0u);
   EXPECT_EQ(m.triangles, head.triangles);
+  // Stored inside out on its own, it is reversed: some of its vertices lie outside the head.
+  TriangleMesh sunk = makeIcoSphere(2.0, 2);
+  sunk.append(movedBy(reversedAll(makeIcoSphere(0.5, 2)), {2.0f, 0.0f, 0.0f}));
+  orientOutward(sunk, worldOf(sunk));
+  EXPECT_EQ(sunk.triangles, head.triangles);
 }
 
 TEST(MeshOrientation, OpenAndNonManifoldMeshesAreLeftAsStored) {

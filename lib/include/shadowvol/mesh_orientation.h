@@ -13,21 +13,21 @@
 // - An open mesh (a border, or edges of three or more triangles) has no outside: only each of its
 //   connected parts (across edges of exactly two triangles) whose faces disagree is wound as most
 //   of its triangles are (as its first triangle on a tie), and nothing more.
-// - In a closed mesh, a connected component whose faces disagree (two neighbours run their edge
-//   the same way) is wound consistently with its first triangle and then, if its signed volume is
-//   negative, reversed: a repaired component is made to face outward on its own.
-// - Then, if the whole mesh's signed volume is negative, every triangle is reversed. Components
-//   that already agreed within themselves are reversed together, so a hollow solid stored as an
-//   outward shell around an inward one keeps its inner shell inward.
-// - Last, a component that agreed within itself and still encloses a negative volume is reversed
-//   when its first vertex lies inside no other component (a ray's crossings, in double): an inner
-//   shell lies wholly inside its outer one, so such a part was stored inside out on its own (a
-//   mirrored part of an assembly). One whose vertex lies inside another is left: an inner shell,
-//   or a part pushed into another, which one vertex cannot tell apart. The tests are bounded
-//   (kOrientationContainmentTests triangle tests per mesh); parts past that are left and counted.
-// - A signed volume counts as negative only below -1e-9 times the sum of its terms' magnitudes
-//   (kOrientationVolumeTolerance), so a flat or double-sided closed sheet (volume 0 up to
-//   rounding) is never reversed by rounding.
+// - In a closed mesh each connected component (a part) is first wound alike, as its first
+//   triangle is. Then its winding follows its nesting: a part inside no other encloses a positive
+//   signed volume (faces outward), one inside one other a negative one (the cavity of a hollow
+//   solid faces into it), and so on by parity; a part whose volume has the other sign is
+//   reversed. Part p lies inside part q when each of up to 8 of p's vertices does (a ray's
+//   crossings of q, in double): one vertex outside shows that p is no inner shell of q, even where
+//   p is pushed partly into q or touches it. Each part is decided on its own, so a mirrored part
+//   of an assembly stored inside out is reversed alone, whatever the whole mesh's volume.
+//   The tests are bounded (kOrientationContainmentTests triangle tests per mesh); a part left
+//   untested is taken as nested in nothing, as most parts are, and counted.
+//   A part fully sunk into another (not a cavity) is taken as a cavity; inside a solid it casts no
+//   shadow of its own, so its facing changes no frame.
+// - A signed volume counts as negative (or positive) only beyond 1e-9 times the sum of its terms'
+//   magnitudes (kOrientationVolumeTolerance); a flat part (a double-sided closed sheet, volume 0 up
+//   to rounding) keeps the winding of most of its triangles.
 //
 // Deterministic: components in the order of their first triangle, the volume summed in that order,
 // in double about the box centre of `world`.
@@ -43,25 +43,27 @@
 
 namespace shadowvol {
 
-/// A signed volume below -kOrientationVolumeTolerance * (sum of |terms|) is negative.
+/// A signed volume below -kOrientationVolumeTolerance * (sum of |terms|) is negative, above
+/// +kOrientationVolumeTolerance * (sum of |terms|) positive, else flat.
 inline constexpr double kOrientationVolumeTolerance = 1e-9;
-/// The most triangle tests the containment of negative parts may take per mesh.
+/// The most triangle tests the nesting of a closed mesh's parts may take.
 inline constexpr std::size_t kOrientationContainmentTests = 50'000'000;
 
 struct OrientationResult {
   std::size_t reversed = 0;            ///< triangles whose winding was reversed
-  std::size_t repairedComponents = 0;  ///< components whose faces disagreed, now wound alike
-  std::size_t looseParts = 0;          ///< parts inside out on their own (in no other part), reversed
-  std::size_t partsNotChecked = 0;     ///< negative parts left as stored: the containment budget ran out
-  bool insideOut = false;              ///< the whole mesh was reversed (its signed volume was negative)
-  double volumeBefore = 0.0;           ///< the mesh's signed volume before (after the component repair)
+  std::size_t repairedComponents = 0;  ///< parts whose faces disagreed, now wound alike
+  std::size_t looseParts = 0;          ///< parts that agreed within themselves and were reversed,
+                                       ///< when not all of them were (else insideOut)
+  std::size_t partsNotChecked = 0;     ///< parts the nesting budget left untested (taken as nested in none)
+  bool insideOut = false;              ///< every part that agreed within itself was reversed
+  double volumeBefore = 0.0;           ///< the closed mesh's signed volume as stored
   bool open = false;                   ///< not closed: only its parts' faces were made to agree
   std::string left;                    ///< not closed, edge-manifold or orientable: why (else empty)
 };
 
 /// Orients `mesh` in place (the rules above). `world` holds its vertices' positions in double
 /// (the volume is measured there; mesh.positions are only compared for welding); world.size() ==
-/// mesh.positions.size(). `containmentTests` bounds the work of the last rule (tests lower it).
+/// mesh.positions.size(). `containmentTests` bounds the nesting tests (tests lower it).
 OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3>& world,
                                 std::size_t containmentTests = kOrientationContainmentTests);
 

@@ -1,5 +1,6 @@
 #include "shadowvol/mesh_orientation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -75,13 +76,14 @@ Components windComponents(const TriangleMesh& mesh, const std::vector<std::int32
   return c;
 }
 
-// A point's nesting in the other closed parts: inside part q when a ray from it crosses q an odd
-// number of times (a skewed direction, in double). Only parts whose box holds the point are cast
-// against, and at most `budget` triangle tests in all (then nullopt: not checked).
-class PartContainment {
+// How deep each part of a closed mesh is nested in the others: part p lies inside part q when
+// every one of up to kNestingSamples of p's vertices does (a ray's crossings of q, odd = inside, in
+// a skewed direction, in double). A vertex outside q shows that p is not an inner shell of q, even
+// where p is pushed partly into q or touches it; an inner shell lies wholly inside. Only parts whose
+// box holds p's box are tested, and at most `budget` triangle tests in all (then nullopt).
+class PartNesting {
  public:
-  PartContainment(const TriangleMesh& mesh, const std::vector<glm::dvec3>& world, const Components& c,
-                  std::size_t budget)
+  PartNesting(const TriangleMesh& mesh, const std::vector<glm::dvec3>& world, const Components& c, std::size_t budget)
       : mesh_(mesh), world_(world), first_(c.count + 1, 0), boxes_(c.count), budget_(budget) {
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
       if (c.flip[t] != kUnknown) ++first_[c.component[t] + 1];
@@ -95,22 +97,37 @@ class PartContainment {
     }
   }
 
-  /// A vertex of part `part`, and whether it lies inside another part; nullopt once the budget is spent.
-  std::optional<bool> insideAnother(std::uint32_t part) {
-    const glm::dvec3 p = world_[mesh_.triangles[order_[first_[part]]][0]];
+  /// The number of other parts that hold part p; nullopt once the budget is spent.
+  std::optional<std::size_t> depth(std::uint32_t p) {
+    std::size_t d = 0;
     for (std::uint32_t q = 0; q + 1 < first_.size(); ++q) {
-      if (q == part || !contains(boxes_[q], p)) continue;
-      const std::size_t n = first_[q + 1] - first_[q];
-      if (work_ + n > budget_) return std::nullopt;
-      work_ += n;
-      if (crossings(p, q) % 2 == 1) return true;
+      if (q == p || !holds(boxes_[q], boxes_[p])) continue;
+      const std::optional<bool> in = inside(p, q);
+      if (!in) return std::nullopt;
+      d += *in;
     }
-    return false;
+    return d;
   }
 
  private:
-  static bool contains(const Bounds3& b, const glm::dvec3& p) {
-    return p.x >= b.min.x && p.y >= b.min.y && p.z >= b.min.z && p.x <= b.max.x && p.y <= b.max.y && p.z <= b.max.z;
+  static constexpr std::size_t kNestingSamples = 8;
+
+  static bool holds(const Bounds3& outer, const Bounds3& inner) {
+    return outer.min.x <= inner.min.x && outer.min.y <= inner.min.y && outer.min.z <= inner.min.z &&
+           outer.max.x >= inner.max.x && outer.max.y >= inner.max.y && outer.max.z >= inner.max.z;
+  }
+
+  // Every sample of p inside q; nullopt once the budget is spent.
+  std::optional<bool> inside(std::uint32_t p, std::uint32_t q) {
+    const std::size_t n = first_[p + 1] - first_[p];
+    for (std::size_t k = 0; k < kNestingSamples && k < n; ++k) {
+      const std::size_t t = first_[p] + (n - 1) * k / std::max<std::size_t>(kNestingSamples - 1, 1);
+      const std::size_t cost = first_[q + 1] - first_[q];
+      if (work_ + cost > budget_) return std::nullopt;
+      work_ += cost;
+      if (crossings(world_[mesh_.triangles[order_[t]][0]], q) % 2 == 0) return false;
+    }
+    return true;
   }
 
   int crossings(const glm::dvec3& p, std::uint32_t q) const {
@@ -142,8 +159,6 @@ class PartContainment {
   std::size_t work_ = 0;
 };
 
-}  // namespace
-
 // An open mesh: each part whose faces disagree takes the winding of most of its triangles (of
 // its first triangle on a tie); its outside is not defined, so nothing more.
 void orientOpenParts(TriangleMesh& mesh, const Components& c, OrientationResult& r) {
@@ -165,6 +180,60 @@ void orientOpenParts(TriangleMesh& mesh, const Components& c, OrientationResult&
   }
 }
 
+// A closed mesh: each part wound alike (c.flip), then reversed where its volume's sign disagrees
+// with its nesting (positive at even depth, negative at odd), or, if flat, where most of its
+// triangles were wound the other way.
+void orientClosedParts(TriangleMesh& mesh, const std::vector<glm::dvec3>& world, Components& c,
+                       std::size_t containmentTests, OrientationResult& r) {
+  Bounds3 box;
+  for (const auto& p : world) box.extend(p);
+  const glm::dvec3 o = box.center();
+  std::vector<Volume> volumes(c.count);
+  std::vector<std::size_t> against(c.count, 0), size(c.count, 0);
+  Volume stored;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (c.flip[t] == kUnknown) continue;
+    const std::uint32_t q = c.component[t];
+    volumes[q].add(world, mesh.triangles[t], c.flip[t] == 1, o);
+    stored.add(world, mesh.triangles[t], false, o);
+    ++size[q];
+    against[q] += c.flip[t] == 1;
+  }
+  r.volumeBefore = stored.sum;
+  PartNesting nesting(mesh, world, c, containmentTests);
+  std::vector<bool> reverse(c.count, false);
+  std::size_t wholeParts = 0, partsReversed = 0;
+  for (std::uint32_t q = 0; q < c.count; ++q) {
+    r.repairedComponents += against[q] > 0;
+    const Volume& v = volumes[q];
+    if (!v.negative() && !v.positive()) {  // flat: keep the winding of most of its triangles
+      reverse[q] = 2 * against[q] > size[q];
+      continue;
+    }
+    std::optional<std::size_t> depth = nesting.depth(q);
+    if (!depth) {
+      ++r.partsNotChecked;  // taken as not nested, as most parts are
+      depth = 0;
+    }
+    reverse[q] = v.negative() == (*depth % 2 == 0);
+    if (against[q] == 0) {
+      ++wholeParts;
+      partsReversed += reverse[q];
+    }
+  }
+  r.insideOut = partsReversed > 0 && partsReversed == wholeParts;
+  r.looseParts = r.insideOut ? 0 : partsReversed;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const bool flip = c.flip[t] == kUnknown ? r.insideOut : (c.flip[t] == 1) != reverse[c.component[t]];
+    if (flip) {
+      std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+      ++r.reversed;
+    }
+  }
+}
+
+}  // namespace
+
 OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3>& world,
                                 std::size_t containmentTests) {
   OrientationResult r;
@@ -184,49 +253,7 @@ OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3
     orientOpenParts(mesh, c, r);
     return r;
   }
-  Bounds3 box;
-  for (const auto& p : world) box.extend(p);
-  const glm::dvec3 o = box.center();
-  // 1. Each part that disagreed within itself faces outward on its own (its first triangle's
-  // winding kept, or the other if that one encloses a negative volume).
-  std::vector<Volume> volumes(c.count);
-  std::vector<bool> repaired(c.count, false);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (c.flip[t] == kUnknown) continue;
-    volumes[c.component[t]].add(world, mesh.triangles[t], c.flip[t] == 1, o);
-    if (c.flip[t] == 1) repaired[c.component[t]] = true;
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    if (c.flip[t] != kUnknown && repaired[c.component[t]] && volumes[c.component[t]].negative()) c.flip[t] ^= 1;
-  for (const bool k : repaired) r.repairedComponents += k;
-  // 2. The whole mesh inside out: every triangle reversed.
-  Volume whole;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    if (c.flip[t] != kUnknown) whole.add(world, mesh.triangles[t], c.flip[t] == 1, o);
-  r.volumeBefore = whole.sum;
-  r.insideOut = whole.negative();
-  // 3. A part that agreed within itself and still encloses a negative volume is an inner shell
-  // only if it lies inside another part: one that does not (its first vertex outside every other
-  // part) was stored inside out on its own, and is reversed.
-  std::vector<bool> loose(c.count, false);
-  PartContainment containment(mesh, world, c, containmentTests);
-  for (std::uint32_t q = 0; q < c.count; ++q) {
-    if (repaired[q] || !(r.insideOut ? volumes[q].positive() : volumes[q].negative())) continue;
-    const std::optional<bool> inside = containment.insideAnother(q);
-    if (!inside) {
-      ++r.partsNotChecked;
-      continue;
-    }
-    loose[q] = !*inside;
-    r.looseParts += loose[q];
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const bool reverse = (c.flip[t] == 1) != r.insideOut;
-    if (reverse != (c.flip[t] != kUnknown && loose[c.component[t]])) {
-      std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
-      ++r.reversed;
-    }
-  }
+  orientClosedParts(mesh, world, c, containmentTests, r);
   return r;
 }
 

@@ -223,8 +223,8 @@ std::string orientationNote(const OrientationResult& o, const std::string& name,
             " (set \"orient\": \"as-stored\" to keep the file's winding)";
   if (o.partsNotChecked > 0)
     text += std::string(o.reversed > 0 ? "; " : ": ") + std::to_string(o.partsNotChecked) +
-            " parts that enclose a negative volume were left as stored (too many triangles to test whether they "
-            "are inner shells)";
+            " of its parts were not tested for lying inside another (too many triangles) and were taken as solids "
+            "of their own";
   return o.reversed > 0 || o.partsNotChecked > 0 ? text : std::string();
 }
 
