@@ -158,6 +158,12 @@ TEST(MeshReaders, ObjFaceIndexOutOfRangeIsRefusedNotDropped) {
   const std::string message = refusal("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\nf 1 2 3\nf 1 2 9\n", {});
   EXPECT_EQ(message.substr(message.find("bad.obj")),
             "bad.obj: line 7 = \"f 1 2 9\": vertex index 9 is out of range (the file has 4 vertices)");
+  // Digits beyond 64 bits are out of range too, not "not an integer" (a probe's finding).
+  refusal("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n",
+          {"line 4", "vertex index \"99999999999999999999\" is out of range"});
+  refusal("huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -99999999999999999999\n",
+          {"line 6", "is out of range"});
+  refusal("word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x3\n", {"line 4", "\"x3\" is not an integer"});
 }
 
 TEST(MeshReaders, ObjFaceIndexZeroIsRefusedNotDropped) {

@@ -1,5 +1,6 @@
 #include "mesh_readers/number_text.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -40,6 +41,13 @@ std::optional<std::int64_t> parseInteger(std::string_view token) {
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
   if (ec != std::errc() || end != token.data() + token.size() || token.empty()) return std::nullopt;
   return v;
+}
+
+const char* integerProblem(std::string_view token) {
+  if (!token.empty() && (token[0] == '-' || token[0] == '+')) token.remove_prefix(1);
+  const bool digits =
+      !token.empty() && std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return digits ? "is out of range" : "is not an integer";
 }
 
 std::optional<glm::vec3> storedPoint(double x, double y, double z) {

@@ -19,6 +19,10 @@ std::optional<double> parseReal(std::string_view token);
 /// in 64 bits.
 std::optional<std::int64_t> parseInteger(std::string_view token);
 
+/// Why parseInteger refused `token`: "is out of range" for digits beyond 64 bits, else "is not an
+/// integer".
+const char* integerProblem(std::string_view token);
+
 /// The single-precision point a mesh stores for (x, y, z), or nullopt when a coordinate is
 /// non-finite or beyond the float range (it would become infinite).
 std::optional<glm::vec3> storedPoint(double x, double y, double z);

@@ -34,7 +34,7 @@ std::uint32_t cornerVertex(std::string_view token, std::size_t before, std::size
   const std::string_view text = token.substr(0, token.find('/'));
   if (text.empty()) at.fail("face corner " + quoted(token) + " has no vertex index");
   const auto index = parseInteger(text);
-  if (!index) at.fail("vertex index " + quoted(text) + " is not an integer");
+  if (!index) at.fail("vertex index " + quoted(text) + " " + integerProblem(text));
   if (*index == 0) at.fail("vertex index 0 is invalid (OBJ indices start at 1; negative ones count back)");
   if (*index > 0) {
     if (std::uint64_t(*index) > total)

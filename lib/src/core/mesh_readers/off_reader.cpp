@@ -84,14 +84,14 @@ Counts readHeader(const std::string& source, LineReader& lines) {
 std::vector<std::uint32_t> faceCorners(std::string_view rest, std::uint64_t vertexCount, const TextPlace& at) {
   const std::string_view first = nextToken(rest);
   const auto n = parseInteger(first);
-  if (!n) at.fail("the vertex count " + quoted(first) + " of the face is not an integer");
+  if (!n) at.fail("the vertex count " + quoted(first) + " of the face " + integerProblem(first));
   if (*n < 3) at.fail("a face needs at least 3 vertices, this one has " + std::to_string(*n));
   std::vector<std::uint32_t> corners;
   for (std::int64_t k = 0; k < *n; ++k) {
     const std::string_view token = nextToken(rest);  // each token takes at least a byte of the line
     if (token.empty()) at.fail("the face declares " + std::to_string(*n) + " vertices but lists " + std::to_string(k));
     const auto index = parseInteger(token);
-    if (!index) at.fail("vertex index " + quoted(token) + " is not an integer");
+    if (!index) at.fail("vertex index " + quoted(token) + " " + integerProblem(token));
     if (*index < 0 || std::uint64_t(*index) >= vertexCount)
       at.fail("vertex index " + std::to_string(*index) + " is out of range (the header declares " +
               std::to_string(vertexCount) + " vertices)");
