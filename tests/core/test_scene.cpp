@@ -414,6 +414,16 @@ TEST(SceneParser, LightInsideAClosedMeshWarns) {
   EXPECT_TRUE(parse(kGood).warnings.empty());
 }
 
+// As for a light (a probe's finding: only the light was warned about).
+TEST(SceneParser, CameraInsideAClosedMeshWarns) {
+  const auto r = parse(R"({"objects":[{"type":"sphere","name":"shell","radius":3}],
+    "light":{"type":"spot","position":[0,9,0],"direction":[0,-1,0]},
+    "camera":{"eye":[0,0.5,1],"target":[0,0,0]}})");
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings[0].find("/camera/eye: the camera is inside the closed mesh \"shell\""), std::string::npos)
+      << r.warnings[0];
+}
+
 // Regression (an abort on Embree's tnear >= 0): a directional light whose position plane cuts the
 // scene gets a fitted near of 0, not below, and a warning; a negative near given is refused.
 TEST(SceneParser, DirectionalLightPlaneCuttingTheSceneIsClampedAndWarned) {

@@ -639,10 +639,11 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
 
 // The warnings about light k (as scene.light): inside a closed mesh; a directional light's plane
 // through the scene.
-void warnAboutLight(const Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings) {
+void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::size_t k, const std::string& source,
+                    std::vector<std::string>& warnings) {
   const std::string pointer = scene.lightPointer(k);
-  for (const auto& o : scene.objects)
-    if (isClosed(o.mesh) && insideClosedMesh(o.mesh, scene.light.position))
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (const SceneObject& o = scene.objects[i]; closed[i] && insideClosedMesh(o.mesh, scene.light.position))
       warnings.push_back(source + ": " + pointer + "/position: the " + toString(scene.light.type) +
                          " light is inside the closed mesh \"" + o.name + "\": everything it lights will be in shadow");
   if (scene.light.type == LightType::Directional &&
@@ -653,8 +654,13 @@ void warnAboutLight(const Scene& scene, std::size_t k, const std::string& source
 
 // A camera whose view holds no object (it looks away, or a given near/far range holds nothing)
 // renders only the background: said, since every command would otherwise run on without a word.
-void warnAboutCamera(const Scene& scene, const std::string& source, std::vector<std::string>& warnings) {
+void warnAboutCamera(const Scene& scene, const std::vector<bool>& closed, const std::string& source,
+                     std::vector<std::string>& warnings) {
   const Camera& c = scene.camera;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (closed[i] && insideClosedMesh(scene.objects[i].mesh, c.eye))
+      warnings.push_back(source + ": /camera/eye: the camera is inside the closed mesh \"" + scene.objects[i].name +
+                         "\": images show its inside, and validation counts its inner faces");
   const std::string w = detail::emptyViewWarning(
       cameraProjection(c) * cameraView(c), scene.objects, "in the camera's view", c.nearPlane, c.farPlane,
       "images show only the background (check /camera/target, /camera/near and /camera/far)");
@@ -733,8 +739,10 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                               " near planes long, and splitting them all would pass the triangle budget: the GPU "
                               "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
                               "or shrink the largest objects (README \"Known limits\")");
-  forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, k, source, result.warnings); });
-  warnAboutCamera(scene, source, result.warnings);
+  std::vector<bool> closed;
+  for (const auto& o : scene.objects) closed.push_back(isClosed(o.mesh));
+  forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, closed, k, source, result.warnings); });
+  warnAboutCamera(scene, closed, source, result.warnings);
   return result;
 }
 
