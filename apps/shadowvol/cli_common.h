@@ -117,6 +117,7 @@ using Runner = std::function<int()>;
 void registerSceneCommand(CLI::App& app, Runner& run);
 void registerDepthCommand(CLI::App& app, Runner& run);
 void registerBuildCommand(CLI::App& app, Runner& run);
+void registerCheckCommand(CLI::App& app, Runner& run);
 #ifdef SHADOWVOL_WITH_GL
 void registerRenderCommand(CLI::App& app, Runner& run);
 void registerValidateCommand(CLI::App& app, Runner& run);

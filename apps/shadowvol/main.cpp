@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   cli::registerSceneCommand(app, run);
   cli::registerDepthCommand(app, run);
   cli::registerBuildCommand(app, run);
+  cli::registerCheckCommand(app, run);
 #ifdef SHADOWVOL_WITH_GL
   cli::registerRenderCommand(app, run);
   cli::registerValidateCommand(app, run);

@@ -580,6 +580,37 @@ TEST(CliGl, ValidateWritesReportAndImages) {
   EXPECT_FALSE(jv["verdict"]["failures"].empty());
 }
 
+// check: a built volume is valid (exit 0), an open mesh and an inside-out one are not (exit 3,
+// naming what failed), a missing file is bad input (exit 1); --json holds the counts.
+TEST(Cli, CheckJudgesAMeshFile) {
+  const auto dir = test::tempDir();
+  const std::string volume = (dir / "v.ply").string();
+  ASSERT_EQ(runCli("build --resolution 64 --refine 4 --out " + volume).code, 0);
+  const CliResult ok = runCli("check " + volume);
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_TRUE(contains(ok.out, "valid: a closed, outward, finite volume")) << ok.out;
+  const nlohmann::json j = nlohmann::json::parse(runCli("-q check --json " + volume).out);
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_EQ(j["boundaryEdges"], 0);
+  EXPECT_TRUE(j["failed"].is_null());
+
+  test::writeText(dir / "open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
+  const CliResult open = runCli("check " + (dir / "open.obj").string());
+  EXPECT_EQ(open.code, 3) << open.out;
+  EXPECT_TRUE(contains(open.out, "NOT VALID: not a closed 2-manifold (3 boundary edges")) << open.out;
+  test::writeText(dir / "inside-out.obj",
+                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n");
+  const CliResult inward = runCli("check " + (dir / "inside-out.obj").string());
+  EXPECT_EQ(inward.code, 3) << inward.out;
+  EXPECT_TRUE(contains(inward.out, "not outward")) << inward.out;
+  test::writeText(dir / "outward.obj",
+                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  EXPECT_EQ(runCli("check " + (dir / "outward.obj").string()).code, 0);
+  const CliResult missing = runCli("check " + (dir / "none.ply").string());
+  EXPECT_EQ(missing.code, 1) << missing.out;
+  EXPECT_TRUE(contains(missing.out, "none.ply")) << missing.out;
+}
+
 // An option that changes nothing in the frame the others ask for is refused by name before any
 // work (found by an adversarial run: each of these was accepted and ignored); the default's own
 // value is accepted.

@@ -1,5 +1,7 @@
 #include "shadowvol/validate/validation_report.h"
 
+#include "shadowvol/cgal/mesh_check_json.h"
+
 namespace shadowvol {
 namespace {
 
@@ -26,26 +28,6 @@ nlohmann::json toJson(const Agreement& a) {
           {"firstDisagreeing", misses}};
 }
 
-nlohmann::json toJson(const MeshCheckReport& m, const std::string& notApplicable) {
-  return {{"valid", m.valid()},
-          {"vertices", m.vertices},
-          {"triangles", m.triangles},
-          {"closedManifold", m.closedManifold()},
-          {"outward", m.outward},
-          {"volume", m.volume},
-          {"boundaryEdges", m.boundaryEdges},
-          {"overusedEdges", m.overusedEdges},
-          {"nonManifoldVertices", m.nonManifoldVertices},
-          {"degenerateTriangles", m.degenerateTriangles},
-          {"nonFiniteVertices", m.nonFiniteVertices},
-          {"coincidentVertices", m.coincidentVertices},
-          {"selfIntersectingPairs",
-           m.selfIntersectingPairs ? nlohmann::json(*m.selfIntersectingPairs) : nlohmann::json("not checked")},
-          {"allowedTouchingPairs", m.allowedTouchingPairs},
-          {"notApplicable", notApplicable.empty() ? nlohmann::json() : nlohmann::json(notApplicable)},
-          {"summary", m.summary()}};
-}
-
 }  // namespace
 
 nlohmann::json describeValidation(const FrameValidation& v, const ValidationOptions& options, bool silhouetteMethod) {
@@ -58,8 +40,8 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
                  {"exactLit", v.exactLit},
                  {"exactShadowed", v.exactShadowed}};
   if (v.meshCheck) {
-    j["meshChecks"] = toJson(*v.meshCheck, v.meshChecksNotApplicable);
-    if (v.gpuMeshCheck) j["gpuVolumeMeshChecks"] = toJson(*v.gpuMeshCheck, "");
+    j["meshChecks"] = meshCheckJson(*v.meshCheck, v.meshChecksNotApplicable);
+    if (v.gpuMeshCheck) j["gpuVolumeMeshChecks"] = meshCheckJson(*v.gpuMeshCheck);
     j["stencilVsCount"] = toJson(v.stencilVsCount);
     j["stencilVsCount"]["over"] = v.stencilOverLitFrustumOnly ? "visible pixels inside the light's frustum (z-pass)"
                                                               : "visible pixels";
