@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowvol/light.h"
+#include "shadowvol/triangle_mesh.h"
 
 namespace shadowvol::test {
 
@@ -27,6 +28,16 @@ inline std::filesystem::path tempDir() {
 
 inline void writeText(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p, std::ios::binary) << text;
+}
+
+/// A triangle mesh's signed volume (positive when it is closed and faces outward), in double.
+inline double signedVolume(const TriangleMesh& m) {
+  double v = 0.0;
+  for (const auto& t : m.triangles)
+    v += glm::dot(glm::dvec3(m.positions[t[0]]),
+                  glm::cross(glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]]))) /
+         6.0;
+  return v;
 }
 
 inline std::filesystem::path sourceDir() { return SV_SOURCE_DIR; }

@@ -10,7 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "mesh_readers/isolated_call.h"
@@ -160,20 +159,13 @@ TEST(AssimpReader, MirroringNodeKeepsFacesOutward) {
   std::ifstream in(written);
   nlohmann::json gltf = nlohmann::json::parse(in);
   ASSERT_EQ(gltf.at("nodes").size(), 1u);
-  auto signedVolume = [](const TriangleMesh& m) {
-    double v = 0.0;
-    for (const auto& t : m.triangles)
-      v += glm::dot(glm::dvec3(m.positions[t[0]]),
-                    glm::cross(glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]]))) / 6.0;
-    return v;
-  };
   for (const auto& scale : {std::vector<double>{-1.0, 1.0, 1.0}, std::vector<double>{-1.0, -1.0, -2.0},
                             std::vector<double>{1.0, -1.0, -1.0}}) {
     gltf["nodes"][0]["scale"] = scale;
     const auto path = dir / "mirrored.gltf";
     test::writeText(path, gltf.dump());
     const double expected = 6.0 * std::abs(scale[0] * scale[1] * scale[2]);
-    EXPECT_NEAR(signedVolume(readTriangleMesh(path)), expected, 1e-4) << scale[0] << " " << scale[1] << " " << scale[2];
+    EXPECT_NEAR(test::signedVolume(readTriangleMesh(path)), expected, 1e-4) << scale[0] << " " << scale[1] << " " << scale[2];
   }
 }
 

@@ -347,29 +347,22 @@ TEST(SceneParser, ClosedMeshesAreOrientedOutward) {
   for (const auto& t : box.triangles)  // wound clockwise seen from outside: inside out
     obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[2] + 1) + " " + std::to_string(t[1] + 1) + "\n";
   test::writeText(dir / "inside-out.obj", obj);
-  auto volumeOf = [](const TriangleMesh& m) {
-    double v = 0.0;
-    for (const auto& t : m.triangles)
-      v += glm::dot(glm::dvec3(m.positions[t[0]]),
-                    glm::cross(glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]]))) / 6.0;
-    return v;
-  };
   auto load = [&](const std::string& extra) {
     return parseScene(withObject(R"({"type":"mesh","name":"crate","file":"inside-out.obj")" + extra + "}"),
                       "test.json", dir);
   };
   const SceneLoadResult oriented = load("");
-  EXPECT_NEAR(volumeOf(oriented.scene.objects[0].mesh), 6.0, 1e-4);
+  EXPECT_NEAR(test::signedVolume(oriented.scene.objects[0].mesh), 6.0, 1e-4);
   ASSERT_EQ(oriented.warnings.size(), 1u);
   for (const char* phrase : {"test.json: /objects/0/orient", "\"crate\"", "inside out", "12 of its 12 triangles",
                              "\"as-stored\""})
     EXPECT_NE(oriented.warnings[0].find(phrase), std::string::npos) << oriented.warnings[0];
   // Mirrored by its transform it stays inside out (a mirror keeps the stored facing): repaired alike.
   const SceneLoadResult mirrored = load(R"(,"transform":{"scale":[-1,1,1]})");
-  EXPECT_NEAR(volumeOf(mirrored.scene.objects[0].mesh), 6.0, 1e-4);
+  EXPECT_NEAR(test::signedVolume(mirrored.scene.objects[0].mesh), 6.0, 1e-4);
   EXPECT_EQ(mirrored.warnings.size(), 1u);
   const SceneLoadResult stored = load(R"(,"orient":"as-stored")");
-  EXPECT_NEAR(volumeOf(stored.scene.objects[0].mesh), -6.0, 1e-4);
+  EXPECT_NEAR(test::signedVolume(stored.scene.objects[0].mesh), -6.0, 1e-4);
   EXPECT_TRUE(stored.warnings.empty());
   try {
     load(R"(,"orient":"inward")");

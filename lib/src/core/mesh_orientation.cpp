@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowvol/ray_parity.h"
 #include "shadowvol/triangle_adjacency.h"
 
 namespace shadowvol {
@@ -77,10 +78,10 @@ Components windComponents(const TriangleMesh& mesh, const std::vector<std::int32
 }
 
 // How deep each part of a closed mesh is nested in the others: part p lies inside part q when
-// every one of up to kNestingSamples of p's vertices does (a ray's crossings of q, odd = inside, in
-// a skewed direction, in double). A vertex outside q shows that p is not an inner shell of q, even
-// where p is pushed partly into q or touches it; an inner shell lies wholly inside. Only parts whose
-// box holds p's box are tested, and at most `budget` triangle tests in all (then nullopt).
+// every one of up to kNestingSamples of p's vertices does (ray_parity.h: odd crossings of q). A
+// vertex outside q shows that p is not an inner shell of q, even where p is pushed partly into q
+// or touches it; an inner shell lies wholly inside. Only parts whose box holds p's box are tested,
+// and at most `budget` triangle tests in all (then nullopt).
 class PartNesting {
  public:
   PartNesting(const TriangleMesh& mesh, const std::vector<glm::dvec3>& world, const Components& c, std::size_t budget)
@@ -131,21 +132,10 @@ class PartNesting {
   }
 
   int crossings(const glm::dvec3& p, std::uint32_t q) const {
-    const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5377, 0.8421, 0.0419));  // skewed: avoids edges
     int n = 0;
     for (std::size_t k = first_[q]; k < first_[q + 1]; ++k) {
       const auto& t = mesh_.triangles[order_[k]];
-      const glm::dvec3 a = world_[t[0]], e1 = world_[t[1]] - a, e2 = world_[t[2]] - a;
-      const glm::dvec3 h = glm::cross(dir, e2);
-      const double det = glm::dot(e1, h);
-      if (det == 0.0) continue;
-      const glm::dvec3 s = p - a;
-      const double u = glm::dot(s, h) / det;
-      if (u < 0.0 || u > 1.0) continue;
-      const glm::dvec3 g = glm::cross(s, e1);
-      const double v = glm::dot(dir, g) / det;
-      if (v < 0.0 || u + v > 1.0) continue;
-      n += glm::dot(e2, g) / det > 0.0;
+      n += parityRayCrosses(p, world_[t[0]], world_[t[1]], world_[t[2]]);
     }
     return n;
   }

@@ -20,6 +20,7 @@
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/mesh_orientation.h"
 #include "shadowvol/primitives.h"
+#include "shadowvol/ray_parity.h"
 #include "clip_volume.h"
 #include "scene_fit_range.h"
 
@@ -562,23 +563,12 @@ Camera readCamera(const json& v, const std::string& source) {
   return c;
 }
 
-// Parity of crossings of a ray with a closed mesh, in double; odd = inside.
+// Parity of crossings of a ray with a closed mesh (ray_parity.h); odd = inside.
 bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(0.5377, 0.8421, 0.0419));  // skewed: avoids edges
   int crossings = 0;
-  for (const auto& t : m.triangles) {
-    const glm::dvec3 a(m.positions[t[0]]), b(m.positions[t[1]]), c(m.positions[t[2]]);
-    const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(dir, e2);
-    const double det = glm::dot(e1, p);
-    if (std::abs(det) < 1e-300) continue;
-    const glm::dvec3 s = origin - a;
-    const double u = glm::dot(s, p) / det;
-    if (u < 0.0 || u > 1.0) continue;
-    const glm::dvec3 q = glm::cross(s, e1);
-    const double w = glm::dot(dir, q) / det;
-    if (w < 0.0 || u + w > 1.0) continue;
-    if (glm::dot(e2, q) / det > 0.0) ++crossings;
-  }
+  for (const auto& t : m.triangles)
+    crossings += parityRayCrosses(origin, glm::dvec3(m.positions[t[0]]), glm::dvec3(m.positions[t[1]]),
+                                  glm::dvec3(m.positions[t[2]]));
   return crossings % 2 == 1;
 }
 
