@@ -164,6 +164,10 @@ TEST(MeshOrientation, OpenAndNonManifoldMeshesAreLeftAsStored) {
 
   m = makePlane(2.0, 2.0, 2);
   EXPECT_FALSE(orientOutward(m, worldOf(m)).left.empty());
+  TriangleMesh empty;
+  const OrientationResult none = orientOutward(empty, {});
+  EXPECT_TRUE(none.left.empty()) << none.left;
+  EXPECT_EQ(none.reversed, 0u);
 }
 
 TEST(MeshOrientation, OpenMeshPartsAgreeWithMostOfTheirTriangles) {

@@ -227,6 +227,7 @@ void orientClosedParts(TriangleMesh& mesh, const std::vector<glm::dvec3>& world,
 OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3>& world,
                                 std::size_t containmentTests) {
   OrientationResult r;
+  if (mesh.triangles.empty()) return r;
   const std::vector<std::int32_t> neighbours = triangleNeighbours(mesh);
   bool closed = true;
   for (std::size_t t = 0; t < mesh.triangles.size() && closed; ++t)
