@@ -20,6 +20,15 @@ void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o) {
   addPlatformOption(cmd, o.platform, "With --device gpu: ");
 }
 
+void checkCaptureDeviceOptions(const CaptureDeviceOptions& o, bool fromFile) {
+  const CaptureDeviceOptions defaults;
+  if (o.platform != defaults.platform && (fromFile || o.device != "gpu"))
+    throw CLI::ValidationError("--platform", std::string("chooses the EGL platform of the GPU's capture; ") +
+                                                 (fromFile ? "a depth map read with --depth is not captured"
+                                                           : "--device cpu casts Embree's rays") +
+                                                 ": leave out --platform, or add --device gpu");
+}
+
 namespace {
 
 #ifdef SHADOWVOL_WITH_GL

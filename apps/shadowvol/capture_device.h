@@ -20,6 +20,10 @@ struct CaptureDeviceOptions {
 /// --platform (EGL platform for --device gpu).
 void addCaptureDeviceOptions(CLI::App& cmd, CaptureDeviceOptions& o);
 
+/// Refuses (CLI::ValidationError, exit 2) --platform where no GL context is made: the CPU capture,
+/// or a depth map read from a file (`fromFile`). A probe's finding: it was accepted and ignored.
+void checkCaptureDeviceOptions(const CaptureDeviceOptions& o, bool fromFile);
+
 /// The depth map of `scene` at width x height on the chosen device. Throws InputError naming
 /// --device when this build has no GL (SHADOWVOL_BUILD_GL=OFF) and gpu was asked for, GlError when
 /// no EGL context can be made. A point light's scene is an InputError naming /light/type (it has

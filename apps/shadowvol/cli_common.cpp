@@ -121,7 +121,8 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
       ->check(CLI::IsMember({"fixed", "perfect"}))
       ->capture_default_str();
   cmd.add_flag("--blur", o.blur, "Depth blurring: each depth becomes the mean of 9 bilinear samples 1.5 texels apart");
-  cmd.add_option("--blur-offset", o.blurOffset, "World units added to blurred depths, away from the light (with --blur)")
+  cmd.add_option("--blur-offset", o.blurOffset,
+                 "World units (>= 0) added to blurred depths, away from the light (with --blur)")
       ->capture_default_str();
   cmd.add_option("--bias", o.bias,
                  "World units pushing the sheet away from the light; default: 0 for back and midpoint capture, the "
@@ -166,8 +167,10 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   if (o.blurOffset != 0.0 && !o.blur)
     throw InputError("command line", "--blur-offset", numberText(o.blurOffset), "needs --blur");
-  if (!std::isfinite(o.blurOffset))
-    throw InputError("command line", "--blur-offset", numberText(o.blurOffset), "must be finite");
+  if (!std::isfinite(o.blurOffset) || o.blurOffset < 0.0)
+    throw InputError("command line", "--blur-offset", numberText(o.blurOffset),
+                     "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit "
+                     "surfaces it was captured from)");
   if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
     throw InputError("command line", "--bias", numberText(*o.bias), "must be finite and >= 0");
   if (o.refine > 0 && o.cap != "exact")

@@ -69,6 +69,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 "Without it a scene far from the origin is written relative to its local origin, which the output "
                 "and the PLY/OBJ/STL header name (README 'Far from the origin')");
   cmd->callback([&run, o] {
+    checkCaptureDeviceOptions(o->device, !o->depth.empty());
+    if (o->noFlatten && o->volume.cap == "quad")
+      throw CLI::ValidationError("--no-flatten", "keeps the exact cap unflattened; --cap quad has one far rectangle, "
+                                                 "nothing to flatten: leave out --no-flatten");
     run = [o] {
       checkOutputPath("--out", o->out);
       std::string ext = std::filesystem::path(o->out).extension().string();

@@ -44,6 +44,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
   addCaptureDeviceOptions(*cmd, o->device);
   cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
   cmd->callback([&run, o] {
+    checkCaptureDeviceOptions(o->device, false);
     run = [o] {
       checkResolution("--resolution", o->resolution, DepthMapUse::MapOnly);
       checkOutputPath("--out", o->out);

@@ -193,6 +193,18 @@ void checkIneffectiveOptions(const RenderCliOptions& o) {
       throw CLI::ValidationError("--shadow-slope",
                                  "scales a shadow map's bias; --method " + o.method + " has no shadow map");
   }
+  if (o.method == "silhouette" || o.method == "none") {
+    // A probe's finding: both were accepted and changed nothing. --fit view sizes its margins by
+    // the map's texels, so there --resolution still counts.
+    const RenderCliOptions defaults;
+    if (o.capture != defaults.capture)
+      throw CLI::ValidationError("--capture", "chooses what a depth map records; --method " + o.method +
+                                                  " captures none: leave out --capture");
+    if (o.resolution != defaults.resolution && o.scene.fit != "view")
+      throw CLI::ValidationError("--resolution", "sizes the light's depth map; --method " + o.method +
+                                                     " captures none (only --fit view sizes its margins by it): "
+                                                     "leave out --resolution");
+  }
   if (o.dpsmSubdivide != 1 && o.method != "dpsm")
     throw CLI::ValidationError("--dpsm-subdivide", "cuts triangles in the dual-paraboloid pass; --method " + o.method +
                                                        " has none: add --method dpsm or leave it out");

@@ -167,6 +167,14 @@ TEST(Cli, OffsetsThatLeaveNothingInShadowAreRefused) {
   const CliResult blur = runCli("build --resolution 16 --blur --blur-offset 1e30 --out " + out);
   EXPECT_EQ(blur.code, 1) << blur.out;
   EXPECT_TRUE(contains(blur.out, "--blur-offset")) << blur.out;
+  // A negative blur offset pulled the sheet into the lit surfaces: validate PASSED a sphere dark
+  // all over (a probe's finding). Refused, as a negative --bias is.
+  for (const char* offset : {"-2", "-1e9"}) {
+    const CliResult pulled = runCli("build --resolution 16 --blur --blur-offset " + std::string(offset) + " --out " + out);
+    EXPECT_EQ(pulled.code, 1) << pulled.out;
+    EXPECT_TRUE(contains(pulled.out, "--blur-offset")) << pulled.out;
+    EXPECT_TRUE(contains(pulled.out, ">= 0")) << pulled.out;
+  }
   const CliResult shadow = runCli("render --method shadowmap --resolution 16 --shadow-bias -0.5 --out " +
                                   (dir / "x.png").string());
   EXPECT_EQ(shadow.code, 1) << shadow.out;
@@ -627,7 +635,11 @@ TEST(Cli, OptionsThatChangeNothingAreRefused) {
       {"render --shadow-slope 2", "--shadow-slope"},
       {"render --dpsm-subdivide 4", "--dpsm-subdivide"},
       {"render --volume explicit --gpu-draw indexed", "--gpu-draw"},
-      {"render --volume explicit --crossings rays", "--crossings"}};
+      {"render --volume explicit --crossings rays", "--crossings"},
+      // A second probe's findings: these too were accepted and changed nothing.
+      {"render --method silhouette --capture front", "--capture"},
+      {"render --method none --capture midpoint", "--capture"},
+      {"render --method silhouette", "--resolution"}};
   for (const auto& [args, flag] : refused) {
     const CliResult r = runCli(args + out);
     EXPECT_EQ(r.code, 2) << args << ": " << r.out;
@@ -639,7 +651,21 @@ TEST(Cli, OptionsThatChangeNothingAreRefused) {
   const CliResult fit = runCli("build --depth " + (dir / "d.pfm").string() + " --fit view --out " + (dir / "v.ply").string());
   EXPECT_EQ(fit.code, 2) << fit.out;
   EXPECT_TRUE(contains(fit.out, "--fit")) << fit.out;
+  const std::pair<std::string, const char*> capture[] = {
+      {"build --platform surfaceless --resolution 16 --out " + (dir / "v.ply").string(), "--platform"},
+      {"build --depth " + (dir / "d.pfm").string() + " --platform device --out " + (dir / "v.ply").string(),
+       "--platform"},
+      {"depth --platform surfaceless --resolution 16 --out " + (dir / "e.pfm").string(), "--platform"},
+      {"build --cap quad --no-flatten --resolution 16 --out " + (dir / "v.ply").string(), "--no-flatten"}};
+  for (const auto& [args, flag] : capture) {
+    const CliResult r = runCli(args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, flag)) << args << ": " << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "v.ply"));
   if (!hasGl()) return;
+  // --fit view sizes silhouette volumes' light frustum by the map's texels: --resolution counts there.
+  EXPECT_EQ(runCli("render --method silhouette --fit view" + out).code, 0);
   const CliResult same = runCli("render --method shadowmap --triangulation perfect --count auto" + out);
   EXPECT_EQ(same.code, 0) << same.out;
 }
