@@ -135,6 +135,16 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
+      // A second probe's finding: STL keeps no shared corners, and glTF's are welded by position on
+      // reading (ours and most readers'), so the pinch copies meet again as non-manifold vertices.
+      if (s.splitVertices > 0 && (ext == ".stl" || ext == ".gltf" || ext == ".glb")) {
+        const std::string note = "the volume has " + std::to_string(s.splitVertices) +
+                                 " split vertices (copies at pinches, so that it is a 2-manifold); " + ext +
+                                 " readers that weld corners by position, `shadowvol check` among them, join them "
+                                 "into non-manifold vertices: write .ply, .obj or .off to keep them apart";
+        std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
+        j["warnings"].push_back(o->out + ": " + note);
+      }
       j.update({{"resolution", {map.width, map.height}},
                 {"cubeFaces", cube ? 6 : 1},
                 {"capture", toString(map.capture)},

@@ -614,6 +614,17 @@ TEST(Cli, CheckJudgesAMeshFile) {
   test::writeText(dir / "outward.obj",
                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
   EXPECT_EQ(runCli("check " + (dir / "outward.obj").string()).code, 0);
+  // A volume with pinch copies (split vertices): valid as PLY; STL cannot keep the copies apart,
+  // and build says so (a second probe's finding: its STL failed check without a word).
+  const std::string scene = (test::sourceDir() / "data/scenes/lights/spot-and-point.json").string();
+  const CliResult ply = runCli("build --scene " + scene + " --resolution 32 --out " + (dir / "pinch.ply").string());
+  ASSERT_EQ(ply.code, 0) << ply.out;
+  ASSERT_TRUE(contains(ply.out, "split vertices")) << ply.out;
+  EXPECT_EQ(runCli("check " + (dir / "pinch.ply").string()).code, 0);
+  const CliResult stl = runCli("build --scene " + scene + " --resolution 32 --out " + (dir / "pinch.stl").string());
+  EXPECT_EQ(stl.code, 0) << stl.out;
+  EXPECT_TRUE(contains(stl.out, "write .ply, .obj or .off to keep them apart")) << stl.out;
+  EXPECT_EQ(runCli("check " + (dir / "pinch.stl").string()).code, 3);
   const CliResult missing = runCli("check " + (dir / "none.ply").string());
   EXPECT_EQ(missing.code, 1) << missing.out;
   EXPECT_TRUE(contains(missing.out, "none.ply")) << missing.out;
