@@ -135,6 +135,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
+      if (r.mesh.triangles.empty()) {  // a second probe's finding: a depth file's empty volume went unsaid
+        const std::string note = "the volume is empty: the depth map holds no surface in front of its far plane, "
+                                 "so nothing is in shadow (the file holds no triangles)";
+        std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
+        j["warnings"].push_back(o->out + ": " + note);
+      }
       // A second probe's finding: STL keeps no shared corners, and glTF's are welded by position on
       // reading (ours and most readers'), so the pinch copies meet again as non-manifold vertices.
       if (s.splitVertices > 0 && (ext == ".stl" || ext == ".gltf" || ext == ".glb")) {

@@ -625,6 +625,16 @@ TEST(Cli, CheckJudgesAMeshFile) {
   EXPECT_EQ(stl.code, 0) << stl.out;
   EXPECT_TRUE(contains(stl.out, "write .ply, .obj or .off to keep them apart")) << stl.out;
   EXPECT_EQ(runCli("check " + (dir / "pinch.stl").string()).code, 3);
+  // A light whose frustum holds nothing builds an empty volume: said by build (a second probe found
+  // it unsaid for a depth file), refused by check as a file without triangles.
+  test::writeText(dir / "away.json", R"({"objects":[{"type":"box"}],
+    "light":{"type":"spot","position":[0,5,0],"direction":[0,1,0],"near":1,"far":10},
+    "camera":{"eye":[0,0,5],"target":[0,0,0]}})");
+  const CliResult empty = runCli("build --scene " + (dir / "away.json").string() + " --resolution 16 --out " +
+                                 (dir / "empty.ply").string());
+  EXPECT_EQ(empty.code, 0) << empty.out;
+  EXPECT_TRUE(contains(empty.out, "the volume is empty")) << empty.out;
+  EXPECT_EQ(runCli("check " + (dir / "empty.ply").string()).code, 1);
   const CliResult missing = runCli("check " + (dir / "none.ply").string());
   EXPECT_EQ(missing.code, 1) << missing.out;
   EXPECT_TRUE(contains(missing.out, "none.ply")) << missing.out;
