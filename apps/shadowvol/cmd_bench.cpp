@@ -18,6 +18,14 @@
 namespace shadowvol::cli {
 namespace {
 
+// Whether the file's last byte is not a line end (an interrupted run's partial row).
+bool endsMidLine(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() <= 0) return false;
+  in.seekg(-1, std::ios::end);
+  return in.get() != '\n';
+}
+
 std::atomic<bool> gStop{false};
 void onSigint(int) { gStop = true; }
 
@@ -144,6 +152,10 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       info.command = commandLine();
       if (o->reportOnly) {
         auto rows = readSweepCsv(dir / "results.csv");
+        if (endsMidLine(dir / "results.csv"))  // a second probe's finding: the resume said so, this did not
+          std::fprintf(stderr, "shadowvol: note: the last line of %s is incomplete (an interrupted run?) and is "
+                               "left out of the report\n",
+                       (dir / "results.csv").string().c_str());
         if (!o->methods.empty()) rows = onlyMethods(std::move(rows), o->methods);
         info.timing = rows.empty() ? "" : rows.front().timing;
         info.glRenderer = "see results";

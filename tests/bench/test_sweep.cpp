@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fstream>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -171,6 +172,52 @@ TEST(SweepCsv, NonFiniteOrNegativeNumbersAreRefusedWithLineAndColumn) {
       EXPECT_NE(what.find("frame_ms"), std::string::npos) << what;
       EXPECT_NE(what.find(bad), std::string::npos) << what;
     }
+  }
+}
+
+// A second probe's findings: whole numbers wrapped in their fields (a resolution of 4294967360
+// read as 64, -3 pixels as 2^64 - 3), a NUL byte cut the message short, a folder or an empty file
+// gave no clear refusal.
+TEST(SweepCsv, WholeNumbersOutOfRangeControlBytesFoldersAndEmptyFilesAreRefused) {
+  const auto dir = test::tempDir();
+  const auto csv = dir / "results.csv";
+  const std::string good = toCsv(sampleRow());
+  ASSERT_NE(good.find(",256,640,480,"), std::string::npos);
+  auto refusal = [&](const std::string& row) -> std::string {
+    test::writeText(csv, sweepCsvHeader() + "\n" + row + "\n");
+    try {
+      readSweepCsv(csv);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  for (const auto& [from, to, column] :
+       {std::tuple{",256,640,480,", ",4294967360,640,480,", "resolution"}, {",256,640,480,", ",256,-640,480,", "width"},
+        {",1000,", ",-3,", "pixels"}, {",123456,", ",-1,", "volume_triangles"}}) {
+    std::string row = good;
+    row.replace(row.find(from), std::string(from).size(), to);
+    const std::string what = refusal(row);
+    EXPECT_NE(what.find("line 2"), std::string::npos) << what;
+    EXPECT_NE(what.find(column), std::string::npos) << what;
+    EXPECT_NE(what.find("expected a whole number in"), std::string::npos) << what;
+  }
+  std::string nul = good;
+  nul.replace(nul.find(",12.5,") + 1, 4, std::string("1\0" "5", 3));
+  const std::string what = refusal(nul);
+  EXPECT_NE(what.find("\\x00"), std::string::npos) << what;
+  EXPECT_NE(what.find("expected a number"), std::string::npos) << what;
+  test::writeText(csv, "");
+  EXPECT_THROW(readSweepCsv(csv), InputError);
+  test::writeText(csv, sweepCsvHeader());  // the header alone, without its line end: read, no rows
+  EXPECT_TRUE(readSweepCsv(csv).empty());
+  std::filesystem::remove(csv);
+  std::filesystem::create_directory(csv);
+  try {
+    readSweepCsv(csv);
+    FAIL() << "a folder was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
   }
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "shadowvol/depth_map.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol {
@@ -119,6 +120,21 @@ std::string toCsv(const SweepRow& r) {
   return line;
 }
 
+// A field as a message shows it: control bytes (a NUL cut the message short) as \xNN.
+std::string shown(const std::string& field) {
+  std::string out;
+  for (const char c : field) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", unsigned(static_cast<unsigned char>(c)));
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 SweepRow parseSweepRow(const std::string& line, const std::string& source, std::size_t lineNumber, int version) {
   const auto f = split(line);
   const auto cols = columns(version);
@@ -132,19 +148,24 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
     double v = 0;
     const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
-      throw InputError(where, cols[k], s, "expected a number");
+      throw InputError(where, cols[k], shown(s), "expected a number");
     // Every real column is a time, a fraction or a distance: a NaN, an infinity or a negative
     // value is a damaged row, not a measurement.
-    if (!std::isfinite(v) || v < 0.0) throw InputError(where, cols[k], s, "expected a finite number >= 0");
+    if (!std::isfinite(v) || v < 0.0) throw InputError(where, cols[k], shown(s), "expected a finite number >= 0");
     ++k;
     return v;
   };
-  auto whole = [&]() -> long long {
+  // A count, or a size within [lo, hi]: a value that would wrap in its field (a resolution of
+  // 4294967360 read as 64, -3 pixels as 2^64 - 3) is a damaged row (a second probe's finding).
+  auto whole = [&](long long lo = 0, long long hi = 1'000'000'000'000'000LL) -> long long {
     const std::string& s = f[k];
     long long v = 0;
     const auto res = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || res.ec != std::errc() || res.ptr != s.data() + s.size())
-      throw InputError(where, cols[k], s, "expected a whole number");
+      throw InputError(where, cols[k], shown(s), "expected a whole number");
+    if (v < lo || v > hi)
+      throw InputError(where, cols[k], shown(s),
+                       "expected a whole number in " + std::to_string(lo) + ".." + std::to_string(hi));
     ++k;
     return v;
   };
@@ -161,11 +182,11 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
   r.method = text();
   r.family = text();
   r.capture = text();
-  r.resolution = int(whole());
-  r.width = int(whole());
-  r.height = int(whole());
+  r.resolution = int(whole(0, kMaxDepthMapSide));  // 0: silhouette volumes, which have no map
+  r.width = int(whole(1, 1 << 20));
+  r.height = int(whole(1, 1 << 20));
   r.timing = text();
-  r.frames = int(whole());
+  r.frames = int(whole(1, 1'000'000));
   r.frame.median = real();
   r.frame.min = real();
   r.frame.max = real();
@@ -195,6 +216,9 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
 }
 
 std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path.string(), "", "", "not a regular file (a folder?): the results file must be a CSV file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), "", "", "cannot open the results file");
   std::ostringstream ss;
@@ -225,6 +249,16 @@ std::vector<SweepRow> readSweepCsv(const std::filesystem::path& path) {
     if (const auto [at, fresh] = lines.emplace(cellKey(rows.back()), lineNumber); !fresh)
       throw InputError(path.string() + " line " + std::to_string(lineNumber), "cell", cellKey(rows.back()),
                        "a second row for the cell of line " + std::to_string(at->second) + ": delete one");
+  }
+  // No complete line: the header alone without its line end (what a resume completes), else not
+  // a sweep file at all (an empty file reported nothing without a word).
+  if (lineNumber == 0) {
+    bool header = false;
+    for (int v = 0; v <= kSweepCsvVersion; ++v) header = header || text == headerOf(columns(v));
+    if (!header)
+      throw InputError(path.string(), "header", shown(text.substr(0, 60)),
+                       text.empty() ? "the file is empty: not a shadowvol sweep file"
+                                    : "not a shadowvol sweep file of this version");
   }
   return rows;
 }
