@@ -210,6 +210,21 @@ TEST_F(SweepReportTest, OnePointMethodsSeveralSizesAndNonFiniteRows) {
   EXPECT_EQ(count(md, "nan"), 0u);
 }
 
+// Two scenes whose names make one file name (a second probe's finding: the second plot overwrote
+// the first, and both sections showed it): the second gets a number.
+TEST_F(SweepReportTest, ScenesWhoseNamesMakeOneFileNameGetTwoPlots) {
+  std::vector<SweepRow> rows;
+  rows.push_back(row("a<b", 2, "shadowmap", "shadowmap", 128, 1.0, 0.02));
+  rows.push_back(row("a>b", 2, "shadowmap", "shadowmap", 128, 3.0, 0.04));
+  const auto written = writeSweepReport(rows, {}, dir_);
+  EXPECT_EQ(written.size(), 3u);
+  EXPECT_TRUE(fs::exists(dir_ / "plots" / "a_b.svg"));
+  EXPECT_TRUE(fs::exists(dir_ / "plots" / "a_b-2.svg"));
+  const std::string md = readText(dir_ / "report.md");
+  EXPECT_NE(md.find("(plots/a_b.svg)"), std::string::npos);
+  EXPECT_NE(md.find("(plots/a_b-2.svg)"), std::string::npos);
+}
+
 TEST_F(SweepReportTest, NoRowsGiveAReportWithoutPlots) {
   const auto written = writeSweepReport({}, {}, dir_);
   EXPECT_EQ(written, (std::vector<fs::path>{dir_ / "report.md"}));

@@ -436,10 +436,18 @@ Report organise(const std::vector<SweepRow>& input) {
     }
     g->triangles = std::max(g->triangles, r.triangles);
   }
+  // Plot names: the scene's name made safe for a file, and a number where two scenes' names become
+  // one (a<b and a>b, default@view and default_view: a second probe saw one plot overwrite the
+  // other), in the order of the groups, so that the names do not depend on the file system.
+  std::set<std::string> taken;
   for (Group& g : rep.groups) {
     for (const SweepRow& r : rep.rows)
       if (r.scene == g.scene && r.width == g.width && r.height == g.height) g.rows.push_back(&r);
-    g.plotFile = fileStem(g.scene) + (sizesPerScene[g.scene] > 1 ? "-" + sizeLabel(g.width, g.height) : "") + ".svg";
+    const std::string stem =
+        fileStem(g.scene) + (sizesPerScene[g.scene] > 1 ? "-" + sizeLabel(g.width, g.height) : "");
+    g.plotFile = stem + ".svg";
+    for (int k = 2; taken.count(g.plotFile) > 0; ++k) g.plotFile = stem + "-" + std::to_string(k) + ".svg";
+    taken.insert(g.plotFile);
   }
   return rep;
 }
