@@ -323,6 +323,14 @@ TEST(Sweep, SceneNamesAreCheckedBeforeAnythingIsMeasured) {
   o.fits = {LightFit::Scene};
   o.resolutions = {32, 32};
   EXPECT_EQ(runSweep(renderer, o, stop, nullptr, notes).size(), 1u);
+  // A method without a depth map under --fit view alone measures nothing: said (a second probe
+  // found an empty sweep without a word).
+  notes.clear();
+  SweepOptions view = quickSweep({plate}, {"silhouette"}, 32, 24, dir / "view");
+  view.fits = {LightFit::View};
+  EXPECT_TRUE(runSweep(renderer, view, stop, nullptr, notes).empty());
+  ASSERT_FALSE(notes.empty());
+  EXPECT_NE(notes[0].find("silhouette: no view-fitted cells"), std::string::npos) << notes[0];
 }
 
 TEST(SweepCsv, ASecondRowForACellIsRefused) {

@@ -388,7 +388,10 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
         }
         if (fit == LightFit::View && light == LightType::Point) continue;  // nothing to fit (fitLightToView)
         if (!m->usesResolution) {
-          if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: the fit changes nothing
+          if (fit == LightFit::Scene) cells.push_back({s, fit, m, 0});  // no depth map: measured once, scene-fitted
+          else if (s == 0)
+            notes.push_back(m->key + ": no view-fitted cells (it has no depth map; its cells are measured with "
+                                     "--fit scene only)");
         } else {
           for (int r : resolutions) cells.push_back({s, fit, m, r});
         }
