@@ -287,6 +287,17 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
     p[entry] = 0.5;
     expectRefused("lightProjection", p.dump(), "/lightProjection");
   }
+  // A second probe's findings: a spot narrower than a scene's may be, and a light far from the
+  // side file's origin, built volumes that collapsed in single precision.
+  {
+    nlohmann::json p = nlohmann::json::parse(good)["lightProjection"];
+    p[0] = p[0].get<double>() * 1e8;
+    p[5] = p[5].get<double>() * 1e8;
+    expectRefused("lightProjection", p.dump(), "/lightProjection");
+    nlohmann::json v = nlohmann::json::parse(good)["lightView"];
+    v[12] = v[12].get<double>() + 1e11;
+    expectRefused("lightView", v.dump(), "/lightView");
+  }
   expectRefused("far", "1e300", "/far");
   expectRefused("near", "-1", "/near");
   expectRefused("origin", "[1, 2]", "/origin");

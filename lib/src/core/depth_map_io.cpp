@@ -1,10 +1,13 @@
 #include "shadowvol/depth_map_io.h"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
+#include <numbers>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -64,6 +67,13 @@ void checkDepthValues(const DepthMap& map, const std::string& source) {
   }
 }
 
+// The narrowest spot light a side file may hold: a scene's (README "Scene files": fields of view in
+// [0.01, 179) degrees).
+constexpr double kMinLightFovDegrees = 0.01;
+// The fewest single-precision steps (at the window's distance from the origin) that the light's
+// far window must span.
+constexpr double kMinWindowFloatSteps = 64.0;
+
 // The side file's light matches what lightView() and lightProjection() produce: a rigid view
 // (orthonormal rotation, bottom row 0 0 0 1), a projection of the light's kind whose near and far
 // map to NDC z = -1 and +1, and finite world corners. Anything else would give a volume with
@@ -111,14 +121,35 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
                      std::string("expected the ") + (perspective ? "perspective" : "orthographic") +
                          " projection of a " + (perspective ? "spot" : "directional") +
                          " light that maps near and far to NDC z -1 and +1");
+  // A spot light narrower than a scene's light may be (fov 0.01 degrees: P00, P11 = cot(fov / 2)).
+  const double maxCot = 1.0 / std::tan(0.5 * kMinLightFovDegrees * std::numbers::pi / 180.0);
+  if (perspective && (std::abs(p[0][0]) > maxCot || std::abs(p[1][1]) > maxCot))
+    throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+                     "a spot light narrower than " + numberText(kMinLightFovDegrees) +
+                         " degrees, the narrowest a scene's may be");
   const TexelUnprojector unproject(map);
-  for (double d : {std::max(map.nearPlane, 1e-9), map.farPlane})
-    for (int k = 0; k < 4; ++k) {
-      const glm::dvec3 w = unproject.worldPoint(k & 1 ? map.width - 1 : 0, k & 2 ? map.height - 1 : 0, d);
-      if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z) && glm::length(w) < 1e30))
-        throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
-                         "the light's window corners are not finite in world space");
-    }
+  std::array<glm::dvec3, 8> corners;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 w = unproject.worldPoint(k & 1 ? map.width - 1 : 0, k & 2 ? map.height - 1 : 0,
+                                              k & 4 ? map.farPlane : std::max(map.nearPlane, 1e-9));
+    if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z) && glm::length(w) < 1e30))
+      throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+                       "the light's window corners are not finite in world space");
+    corners[std::size_t(k)] = w;
+  }
+  // The volume's vertices are stored relative to /origin, in single precision on export and on the
+  // GPU: a window a few float steps wide at its distance from the origin would collapse (a second
+  // probe's light 1e11 from an origin of 0 gave 484 zero-area triangles).
+  double reach = 0.0;
+  for (const auto& c : corners) reach = std::max(reach, glm::length(c));
+  const double window = std::min(glm::length(corners[5] - corners[4]), glm::length(corners[6] - corners[4]));
+  if (window < kMinWindowFloatSteps * reach * std::numeric_limits<float>::epsilon())
+    throw InputError(sfile, "/lightView", matrixToJson(v).dump(),
+                     "the light's window at the far plane is " + numberText(window) + " units wide but lies " +
+                         numberText(reach) + " units from the origin: less than " +
+                         numberText(kMinWindowFloatSteps) +
+                         " single-precision steps across, the volume would collapse (write the map with its "
+                         "/origin near the light's window)");
 }
 
 
