@@ -635,6 +635,9 @@ TEST(Cli, CheckJudgesAMeshFile) {
   EXPECT_EQ(empty.code, 0) << empty.out;
   EXPECT_TRUE(contains(empty.out, "the volume is empty")) << empty.out;
   EXPECT_EQ(runCli("check " + (dir / "empty.ply").string()).code, 1);
+  const CliResult folder = runCli("check " + dir.string());  // was "unsupported mesh format"
+  EXPECT_EQ(folder.code, 1) << folder.out;
+  EXPECT_TRUE(contains(folder.out, "a folder, not a mesh file")) << folder.out;
   const CliResult missing = runCli("check " + (dir / "none.ply").string());
   EXPECT_EQ(missing.code, 1) << missing.out;
   EXPECT_TRUE(contains(missing.out, "none.ply")) << missing.out;

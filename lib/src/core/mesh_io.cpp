@@ -122,6 +122,9 @@ TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, 
 
 TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))  // named as such, whatever its extension (a probe's finding)
+    throw InputError(path.string(), "", "", "a folder, not a mesh file");
   checkReadableExtension(ext, path.string());  // before touching the file
   if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path);
   checkRegularFile(path);
