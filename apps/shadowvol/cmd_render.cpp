@@ -19,6 +19,13 @@ namespace shadowvol::cli {
 
 namespace {
 
+// "s.png" -> "s-light2.png": where light k's stencil goes (k >= 1; light 0's at the path given).
+std::filesystem::path lightStencilPath(const std::filesystem::path& picture, std::size_t k) {
+  std::filesystem::path p = picture;
+  p.replace_filename(picture.stem().string() + "-light" + std::to_string(k) + picture.extension().string());
+  return p;
+}
+
 // "s.png" -> "s-counts.png": where --stencil's raw counts go.
 std::filesystem::path stencilCountsPath(const std::filesystem::path& picture) {
   std::filesystem::path p = picture;
@@ -53,7 +60,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
   cmd->add_option("--stencil", o->stencil,
                   "hybrid, silhouette: also write the stencil as a picture (RGB PNG: 0 = lit black, +1 grey, more "
                   "brighter, negative red) and the raw counts beside it as <name>-counts.png (8-bit grey, value = "
-                  "count, wrapping)");
+                  "count, wrapping); with several lights, light K's beside them as <name>-lightK.png and "
+                  "<name>-lightK-counts.png");
   cmd->callback([&run, o] {
     checkRenderOptionConflicts(o->render);
     run = [o] {
@@ -109,6 +117,14 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       if (!o->stencil.empty()) {
         writePng(o->stencil, result.width, result.height, 3, stencilPicture(result.stencil));
         writePng(stencilCountsPath(o->stencil), result.width, result.height, 1, result.stencil);
+        // Each further light's stencil beside it (a second probe's finding: only light 0's was written).
+        for (std::size_t k = 0; k < result.otherLights.size(); ++k) {
+          const auto& other = result.otherLights[k];
+          if (other.stencil.empty()) continue;
+          const std::filesystem::path picture = lightStencilPath(o->stencil, k + 1);
+          writePng(picture, other.width, other.height, 3, stencilPicture(other.stencil));
+          writePng(stencilCountsPath(picture), other.width, other.height, 1, other.stencil);
+        }
       }
       for (auto s : result.stencil) shadowed += s != 0;
 

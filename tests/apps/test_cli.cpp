@@ -815,6 +815,12 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   }
   EXPECT_TRUE(j["passed"].get<bool>());
   EXPECT_TRUE(std::filesystem::exists(dir / "rep" / "frame.png"));
+  // render --stencil writes every light's (a second probe's finding: light 1's was dropped).
+  const CliResult r = runCli("render --resolution 64 --size 160x120 --scene " + scene + " --out " +
+                             (dir / "i.png").string() + " --stencil " + (dir / "s.png").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* f : {"s.png", "s-counts.png", "s-light1.png", "s-light1-counts.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
   // build and depth take one light: --light picks it, and a light that is not there is refused.
   const CliResult b = runCli("build --json --resolution 16 --light 1 --scene " + scene + " --out " +
                              (dir / "v.ply").string());

@@ -206,6 +206,9 @@ TEST(SeveralLights, RefusesWhatASeveralLightFrameCannotBe) {
   grid.volumeOptions.refineSubdivisions = 4;
   grid.volumeOptions.depthOracle = [](const DepthMap&, std::span<const glm::dvec2>, std::span<float>) {};  // never asked
   expectRefused(grid, "refine subdivisions", "light 1 of the scene's 2");
+  gl::RenderOptions zpass;  // the spot light may take z-pass, the point light's cube not (named since a probe)
+  zpass.volumeCount = gl::VolumeCount::ZPass;
+  expectRefused(zpass, "volumeCount", "light 1 of the scene's 2");
   const Scene spots = twoSpots();
   renderer().setScene(spots);
   try {

@@ -7,9 +7,8 @@ bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam,
                                  RenderResult& result) const {
   if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
   if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
-    if (o.volumeCount == VolumeCount::ZPass)
-      throw InputError("RenderOptions", "volumeCount", "zpass", "a point light's volume is counted by z-fail only");
-    result.zPassRefused = "a point light's volume is counted by z-fail only";
+    if (o.volumeCount == VolumeCount::ZPass) throw InputError("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
+    result.zPassRefused = kPointZPassRule;
     return false;
   }
   Camera c = camera;

@@ -47,6 +47,10 @@
 
 namespace shadowvol::gl {
 
+/// Why a point light's hybrid volume refuses --count zpass (zpass.h decides for one frustum; the
+/// cube has six).
+inline constexpr const char* kPointZPassRule = "a point light's volume is counted by z-fail only";
+
 inline glm::mat4 toFloat(const glm::dmat4& m) {
   return glm::mat4(m);
 }

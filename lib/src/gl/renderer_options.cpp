@@ -13,6 +13,10 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     // lights validateForLight then names the point light.
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineChords)
       throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+    // Here too rather than in chooseZPass mid-frame, so that several lights name this one (a
+    // second probe's finding).
+    if (o.volumeCount == VolumeCount::ZPass)
+      throw InputError("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineSubdivisions > 1)
       throw InputError("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
                        kCubeRefinementRule);
