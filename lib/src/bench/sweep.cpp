@@ -358,7 +358,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     if (r < kMinVolumeMapSide || r > kMaxDepthMapSide)
       throw InputError("SweepOptions", "resolutions", std::to_string(r),
                        "must be in " + std::to_string(kMinVolumeMapSide) + ".." + std::to_string(kMaxDepthMapSide) +
-                           " (a 2 x 2 map's volume is all border ring: empty)");
+                           (r < kMinVolumeMapSide ? " (a 2 x 2 map's volume is all border ring: empty)"
+                                                  : " (the largest depth map side)"));
     const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies
     if (physical > 0 && need > physical / 2) {
       notes.push_back("resolution " + std::to_string(r) + " skipped: needs about " +
