@@ -75,5 +75,34 @@ TEST(TriangleAdjacency, NonManifoldEdgesHaveNoneAndMisorientedOnesAreFlagged) {
   EXPECT_EQ(n[1], kNoNeighbour);  // edge 1-2 of the first triangle: only it (the degenerate one gives nothing)
 }
 
+// The one closedness test of the scene's warnings and the orientation on loading (they once had
+// three, which disagreed on a degenerate triangle).
+TEST(TriangleAdjacency, ClosedAsStoredOrOnceWelded) {
+  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
+  EXPECT_TRUE(isClosedSurface(box));
+  TriangleMesh soup;
+  for (const auto& t : box.triangles) {
+    const auto base = std::uint32_t(soup.positions.size());
+    for (auto v : t) soup.positions.push_back(box.positions[v]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  EXPECT_TRUE(isClosedSurface(soup));
+  TriangleMesh sliver = box;
+  sliver.triangles.push_back({2, 2, 5});  // degenerate: bounds nothing
+  EXPECT_TRUE(isClosedSurface(sliver));
+  EXPECT_TRUE(closedByNeighbours(sliver, triangleNeighbours(sliver)));
+  // Two boxes stored apart that touch along a face: closed as stored, not once welded.
+  TriangleMesh pair = box;
+  TriangleMesh second = box;
+  for (auto& p : second.positions) p.x += 1.0f;
+  pair.append(second);
+  EXPECT_TRUE(isClosedSurface(pair));
+  EXPECT_FALSE(closedByNeighbours(pair, triangleNeighbours(pair)));
+  TriangleMesh open = box;
+  open.triangles.pop_back();
+  EXPECT_FALSE(isClosedSurface(open));
+  EXPECT_FALSE(isClosedSurface(TriangleMesh{}));
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -28,4 +28,15 @@ inline constexpr std::int32_t kFlippedNeighbour = 1 << 30;
 /// triangles (the index and the flag share a signed 32-bit word).
 std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh);
 
+/// Closed (edge-manifold, without border) by the rule above: every edge of every triangle that is
+/// not degenerate (a repeated welded vertex) has a neighbour. `neighbours` is triangleNeighbours(mesh).
+/// The orientation on loading takes this one (it walks the links).
+bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t>& neighbours);
+
+/// Closed as stored (every edge of the vertex indices, in the triangles without a repeated index,
+/// used by exactly two triangles), or after welding equal positions (closedByNeighbours: STL and
+/// soups store every corner apart). The scene's warnings take this one: two closed parts that
+/// touch along a face are closed as stored, though not once welded.
+bool isClosedSurface(const TriangleMesh& mesh);
+
 }  // namespace shadowvol

@@ -3,48 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
-#include <numeric>
 
 #include <glm/vec4.hpp>
 
 #include "shadowvol/cube_map.h"
+#include "shadowvol/triangle_adjacency.h"
 #include "clip_volume.h"
 
 namespace shadowvol {
 namespace {
-
-// Every undirected edge used by exactly two triangles, with vertices identified by `id`.
-// Degenerate triangles (two corners of one id) bound nothing and are skipped, as the orientation
-// on loading skips them (mesh_orientation.h).
-bool closedBy(const TriangleMesh& m, const std::vector<std::uint32_t>& id) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const auto& t : m.triangles) {
-    if (id[t[0]] == id[t[1]] || id[t[1]] == id[t[2]] || id[t[2]] == id[t[0]]) continue;
-    for (int k = 0; k < 3; ++k) ++edges[std::minmax(id[t[k]], id[t[(k + 1) % 3]])];
-  }
-  if (edges.empty()) return false;
-  return std::all_of(edges.begin(), edges.end(), [](const auto& e) { return e.second == 2; });
-}
-
-// Closed as stored, or after welding vertices with exactly equal positions (STL, soups).
-bool closed(const TriangleMesh& m) {
-  std::vector<std::uint32_t> id(m.positions.size());
-  std::iota(id.begin(), id.end(), 0u);
-  if (closedBy(m, id)) return true;
-  std::vector<std::uint32_t> order = id;
-  auto less = [&](std::uint32_t a, std::uint32_t b) {
-    const glm::vec3 &p = m.positions[a], &q = m.positions[b];
-    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z != q.z ? p.z < q.z : a < b;
-  };
-  std::sort(order.begin(), order.end(), less);
-  std::uint32_t representative = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    if (k == 0 || m.positions[order[k]] != m.positions[order[k - 1]]) representative = order[k];
-    id[order[k]] = representative;
-  }
-  return closedBy(m, id);
-}
 
 // The vertices of `mesh` that lie inside the light's window (texel coordinates in the map, in front of
 // a spot light's apex plane) but nearer to the light than its near plane, which clips them.
@@ -86,7 +53,7 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
   if (capture == CaptureMode::Back) {
     std::vector<std::string> open;
     for (const auto& o : scene.objects)
-      if (o.type == "mesh" && !closed(o.mesh)) open.push_back("\"" + o.name + "\"");
+      if (o.type == "mesh" && !isClosedSurface(o.mesh)) open.push_back("\"" + o.name + "\"");
     if (!open.empty()) {
       std::string names;
       for (const auto& n : open) names += (names.empty() ? "" : ", ") + n;

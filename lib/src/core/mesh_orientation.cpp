@@ -229,10 +229,7 @@ OrientationResult orientOutward(TriangleMesh& mesh, const std::vector<glm::dvec3
   OrientationResult r;
   if (mesh.triangles.empty()) return r;
   const std::vector<std::int32_t> neighbours = triangleNeighbours(mesh);
-  bool closed = true;
-  for (std::size_t t = 0; t < mesh.triangles.size() && closed; ++t)
-    for (int k = 0; k < 3 && !degenerate(mesh, mesh.triangles[t]); ++k)
-      closed = closed && neighbours[3 * t + std::size_t(k)] != kNoNeighbour;
+  const bool closed = closedByNeighbours(mesh, neighbours);
   Components c = windComponents(mesh, neighbours);
   if (c.flip.empty()) {
     r.left = "not orientable (no winding makes every pair of neighbours agree)";

@@ -21,6 +21,7 @@
 #include "shadowvol/mesh_orientation.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/ray_parity.h"
+#include "shadowvol/triangle_adjacency.h"
 #include "clip_volume.h"
 #include "scene_fit_range.h"
 
@@ -572,25 +573,6 @@ bool insideClosedMesh(const TriangleMesh& m, const glm::dvec3& origin) {
   return crossings % 2 == 1;
 }
 
-// Every undirected edge used by exactly two triangles (degenerate triangles, with a repeated
-// index, skipped). A sorted array of edge keys, 8 bytes per edge (a std::map here took 64 and,
-// under ASan, passed the fuzzer's 500 MB on a legal 118,000 triangle hemisphere).
-bool isClosed(const TriangleMesh& m) {
-  std::vector<std::uint64_t> edges;
-  edges.reserve(3 * m.triangles.size());
-  for (const auto& t : m.triangles)
-    for (int k = 0; k < 3 && t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; ++k) {
-      const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
-      edges.push_back(std::uint64_t(a) << 32 | b);
-    }
-  if (edges.empty()) return false;
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t k = 0; k < edges.size(); k += 2)
-    if (k + 1 >= edges.size() || edges[k] != edges[k + 1] || (k + 2 < edges.size() && edges[k + 2] == edges[k]))
-      return false;
-  return true;
-}
-
 // The file's `light` or `lights` (one of them, not both): at most kMaxSceneLights.
 void readLights(ObjectReader& top, Scene& scene, const std::string& source) {
   if (top.has("light") && top.has("lights"))
@@ -730,7 +712,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                               "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
                               "or shrink the largest objects (README \"Known limits\")");
   std::vector<bool> closed;
-  for (const auto& o : scene.objects) closed.push_back(isClosed(o.mesh));
+  for (const auto& o : scene.objects) closed.push_back(isClosedSurface(o.mesh));
   forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, closed, k, source, result.warnings); });
   warnAboutCamera(scene, closed, source, result.warnings);
   return result;

@@ -67,4 +67,43 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
   return neighbours;
 }
 
+namespace {
+
+// Every undirected edge of the indices used by exactly two triangles. A sorted array of edge keys,
+// 8 bytes per edge (a std::map here took 64 and, under ASan, passed the fuzzer's 500 MB on a legal
+// 118,000 triangle hemisphere).
+bool closedAsStored(const TriangleMesh& m) {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * m.triangles.size());
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3 && t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; ++k) {
+      const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+      edges.push_back(std::uint64_t(a) << 32 | b);
+    }
+  if (edges.empty()) return false;
+  tbb::parallel_sort(edges.begin(), edges.end());
+  for (std::size_t k = 0; k < edges.size(); k += 2)
+    if (k + 1 >= edges.size() || edges[k] != edges[k + 1] || (k + 2 < edges.size() && edges[k + 2] == edges[k]))
+      return false;
+  return true;
+}
+
+}  // namespace
+
+bool isClosedSurface(const TriangleMesh& mesh) {
+  return closedAsStored(mesh) || closedByNeighbours(mesh, triangleNeighbours(mesh));
+}
+
+bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t>& neighbours) {
+  if (mesh.triangles.empty()) return false;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::vec3 &a = mesh.positions[mesh.triangles[t][0]], &b = mesh.positions[mesh.triangles[t][1]],
+                    &c = mesh.positions[mesh.triangles[t][2]];
+    if (a == b || b == c || c == a) continue;  // degenerate: bounds nothing, has no neighbours
+    for (int k = 0; k < 3; ++k)
+      if (neighbours[3 * t + std::size_t(k)] == kNoNeighbour) return false;
+  }
+  return true;
+}
+
 }  // namespace shadowvol
