@@ -70,19 +70,24 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       if (!o->stencil.empty()) {
         checkOutputPath("--stencil", o->stencil);
         checkPngPath("--stencil", o->stencil);
-        const std::filesystem::path out = std::filesystem::weakly_canonical(o->out);
-        if (out == std::filesystem::weakly_canonical(o->stencil) ||
-            out == std::filesystem::weakly_canonical(stencilCountsPath(o->stencil)))
-          throw InputError("command line", "--stencil", o->stencil,
-                           "would overwrite the image (--out " + o->out + "): name another file");
         if (o->render.method != "hybrid" && o->render.method != "silhouette")
           throw InputError("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       checkNotAnInput("--out", o->out, o->out, scene.files);
       if (!o->stencil.empty()) {
-        checkNotAnInput("--stencil", o->stencil, o->stencil, scene.files);
-        checkNotAnInput("--stencil", o->stencil, stencilCountsPath(o->stencil), scene.files, "its counts file");
+        // Every light's picture and counts: none may be the image or one of the scene's files.
+        const std::filesystem::path out = std::filesystem::weakly_canonical(o->out);
+        for (std::size_t k = 0; k < scene.lightCount(); ++k) {
+          const std::filesystem::path picture = k == 0 ? std::filesystem::path(o->stencil) : lightStencilPath(o->stencil, k);
+          for (const auto& file : {picture, stencilCountsPath(picture)}) {
+            if (out == std::filesystem::weakly_canonical(file))
+              throw InputError("command line", "--stencil", o->stencil,
+                               "would overwrite the image (--out " + o->out + ") with " + file.string() +
+                                   ": name another file");
+            checkNotAnInput("--stencil", o->stencil, file, scene.files, file == picture ? "" : "its counts file");
+          }
+        }
       }
       gl::RenderOptions ro = toRenderOptions(o->render, scene);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);

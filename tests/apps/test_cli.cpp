@@ -821,6 +821,12 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   ASSERT_EQ(r.code, 0) << r.out;
   for (const char* f : {"s.png", "s-counts.png", "s-light1.png", "s-light1-counts.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / f)) << f;
+  // Light 1's stencil may not overwrite the image either.
+  const CliResult over = runCli("render --resolution 64 --size 160x120 --scene " + scene + " --out " +
+                                (dir / "t-light1.png").string() + " --stencil " + (dir / "t.png").string());
+  EXPECT_EQ(over.code, 1) << over.out;
+  EXPECT_TRUE(contains(over.out, "would overwrite the image")) << over.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "t-light1.png"));
   // build and depth take one light: --light picks it, and a light that is not there is refused.
   const CliResult b = runCli("build --json --resolution 16 --light 1 --scene " + scene + " --out " +
                              (dir / "v.ply").string());
