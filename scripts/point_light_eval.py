@@ -13,15 +13,15 @@ import subprocess
 import sys
 
 SHADOWVOL = os.environ.get("SHADOWVOL", "./build/apps/shadowvol")
-RUNS = [("hybrid 64", ["--resolution", "64"]), ("hybrid 128", ["--resolution", "128"]),
-        ("hybrid 256", ["--resolution", "256"]), ("hybrid 512", ["--resolution", "512"]),
+RUNS = [("hybrid 64", ["--resolution", "64", "--capture", "back"]), ("hybrid 128", ["--resolution", "128", "--capture", "back"]),
+        ("hybrid 256", ["--resolution", "256", "--capture", "back"]), ("hybrid 512", ["--resolution", "512", "--capture", "back"]),
         ("hybrid front 256", ["--resolution", "256", "--capture", "front"]),
         ("hybrid midpoint 256", ["--resolution", "256", "--capture", "midpoint"]),
         ("silhouette", ["--method", "silhouette"]),
-        ("cube shadowmap 128", ["--method", "shadowmap", "--resolution", "128"]),
-        ("cube shadowmap 256", ["--method", "shadowmap", "--resolution", "256"]),
-        ("cube shadowmap 512", ["--method", "shadowmap", "--resolution", "512"]),
-        ("cube pcf3 256", ["--method", "pcf3", "--resolution", "256"])]
+        ("cube shadowmap 128", ["--method", "shadowmap", "--resolution", "128", "--capture", "back"]),
+        ("cube shadowmap 256", ["--method", "shadowmap", "--resolution", "256", "--capture", "back"]),
+        ("cube shadowmap 512", ["--method", "shadowmap", "--resolution", "512", "--capture", "back"]),
+        ("cube pcf3 256", ["--method", "pcf3", "--resolution", "256", "--capture", "back"])]
 
 
 def run(scene, name, args):

@@ -73,8 +73,8 @@ def main():
         name = os.path.splitext(os.path.basename(path))[0]
         hv = validate(scene, os.path.join(out_dir, name, "hybrid"), hybrid_args)
         sm = validate(scene, os.path.join(out_dir, name, "shadowmap"),
-                      ["--method", "shadowmap", "--resolution", a.resolution])
-        dp = validate(scene, os.path.join(out_dir, name, "dpsm"), ["--method", "dpsm", "--resolution", a.resolution])
+                      ["--method", "shadowmap", "--resolution", a.resolution, "--capture", "back"])
+        dp = validate(scene, os.path.join(out_dir, name, "dpsm"), ["--method", "dpsm", "--resolution", a.resolution, "--capture", "back"])
         h = 100.0 * hv["againstExact"]["method"]["errorFraction"]
         s = 100.0 * sm["againstExact"]["method"]["errorFraction"]
         d = 100.0 * dp["againstExact"]["method"]["errorFraction"]

@@ -21,13 +21,19 @@ def methods(k, chords=False, grid=1):
     """Column key -> validate options."""
     ref = (["--volume", "explicit", "--refine", str(k)] + (["--chord-points"] if chords else []) +
            (["--refine-grid", str(grid)] if grid > 1 else []))
+    back = ["--capture", "back"]  # what these columns measured before --capture auto became the default
     return {
-        "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"],
-        "hybrid 256": ["--volume", "explicit", "--resolution", "256"],
-        "refined 128": ref + ["--resolution", "128"],
-        "refined 256": ref + ["--resolution", "256"],
+        "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"] + back,
+        "shadowmap front 2048": ["--method", "shadowmap", "--resolution", "2048", "--capture", "front"],
+        "shadowmap midpoint 2048": ["--method", "shadowmap", "--resolution", "2048", "--capture", "midpoint"],
+        "shadowmap auto 2048": ["--method", "shadowmap", "--resolution", "2048", "--capture", "auto"],
+        "hybrid 256": ["--volume", "explicit", "--resolution", "256"] + back,
+        "refined 128": ref + ["--resolution", "128"] + back,
+        "refined 256": ref + ["--resolution", "256"] + back,
         "refined front 128": ref + ["--resolution", "128", "--capture", "front"],
         "refined midpoint 128": ref + ["--resolution", "128", "--capture", "midpoint"],
+        "refined auto 128": ref + ["--resolution", "128", "--capture", "auto"],
+        "refined auto 256": ref + ["--resolution", "256", "--capture", "auto"],
         "silhouette": ["--method", "silhouette"],
     }
 

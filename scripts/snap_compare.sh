@@ -8,6 +8,9 @@ res=$1; shift
 opts=()
 while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do opts+=("$1"); shift; done
 [ "${1:-}" = "--" ] && shift
+# Back capture unless the options name one (the command line's default is --capture auto since
+# 2026-12-05; the figures in README were measured with back capture).
+case " ${opts[*]-} " in *" --capture "*) ;; *) opts+=(--capture back) ;; esac
 SV=${SV:-build/apps/shadowvol}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "shadowvol/volume_builder.h"
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/capture_warnings.h"
 #include "cli_verbosity.h"
 #include "shadowvol/error.h"
@@ -209,6 +210,34 @@ Scene loadSceneOrDefault(const std::string& path) {
               s.source.c_str(), s.objects.size(), s.triangleCount(), s.light.nearPlane, s.light.farPlane,
               s.camera.width, s.camera.height, s.camera.nearPlane, s.camera.farPlane);
   return std::move(r.scene);
+}
+
+CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
+  return cmd
+      .add_option("--capture", capture,
+                  "Which surface each texel records: auto (back when every mesh object is closed, else front; "
+                  "a note names the open ones), back (the first back face: the thesis's default, no bias; "
+                  "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
+                  "first surface, pushed back by a bias: records open meshes) or midpoint (the mean of the first two "
+                  "surfaces; the far plane stands in for a missing second one) (README 'Capture')")
+      ->check(CLI::IsMember({"auto", "back", "front", "midpoint"}))
+      ->capture_default_str();
+}
+
+ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene) {
+  ResolvedCapture r;
+  if (capture != "auto") {
+    if (!parseCaptureMode(capture, r.mode))
+      throw InputError("command line", "--capture", capture, "must be auto, back, front or midpoint");
+    return r;
+  }
+  const CaptureChoice c = chooseCapture(scene);
+  r.mode = c.mode;
+  r.autoReason = c.reason;
+  if (c.mode != CaptureMode::Back)
+    std::fprintf(stderr, "shadowvol: note: %s: --capture auto chose %s\n",
+                 scene.source.c_str(), c.reason.c_str());
+  return r;
 }
 
 std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture) {

@@ -79,6 +79,18 @@ void addJsonOption(CLI::App& cmd, bool& json);
 /// Loads the scene (or the default one), printing its warnings to stderr.
 Scene loadSceneOrDefault(const std::string& path);
 
+/// Adds --capture (auto, back, front, midpoint; default auto), one help text for every command.
+CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture);
+
+/// --capture's value for `scene`: back, front or midpoint as given; auto (the default) chosen by
+/// chooseCapture (capture_choice.h), with a note on stderr when it picks front. `autoReason` is
+/// chooseCapture's sentence, empty when the mode was given.
+struct ResolvedCapture {
+  CaptureMode mode = CaptureMode::Back;
+  std::string autoReason;
+};
+ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene);
+
 /// Prints captureWarnings (capture_warnings.h) for a W x H map to stderr and returns them.
 std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture);
 

@@ -27,7 +27,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
     std::string depth;
     int resolution = 512;
     int light = 0;
-    std::string capture = "back";
+    std::string capture = "auto";
     VolumeCliOptions volume;
     bool noFlatten = false;
     bool worldCoords = false;
@@ -50,11 +50,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                                      " (a point light: six faces of N x N, N up to " +
                                      std::to_string(kMaxResolution / kCubeFaces) + ")")
                      ->capture_default_str();
-  auto* capOpt = cmd->add_option("--capture", o->capture,
-                                 "Surface recorded per texel: back (thesis default, bias 0), front (needs the bias), "
-                                 "midpoint (between the first two surfaces)")
-                     ->check(CLI::IsMember({"back", "front", "midpoint"}))
-                     ->capture_default_str();
+  auto* capOpt = addCaptureOption(*cmd, o->capture);
   addCaptureDeviceOptions(*cmd, o->device);
   depthOpt->excludes(resOpt)->excludes(capOpt)->excludes(cmd->get_option("--device"));
   cmd->get_option("--scene")->excludes(depthOpt);
@@ -105,9 +101,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         j["depth"] = o->depth;
       } else {
         checkResolution("--resolution", o->resolution);
-        CaptureMode mode{};
-        parseCaptureMode(o->capture, mode);
         scene = loadSceneOrDefault(o->scene.scene);
+        const ResolvedCapture capture = resolveCapture(o->capture, scene);
+        const CaptureMode mode = capture.mode;
+        if (!capture.autoReason.empty()) j["captureAuto"] = capture.autoReason;
         checkNotAnInput("--out", o->out, o->out, scene.files);
         chooseLight(scene, o->light);
         j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);

@@ -19,7 +19,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     SceneOptions scene;
     int resolution = 512;
     int light = 0;
-    std::string capture = "back";
+    std::string capture = "auto";
     std::string out;
     CaptureDeviceOptions device;
   };
@@ -35,12 +35,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                   "Depth map size N (N x N texels), " + std::to_string(kMinVolumeMapSide) + ".." +
                       std::to_string(kMaxResolution))
       ->capture_default_str();
-  cmd->add_option("--capture", o->capture,
-                  "Which surface each texel records: back (first back face: the thesis's default; single-sided "
-                  "geometry facing the light is skipped), front (first surface), midpoint (mean of the first two "
-                  "surfaces; the far plane stands in for a missing second one)")
-      ->check(CLI::IsMember({"back", "front", "midpoint"}))
-      ->capture_default_str();
+  addCaptureOption(*cmd, o->capture);
   addCaptureDeviceOptions(*cmd, o->device);
   cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
   cmd->callback([&run, o] {
@@ -50,9 +45,9 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       checkOutputPath("--out", o->out);
       if (std::filesystem::path(o->out).extension() != ".pfm")
         throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
-      CaptureMode mode{};
-      parseCaptureMode(o->capture, mode);
       Scene scene = loadSceneOrDefault(o->scene.scene);
+      const ResolvedCapture capture = resolveCapture(o->capture, scene);
+      const CaptureMode mode = capture.mode;
       checkNotAnInput("--out", o->out, o->out, scene.files);
       checkNotAnInput("--out", o->out, depthSidecarPath(o->out), scene.files, "its side file");
       chooseLight(scene, o->light);
@@ -72,7 +67,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       nlohmann::json j = {{"scene", describeScene(scene)},
                           {"lightFit", lightFit},
                           {"resolution", o->resolution},
-                          {"capture", o->capture},
+                          {"capture", toString(mode)},
+
                           {"device", o->device.device},
                           {"texels", map.depth.size()},
                           {"hits", hits},
@@ -83,11 +79,12 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                           {"sidecar", depthSidecarPath(o->out).string()},
                           {"warnings", warnings},
                           {"shadowvolVersion", SHADOWVOL_VERSION}};
+      if (!capture.autoReason.empty()) j["captureAuto"] = capture.autoReason;  // --capture auto's reason
       if (o->scene.json) {
         std::cout << j.dump(2) << '\n';
       } else {
         std::printf("depth %dx%d (%s capture, %s) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
-                    o->capture.c_str(), o->device.device.c_str(), scene.source.c_str(), hits, map.depth.size());
+                    toString(mode), o->device.device.c_str(), scene.source.c_str(), hits, map.depth.size());
         if (hits) std::printf(", depth %.6g .. %.6g", lo, hi);
         std::printf("\ncapture %.1f ms\nwrote %s and %s\n", msCapture, o->out.c_str(),
                     depthSidecarPath(o->out).string().c_str());

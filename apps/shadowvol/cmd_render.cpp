@@ -89,12 +89,12 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           }
         }
       }
-      gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      std::string captureAuto;
+      gl::RenderOptions ro = toRenderOptions(o->render, scene, &captureAuto);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
-      if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
-        warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
+      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
       verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
@@ -151,7 +151,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"volume", o->render.method == "hybrid" ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
           {"depthFrom", o->render.depthFrom},
           {"resolution", o->render.resolution},
-          {"capture", o->render.capture},
+          
           {"triangulation", o->render.shape.triangulation},
           {"blur", o->render.shape.blur},
           {"cap", o->render.shape.cap},
@@ -174,6 +174,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"skippedCasters", result.skippedCasters},
           {"out", o->out},
           {"stencil", o->stencil.empty() ? nlohmann::json() : nlohmann::json(o->stencil)}};
+      j["capture"] = capturesMap(ro) ? nlohmann::json(toString(ro.capture)) : nlohmann::json();
+      if (!captureAuto.empty()) j["captureAuto"] = captureAuto;  // --capture auto's reason
       if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
         j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
                               {"crossingFallbacks", result.gpuCrossingFallbacks}};
@@ -187,7 +189,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                     info.device.c_str());
         std::printf("%s of %s: %dx%d image, %dx%d depth map%s, %s capture", o->render.method.c_str(),
                     scene.source.c_str(), result.width, result.height, o->render.resolution, o->render.resolution,
-                    ro.explicitDepth == gl::ExplicitDepth::Rays ? " (ray-cast)" : "", o->render.capture.c_str());
+                    ro.explicitDepth == gl::ExplicitDepth::Rays ? " (ray-cast)" : "", capturesMap(ro) ? toString(ro.capture) : "no");
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
                       gl::toString(ro.volume), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),

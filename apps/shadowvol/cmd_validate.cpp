@@ -194,12 +194,12 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       for (const char* name : kReportFiles)
         checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
-      gl::RenderOptions ro = toRenderOptions(o->render, scene);
+      std::string captureAuto;
+      gl::RenderOptions ro = toRenderOptions(o->render, scene, &captureAuto);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
-      if (ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None)
-        warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
+      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
       ro = validationRenderOptions(ro);
       gl::Renderer renderer(toRendererOptions(o->render));
       verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
@@ -224,7 +224,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"volume", hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
                       {"depthFrom", o->render.depthFrom},
                       {"resolution", o->render.resolution},
-                      {"capture", o->render.capture},
+                      
                       {"triangulation", o->render.shape.triangulation},
                       {"blur", o->render.shape.blur},
                       {"blurOffset", o->render.shape.blurOffset},
@@ -236,6 +236,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},
                       {"selfIntersections", o->selfIntersections}};
+      if (capturesMap(ro)) j["options"]["capture"] = toString(ro.capture);  // silhouette and none capture no map
+      if (!captureAuto.empty()) j["options"]["captureAuto"] = captureAuto;   // --capture auto's reason
       std::vector<std::string> images = {"frame.png", "exact.png",   "stencil.png",
                                          "count.png", "overlay.png", "overlay.svg"};
       if (!hybrid) images = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};

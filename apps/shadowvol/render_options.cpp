@@ -77,9 +77,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "Light depth map size N (N x N texels; a point light: six faces of N x N, N up to " +
                      std::to_string(kMaxDepthMapSide / kCubeFaces) + ")")
       ->capture_default_str();
-  cmd.add_option("--capture", o.capture, "back, front or midpoint (see 'shadowvol depth --help')")
-      ->check(CLI::IsMember({"back", "front", "midpoint"}))
-      ->capture_default_str();
+  addCaptureOption(cmd, o.capture);
   addVolumeOptions(cmd, o.shape);
   cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene camera's)");
   cmd.add_option("--shadow-bias", o.shadowBias,
@@ -119,7 +117,7 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
 
 }  // namespace
 
-gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
+gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason) {
   checkResolution("--resolution", o.resolution);
   if (o.shadowBias && (!std::isfinite(*o.shadowBias) || *o.shadowBias < 0.0))
     throw InputError("command line", "--shadow-bias", numberText(*o.shadowBias), "must be finite and >= 0");
@@ -137,7 +135,11 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene) {
   if (o.crossings != "auto") parseRefineCrossings(o.crossings, ro.refineCrossings);
   parseExplicitDepth(o.depthFrom, ro.explicitDepth);
   ro.depthWidth = ro.depthHeight = o.resolution;
-  parseCaptureMode(o.capture, ro.capture);
+  if (o.method != "silhouette" && o.method != "none") {  // those capture no map
+    const ResolvedCapture capture = resolveCapture(o.capture, scene);
+    ro.capture = capture.mode;
+    if (captureAutoReason) *captureAutoReason = capture.autoReason;
+  }
   ro.volumeOptions = toVolumeBuildOptions(o.shape);
   ro.shadowBiasConstant = o.shadowBias;
   ro.shadowBiasSlope = o.shadowSlope;

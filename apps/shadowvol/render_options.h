@@ -20,7 +20,7 @@ struct RenderCliOptions {
   std::string crossings = "auto";  ///< --crossings: auto | rays | gpu-walk
   std::string depthFrom = "gpu";   ///< --depth-from: gpu | rays (the explicit volume's depth map)
   int resolution = 512;
-  std::string capture = "back";
+  std::string capture = "auto";  ///< --capture: auto | back | front | midpoint
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
   std::string size;
   std::optional<double> shadowBias;  ///< unset = the documented default
@@ -36,10 +36,17 @@ struct RenderCliOptions {
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 
 /// Checks the values (InputError naming the option) and fills the renderer's options. --size, when
-/// given, replaces the scene camera's width and height.
-gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene);
+/// given, replaces the scene camera's width and height. --capture auto is chosen for `scene`
+/// (resolveCapture); `captureAutoReason`, when given, receives why (empty when the mode was given).
+gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason = nullptr);
 
 gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
+
+/// Whether the method captures a depth map (all but silhouette volumes and no shadows), so that
+/// --capture and the capture warnings apply.
+inline bool capturesMap(const gl::RenderOptions& ro) {
+  return ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None;
+}
 
 /// Usage errors among the render options that CLI11 cannot see (exit 2): --refine with the GPU
 /// volume. Throws CLI::ValidationError; call it from the subcommand's callback.

@@ -286,6 +286,47 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
+// An open square sheet (two triangles) floating over a plane under a spot light: back capture
+// lets the light through it, so --capture auto picks front.
+std::filesystem::path writeOpenSheetScene(const std::filesystem::path& dir) {
+  test::writeText(dir / "sheet.off", "OFF\n4 2 0\n-1 1 -1\n1 1 -1\n1 1 1\n-1 1 1\n3 0 2 1\n3 0 3 2\n");
+  test::writeText(dir / "sheet.json", R"({"objects": [{"type": "plane", "size": 10},
+      {"type": "mesh", "name": "sheet", "file": "sheet.off"}],
+    "light": {"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0]},
+    "camera": {"eye": [0, 3, 6], "target": [0, 0, 0]}})");
+  return dir / "sheet.json";
+}
+
+// --capture auto (the default): back when every mesh object is closed, front with a note naming the
+// open one otherwise; a given mode is kept, and back capture of the open mesh is warned about.
+TEST(Cli, CaptureAutoChoosesFrontForOpenMeshes) {
+  const auto dir = test::tempDir();
+  const std::string sheet = writeOpenSheetScene(dir).string(), pfm = (dir / "d.pfm").string();
+  const CliResult chosen = runCli("depth --resolution 32 --scene " + sheet + " --out " + pfm);
+  ASSERT_EQ(chosen.code, 0) << chosen.out;
+  EXPECT_TRUE(contains(chosen.out, "--capture auto chose front capture: the open mesh \"sheet\"")) << chosen.out;
+  EXPECT_TRUE(contains(chosen.out, "(front capture")) << chosen.out;
+  EXPECT_FALSE(contains(chosen.out, "lets light through")) << chosen.out;
+  EXPECT_EQ(readDepthMap(pfm).capture, CaptureMode::Front);
+  EXPECT_GT(readDepthMap(pfm).hitCount(), 0u);  // the sheet and the plane are recorded
+
+  const CliResult back = runCli("depth --resolution 32 --capture back --scene " + sheet + " --out " + pfm);
+  ASSERT_EQ(back.code, 0) << back.out;
+  EXPECT_FALSE(contains(back.out, "auto chose")) << back.out;
+  EXPECT_TRUE(contains(back.out, "lets light through the openings of the open mesh \"sheet\"")) << back.out;
+  EXPECT_EQ(readDepthMap(pfm).capture, CaptureMode::Back);
+
+  const CliResult build = runCli("build --resolution 32 --scene " + sheet + " --out " + (dir / "v.ply").string());
+  ASSERT_EQ(build.code, 0) << build.out;
+  EXPECT_TRUE(contains(build.out, "32x32 front capture")) << build.out;
+
+  const CliResult closed = runCli("depth --resolution 32 --out " + pfm);  // the default scene
+  ASSERT_EQ(closed.code, 0) << closed.out;
+  EXPECT_FALSE(contains(closed.out, "auto chose")) << closed.out;
+  EXPECT_TRUE(contains(closed.out, "(back capture")) << closed.out;
+  EXPECT_EQ(runCli("depth --resolution 32 --capture sideways --out " + pfm).code, 2);
+}
+
 // Far from the origin: `scene` names the local origin and reports world coordinates; `build`
 // writes relative to it (named in the header) or, with --world-coords, world coordinates in
 // double, through `depth` + `build --depth` as well; STL with --world-coords is refused up front.
@@ -697,6 +738,31 @@ TEST(Cli, OptionsThatChangeNothingAreRefused) {
 // A report folder holds one run: a shadow-map run after a volume's leaves no stencil or count
 // image of the volume's, a one-light run after a two-light one no light-K folder; files of the
 // user's own are kept (found by an adversarial run: the old images stayed beside the new report).
+// validate's report says which capture --capture auto chose and why; the open sheet's shadow is
+// cast (front capture), where back capture lets all of it through.
+TEST(CliGl, ValidateReportsTheCaptureAutoChose) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const std::string sheet = writeOpenSheetScene(dir).string();
+  auto validate = [&](const std::string& extra, const char* name) {
+    const CliResult r = runCli("validate --size 160x120 --scene " + sheet + " " + extra + " --report " +
+                               (dir / name).string());
+    EXPECT_TRUE(r.code == 0 || r.code == 3) << r.out;
+    return nlohmann::json::parse(std::ifstream(dir / name / "report.json"));
+  };
+  const std::string hybrid = "--volume explicit --resolution 64";
+  const auto chosen = validate(hybrid, "auto");
+  EXPECT_EQ(chosen["options"]["capture"], "front");
+  EXPECT_NE(chosen["options"]["captureAuto"].get<std::string>().find("\"sheet\""), std::string::npos);
+  EXPECT_TRUE(chosen["passed"].get<bool>()) << chosen.dump(2);
+  const auto back = validate(hybrid + " --capture back", "back");
+  EXPECT_EQ(back["options"]["capture"], "back");
+  EXPECT_FALSE(back["options"].contains("captureAuto"));
+  EXPECT_FALSE(back["passed"].get<bool>());  // the sheet casts no shadow: all of it missed
+  const auto silhouette = validate("--method silhouette", "silhouette");
+  EXPECT_FALSE(silhouette["options"].contains("capture"));  // captures no map
+}
+
 TEST(CliGl, ValidateReportFolderHoldsOneRun) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();

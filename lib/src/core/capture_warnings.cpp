@@ -6,8 +6,8 @@
 
 #include <glm/vec4.hpp>
 
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/cube_map.h"
-#include "shadowvol/triangle_adjacency.h"
 #include "clip_volume.h"
 
 namespace shadowvol {
@@ -51,12 +51,10 @@ void pointLightWarnings(const Scene& scene, std::vector<std::string>& out) {
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture) {
   std::vector<std::string> out;
   if (capture == CaptureMode::Back) {
-    std::vector<std::string> open;
-    for (const auto& o : scene.objects)
-      if (o.type == "mesh" && !isClosedSurface(o.mesh)) open.push_back("\"" + o.name + "\"");
+    const std::vector<std::string> open = openMeshObjects(scene);
     if (!open.empty()) {
       std::string names;
-      for (const auto& n : open) names += (names.empty() ? "" : ", ") + n;
+      for (const auto& n : open) names += (names.empty() ? "\"" : ", \"") + n + "\"";
       out.push_back("back capture lets light through the openings of the open mesh" + std::string(open.size() > 1 ? "es " : " ") +
                     names + ": their shadows leak; front or midpoint capture (--capture front|midpoint) records them");
     }

@@ -1,0 +1,33 @@
+#include "shadowvol/capture_choice.h"
+
+#include "shadowvol/triangle_adjacency.h"
+
+namespace shadowvol {
+
+std::vector<std::string> openMeshObjects(const Scene& scene) {
+  std::vector<std::string> open;
+  for (const auto& o : scene.objects)
+    if (o.type == "mesh" && !isClosedSurface(o.mesh)) open.push_back(o.name);
+  return open;
+}
+
+CaptureChoice chooseCapture(const Scene& scene) {
+  CaptureChoice c;
+  c.openMeshes = openMeshObjects(scene);
+  if (c.openMeshes.empty()) {
+    c.mode = CaptureMode::Back;
+    c.reason = "back capture: no mesh object is open";
+    return c;
+  }
+  c.mode = CaptureMode::Front;
+  constexpr std::size_t kNamed = 3;
+  std::string names;
+  for (std::size_t k = 0; k < c.openMeshes.size() && k < kNamed; ++k)
+    names += (k ? ", \"" : "\"") + c.openMeshes[k] + "\"";
+  if (c.openMeshes.size() > kNamed) names += " and " + std::to_string(c.openMeshes.size() - kNamed) + " more";
+  c.reason = "front capture: the open mesh" + std::string(c.openMeshes.size() > 1 ? "es " : " ") + names +
+             " would let light through under back capture";
+  return c;
+}
+
+}  // namespace shadowvol

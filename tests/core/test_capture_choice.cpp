@@ -1,0 +1,79 @@
+// chooseCapture (capture_choice.h): the rule behind --capture auto.
+#include <gtest/gtest.h>
+
+#include "shadowvol/capture_choice.h"
+#include "shadowvol/primitives.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+Scene sceneWith(std::vector<SceneObject> objects) {
+  Scene s;
+  s.objects = std::move(objects);
+  s.light = test::directionalDown(6.0);
+  return s;
+}
+
+TriangleMesh openBowl() {
+  TriangleMesh bowl = makeHemisphere(1.0, 16, 4);
+  bowl.triangles.resize(bowl.triangles.size() / 2);  // open: half of it gone
+  return bowl;
+}
+
+TEST(CaptureChoice, ClosedMeshesAndGeneratedObjectsGiveBack) {
+  // The plane is open, but generated objects do not decide: a plane is a receiver.
+  const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
+                             SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
+                             SceneObject{"crate", "mesh", makeBox(1.0, 1.0, 1.0)}});
+  const CaptureChoice c = chooseCapture(s);
+  EXPECT_EQ(c.mode, CaptureMode::Back);
+  EXPECT_TRUE(c.openMeshes.empty());
+  EXPECT_NE(c.reason.find("no mesh object is open"), std::string::npos) << c.reason;
+}
+
+TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
+  const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
+                             SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
+                             SceneObject{"bowl", "mesh", openBowl()}});
+  const CaptureChoice c = chooseCapture(s);
+  EXPECT_EQ(c.mode, CaptureMode::Front);
+  EXPECT_EQ(c.openMeshes, std::vector<std::string>{"bowl"});
+  EXPECT_NE(c.reason.find("\"bowl\""), std::string::npos) << c.reason;
+  EXPECT_EQ(c.reason.find("ball"), std::string::npos) << c.reason;
+}
+
+// Split vertices (STL) and degenerate triangles do not make a closed mesh open (the rule of
+// isClosedSurface, shared with the capture warnings).
+TEST(CaptureChoice, StlSplitClosedMeshIsClosed) {
+  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
+  TriangleMesh stl;
+  for (const auto& t : box.triangles) {
+    const auto base = std::uint32_t(stl.positions.size());
+    for (auto k : t) stl.positions.push_back(box.positions[k]);
+    stl.triangles.push_back({base, base + 1, base + 2});
+  }
+  stl.triangles.push_back({0, 0, 1});
+  EXPECT_EQ(chooseCapture(sceneWith({SceneObject{"stl box", "mesh", stl}})).mode, CaptureMode::Back);
+}
+
+TEST(CaptureChoice, ManyOpenMeshesNamedUpToThreeInSceneOrder) {
+  std::vector<SceneObject> objects;
+  for (const char* name : {"a", "b", "c", "d", "e"}) objects.push_back(SceneObject{name, "mesh", openBowl()});
+  const CaptureChoice c = chooseCapture(sceneWith(std::move(objects)));
+  EXPECT_EQ(c.mode, CaptureMode::Front);
+  EXPECT_EQ(c.openMeshes, (std::vector<std::string>{"a", "b", "c", "d", "e"}));
+  EXPECT_NE(c.reason.find("\"a\", \"b\", \"c\" and 2 more"), std::string::npos) << c.reason;
+  EXPECT_EQ(c.reason.find("\"d\""), std::string::npos) << c.reason;
+}
+
+// The same scene gives the same choice (no state between calls).
+TEST(CaptureChoice, Deterministic) {
+  const Scene s = sceneWith({SceneObject{"bowl", "mesh", openBowl()}});
+  const CaptureChoice a = chooseCapture(s), b = chooseCapture(s);
+  EXPECT_EQ(a.mode, b.mode);
+  EXPECT_EQ(a.reason, b.reason);
+}
+
+}  // namespace
+}  // namespace shadowvol
