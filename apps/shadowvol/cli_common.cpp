@@ -219,7 +219,7 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
                   "a note names the open ones), back (the first back face: the thesis's default, no bias; "
                   "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
                   "first surface, pushed back by a bias: records open meshes) or midpoint (the mean of the first two "
-                  "surfaces; the far plane stands in for a missing second one) (README 'Capture')")
+                  "surfaces; the far plane stands in for a missing second one) (README 'Capture modes')")
       ->check(CLI::IsMember({"auto", "back", "front", "midpoint"}))
       ->capture_default_str();
 }

@@ -1,5 +1,5 @@
 // Which surface a light's depth map should record for a scene: the rule behind the command
-// line's `--capture auto` (its default; README "Capture").
+// line's `--capture auto` (its default; README "Capture modes").
 #pragma once
 
 #include <string>
