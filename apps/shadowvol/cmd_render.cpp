@@ -149,7 +149,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
           {"gl", describeContext(info)},
           {"method", o->render.method},
           {"volume", o->render.method == "hybrid" ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
-          {"depthFrom", o->render.depthFrom},
+          {"depthFrom", depthFromUsed(o->render, ro, result)},
           {"resolution", o->render.resolution},
           
           {"triangulation", o->render.shape.triangulation},
@@ -189,7 +189,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                     info.device.c_str());
         std::printf("%s of %s: %dx%d image, %dx%d depth map%s, %s capture", o->render.method.c_str(),
                     scene.source.c_str(), result.width, result.height, o->render.resolution, o->render.resolution,
-                    ro.explicitDepth == gl::ExplicitDepth::Rays ? " (ray-cast)" : "", capturesMap(ro) ? toString(ro.capture) : "no");
+                    result.explicitDepthUsed == gl::ExplicitDepth::Rays && ro.volume == gl::VolumeSource::Explicit ? " (ray-cast)" : "", capturesMap(ro) ? toString(ro.capture) : "no");
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",
                       gl::toString(ro.volume), o->render.shape.triangulation.c_str(), o->render.shape.blur ? ", blur" : "", o->render.shape.cap.c_str(),

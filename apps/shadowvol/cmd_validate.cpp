@@ -222,7 +222,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       j["gl"] = describeContext(renderer.info());
       j["options"] = {{"method", o->render.method},
                       {"volume", hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
-                      {"depthFrom", o->render.depthFrom},
+                      {"depthFrom", depthFromUsed(o->render, ro, result)},
                       {"resolution", o->render.resolution},
                       
                       {"triangulation", o->render.shape.triangulation},

@@ -61,11 +61,12 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->check(CLI::IsMember({"auto", "rays", "gpu-walk", "gpu-rays"}))
       ->capture_default_str();
   cmd.add_option("--depth-from", o.depthFrom,
-                 "hybrid with --volume explicit: where its depth map comes from: gpu (the light pass, read back) or "
+                 "hybrid with --volume explicit: where its depth map comes from: gpu (the light pass, read back), "
                  "rays (one Embree ray per texel centre on the CPU, the rays refinement casts: no light pass, no "
                  "read-back; on a software GL such as llvmpipe cheaper than rasterising the scene once more at "
-                 "small maps; README 'Silhouette refinement')")
-      ->check(CLI::IsMember({"gpu", "rays"}))
+                 "small maps) or auto (rays with --refine on a software GL where the scene has at least 0.75 "
+                 "triangles per texel, else gpu; README 'Depth map from rays')")
+      ->check(CLI::IsMember({"auto", "gpu", "rays"}))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "

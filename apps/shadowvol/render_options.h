@@ -18,7 +18,7 @@ struct RenderCliOptions {
   std::string gpuDraw = "auto";
   std::string count = "auto";  ///< --count: auto | zfail | zpass
   std::string crossings = "auto";  ///< --crossings: auto | rays | gpu-walk
-  std::string depthFrom = "gpu";   ///< --depth-from: gpu | rays (the explicit volume's depth map)
+  std::string depthFrom = "auto";  ///< --depth-from: auto | gpu | rays (the explicit volume's depth map)
   int resolution = 512;
   std::string capture = "auto";  ///< --capture: auto | back | front | midpoint
   VolumeCliOptions shape;  ///< triangulation, blur, bias, cap
@@ -41,6 +41,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason = nullptr);
 
 gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
+
+/// --depth-from as the frame took it: the explicit hybrid volume's source (auto resolved by the
+/// renderer, RenderResult::explicitDepthUsed), else the option as given.
+inline std::string depthFromUsed(const RenderCliOptions& o, const gl::RenderOptions& ro, const gl::RenderResult& r) {
+  const bool explicitVolume = ro.method == gl::ShadowMethod::Hybrid && ro.volume == gl::VolumeSource::Explicit;
+  return explicitVolume ? gl::toString(r.explicitDepthUsed) : o.depthFrom;
+}
 
 /// Whether the method captures a depth map (all but silhouette volumes and no shadows), so that
 /// --capture and the capture warnings apply.

@@ -422,8 +422,8 @@ TEST(Sweep, RefusedCellsAreSkippedWithANote) {
 TEST(Sweep, RayCastDepthMethodHasNoReadBack) {
   const auto dir = test::tempDir();
   gl::Renderer renderer;
-  SweepOptions o = quickSweep({std::filesystem::path()}, {"hybrid-refined/explicit", "hybrid-refined-raycast/explicit"},
-                              64, 48, dir);
+  SweepOptions o = quickSweep({std::filesystem::path()},
+                              {"hybrid-refined-lightpass/explicit", "hybrid-refined-raycast/explicit"}, 64, 48, dir);
   o.fits = {LightFit::Scene};
   std::atomic<bool> stop{false};
   std::vector<std::string> notes;
@@ -432,8 +432,8 @@ TEST(Sweep, RayCastDepthMethodHasNoReadBack) {
   const auto phase = [](const SweepRow& r, const std::string& name) {
     return std::any_of(r.phases.begin(), r.phases.end(), [&](const auto& p) { return p.first == name; });
   };
-  const SweepRow& gpu = rows[0].method == "hybrid-refined/explicit" ? rows[0] : rows[1];
-  const SweepRow& rays = rows[0].method == "hybrid-refined/explicit" ? rows[1] : rows[0];
+  const SweepRow& gpu = rows[0].method == "hybrid-refined-lightpass/explicit" ? rows[0] : rows[1];
+  const SweepRow& rays = rows[0].method == "hybrid-refined-lightpass/explicit" ? rows[1] : rows[0];
   EXPECT_EQ(rays.method, "hybrid-refined-raycast/explicit");
   EXPECT_TRUE(phase(gpu, "readback"));
   EXPECT_TRUE(phase(rays, "light"));

@@ -200,6 +200,36 @@ TEST(Validation, RayCastDepthIsTheEmbreeCaptureAndMatchesCrossingCounts) {
   expectRayCastDepth(wide, EmbreeDepthOracle(wide), CaptureMode::Back, 4, 64, 48);
 }
 
+// ExplicitDepth::Auto in the renderer: the default scene (5,122 triangles) takes the rays at 64^2
+// (4,096 texels) on a software rasteriser and the light pass at 128^2 (16,384), and says which it
+// took; an Auto frame is the frame of the source it took, pixel for pixel.
+TEST(Validation, ExplicitDepthAutoTakesTheSourceItSaysAndDrawsItsFrame) {
+  Scene scene = defaultScene();
+  scene.camera.width = 128;
+  scene.camera.height = 96;
+  const EmbreeDepthOracle oracle(scene);
+  renderer().setScene(scene);
+  const bool software = renderer().info().softwareRenderer;
+  for (int side : {64, 128}) {
+    gl::RenderOptions ro;
+    ro.volume = gl::VolumeSource::Explicit;
+    ro.depthWidth = ro.depthHeight = side;
+    ro.volumeOptions.refineSteps = 4;
+    ro.volumeOptions.depthOracle = oracle.oracle();
+    ro.explicitDepth = gl::ExplicitDepth::Auto;
+    const gl::ExplicitDepth expected = gl::chooseExplicitDepth(ro, scene.triangleCount(), software);
+    EXPECT_EQ(expected, software && side == 64 ? gl::ExplicitDepth::Rays : gl::ExplicitDepth::LightPass) << side;
+    const gl::RenderResult chosen = renderer().render(ro);
+    EXPECT_EQ(chosen.explicitDepthUsed, expected) << side;
+    ro.explicitDepth = expected;
+    const gl::RenderResult given = renderer().render(ro);
+    EXPECT_EQ(given.explicitDepthUsed, expected) << side;
+    EXPECT_EQ(chosen.stencil, given.stencil) << side;
+    ASSERT_TRUE(chosen.depthMap && given.depthMap);
+    EXPECT_EQ(chosen.depthMap->depth, given.depthMap->depth) << side;
+  }
+}
+
 // Every shipped scene with refinement by the GPU's walk (or `crossings`, `steps` per edge) at 64^2,
 // back and front capture (the walk refuses midpoint), both triangulations (blur with fixed);
 // `check` gets each frame's scene, options and validation. Returns the number of frames.

@@ -93,11 +93,13 @@ bool parseRefineCrossings(const std::string& text, RefineCrossings& c);
 /// the refinement's rays see), on the CPU, no light pass and no read-back; its time is the frame's
 /// "light" pass (wall clock). Which is faster depends on the machine: on llvmpipe a small map's
 /// rays cost less than rasterising every triangle once more (README "Silhouette refinement").
+/// Auto: chooseExplicitDepth's pick, frame by frame (the command line's and bench's default).
 enum class ExplicitDepth {
-  LightPass,  ///< the GPU's light pass, read back (the default)
+  LightPass,  ///< the GPU's light pass, read back (the library's default)
   Rays,       ///< volumeOptions.depthOracle at every texel centre
+  Auto,       ///< Rays where chooseExplicitDepth expects them to cost less, else LightPass
 };
-const char* toString(ExplicitDepth d);  ///< "gpu", "rays"
+const char* toString(ExplicitDepth d);  ///< "gpu", "rays", "auto"
 bool parseExplicitDepth(const std::string& text, ExplicitDepth& d);
 
 struct RenderOptions {
@@ -150,6 +152,24 @@ struct RenderOptions {
   /// oracle's rays (ExplicitDepth; Rays needs volumeOptions.depthOracle).
   ExplicitDepth explicitDepth = ExplicitDepth::LightPass;
 };
+
+/// ExplicitDepth::Auto takes the rays when the scene has at least this many triangles per texel of
+/// the map (a point light's six faces counted) and the rasteriser is a software one. Measured on
+/// llvmpipe, 2 cores (README "Depth map from rays", docs/results/sweep-raycast): the rays cost
+/// about 0.05-0.1 us each, the light pass about 0.1 us per triangle, so they break even near one
+/// triangle per texel; below 0.75 the light pass won every measured cell but one, above 1.25 the
+/// rays won every one.
+inline constexpr double kRayDepthTrianglesPerTexel = 0.75;
+
+/// The depth source a frame with these options takes: explicitDepth itself unless Auto. Auto is
+/// Rays when the frame can cast them at no extra set-up (hybrid, explicit volume,
+/// volumeOptions.depthOracle already given, as refinement's rays need it; not the GPU walk's
+/// crossings, which follow the light pass's triangle record), the rasteriser is a software one
+/// (`softwareRasterizer`: its light pass costs per triangle; a hardware GPU's is nearly free), and
+/// sceneTriangles >= kRayDepthTrianglesPerTexel x texels, with `faces` maps of the options' size
+/// (6 for a point light). Otherwise LightPass. Deterministic: no timing is involved.
+ExplicitDepth chooseExplicitDepth(const RenderOptions& o, std::size_t sceneTriangles, bool softwareRasterizer,
+                                  int faces = 1);
 
 /// Whether a frame with these options needs volumeOptions.depthOracle (the scene's rays): the
 /// explicit hybrid volume refined with RefineCrossings::Rays, or with its depth from rays.
@@ -213,6 +233,8 @@ struct RenderResult {
   VolumeCount volumeCountUsed = VolumeCount::ZFail;      ///< stencil methods: ZFail or ZPass
   std::string zPassRefused;         ///< hybrid with Auto and z-fail used: why z-pass was not safe
   double biasUsed = 0.0;            ///< hybrid: the volume bias in world units
+  /// hybrid, explicit volume: where its depth map came from (ExplicitDepth::Auto resolved)
+  ExplicitDepth explicitDepthUsed = ExplicitDepth::LightPass;
   std::size_t gpuBoundaryEdges = 0;     ///< refined GPU volume: boundary edges walked
   std::size_t gpuCrossingFallbacks = 0; ///< refined GPU volume: of them, walls in the middle of the
                                         ///< edge (no crossing found, walk_crossings.h)

@@ -48,14 +48,31 @@ SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureM
 
 // The refined explicit volume: perfect triangulation, kSweepRefineSteps rays per boundary edge
 // into the scene (the depth oracle is attached per scene by runSweep; its rays are part of the
-// frame's build pass).
+// frame's build pass). Its depth map as the command line takes it (ExplicitDepth::Auto, since
+// 2026-12-05): ray-cast on a software GL where the scene has kRayDepthTrianglesPerTexel triangles
+// per texel or more, else the light pass (hybrid-refined-lightpass/explicit: the light pass
+// always, what these keys measured before).
 SweepMethod refined(CaptureMode capture) {
   SweepMethod m = hybrid(Triangulation::Perfect, false, gl::VolumeSource::Explicit, capture);
   m.key = std::string("hybrid-refined") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSteps = kSweepRefineSteps;
+  m.options.explicitDepth = gl::ExplicitDepth::Auto;
   m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
-                  " rays per boundary edge, perfect triangulation), " + captureWords(capture);
+                  " rays per boundary edge, perfect triangulation; its depth map from the light pass, or ray-cast "
+                  "where that is expected to cost less), " + captureWords(capture);
+  return m;
+}
+
+// The refined explicit volume with its depth map from the light pass on every scene
+// (ExplicitDepth::LightPass): hybrid-refined/explicit before 2026-12-05.
+SweepMethod refinedLightPass() {
+  SweepMethod m = refined(CaptureMode::Back);
+  m.key = "hybrid-refined-lightpass/explicit";
+  m.options.explicitDepth = gl::ExplicitDepth::LightPass;
+  m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
+                  " rays per boundary edge, perfect triangulation), its depth map always from the light pass, " +
+                  captureWords(CaptureMode::Back);
   return m;
 }
 
@@ -171,6 +188,7 @@ SweepMethod cubeRefined(CaptureMode capture) {
   m.key = std::string("hybrid-cube-refined") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSteps = kSweepRefineSteps;
+  m.options.explicitDepth = gl::ExplicitDepth::Auto;  // as refined()
   m.description = "a point light's explicit cube volume with sub-texel silhouette refinement (" +
                   std::to_string(kSweepRefineSteps) + " rays per boundary edge, inside the faces and across the cube's "
                   "edges; perfect triangulation, far cube cap), " + captureWords(capture);
@@ -293,6 +311,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(zfail);
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     v.push_back(refinedRayDepth());
+    v.push_back(refinedLightPass());
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));

@@ -93,13 +93,31 @@ bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
   return true;
 }
 
-const char* toString(ExplicitDepth d) { return d == ExplicitDepth::Rays ? "rays" : "gpu"; }
+const char* toString(ExplicitDepth d) {
+  switch (d) {
+    case ExplicitDepth::LightPass: return "gpu";
+    case ExplicitDepth::Rays: return "rays";
+    case ExplicitDepth::Auto: return "auto";
+  }
+  return "?";
+}
 
 bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) {
   if (text == "gpu") d = ExplicitDepth::LightPass;
   else if (text == "rays") d = ExplicitDepth::Rays;
+  else if (text == "auto") d = ExplicitDepth::Auto;
   else return false;
   return true;
+}
+
+ExplicitDepth chooseExplicitDepth(const RenderOptions& o, std::size_t sceneTriangles, bool softwareRasterizer,
+                                  int faces) {
+  if (o.explicitDepth != ExplicitDepth::Auto) return o.explicitDepth;
+  const bool canCast = o.method == ShadowMethod::Hybrid && o.volume == VolumeSource::Explicit &&
+                       o.volumeOptions.depthOracle && o.refineCrossings != RefineCrossings::GpuWalk;
+  const double texels = double(o.depthWidth) * double(o.depthHeight) * double(std::max(faces, 1));
+  const bool raysCheaper = double(sceneTriangles) >= kRayDepthTrianglesPerTexel * texels;
+  return canCast && softwareRasterizer && raysCheaper ? ExplicitDepth::Rays : ExplicitDepth::LightPass;
 }
 
 bool needsDepthOracle(const RenderOptions& o) {

@@ -89,7 +89,9 @@ Renderer::Impl::LightFrame Renderer::Impl::planLightFrame(const RenderOptions& o
   f.indexedVolume = f.gpuDraw == GpuVolumeDraw::Indexed || f.refinedGpu;
   f.dpsm = f.point && o.method == ShadowMethod::Dpsm;
   f.cubeShadowMap = f.point && !f.hybrid && !f.silhouette && !f.dpsm && o.method != ShadowMethod::None;
-  f.rayDepth = f.hybrid && !givenVolume && o.volume == VolumeSource::Explicit && o.explicitDepth == ExplicitDepth::Rays;
+  f.rayDepth = f.hybrid && !givenVolume && o.volume == VolumeSource::Explicit &&
+               chooseExplicitDepth(o, scene.triangleCount(), context.info().softwareRenderer, f.point ? 6 : 1) ==
+                   ExplicitDepth::Rays;
   return f;
 }
 
@@ -262,6 +264,7 @@ void Renderer::Impl::lightFrameResults(const RenderOptions& o, const CameraSetup
                                       : o.method == ShadowMethod::None ? VisibilitySource::AllLit
                                                                        : VisibilitySource::FromAttachment;
   readShadowImages(cam, f.stencilShadows && o.readStencil, visibility, result);
+  result.explicitDepthUsed = f.rayDepth ? ExplicitDepth::Rays : ExplicitDepth::LightPass;
   if (f.cubeGpu) std::tie(result.volumeTriangles, result.gpuVolumeQuadsDrawn) = cubeVolume.lastCounts();
   if (volumeTrianglesPending) {  // after the frame, so reading the query does not stall a pass
     GLuint64 n = 0;

@@ -569,7 +569,7 @@ struct Renderer::Impl {
     bool indexedVolume = false;   // its light pass marks occupancy (indexed or refined GPU volume)
     bool dpsm = false;            // a point light's dual-paraboloid maps
     bool cubeShadowMap = false;   // a point light's cube shadow map (or PCF)
-    bool rayDepth = false;        // the explicit volume's map from the oracle's rays (ExplicitDepth::Rays)
+    bool rayDepth = false;        // the explicit volume's map from the oracle's rays (ExplicitDepth::Rays, or Auto's pick)
     GpuVolumeDraw gpuDraw = GpuVolumeDraw::Auto;
     std::size_t explicitTriangles = 0;     // of an uploaded volume (drawExplicitVolume)
     const Texture* volumeDepth = nullptr;  // what a GPU volume reads (gpuVolumeDepth)

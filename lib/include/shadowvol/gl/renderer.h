@@ -50,6 +50,7 @@ namespace shadowvol::gl {
 
 // The frame types (frame.h) under their old names in shadowvol::gl.
 using shadowvol::ExplicitDepth;
+using shadowvol::chooseExplicitDepth;
 using shadowvol::GpuVolumeDraw;
 using shadowvol::parseShadowMethod;
 using shadowvol::parseVolumeCount;
