@@ -224,8 +224,10 @@ void refineEdge(ivec2 P, int axis, uint e) {
       break;
     }
   }
+  // Snapped or not, 2^-(K+2) from the edge's ends (crossing_snap.cpp's margin): a bracket walked
+  // on past probes can shrink onto hi, and a crossing on an end is a degenerate wall.
   float margin = exp2(float(-(refineSteps + 2)));
-  s = s >= 0.0 ? clamp(s, margin, 1.0 - margin) : 0.5 * (lo + hi);
+  s = clamp(s >= 0.0 ? s : 0.5 * (lo + hi), margin, 1.0 - margin);
   float nearDepth = dLo != farPlane ? dLo : sheetDepth(N);
   float farDepth = surface ? (probeFar != farPlane && probeFar > nearDepth ? probeFar : dHi) : farPlane;
   // In float the bracket's depths can meet (their middle rounds to the near one: a steep surface

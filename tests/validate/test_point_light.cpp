@@ -215,6 +215,37 @@ TEST(PointLight, RefinedGpuCubeVolumeFollowsTheCameraTargets) {
   EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
 }
 
+// A probe's scene (2026-12-05): an axis-aligned box under a point light, whose corners fall on
+// texel centres of the guarded faces. The snap walked a bracket on past its probes until it shrank
+// onto the far end: the GPU put the crossing on the texel (degenerate walls in its own mesh) and
+// the CPU mirror's far cap had two corners at one point (CGAL's triangulation crashed). Every
+// crossing now keeps 2^-(K+2) from its edge's ends, snapped or not.
+TEST(PointLight, RefinedGpuCubeVolumeOfABoxOnTexelCentresIsValid) {
+  Scene s;
+  s.objects = {SceneObject{"ground", "plane", makePlane(10.0, 10.0, 1)},
+               SceneObject{"box", "box", makeBox(1.0, 1.0, 1.0)}};
+  for (auto& p : s.objects[1].mesh.positions) p.y += 1.0f;
+  s.light.type = LightType::Point;
+  s.light.position = {1.0, 4.0, 1.0};
+  s.camera.eye = {0.0, 4.0, 7.0};
+  s.camera.target = {0.0, 0.5, 0.0};
+  s.camera.width = 160;
+  s.camera.height = 120;
+  fitLightAndCamera(s);
+  for (auto capture : {CaptureMode::Back, CaptureMode::Front})
+    for (int steps : {1, 4})
+      for (int side : {128, 256}) {
+        gl::RenderOptions ro;
+        ro.volume = gl::VolumeSource::Gpu;
+        ro.capture = capture;
+        ro.depthWidth = ro.depthHeight = side;
+        ro.volumeOptions.refineSteps = steps;
+        SCOPED_TRACE(std::string(toString(capture)) + " K " + std::to_string(steps) + " " + std::to_string(side));
+        const FrameValidation v = renderAndValidate(s, ro);
+        EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
+      }
+}
+
 // The GPU draws the explicit volume's triangles before the cap's flattening, in float: the same
 // shadow up to the pixels where a float sheet vertex falls on the other side of a surface, and
 // the same number of triangles as the explicit sheet and its unflattened cap, plus twice the

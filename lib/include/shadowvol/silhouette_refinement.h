@@ -85,6 +85,12 @@ BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const S
 double floatSafeTexels(const DepthMap& map);
 inline constexpr double kFloatSafeSpacings = 4.0;
 
+/// Moves crossing c at least `safeTexels` (floatSafeTexels), and at most a quarter of the segment,
+/// from the ends of its segment of `length` texels. Every crossing goes through it, bisected or
+/// from a crossing source (the GPU's rays or walk), whose crossings can lie on an end: two cap
+/// corners at one point, which the far cap cannot triangulate.
+void keepApartFromEnds(Crossing& c, double length, double safeTexels);
+
 /// Rays spent, and the time inside the oracle (ms).
 struct RayBudget {
   std::size_t rays = 0;

@@ -93,6 +93,9 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
       if (hit && (!g.surface || d < 0.5 * (br.dLo + br.dHi))) {  // the surface goes on: walk on from the probe
         br.lo = sProbe[p], br.dLo = d;
         out[k] = bracketCrossing(g, br, farPlane);
+        // Its middle, margin from the ends as a snapped one (the bracket can shrink onto hi: a probe's
+        // finding, a degenerate wall on the GPU, which does the same).
+        out[k].s = std::clamp(out[k].s, margin, 1.0 - margin);
         next.push_back(k);
         continue;
       }

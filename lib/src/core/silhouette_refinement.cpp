@@ -125,12 +125,15 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
   }
   // Apart from the segments' ends in float as well (the header's floatSafeTexels).
   const double safe = floatSafeTexels(map);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double length = glm::length(segments[k].farPoint - segments[k].nearPoint);
-    const double m = std::min(0.25, safe / length);
-    if (length > 0.0 && m > 0.0) out[k].s = std::clamp(out[k].s, m, 1.0 - m);
-  }
+  for (std::size_t k = 0; k < n; ++k)
+    keepApartFromEnds(out[k], glm::length(segments[k].farPoint - segments[k].nearPoint), safe);
   return out;
+}
+
+void keepApartFromEnds(Crossing& c, double length, double safeTexels) {
+  if (!(length > 0.0)) return;
+  const double m = std::min(0.25, safeTexels / length);
+  if (m > 0.0) c.s = std::clamp(c.s, m, 1.0 - m);
 }
 
 BisectionSegment edgeSegment(const DepthMap& map, const BoundaryEdge& e, const SheetDepthRule& rule, bool blur,
