@@ -51,11 +51,15 @@ gl::Renderer rendererFor(const CaptureDeviceOptions& o, const Scene& scene) {
 
 }  // namespace
 
-DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
-  if (scene.light.type == LightType::Point)
-    throw InputError(scene.source, "/light/type", "point",
+void checkOneMapLight(const Scene& scene, std::size_t light) {
+  if (light < scene.lightCount() && scene.lightAt(light).type == LightType::Point)
+    throw InputError(scene.source, scene.lightPointer(light) + "/type", "point",
                      "a point light has six depth maps, one per cube face, and this command writes one: build, "
                      "render, validate and bench take point lights");
+}
+
+DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
+  checkOneMapLight(scene, 0);
   if (o.device == "cpu") {
     DepthMap map = captureDepthEmbree(scene, width, height, mode);
     verboseNote("depth captured on the CPU (Embree): %dx%d %s, %zu texels hit", width, height, toString(mode),

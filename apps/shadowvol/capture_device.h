@@ -30,6 +30,11 @@ void checkCaptureDeviceOptions(const CaptureDeviceOptions& o, bool fromFile);
 /// six maps: captureCubeOnDevice).
 DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode);
 
+/// Refuses light K of the scene as it was loaded (before chooseLight) when it is a point light,
+/// whose six maps a one-map command (depth) cannot write, naming its JSON pointer ("/light" or
+/// "/lights/K"). captureOnDevice makes the same check on the light it is given.
+void checkOneMapLight(const Scene& scene, std::size_t light);
+
 /// A point light's six N x N cube faces (cube_map.h) on the chosen device.
 CubeDepthMap captureCubeOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int n, CaptureMode mode);
 

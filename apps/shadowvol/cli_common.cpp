@@ -1,4 +1,5 @@
 #include "cli_common.h"
+#include "cli_errors.h"
 
 #include <cmath>
 #include <cstdio>
@@ -166,26 +167,6 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
 }
 
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
-  if (o.blurOffset != 0.0 && !o.blur)
-    throw InputError("command line", "--blur-offset", numberText(o.blurOffset), "needs --blur");
-  if (!std::isfinite(o.blurOffset) || o.blurOffset < 0.0)
-    throw InputError("command line", "--blur-offset", numberText(o.blurOffset),
-                     "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit "
-                     "surfaces it was captured from)");
-  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
-    throw InputError("command line", "--bias", numberText(*o.bias), "must be finite and >= 0");
-  if (o.refine > 0 && o.cap != "exact")
-    throw InputError("command line", "--refine", std::to_string(o.refine),
-                     "needs --cap exact (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
-  if (o.chordPoints && o.refine == 0) throw InputError("command line", "--chord-points", "", "needs --refine");
-  if (o.refineGrid > 1 && o.refine == 0)
-    throw InputError("command line", "--refine-grid", std::to_string(o.refineGrid), "needs --refine");
-  if (o.refineGrid > 1 && o.chordPoints)
-    throw InputError("command line", "--refine-grid", std::to_string(o.refineGrid),
-                     "not with --chord-points: they are alternatives (the sub-grid bends the wall in every sub-cell)");
-  if (o.refineGridEverywhere && o.refineGrid == 1)
-    throw InputError("command line", "--refine-grid-everywhere", "", "needs --refine-grid 2, 4 or 8");
-  if (o.noSnap && o.refine == 0) throw InputError("command line", "--no-snap", "", "needs --refine");
   VolumeBuildOptions v;
   v.refineSteps = o.refine;
   v.refineChords = o.chordPoints;
@@ -197,6 +178,11 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   v.blur = o.blur;
   v.blurOffset = o.blurOffset;
   v.bias = o.bias;
+  try {
+    checkUserVolumeOptions(v);  // the rules the Python module applies too, named by flag here
+  } catch (const InputError& e) {
+    throw asCommandLineError(e);
+  }
   return v;
 }
 

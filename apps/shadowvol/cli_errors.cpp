@@ -38,6 +38,8 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},
     LibraryFieldFlag{"volume options", "refine chords", "--chord-points"},
     LibraryFieldFlag{"volume options", "refine grid everywhere", "--refine-grid-everywhere"},
+    LibraryFieldFlag{"volume options", "refine snap", "--no-snap"},
+    LibraryFieldFlag{"volume options", "flatten cap", "--no-flatten"},
 };
 
 }  // namespace

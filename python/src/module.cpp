@@ -4,6 +4,7 @@
 // shadowvol.GlError (a RuntimeError), anything else -> RuntimeError.
 #include "py_common.h"
 
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/error.h"
 #include "shadowvol/version.h"
 #ifdef SHADOWVOL_WITH_GL
@@ -35,10 +36,21 @@ glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, c
   return m;
 }
 
-CaptureMode captureModeArg(const std::string& text) {
+CaptureMode captureModeArg(const std::string& text, const Scene* scene) {
+  if (text == "auto") {
+    if (!scene) throw InputError("python", "capture", text, "auto chooses by the scene's meshes: give back, front or midpoint");
+    return chooseCapture(*scene).mode;
+  }
   CaptureMode mode;
-  if (!parseCaptureMode(text, mode)) throw InputError("python", "capture", text, "expected back, front or midpoint");
+  if (!parseCaptureMode(text, mode))
+    throw InputError("python", "capture", text, scene ? "expected auto, back, front or midpoint" : "expected back, front or midpoint");
   return mode;
+}
+
+void checkResolutionArg(int resolution, const std::string& what) {
+  if (resolution < kMinVolumeMapSide || resolution > kMaxDepthMapSide)
+    throw InputError("python", what, std::to_string(resolution),
+                     "must be between " + std::to_string(kMinVolumeMapSide) + " and " + std::to_string(kMaxDepthMapSide));
 }
 
 }  // namespace shadowvol::python

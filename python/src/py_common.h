@@ -34,7 +34,12 @@ py::array_t<double> matrixToNumpy(const glm::dmat4& m);
 glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what);
 
 /// The enum value named `text`; throws InputError naming the keyword argument and listing the choices.
-CaptureMode captureModeArg(const std::string& text);
+/// "auto" (chooseCapture, capture_choice.h) needs the scene the map is captured from.
+CaptureMode captureModeArg(const std::string& text, const Scene* scene = nullptr);
+
+/// A light depth map's side N as the command line takes it (kMinVolumeMapSide .. kMaxDepthMapSide);
+/// InputError naming `what` otherwise.
+void checkResolutionArg(int resolution, const std::string& what);
 
 /// The builder's options from the keyword arguments of build_volume and validate (names as there);
 /// InputError names the argument.

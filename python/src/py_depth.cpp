@@ -16,7 +16,7 @@ namespace {
 
 DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
                       const std::string& platform) {
-  const CaptureMode mode = captureModeArg(capture);
+  const CaptureMode mode = captureModeArg(capture, &s.scene);
   checkDepthMapSize(width, height, "python", "width, height");
   py::gil_scoped_release release;
   if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
@@ -52,8 +52,10 @@ DepthMap fromArray(const py::array_t<float, py::array::forcecast>& depth, const 
   map.nearPlane = nearPlane;
   map.farPlane = farPlane;
   map.origin = {origin[0], origin[1], origin[2]};
-  if (!(std::isfinite(map.origin.x) && std::isfinite(map.origin.y) && std::isfinite(map.origin.z)))
-    throw InputError("DepthMap.from_array", "origin", "", "expected 3 finite numbers");
+  for (int k = 0; k < 3; ++k)  // as a side file's /origin (depth_map_io.cpp): save() writes what load_depth reads
+    if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))
+      throw InputError("DepthMap.from_array", "origin", numberText(map.origin[k]),
+                       "expected 3 finite numbers within +-1e12, as a scene's");
   map.depth.resize(std::size_t(map.width) * std::size_t(map.height));
   auto r = depth.unchecked<2>();
   for (int j = 0; j < map.height; ++j)
@@ -114,10 +116,11 @@ void registerDepth(py::module_& m) {
       });
 
   m.def("capture_depth", &captureDepth, py::arg("scene"), py::arg("width") = 256, py::arg("height") = 256,
-        py::arg("capture") = "back", py::arg("device") = "cpu", py::arg("platform") = "auto",
+        py::arg("capture") = "auto", py::arg("device") = "cpu", py::arg("platform") = "auto",
         "The light's depth map of a scene: device='cpu' casts one Embree ray per texel centre, 'gpu' renders the "
         "light pass through EGL + OpenGL and reads it back (same texels hit, depths within 1e-4 relative). "
-        "capture: back (first surface facing away from the light), front, or midpoint.");
+        "capture: auto (back when every mesh object is closed, else front: `--capture auto`), back (first surface "
+        "facing away from the light), front, or midpoint.");
   m.def(
       "load_depth",
       [](const std::filesystem::path& path) {

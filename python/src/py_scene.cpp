@@ -44,6 +44,7 @@ void registerScene(py::module_& m) {
       .def(
           "fit_light_to_view",
           [](PyScene& s, int resolution) {
+            checkResolutionArg(resolution, "resolution");
             const LightFitResult r = fitLightToView(s.scene, resolution);
             py::dict d;
             d["changed"] = r.changed;
@@ -57,7 +58,11 @@ void registerScene(py::module_& m) {
           "resolution x resolution map to spare; changes the scene in place. window_*: a spot light's opening "
           "(degrees) or a directional light's half extent.")
       .def(
-          "receiver_texel_size", [](const PyScene& s, int resolution) { return receiverTexelSize(s.scene, resolution); },
+          "receiver_texel_size",
+          [](const PyScene& s, int resolution) {
+            checkResolutionArg(resolution, "resolution");
+            return receiverTexelSize(s.scene, resolution);
+          },
           py::arg("resolution") = 256,
           "(smallest, largest) light texel footprint on the receivers the camera sees, world units; None if it sees "
           "none of the lit scene.")

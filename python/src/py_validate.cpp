@@ -5,6 +5,8 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "py_common.h"
+#include "shadowvol/capture_choice.h"
+#include "shadowvol/capture_warnings.h"
 #include "shadowvol/error.h"
 #ifdef SHADOWVOL_WITH_GL
 #include "shadowvol/embree/embree_depth_oracle.h"
@@ -32,10 +34,21 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   if (!gl::parseShadowMethod(a.method, ro.method))
     throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette, dpsm or none");
   if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected gpu or explicit");
+  checkResolutionArg(a.resolution, "resolution");
   checkDepthMapSize(a.resolution, a.resolution, "python", "resolution");
   ro.depthWidth = ro.depthHeight = a.resolution;
   if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected auto, zfail or zpass");
-  ro.capture = captureModeArg(a.capture);
+  // Arguments the method would ignore are refused, as the command line refuses their flags.
+  const bool hybrid = ro.method == gl::ShadowMethod::Hybrid;
+  const bool capturing = ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None;
+  const std::pair<bool, const char*> volumeOnly[] = {
+      {a.blur, "blur"}, {a.refine != 0, "refine"}, {a.cap != "exact", "cap"}, {a.triangulation != "perfect", "triangulation"}};
+  for (const auto& [given, name] : volumeOnly)
+    if (given && !hybrid)
+      throw InputError("python", name, "", "shapes the hybrid method's shadow volume; method " + a.method + " has none");
+  if (!capturing && a.capture != "auto")
+    throw InputError("python", "capture", a.capture, "chooses what a depth map records; method " + a.method + " captures none");
+  ro.capture = capturing ? captureModeArg(a.capture, &scene) : CaptureMode::Back;
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
   if (a.size) {
     const auto [w, h] = *a.size;
@@ -45,6 +58,16 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
     scene.camera.height = h;
   }
   return ro;
+}
+
+/// What the frame's depth maps record and why, and what they will miss (capture_warnings.h), as
+/// validate's report.json says it: {"capture", "captureAuto" (auto's reason)}, and the warnings.
+void describeCapture(const Scene& scene, const FrameArgs& a, const gl::RenderOptions& ro, nlohmann::json& options,
+                     std::vector<std::string>& warnings) {
+  if (ro.method == gl::ShadowMethod::Silhouette || ro.method == gl::ShadowMethod::None) return;
+  options["capture"] = toString(ro.capture);
+  if (a.capture == "auto") options["captureAuto"] = chooseCapture(scene).reason;
+  warnings = captureWarnings(scene, ro.depthWidth, ro.depthHeight, ro.capture);
 }
 
 /// The renderer of one call, with the scene's Embree rays when the options refine (the oracle must
@@ -102,6 +125,11 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   d["volume_count"] = gl::toString(result.volumeCountUsed);
   d["gl_renderer"] = device;
   if (result.volumeStats) d["volume"] = toPython(describeVolumeStats(*result.volumeStats));
+  nlohmann::json options;
+  std::vector<std::string> warnings;
+  describeCapture(scene, a, ro, options, warnings);
+  d["options"] = toPython(options);
+  d["warnings"] = toPython(warnings);
   return d;
 }
 
@@ -143,11 +171,19 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     j["volumeCount"] = gl::toString(result.volumeCountUsed);
     j["shadowvolVersion"] = SHADOWVOL_VERSION;
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
+    nlohmann::json options = nlohmann::json::object();
+    std::vector<std::string> warnings;
+    describeCapture(scene, a, ro, options, warnings);
+    j["options"] = options;
+    j["warnings"] = warnings;
     if (reportDir) {
-      std::filesystem::create_directories(*reportDir);
       for (std::size_t k = 0; k < lights.size(); ++k) {
         const std::filesystem::path sub = lights.size() == 1 ? *reportDir : *reportDir / ("light-" + std::to_string(k));
-        std::filesystem::create_directories(sub);
+        std::error_code ec;
+        std::filesystem::create_directories(sub, ec);
+        if (ec || !std::filesystem::is_directory(sub))
+          throw InputError("python", "report_dir", reportDir->string(),
+                           "cannot create the folder " + sub.string() + (ec ? ": " + ec.message() : ""));
         writeValidationImages(sub, lights[k].validation, lights[k].frame);
       }
     }
@@ -186,13 +222,14 @@ void registerValidate(py::module_& m) {
                                         platform, count));
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
-      py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
+      py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto",
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
       "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail), gl_renderer, volume (explicit volume's "
-      "build stats), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
+      "build stats), options (capture, and captureAuto: why capture='auto', the default, chose it), warnings (what "
+      "the depth map will miss), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
       "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`).");
   m.def(
       "validate",
@@ -205,13 +242,14 @@ void registerValidate(py::module_& m) {
             maxError, maxMissed, selfIntersections, reportDir);
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
-      py::arg("resolution") = 512, py::arg("capture") = "back", py::arg("triangulation") = "perfect",
+      py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("max_error") = kDefaultMaxError,
       py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
       py::arg("report_dir") = py::none(),
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
-      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume); with "
+      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume, options: "
+      "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "
       "several lights those checks are per light in `lights` (index, pointer, type, ...) and `passed` is over all. "
       "report_dir: also write the PNGs there (exact, stencil, count, overlay, frame; light-K/ per light).");
 #else

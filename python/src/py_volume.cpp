@@ -33,6 +33,7 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
   o.refineChords = chordPoints;
   o.refineSubdivisions = refineGrid;
   o.refineGridEverywhere = refineGridEverywhere;
+  checkUserVolumeOptions(o);  // the command line's rules (a probe found them missing here)
   return o;
 }
 

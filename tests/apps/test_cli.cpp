@@ -327,6 +327,21 @@ TEST(Cli, CaptureAutoChoosesFrontForOpenMeshes) {
   EXPECT_EQ(runCli("depth --resolution 32 --capture sideways --out " + pfm).code, 2);
 }
 
+// depth writes one map: a point light among several is refused by its pointer in the file, before
+// any other note (a probe's finding: it named /light/type, which the file did not have).
+TEST(Cli, DepthRefusesAPointLightByItsPointer) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "two.json", R"({"objects":[{"type":"plane","size":10},{"type":"box"}],
+    "lights":[{"type":"point","position":[1,4,1]},{"type":"spot","position":[2,6,1],"target":[0,0,0]}],
+    "camera":{"eye":[0,4,7],"target":[0,0.5,0]}})");
+  const std::string pfm = (dir / "d.pfm").string();
+  const CliResult point = runCli("depth --resolution 16 --scene " + (dir / "two.json").string() + " --out " + pfm);
+  EXPECT_EQ(point.code, 1) << point.out;
+  EXPECT_TRUE(contains(point.out, "/lights/0/type = point")) << point.out;
+  EXPECT_FALSE(std::filesystem::exists(pfm));
+  EXPECT_EQ(runCli("depth --resolution 16 --light 1 --scene " + (dir / "two.json").string() + " --out " + pfm).code, 0);
+}
+
 // Far from the origin: `scene` names the local origin and reports world coordinates; `build`
 // writes relative to it (named in the header) or, with --world-coords, world coordinates in
 // double, through `depth` + `build --depth` as well; STL with --world-coords is refused up front.

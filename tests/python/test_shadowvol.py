@@ -157,6 +157,43 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
         sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
 
 
+def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
+    """A probe's findings (2026-12-05): build_volume, export, from_array and the scene's texel
+    queries took what the command line refuses, by the same rules (checkUserVolumeOptions)."""
+    for kw, field in [(dict(bias=-1.0), "bias"), (dict(blur=True, blur_offset=-1.0), "blur offset"),
+                      (dict(blur_offset=0.1), "blur offset"), (dict(chord_points=True), "refine chords"),
+                      (dict(cap="quad", flatten_cap=False), "flatten cap")]:
+        with pytest.raises(sv.InputError, match=field):
+            sv.build_volume(depth, **kw)
+    V, F, _ = sv.build_volume(depth)
+    with pytest.raises(sv.InputError, match=r"single precision"):
+        sv.export(np.full((3, 3), 1e300), np.array([[0, 1, 2]]), tmp_path / "huge.ply")
+    assert not (tmp_path / "huge.ply").exists()
+    sv.export(np.full((3, 3), 1e300) * np.array([1, 2, 3]), np.array([[0, 1, 2]]), tmp_path / "huge.obj",
+              double_precision=True)  # doubles hold it
+    with pytest.raises(sv.InputError, match=r"origin"):
+        sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
+                               origin=[1e300, 0, 0])
+    with pytest.raises(sv.InputError, match=r"resolution = 0"):
+        sv.default_scene().receiver_texel_size(0)
+    with pytest.raises(sv.InputError, match=r"capture = auto"):
+        sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
+                               capture="auto")
+
+
+def test_capture_auto_is_the_default_and_follows_the_meshes(tmp_path):
+    sheet = tmp_path / "sheet.off"
+    sheet.write_text("OFF\n4 2 0\n-1 1 -1\n1 1 -1\n1 1 1\n-1 1 1\n3 0 2 1\n3 0 3 2\n")
+    path = tmp_path / "sheet.json"
+    path.write_text(json.dumps({"objects": [{"type": "plane", "size": 10},
+                                            {"type": "mesh", "name": "sheet", "file": str(sheet)}],
+                                "light": {"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0]},
+                                "camera": {"eye": [0, 3, 6], "target": [0, 0, 0]}}))
+    assert sv.capture_depth(sv.load_scene(path), 16, 16).capture == "front"
+    assert sv.capture_depth(sv.load_scene(path), 16, 16, capture="back").capture == "back"
+    assert sv.capture_depth(sv.default_scene(), 16, 16).capture == "back"
+
+
 def test_library_message_is_the_command_lines(tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"objects": [{"type": "sphere", "radius": -1}]}))
@@ -185,6 +222,22 @@ def test_validate_returns_the_report(tmp_path, scene):
     assert report["stencilVsCount"]["fraction"] >= 0.9999
     assert report["pixels"]["total"] == 96 * 72 and report["meshChecks"]["closedManifold"] is True
     assert (tmp_path / "r" / "overlay.png").is_file()
+
+
+@needs_gl
+def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path, scene):
+    report = sv.validate(scene, resolution=16, size=(16, 12))
+    assert report["options"]["capture"] == "back" and report["options"]["captureAuto"].startswith("back capture")
+    assert report["warnings"] == []
+    assert sv.validate(scene, resolution=16, size=(16, 12), capture="front")["options"] == {"capture": "front"}
+    assert "capture" not in sv.validate(scene, method="silhouette", size=(16, 12))["options"]
+    for kw, field in [(dict(method="shadowmap", blur=True), "blur"), (dict(method="none", capture="front"), "capture"),
+                      (dict(method="silhouette", refine=3), "refine"), (dict(refine=99), "refine steps"),
+                      (dict(resolution=2), "resolution")]:
+        with pytest.raises(sv.InputError, match=field):
+            sv.validate(scene, size=(16, 12), **kw)
+    with pytest.raises(sv.InputError, match=r"report_dir"):
+        sv.validate(scene, resolution=16, size=(16, 12), report_dir=SOURCE_DIR / "README.md")
 
 
 @needs_gl

@@ -201,6 +201,15 @@ inline constexpr int kMinVolumeMapSide = 3;
 /// bias is not checked. Called by every volume build (one map's or a cube's).
 void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, double farPlane);
 
+/// The rules for options a user gives (the command line's flags, the Python module's arguments),
+/// beyond what every build checks: bias and blur offset finite and >= 0 (the library itself takes
+/// a negative offset, which pulls the sheet toward the light, into the lit surfaces it was captured
+/// from), a blur offset only with blur, refine steps in 0..kMaxRefineSteps, chord points, the
+/// sub-grid and refineSnap = false only with refine steps, chord points and the sub-grid not
+/// together, the sub-grid everywhere only with the sub-grid, refinement only with the exact cap,
+/// an unflattened cap only with the exact cap. InputError("volume options", field, value, why).
+void checkUserVolumeOptions(const VolumeBuildOptions& options);
+
 /// Builds shadow volumes again and again (one per frame, say) without grid-sized allocations: the
 /// builder keeps its scratch buffers (about 5 bytes per texel) and build() reuses the storage
 /// already in `result`. After the first build at a given size only per-row bookkeeping and the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <system_error>
@@ -256,6 +257,18 @@ void writeMesh(const Positions& P, const Triangles& T, const std::filesystem::pa
   // which would silently drop triangles of a scene soup. Tests read these files back with OpenMesh
   // (and the glTF files with tinygltf).
   checkMeshExtension(path, frame);
+  // Every coordinate as it will be written must be finite (a probe's finding: 1e300 in single
+  // precision was written as inf, a file that check and the readers refuse).
+  const double limit = frame.worldCoordinates ? std::numeric_limits<double>::max() : std::numeric_limits<float>::max();
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    const glm::dvec3 p = frame.worldCoordinates ? glm::dvec3(P[k]) + frame.origin : glm::dvec3(P[k]);
+    if (!(std::abs(p.x) <= limit && std::abs(p.y) <= limit && std::abs(p.z) <= limit))  // NaN too
+      throw InputError(path.string(), "vertex " + std::to_string(k), numberText(glm::dvec3(P[k]).x) + " " +
+                           numberText(glm::dvec3(P[k]).y) + " " + numberText(glm::dvec3(P[k]).z),
+                       frame.worldCoordinates ? "is not finite"
+                                              : "does not fit single precision: write it in double (world "
+                                                "coordinates, .ply, .obj or .off) or move the mesh nearer its origin");
+  }
   const std::string ext = lowerExtension(path);
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);

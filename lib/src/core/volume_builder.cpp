@@ -91,6 +91,35 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
                      numberText(e.blurOffset ? options.blurOffset : bias), e.why);
 }
 
+void checkUserVolumeOptions(const VolumeBuildOptions& o) {
+  auto refuse = [](const char* field, const std::string& value, const std::string& why) {
+    throw InputError("volume options", field, value, why);
+  };
+  if (!std::isfinite(o.blurOffset) || o.blurOffset < 0.0)
+    refuse("blur offset", numberText(o.blurOffset),
+           "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit surfaces it "
+           "was captured from)");
+  if (o.blurOffset != 0.0 && !o.blur) refuse("blur offset", numberText(o.blurOffset), "needs blur (--blur)");
+  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0)) refuse("bias", numberText(*o.bias), "must be finite and >= 0");
+  if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
+    refuse("refine steps", std::to_string(o.refineSteps), "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+  if (o.refineSteps > 0 && o.cap != FarCap::Exact)
+    refuse("refine steps", std::to_string(o.refineSteps),
+           "needs the exact cap (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
+  const char* needsRefine = "needs refinement (refine steps of at least 1: --refine K)";
+  if (o.refineChords && o.refineSteps == 0) refuse("refine chords", "", needsRefine);
+  if (o.refineSubdivisions > 1 && o.refineSteps == 0)
+    refuse("refine subdivisions", std::to_string(o.refineSubdivisions), needsRefine);
+  if (o.refineSubdivisions > 1 && o.refineChords)
+    refuse("refine subdivisions", std::to_string(o.refineSubdivisions),
+           "not with chord points (--chord-points): they are alternatives (the sub-grid bends the wall in every sub-cell)");
+  if (o.refineGridEverywhere && o.refineSubdivisions == 1)
+    refuse("refine grid everywhere", "", "needs refine subdivisions of 2, 4 or 8 (--refine-grid S)");
+  if (!o.refineSnap && o.refineSteps == 0) refuse("refine snap", "", needsRefine);
+  if (!o.flattenCap && o.cap != FarCap::Exact)
+    refuse("flatten cap", "", "keeps the exact cap unflattened; the quad cap has one far rectangle, nothing to flatten");
+}
+
 namespace {
 
 // Cheap checks of the map's metadata and of the options, before anything else.
