@@ -12,7 +12,8 @@ fastest by the sweep's times) and measures them again with `shadowvol bench`, on
 ROUNDS rounds, the order rotated each round. The cell is on the front when its median over the
 rounds is below every rival's median. A resolution of METHOD with no rival at least as accurate is
 on the front without measuring. Two candidate resolutions at most per scene. The methods named by
---exclude are not rivals (by default the snap's ablation keys: the same method with the snap off).
+--exclude are not rivals (by default the ablation keys of the snap and of the depth source: the same
+method with the snap off, or its depth map always ray-cast or always from the light pass).
 METHOD may name several methods, comma-separated (variants of one volume, such as its depth map from
 the light pass or from rays): each scene's candidates are then the cells of any of them, and none
 of them is a rival of another.
@@ -59,9 +60,10 @@ def main():
     p.add_argument("--scenes-dir", default="data/scenes")
     p.add_argument("--shadowvol", default="build/apps/shadowvol")
     p.add_argument("--out", required=True)
-    p.add_argument("--exclude", default="hybrid-refined-nosnap/explicit,hybrid-refined-nosnap/gpu",
-                   help="methods that are not rivals (comma-separated; default: the snap's ablation keys, the "
-                        "same method with the snap off)")
+    p.add_argument("--exclude", default="hybrid-refined-nosnap/explicit,hybrid-refined-nosnap/gpu,"
+                                        "hybrid-refined-raycast/explicit,hybrid-refined-lightpass/explicit",
+                   help="methods that are not rivals (comma-separated; default: the ablation keys of the snap and "
+                        "of the depth source, the same method with the snap off or its map from one source)")
     args = p.parse_args()
     rows = load(args.results)
     ms = lambda r: float(r["frame_ms"])
