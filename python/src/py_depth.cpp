@@ -105,6 +105,8 @@ void registerDepth(py::module_& m) {
       .def(
           "save",
           [](const DepthMap& d, const std::filesystem::path& path) {
+            if (path.extension() != ".pfm")  // as `shadowvol depth --out` (a probe wrote a PFM named x.png)
+              throw InputError("DepthMap.save", "path", path.string(), "depth maps are written as PFM: use a .pfm file name");
             py::gil_scoped_release release;
             writeDepthMap(d, path);
           },

@@ -176,6 +176,9 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
                                origin=[1e300, 0, 0])
     with pytest.raises(sv.InputError, match=r"resolution = 0"):
         sv.default_scene().receiver_texel_size(0)
+    with pytest.raises(sv.InputError, match=r"\.pfm"):
+        depth.save(tmp_path / "depth.png")
+    assert not (tmp_path / "depth.png").exists()
     with pytest.raises(sv.InputError, match=r"capture = auto"):
         sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
                                capture="auto")
