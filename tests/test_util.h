@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "shadowvol/light.h"
+#include "shadowvol/scene.h"
 #include "shadowvol/triangle_mesh.h"
 
 namespace shadowvol::test {
@@ -63,6 +64,17 @@ inline std::string movedDefaultScene(const glm::dvec3& offset, double scale = 1.
          std::to_string(width) + R"(,"height":)" + std::to_string(height) + "}}";
 }
 
+/// `mesh` with every triangle's corners stored apart, as STL files store them (no shared vertex).
+inline TriangleMesh splitVertices(const TriangleMesh& mesh) {
+  TriangleMesh split;
+  for (const auto& t : mesh.triangles) {
+    const auto base = std::uint32_t(split.positions.size());
+    for (auto k : t) split.positions.push_back(mesh.positions[k]);
+    split.triangles.push_back({base, base + 1, base + 2});
+  }
+  return split;
+}
+
 /// A directional light straight down from y = 5 over a 8 x 8 square (half extent 4), near 0.5.
 inline Light directionalDown(double farPlane = 12.0) {
   Light light;
@@ -73,6 +85,14 @@ inline Light directionalDown(double farPlane = 12.0) {
   light.nearPlane = 0.5;
   light.farPlane = farPlane;
   return light;
+}
+
+/// A scene of these objects under a directional light straight down (far plane 6), no camera set.
+inline Scene sceneWith(std::vector<SceneObject> objects) {
+  Scene s;
+  s.objects = std::move(objects);
+  s.light = directionalDown(6.0);
+  return s;
 }
 
 /// The spot light of the refinement tests: 50 degrees, from (0.6, 7, 0.4), tilted a little, near 1,

@@ -8,12 +8,7 @@
 namespace shadowvol {
 namespace {
 
-Scene sceneWith(std::vector<SceneObject> objects) {
-  Scene s;
-  s.objects = std::move(objects);
-  s.light = test::directionalDown(6.0);
-  return s;
-}
+using test::sceneWith;
 
 TriangleMesh openBowl() {
   TriangleMesh bowl = makeHemisphere(1.0, 16, 4);
@@ -46,13 +41,7 @@ TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
 // Split vertices (STL) and degenerate triangles do not make a closed mesh open (the rule of
 // isClosedSurface, shared with the capture warnings).
 TEST(CaptureChoice, StlSplitClosedMeshIsClosed) {
-  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
-  TriangleMesh stl;
-  for (const auto& t : box.triangles) {
-    const auto base = std::uint32_t(stl.positions.size());
-    for (auto k : t) stl.positions.push_back(box.positions[k]);
-    stl.triangles.push_back({base, base + 1, base + 2});
-  }
+  TriangleMesh stl = test::splitVertices(makeBox(1.0, 1.0, 1.0));
   stl.triangles.push_back({0, 0, 1});
   EXPECT_EQ(chooseCapture(sceneWith({SceneObject{"stl box", "mesh", stl}})).mode, CaptureMode::Back);
 }

@@ -8,12 +8,7 @@
 namespace shadowvol {
 namespace {
 
-Scene sceneWith(std::vector<SceneObject> objects) {
-  Scene s;
-  s.objects = std::move(objects);
-  s.light = test::directionalDown(6.0);
-  return s;
-}
+using test::sceneWith;
 
 // The scene with its light made a 60-degree spot light (same place and direction), planes given.
 Scene asSpot(Scene s, double nearPlane, double farPlane) {
@@ -40,13 +35,7 @@ TEST(CaptureWarnings, BackCaptureNamesOpenMeshes) {
 }
 
 TEST(CaptureWarnings, SplitVerticesOfAClosedMeshAreNotOpen) {
-  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
-  TriangleMesh stl;  // every triangle's corners stored apart, as STL files do
-  for (const auto& t : box.triangles) {
-    const auto base = std::uint32_t(stl.positions.size());
-    for (auto k : t) stl.positions.push_back(box.positions[k]);
-    stl.triangles.push_back({base, base + 1, base + 2});
-  }
+  const TriangleMesh stl = test::splitVertices(makeBox(1.0, 1.0, 1.0));  // as STL files store it
   EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"stl box", "mesh", stl}}), 64, 64, CaptureMode::Back).empty());
 }
 

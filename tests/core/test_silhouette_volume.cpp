@@ -11,6 +11,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/silhouette_volume.h"
+#include "test_util.h"
 
 using namespace shadowvol;
 
@@ -150,13 +151,7 @@ TEST(SilhouetteVolume, OpenSheetsAreReceiversOnly) {
 
 // A mesh with split vertices (as STL files store them) is welded: still a closed caster.
 TEST(SilhouetteVolume, SplitVerticesAreWelded) {
-  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
-  TriangleMesh split;
-  for (const auto& t : box.triangles) {
-    const auto base = std::uint32_t(split.positions.size());
-    for (auto k : t) split.positions.push_back(box.positions[k]);
-    split.triangles.push_back({base, base + 1, base + 2});
-  }
+  const TriangleMesh split = test::splitVertices(makeBox(1.0, 1.0, 1.0));
   const Scene s = sceneOf({moved("stl box", "mesh", split, {0.0f, 1.0f, 0.0f})}, directionalTilted());
   const SilhouetteOccluders occ(s);
   EXPECT_EQ(occ.objects()[0].role, SilhouetteRole::Caster);
