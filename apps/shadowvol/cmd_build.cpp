@@ -52,7 +52,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                      ->capture_default_str();
   auto* capOpt = addCaptureOption(*cmd, o->capture);
   addCaptureDeviceOptions(*cmd, o->device);
-  depthOpt->excludes(resOpt)->excludes(capOpt)->excludes(cmd->get_option("--device"));
+  depthOpt->excludes(resOpt)->excludes(cmd->get_option("--device"));
   cmd->get_option("--scene")->excludes(depthOpt);
   cmd->get_option("--light")->excludes(depthOpt);
   cmd->get_option("--fit")->excludes(depthOpt);  // the depth file's side file holds its light frustum
@@ -64,8 +64,12 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 "keeps float positions and the local origin as its node's translation). "
                 "Without it a scene far from the origin is written relative to its local origin, which the output "
                 "and the PLY/OBJ/STL header name (README 'Far from the origin')");
-  cmd->callback([&run, o] {
+  cmd->callback([&run, o, capOpt] {
     checkCaptureDeviceOptions(o->device, !o->depth.empty());
+    // --capture auto is the default, so it goes with --depth (a probe found it refused); a mode is not.
+    if (!o->depth.empty() && capOpt->count() > 0 && o->capture != "auto")
+      throw CLI::ValidationError("--capture", "the depth file records its own capture mode (its side file's "
+                                              "\"capture\"): leave out --capture with --depth");
     if (o->noFlatten && o->volume.cap == "quad")
       throw CLI::ValidationError("--no-flatten", "keeps the exact cap unflattened; --cap quad has one far rectangle, "
                                                  "nothing to flatten: leave out --no-flatten");

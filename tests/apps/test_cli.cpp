@@ -279,8 +279,11 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_GT(ja["triangles"].get<int>(), 0);
   EXPECT_TRUE(std::filesystem::exists(a));
   EXPECT_TRUE(std::filesystem::exists(b));
-  // --depth with --scene is a usage error.
+  // --depth with --scene is a usage error; so is a capture mode (the file has its own), but not
+  // --capture auto, the default (a probe found it refused).
   EXPECT_EQ(runCli("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
+  EXPECT_EQ(runCli("build --depth " + pfm + " --capture front --out " + a).code, 2);
+  EXPECT_EQ(runCli("build --depth " + pfm + " --capture auto --out " + a).code, 0);
   // --blur-offset without --blur is bad input.
   EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));

@@ -637,3 +637,32 @@ TEST(DefaultScene, TheShippedFileIsTheBuiltInScene) {
 }  // namespace
 }  // namespace shadowvol
 
+
+namespace shadowvol {
+namespace {
+
+// A scene far smaller than its distance from the world origin allows (a sixth probe's lion head
+// at scale 1e-7, 1e7 from the origin, failed validate's agreement without a word): warned about,
+// naming the double-precision steps across it; ten times larger it is not.
+TEST(Scene, TooFewDoubleStepsAcrossAreWarnedAbout) {
+  auto sceneAt = [](double scale) {
+    auto at = [&](double x, double y, double z) {
+      return "[" + numberText(1e7 + x * scale) + "," + numberText(y * scale) + "," + numberText(z * scale) + "]";
+    };
+    return R"({"objects":[{"type":"plane","size":10,"transform":{"scale":)" + numberText(scale) +
+           R"(,"translate":)" + at(0, 0, 0) + R"(}},{"type":"sphere","radius":1,"transform":{"scale":)" +
+           numberText(scale) + R"(,"translate":)" + at(0, 2, 0) + R"(}}],"light":{"type":"spot","position":)" +
+           at(3, 9, 2) + R"(,"target":)" + at(0, 0, 0) + R"(},"camera":{"eye":)" + at(0, 6, 11) + R"(,"target":)" +
+           at(0, 1, 0) + "}}";
+  };
+  const SceneLoadResult tiny = parseScene(sceneAt(1e-7), "tiny.json", ".");
+  ASSERT_EQ(std::count_if(tiny.warnings.begin(), tiny.warnings.end(),
+                          [](const std::string& w) { return w.find("double-precision steps") != std::string::npos; }),
+            1)
+      << ::testing::PrintToString(tiny.warnings);
+  const SceneLoadResult larger = parseScene(sceneAt(1e-6), "larger.json", ".");
+  for (const auto& w : larger.warnings) EXPECT_EQ(w.find("double-precision steps"), std::string::npos) << w;
+}
+
+}  // namespace
+}  // namespace shadowvol
