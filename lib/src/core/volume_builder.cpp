@@ -190,8 +190,9 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     refinement = options.crossingSource(map, edges, sheet.rule(), options.blur, blurred, centreList);
     SV_CHECK_EQ(refinement.crossings.size(), edges.edges.size());
     SV_CHECK_EQ(refinement.centreDepths.size(), centreList.size());
-    // A probe's finding: the GPU's crossings could lie on an edge's end (two cap corners at one
-    // point: the far cap's triangulation crashed); bisected ones are kept apart in bisectSegments.
+    // Kept apart from the edge's ends as bisected ones are (bisectSegments): a source's crossing on
+    // an end is two cap corners at one point, on which the far cap's triangulation crashed (a
+    // probe's finding, when the GPU's rays could put a walked bracket's middle there).
     const double safe = floatSafeTexels(map);
     for (Crossing& c : refinement.crossings) keepApartFromEnds(c, 1.0, safe);
   } else {
