@@ -32,9 +32,15 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
 #endif
 }
 
-DepthMap fromArray(const py::array_t<float, py::array::forcecast>& depth, const py::object& lightView,
-                   const py::object& lightProjection, double nearPlane, double farPlane, const std::string& light,
-                   const std::string& capture, const std::array<double, 3>& origin) {
+DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::object& lightProjection,
+                   double nearPlane, double farPlane, const std::string& light, const std::string& capture,
+                   const std::array<double, 3>& origin) {
+  // Real numbers only: a complex array would lose its imaginary part without a word (a probe's finding).
+  const char kind = raw.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw InputError("DepthMap.from_array", "depth", std::string(py::str(raw.dtype())),
+                     "expected an array of real numbers (float or integer depths)");
+  const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
   if (depth.ndim() != 2)
     throw InputError("DepthMap.from_array", "depth", std::to_string(depth.ndim()) + "-dimensional array",
                      "expected a 2-dimensional array (rows x columns, row 0 at the bottom)");

@@ -179,6 +179,9 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     with pytest.raises(sv.InputError, match=r"\.pfm"):
         depth.save(tmp_path / "depth.png")
     assert not (tmp_path / "depth.png").exists()
+    with pytest.raises(sv.InputError, match=r"real numbers"):
+        sv.DepthMap.from_array(depth.depth.astype(np.complex64), depth.light_view, depth.light_projection,
+                               depth.near, depth.far)
     with pytest.raises(sv.InputError, match=r"capture = auto"):
         sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
                                capture="auto")
