@@ -5,7 +5,7 @@ method and prints a Markdown table of the misclassified fraction of pixels facin
 with the stencil-vs-count agreement of every volume.
 
 Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6]
-           [--chord-points | --refine-grid S] [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
+           [--chord-points | --refine-grid S [--no-hidden-search]] [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
 
 Results go to DIR/results.jsonl (default out/refine-eval) as they come; a rerun with the same DIR
 skips what is there. Stdlib only.
@@ -17,10 +17,10 @@ import subprocess
 import sys
 
 
-def methods(k, chords=False, grid=1):
+def methods(k, chords=False, grid=1, hidden=True):
     """Column key -> validate options."""
     ref = (["--volume", "explicit", "--refine", str(k)] + (["--chord-points"] if chords else []) +
-           (["--refine-grid", str(grid)] if grid > 1 else []))
+           (["--refine-grid", str(grid)] if grid > 1 else []) + ([] if hidden else ["--no-hidden-search"]))
     back = ["--capture", "back"]  # what these columns measured before --capture auto became the default
     return {
         "shadowmap 2048": ["--method", "shadowmap", "--resolution", "2048"] + back,
@@ -58,6 +58,8 @@ def main():
     ap.add_argument("--out", default="out/refine-eval")
     ap.add_argument("--chord-points", action="store_true", help="refined methods with --chord-points")
     ap.add_argument("--refine-grid", type=int, default=1, help="refined methods on an S x S sub-grid (2, 4, 8)")
+    ap.add_argument("--no-hidden-search", action="store_true",
+                    help="refined methods on the sub-grid without its search for hidden surfaces")
     ap.add_argument("--methods", help="comma-separated columns (default: all): " + ", ".join(methods(6)))
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args()
@@ -68,7 +70,7 @@ def main():
         for line in open(path):
             rec = json.loads(line)
             done[(rec["scene"], rec["method"])] = rec
-    cols = methods(a.refine, a.chord_points, a.refine_grid)
+    cols = methods(a.refine, a.chord_points, a.refine_grid, not a.no_hidden_search)
     if a.methods:
         keys = [k.strip() for k in a.methods.split(",")]
         unknown = [k for k in keys if k not in cols]
@@ -81,7 +83,8 @@ def main():
             for key, opts in cols.items():
                 if (name, key) in done:
                     continue
-                rec = {"scene": name, "method": key, "refine": a.refine, "refineGrid": a.refine_grid}
+                rec = {"scene": name, "method": key, "refine": a.refine, "refineGrid": a.refine_grid,
+                       "hiddenSearch": not a.no_hidden_search}
                 rec.update(run(a.exe, scene, opts, os.path.join(a.out, "report")))
                 out.write(json.dumps(rec) + "\n")
                 out.flush()

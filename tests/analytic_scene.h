@@ -13,8 +13,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowvol/check.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/depth_oracle.h"
+#include "shadowvol/nearer_surfaces.h"
+#include "shadowvol/primitives.h"
 
 namespace shadowvol::test {
 
@@ -95,6 +98,33 @@ struct AnalyticScene {
     for (int j = 0; j < height; ++j)
       for (int i = 0; i < width; ++i) m.depth[m.index(i, j)] = capture(unproject.ray(i, j), mode, m.nearPlane, m.farPlane);
     return m;
+  }
+
+  /// The boxes and the ground as triangles (the ground a 200 x 200 square; spheres have none), as
+  /// the scene file's generated objects are made (makeBox, makePlane: counter-clockwise outside).
+  TriangleMesh mesh() const {
+    SV_CHECK(spheres.empty());
+    TriangleMesh all;
+    for (const Box& b : boxes) {
+      TriangleMesh m = makeBox(2.0 * b.half.x, 2.0 * b.half.y, 2.0 * b.half.z);
+      const double a = b.turnDegrees * std::numbers::pi / 180.0;  // out of the box's frame
+      for (glm::vec3& p : m.positions) {
+        const glm::dvec3 v(p);
+        p = glm::vec3(glm::dvec3(std::cos(a) * v.x + std::sin(a) * v.z, v.y, -std::sin(a) * v.x + std::cos(a) * v.z) +
+                      b.centre);
+      }
+      all.append(m);
+    }
+    if (ground) all.append(makePlane(200.0, 200.0, 1));
+    return all;
+  }
+
+  /// The search for hidden surfaces over mesh() (findNearerSurfaces).
+  NearerSurfaceOracle nearerSurfaces() const {
+    return [m = mesh()](const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags) {
+      const TriangleSoup soup = soupOf(m);
+      findNearerSurfaces(map, std::span<const TriangleSoup>(&soup, 1), limit, flags);
+    };
   }
 
   /// The oracle of this scene (it must outlive the oracle); counts its queries in `*queries`

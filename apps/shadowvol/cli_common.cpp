@@ -149,6 +149,11 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_flag("--refine-grid-everywhere", o.refineGridEverywhere,
                "With --refine-grid: cut every quad with a boundary edge, also those whose straight wall already lies "
                "on the sub-grid's samples (which the default leaves plain); for comparison, more triangles");
+  cmd.add_flag("--no-hidden-search", o.noHiddenSearch,
+               "With --refine-grid: do not look for surfaces hidden between the texel centres (an occluder thinner "
+               "than a texel that no sample sees: a limb, a wire, a ridge), which by default also go on the "
+               "sub-grid, found from the scene's triangles without rays; for comparison (docs/volume.md 'Hidden "
+               "surfaces')");
   cmd.add_flag("--no-snap", o.noSnap,
                "With --refine: leave each crossing in the middle of its last bisection bracket (within 2^-(K+1) "
                "texel of the outline) instead of moving it to where the triangle recorded on its near side ends "
@@ -173,6 +178,7 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   v.refineSubdivisions = o.refineGrid;
   v.refineGridEverywhere = o.refineGridEverywhere;
   v.refineSnap = !o.noSnap;
+  v.refineHidden = !o.noHiddenSearch;
   parseTriangulation(o.triangulation, v.triangulation);
   parseFarCap(o.cap, v.cap);
   v.blur = o.blur;

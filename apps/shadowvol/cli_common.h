@@ -68,6 +68,7 @@ struct VolumeCliOptions {
   int refineGrid = 1;        ///< --refine-grid S: the sub-grid (refineSubdivisions; 1 = off)
   bool refineGridEverywhere = false;  ///< --refine-grid-everywhere (refineGridEverywhere)
   bool noSnap = false;                ///< --no-snap (refineSnap = false)
+  bool noHiddenSearch = false;        ///< --no-hidden-search (refineHidden = false)
 };
 /// Adds the options; returns --refine's option (for excludes).
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);

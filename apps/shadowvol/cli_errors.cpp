@@ -39,6 +39,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"volume options", "refine chords", "--chord-points"},
     LibraryFieldFlag{"volume options", "refine grid everywhere", "--refine-grid-everywhere"},
     LibraryFieldFlag{"volume options", "refine snap", "--no-snap"},
+    LibraryFieldFlag{"volume options", "refine hidden", "--no-hidden-search"},
     LibraryFieldFlag{"volume options", "flatten cap", "--no-flatten"},
 };
 

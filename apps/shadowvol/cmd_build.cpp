@@ -130,6 +130,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         oracle = std::make_unique<EmbreeDepthOracle>(scene);
         options.depthOracle = oracle->oracle();
         options.surfaceEnds = oracle->surfaceEnds();
+        options.nearerSurfaces = oracle->nearerSurfaces();
       }
       const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
@@ -164,6 +165,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"refine", options.refineSteps},
                 {"refineGrid", options.refineSubdivisions},
                 {"refineGridEverywhere", options.refineGridEverywhere},
+                {"refineHidden", options.refineHidden},
                 {"origin", {map.origin.x, map.origin.y, map.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
@@ -185,12 +187,19 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
+        char hiddenText[96];
+        if (options.refineHidden)
+          std::snprintf(hiddenText, sizeof hiddenText, "%zu quads for a hidden surface (search %.1f ms)",
+                        s.hiddenQuads, s.msHidden);
+        else
+          std::snprintf(hiddenText, sizeof hiddenText, "no search for hidden surfaces (--no-hidden-search)");
         if (options.refineSubdivisions > 1)
           std::printf("  sub-grid %dx%d on %zu of the %zu refined quads%s: %zu samples, %zu bisected boundary "
-                      "sub-edges, %zu sub-cells decided by a centre ray, %zu triangles split\n",
+                      "sub-edges, %zu sub-cells decided by a centre ray, %zu triangles split; %s\n",
                       options.refineSubdivisions, options.refineSubdivisions, s.subgridQuads, s.refinedCells,
                       options.refineGridEverywhere ? " (everywhere)" : "", s.subgridSamples, s.subgridBoundaryEdges,
-                      s.ambiguousCells, s.subgridSplitTriangles);
+                      s.ambiguousCells, s.subgridSplitTriangles,
+                      hiddenText);
         if (options.refineSubdivisions > 1)
           std::printf("  refinement (%d steps, %d per boundary sub-edge): %zu boundary edges (%zu to the far plane) "
                       "choose %zu refined quads, %zu rays\n",

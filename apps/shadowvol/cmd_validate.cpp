@@ -241,6 +241,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"selfIntersections", o->selfIntersections}};
       if (capturesMap(ro)) j["options"]["capture"] = toString(ro.capture);  // silhouette and none capture no map
       if (!captureAuto.empty()) j["options"]["captureAuto"] = captureAuto;   // --capture auto's reason
+      if (o->render.shape.refineGrid > 1) {  // the sub-grid, and whether it searched for hidden surfaces
+        j["options"]["refineGrid"] = o->render.shape.refineGrid;
+        j["options"]["refineHidden"] = !o->render.shape.noHiddenSearch;
+      }
       std::vector<std::string> images = {"frame.png", "exact.png",   "stencil.png",
                                          "count.png", "overlay.png", "overlay.svg"};
       if (!hybrid) images = {"frame.png", "exact.png", "overlay.png", "overlay.svg"};

@@ -182,7 +182,8 @@ void checkIneffectiveOptions(const RenderCliOptions& o) {
                                                        {v.chordPoints, "--chord-points"},
                                                        {v.refineGrid != none.refineGrid, "--refine-grid"},
                                                        {v.refineGridEverywhere, "--refine-grid-everywhere"},
-                                                       {v.noSnap, "--no-snap"}};
+                                                       {v.noSnap, "--no-snap"},
+                                                       {v.noHiddenSearch, "--no-hidden-search"}};
     for (const auto& [given, flag] : volumeOnly)
       if (given)
         throw CLI::ValidationError(flag, std::string("shapes or draws the hybrid method's shadow volume; --method ") +
@@ -255,6 +256,7 @@ std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::Ren
   auto oracle = std::make_unique<EmbreeDepthOracle>(scene);
   ro.volumeOptions.depthOracle = oracle->oracle();
   ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
+  ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
   return oracle;
 }
 

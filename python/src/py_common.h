@@ -45,7 +45,8 @@ void checkResolutionArg(int resolution, const std::string& what);
 /// InputError names the argument.
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                     std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                                    bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false);
+                                    bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false,
+                                    bool hiddenSearch = true);
 
 void registerScene(py::module_& m);
 void registerDepth(py::module_& m);

@@ -82,6 +82,7 @@ struct FrameRenderer {
       oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line
+      ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();  // the hidden-surface search, as the command line
     }
     renderer.setScene(scene);
   }

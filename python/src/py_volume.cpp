@@ -20,7 +20,7 @@ namespace {
 
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                  std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                                 bool chordPoints, int refineGrid, bool refineGridEverywhere) {
+                                 bool chordPoints, int refineGrid, bool refineGridEverywhere, bool hiddenSearch) {
   VolumeBuildOptions o;
   if (!parseTriangulation(triangulation, o.triangulation))
     throw InputError("python", "triangulation", triangulation, "expected perfect or fixed");
@@ -33,6 +33,7 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
   o.refineChords = chordPoints;
   o.refineSubdivisions = refineGrid;
   o.refineGridEverywhere = refineGridEverywhere;
+  o.refineHidden = hiddenSearch;
   checkUserVolumeOptions(o);  // the command line's rules (a probe found them missing here)
   return o;
 }
@@ -41,9 +42,10 @@ namespace {
 
 py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
                             std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                            const PyScene* scene, bool chordPoints, int refineGrid, bool refineGridEverywhere) {
+                            const PyScene* scene, bool chordPoints, int refineGrid, bool refineGridEverywhere,
+                            bool hiddenSearch) {
   VolumeBuildOptions o = volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints,
-                                          refineGrid, refineGridEverywhere);
+                                          refineGrid, refineGridEverywhere, hiddenSearch);
   if (refine > 0 && !scene)
     throw InputError("python", "refine", std::to_string(refine),
                      "needs scene=: the refinement casts rays into the scene the depth map was captured from");
@@ -55,6 +57,7 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
       oracle = std::make_unique<EmbreeDepthOracle>(scene->scene);
       o.depthOracle = oracle->oracle();
       o.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line (crossing_snap.h)
+      o.nearerSurfaces = oracle->nearerSurfaces();  // the sub-grid's search for hidden surfaces
     }
     r = buildVolume(depth, o);
   }
@@ -107,13 +110,15 @@ void registerVolume(py::module_& m) {
         py::arg("blur") = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
         py::arg("flatten_cap") = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
         py::arg("chord_points") = false, py::arg("refine_grid") = 1, py::arg("refine_grid_everywhere") = false,
+        py::arg("hidden_search") = true,
         "The shadow volume of a depth map: (V, F, stats) with V float64 N x 3 (world units), F int32 M x 3 "
         "(counter-clockwise seen from outside) and stats a dict of counts and times (milliseconds). With the exact "
         "cap (default) the mesh is closed, outward and welded (docs/volume.md). refine=K (1..16) places each wall "
         "within 2^-(K+1) texel of the silhouette by K rays per boundary edge into `scene` (the scene the map was "
         "captured from); refine_grid=S (2, 4, 8) refines the quads with a boundary edge whose straight wall misses "
         "the sub-grid's samples on an S x S sub-grid, every such quad with refine_grid_everywhere=True "
-        "(docs/volume.md, \"Sub-grid\"). bias=None: the default (0 for back capture).");
+        "(docs/volume.md, \"Sub-grid\"), and the quads whose square hides a surface between the texel centres "
+        "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",
       [](const py::array_t<double, py::array::forcecast>& v, const py::array& f, const std::filesystem::path& path,

@@ -544,9 +544,15 @@ TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   const CliResult text =
       runCli("build --resolution 64 --refine 6 --refine-grid 2 --scene " + scene("plate.json") + " --out " + out);
   EXPECT_TRUE(contains(text.out, "sub-grid 2x2")) << text.out;
+  EXPECT_TRUE(contains(text.out, "0 quads for a hidden surface")) << text.out;  // the plate hides none
+  EXPECT_EQ(j["hiddenQuads"], 0);
+  const CliResult noSearch = runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --no-hidden-search --scene " +
+                                    scene("plate.json") + " --out " + out);
+  ASSERT_EQ(noSearch.code, 0) << noSearch.out;
+  EXPECT_EQ(nlohmann::json::parse(noSearch.out)["refineHidden"], false);
   const std::string bad = (dir / "bad.ply").string();
   for (const char* args : {"--refine-grid 4", "--refine 3 --refine-grid 4 --chord-points", "--refine 3 --refine-grid 4 --no-flatten",
-                           "--refine 3 --refine-grid-everywhere"}) {
+                           "--refine 3 --refine-grid-everywhere", "--refine 3 --no-hidden-search"}) {
     const CliResult e = runCli(std::string("build --resolution 16 ") + args + " --out " + bad);
     EXPECT_EQ(e.code, 1) << args << ": " << e.out;
     EXPECT_TRUE(contains(e.out, "--refine-grid") || contains(e.out, "--no-flatten")) << e.out;

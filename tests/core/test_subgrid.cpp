@@ -14,6 +14,7 @@
 #include "analytic_scene.h"
 #include "mesh_invariants.h"
 #include "shadowvol/error.h"
+#include "shadowvol/ray_parity.h"
 #include "shadowvol/volume_builder.h"
 #include "test_util.h"
 
@@ -153,17 +154,81 @@ TEST(SubGrid, AdaptiveSubGridFindsAnArmThinnerThanATexel) {
   EXPECT_LT(grid.stats.subgridQuads, grid.stats.refinedCells / 2);
 }
 
-// Every option the sub-grid takes, on a sphere and a box over the ground and plates, spot and
-// directional lights, every capture: closed oriented manifolds, and the unrefined quads next to
-// the sub-grid split at its side nodes.
+// A bar 0.08 wide between two columns of texel centres (32 x 32 over [-4, 4]: centres at
+// +-(k + 0.5) * 0.25), 2 long; the sub-grid's nodes at S = 4 (every 1/16 unit) meet it at x = 0.0625.
+AnalyticScene hiddenBar(bool ground) {
+  AnalyticScene s;
+  s.boxes.push_back({{0.05, 1.5, 0.3}, {0.04, 0.05, 1.0}, 0.0});
+  s.ground = ground;
+  return s;
+}
+
+// Inside the closed volume by the parity of a ray's crossings.
+bool inside(const VolumeMesh& m, const glm::dvec3& p) {
+  bool in = false;
+  for (const auto& t : m.triangles)
+    in ^= parityRayCrosses(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  return in;
+}
+
+// No texel centre sees the bar: without the search for hidden surfaces the volume is empty (back
+// capture) or has no shadow of it (front capture over the ground); with it the quads its image
+// overlaps go on the sub-grid, whose nodes find it, and its walls stand round it.
+TEST(SubGrid, HiddenSurfaceSearchWallsABarThatNoTexelCentreSees) {
+  for (bool ground : {false, true}) {
+    const AnalyticScene s = hiddenBar(ground);
+    const CaptureMode mode = ground ? CaptureMode::Front : CaptureMode::Back;
+    const DepthMap map = s.depthMap(test::directionalDown(6.0), 32, 32, mode);
+    ASSERT_EQ(map.hitCount(), ground ? std::size_t(32 * 32) : 0u);  // all on the ground, or none
+    VolumeBuildOptions o;
+    o.refineSteps = 6;
+    o.refineSubdivisions = 4;
+    o.depthOracle = s.oracle();
+    if (ground) o.bias = 0.0;
+    const glm::dvec3 under(0.05, 0.5, 0.3), beside(0.3, 0.5, 0.3), beyond(0.05, 0.5, 1.6);
+    const VolumeBuildResult none = buildVolume(map, o);
+    EXPECT_EQ(none.stats.hiddenQuads, 0u);
+    EXPECT_FALSE(!none.mesh.triangles.empty() && inside(none.mesh, under)) << ground;
+    o.nearerSurfaces = s.nearerSurfaces();
+    o.refineHidden = false;
+    EXPECT_TRUE(test::sameMesh(buildVolume(map, o).mesh, none.mesh)) << ground;
+    o.refineHidden = true;
+    const VolumeBuildResult v = buildVolume(map, o);
+    ASSERT_TRUE(closedOrientedManifold(v.mesh)) << ground;
+    EXPECT_GE(v.stats.hiddenQuads, 8u) << ground;  // 2 long: 8 texels and a part, in one column
+    EXPECT_TRUE(inside(v.mesh, under)) << ground;
+    EXPECT_FALSE(inside(v.mesh, beside)) << ground;
+    EXPECT_FALSE(inside(v.mesh, beyond)) << ground;
+    if (ground) continue;  // (the ground's quads at the map's far ring are refined, plain)
+    EXPECT_EQ(v.stats.subgridQuads, v.stats.refinedCells);  // the hidden quads, all cut
+    // The walls' far vertices within the sub-edges' bisection step of the bar's sides.
+    const double step = std::ldexp(0.25 / 4, -(refineSubEdgeSteps(6, 4) + 1)) + 1e-9;
+    std::size_t onFar = 0;
+    for (const auto& p : v.mesh.positions) {
+      if (std::abs(map.viewDepthOf(p) - map.farPlane) > 1e-9 * map.farPlane) continue;
+      ++onFar;
+      EXPECT_GE(p.x, 0.01 - step);
+      EXPECT_LE(p.x, 0.09 + step);
+    }
+    EXPECT_GT(onFar, 8u);
+  }
+}
+
+// Every option the sub-grid takes, on a sphere and a box over the ground, plates and a bar between
+// the texel centres (these two with the search for hidden surfaces), spot and directional lights,
+// every capture: closed oriented manifolds, and the unrefined quads next to the sub-grid split at
+// its side nodes.
 TEST(SubGrid, EveryOptionGivesAClosedOrientedManifold) {
   AnalyticScene mixed = sphereOverGround(true);
   mixed.boxes.push_back({{-1.5, 1.0, 1.2}, {0.6, 1.0, 0.4}, 20.0});
   AnalyticScene plate;
   plate.boxes.push_back({{0.0, 1.5, 0.0}, {1.0, 0.05, 1.0}, 30.0});
   plate.ground = true;
-  std::size_t builds = 0, split = 0;
-  for (const AnalyticScene* s : {&mixed, &plate})
+  AnalyticScene bars = hiddenBar(true);
+  bars.boxes.push_back({{-1.2, 1.0, -1.0}, {1.0, 0.6, 0.03}, 35.0});  // thinner than a texel, turned
+  bars.boxes.push_back({{1.3, 2.0, -0.6}, {0.6, 0.05, 0.6}, 10.0});
+  std::size_t builds = 0, split = 0, hidden = 0;
+  for (const AnalyticScene* s : {&mixed, &plate, &bars})
     for (const Light& light : {test::directionalDown(6.0), spot()})
       for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
         const DepthMap map = s->depthMap(light, 24, 24, mode);
@@ -179,6 +244,7 @@ TEST(SubGrid, EveryOptionGivesAClosedOrientedManifold) {
               o.refineSteps = 4;
               o.refineSubdivisions = grid;
               o.depthOracle = s->oracle();
+              if (s != &mixed) o.nearerSurfaces = s->nearerSurfaces();  // boxes and the ground only
               if (mode == CaptureMode::Front) o.bias = 0.0;  // keep the ground off the far plane
               const VolumeBuildResult v = buildVolume(map, o);
               ASSERT_TRUE(closedOrientedManifold(v.mesh)) << toString(mode) << " " << toString(tri) << " blur " << blur
@@ -186,9 +252,11 @@ TEST(SubGrid, EveryOptionGivesAClosedOrientedManifold) {
               for (const auto& p : v.mesh.positions) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
               ++builds;
               split += v.stats.subgridSplitTriangles;
+              hidden += v.stats.hiddenQuads;
             }
       }
-  EXPECT_EQ(builds, 2u * 2u * 3u * 24u);
+  EXPECT_EQ(builds, 3u * 2u * 3u * 24u);
+  EXPECT_GT(hidden, builds);
   EXPECT_GT(split, builds);  // front capture over the ground: refined quads border unrefined ones
 }
 

@@ -4,6 +4,7 @@
 // (shadowvol_embree: EmbreeDepthOracle; tests: analytic scenes).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <span>
 
@@ -30,6 +31,14 @@ using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm:
 /// behind a spot light's apex plane). Same calling rules as DepthOracle.
 using SurfaceEndOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> from,
                                             std::span<const glm::dvec2> to, std::span<double> t)>;
+
+/// Which quads hide a surface nearer than the sheet (the sub-grid's search for hidden surfaces,
+/// nearer_surfaces.h): sets flags[q] = 1 for each quad q = qj * (W - 1) + qi of the map's grid
+/// whose square holds a point of a surface the map's capture can record, nearer than limit[q]
+/// (light-view depth); leaves the other flags. The Embree oracle answers it from the scene's
+/// triangles (findNearerSurfaces). Same calling rules as DepthOracle.
+using NearerSurfaceOracle =
+    std::function<void(const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags)>;
 
 /// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
 /// the oracle at the texel's centre: the map a capture by the oracle's rays stores (with

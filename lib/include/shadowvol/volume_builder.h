@@ -103,6 +103,13 @@ struct VolumeBuildOptions {
   bool refineGridEverywhere = false; ///< sub-grid only: cut every quad with a boundary edge, not only
                                 ///< those whose plain refinement misses the lattice's samples (for
                                 ///< comparison; more triangles, the same shadow where both agree)
+  NearerSurfaceOracle nearerSurfaces; ///< sub-grid only: which quads hide a surface nearer than their
+                                ///< corners' samples (depth_oracle.h; EmbreeDepthOracle::nearerSurfaces).
+                                ///< Set = those quads go on the sub-grid too, though no boundary edge
+                                ///< touches them: an occluder thinner than a texel between the texel
+                                ///< centres (docs/volume.md "Hidden surfaces"); unset = they are not
+  bool refineHidden = true;     ///< false: no search even with nearerSurfaces (for comparison;
+                                ///< --no-hidden-search)
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -142,7 +149,8 @@ struct VolumeBuildStats {
                                       ///< with the sub-grid they choose the quads it cuts, and its
                                       ///< boundary sub-edges get the walls)
   std::size_t farBoundaryEdges = 0;   ///< of which one end is on the far plane (the other end hit)
-  std::size_t refinedCells = 0;       ///< refinement: quads with a boundary edge (triangulated with walls)
+  std::size_t refinedCells = 0;       ///< refinement: quads with a boundary edge (triangulated with walls),
+                                      ///< and the hidden quads
   std::size_t ambiguousCells = 0;     ///< refinement: refined quads (sub-cells with the sub-grid) with 3 or 4 boundary edges, decided
                                       ///< by one more ray at the quad's centre
   std::size_t chordPoints = 0;        ///< refinement: crossings inside quads with two boundary edges
@@ -159,12 +167,15 @@ struct VolumeBuildStats {
   std::size_t subgridBoundaryEdges = 0; ///< sub-grid: boundary sub-edges (each with a wall)
   std::size_t subgridFarBoundaryEdges = 0; ///< of which one end is on the far plane
   std::size_t subgridSplitTriangles = 0; ///< sub-grid: triangles of unrefined and plain refined quads split at its side nodes
+  std::size_t hiddenQuads = 0;        ///< sub-grid with nearerSurfaces: quads without a boundary edge put on
+                                      ///< it for a hidden surface (counted in refinedCells and subgridQuads)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)
   double msSheet = 0.0;               ///< diagonals, vertices, sheet triangles, pinch splits (ms)
   double msRefine = 0.0;              ///< refinement: boundary edges, oracle rays and walls (ms)
   double msRays = 0.0;                ///< refinement: the oracle calls alone (ms; part of msRefine)
+  double msHidden = 0.0;              ///< sub-grid: the search for hidden surfaces (ms; part of msRefine)
   double msCap = 0.0;                 ///< boundary runs, cap edges and cap triangulation (ms); the
                                       ///< triangulation runs during the sheet's last pass, so
                                       ///< msBlur + msSheet + msCap can exceed msTotal

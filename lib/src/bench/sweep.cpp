@@ -519,6 +519,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       if (!oracle) oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
+      ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
     }
     ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
     ro.readStencil = false;

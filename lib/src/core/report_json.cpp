@@ -66,11 +66,12 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridBoundaryEdges", s.subgridBoundaryEdges},
           {"subgridFarBoundaryEdges", s.subgridFarBoundaryEdges},
           {"subgridSplitTriangles", s.subgridSplitTriangles},
+          {"hiddenQuads", s.hiddenQuads},
           {"raysCast", s.raysCast},
           {"crossingFallbacks", s.crossingFallbacks},
           {"snappedCrossings", s.snappedCrossings},
           {"bias", s.biasUsed},
-          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays},
+          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays}, {"hidden", s.msHidden},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};
 }
 

@@ -9,6 +9,7 @@
 #include "shadowvol/check.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
+#include "shadowvol/nearer_surfaces.h"
 #include "shadowvol/triangle_exit.h"
 
 namespace shadowvol {
@@ -16,12 +17,22 @@ namespace shadowvol {
 struct EmbreeDepthOracle::Impl {
   EmbreeDevice device;
   EmbreeScene scene;
+  std::vector<TriangleSoup> soups;  // views of the Embree scene's own buffers, geometry by geometry
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
     for (const auto& o : s.objects) meshes.push_back(&o.mesh);
     return meshes;
   }
-  explicit Impl(const Scene& s) : scene(device, meshesOf(s)) {}
+  explicit Impl(const Scene& s) : scene(device, meshesOf(s)) {
+    for (std::size_t g = 0; g < s.objects.size(); ++g) {  // geometry IDs 0, 1, 2, ... in object order
+      const TriangleMesh& m = s.objects[g].mesh;
+      RTCGeometry geom = rtcGetGeometry(scene.get(), unsigned(g));
+      const auto* v = static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
+      const auto* i = static_cast<const std::uint32_t*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
+      if (v && i && !m.triangles.empty())
+        soups.push_back({std::span<const float>(v, 3 * m.positions.size()), std::span<const std::uint32_t>(i, 3 * m.triangles.size())});
+    }
+  }
 };
 
 EmbreeDepthOracle::EmbreeDepthOracle(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
@@ -74,6 +85,13 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
       }
     });
     impl->device.throwIfError();
+  };
+}
+
+NearerSurfaceOracle EmbreeDepthOracle::nearerSurfaces() const {
+  const Impl* impl = impl_.get();
+  return [impl](const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags) {
+    findNearerSurfaces(map, impl->soups, limit, flags);
   };
 }
 

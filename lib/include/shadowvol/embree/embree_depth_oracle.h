@@ -25,6 +25,9 @@ class EmbreeDepthOracle {
   /// The SurfaceEndOracle (depth_oracle.h) of the same scene and capture rule: one ray per query
   /// (captureHit), then triangleExit (triangle_exit.h) on the triangle it records.
   SurfaceEndOracle surfaceEnds() const;
+  /// The NearerSurfaceOracle (depth_oracle.h) of the same scene: findNearerSurfaces
+  /// (nearer_surfaces.h) over the triangles the oracle's rays see.
+  NearerSurfaceOracle nearerSurfaces() const;
 
  private:
   struct Impl;

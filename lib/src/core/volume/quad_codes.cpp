@@ -179,12 +179,16 @@ QuadCodes computeQuadCodes(const SheetDepths& sheet, const GridUnprojector& unpr
         tris += ((q & kKeep0) != 0) + ((q & kKeep1) != 0);
         out[qi] = q;
       }
-      if (options.splitBits && qb < qe) {  // quads with a boundary side (always in [qb, qe))
+      int spanB = qb < qe ? qb : qw, spanE = qb < qe ? qe : 0;
+      if (options.splitBits) {
+        // Quads with a boundary side (always in [qb, qe)); hidden quads may be anywhere.
+        const int mb = options.hiddenQuads ? 0 : qb, me = options.hiddenQuads ? qw : qe;
         const std::uint8_t* lower = options.splitBits + std::size_t(qj) * w;
         const std::uint8_t* upper = lower + w;
         std::uint32_t refined = 0;
-        for (int qi = qb; qi < qe; ++qi) {
-          if (!((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1))) continue;
+        for (int qi = mb; qi < me; ++qi) {
+          if (!((lower[qi] & (3 | kHiddenQuadBit)) | (lower[qi + 1] & 2) | (upper[qi] & 1))) continue;
+          spanB = std::min(spanB, qi), spanE = std::max(spanE, qi + 1);
           const std::uint8_t q = out[qi];
           const int nonFar = 15 & ~(farLo[qi] | farLo[qi + 1] << 1 | farHi[qi + 1] << 2 | farHi[qi] << 3);
           flips -= q & kFlip;
@@ -198,7 +202,7 @@ QuadCodes computeQuadCodes(const SheetDepths& sheet, const GridUnprojector& unpr
       rowFlips[qj] = flips;
       rowDropped[qj] = dropped;
       rowTris[qj] = tris;
-      result.rowSpan[qj] = qb < qe ? std::pair<int, int>{qb, qe} : std::pair<int, int>{0, 0};
+      result.rowSpan[qj] = spanB < spanE ? std::pair<int, int>{spanB, spanE} : std::pair<int, int>{0, 0};
     }
     if (bad) badTexel.store(true, std::memory_order_relaxed);
   });

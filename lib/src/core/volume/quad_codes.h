@@ -72,8 +72,15 @@ struct QuadCodeOptions {
   bool exact = true;    ///< exact cap: triangles with three far corners are dropped
   bool perfect = true;  ///< the diagonal by flipDiagonal, else B-D everywhere
   const std::uint8_t* splitBits = nullptr;  ///< refinement: per texel, bit 0 / 1 = its edge along
-                                            ///< +i / +j is a boundary edge (findBoundaryEdges)
+                                            ///< +i / +j is a boundary edge (findBoundaryEdges);
+                                            ///< kHiddenQuadBit: the quad it is the lower-left corner of
+                                            ///< is refined without a boundary side
+  bool hiddenQuads = false;                 ///< kHiddenQuadBit may be set (on any quad, far ones too)
 };
+
+/// splitBits' bit for a quad refined for a hidden surface (nearer_surfaces.h) alone: the sub-grid
+/// samples it though no boundary edge touches it.
+inline constexpr std::uint8_t kHiddenQuadBit = 4;
 
 /// What stage 2 found, per quad row.
 struct QuadCodes {
@@ -81,7 +88,7 @@ struct QuadCodes {
   std::vector<std::uint64_t> rowTriOffset;   ///< qh + 1 prefix sums: the first sheet triangle of row qj
   std::size_t flipped = 0;                   ///< quads that took the A-C diagonal
   std::size_t dropped = 0;                   ///< quads that keep no triangle (refined quads aside)
-  std::size_t refined = 0;                   ///< quads with a boundary edge (kRefined)
+  std::size_t refined = 0;                   ///< quads with a boundary edge or hidden (kRefined)
   std::uint64_t sheetTriangles() const { return rowTriOffset.back(); }
 };
 

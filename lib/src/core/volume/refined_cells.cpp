@@ -14,10 +14,12 @@
 
 namespace shadowvol::volume {
 
-RefinedQuads findRefinedQuads(const BoundaryEdges& boundary, int width, int height) {
+RefinedQuads findRefinedQuads(const BoundaryEdges& boundary, int width, int height,
+                              std::span<const std::uint32_t> hidden) {
   const int qw = width - 1, qh = height - 1;
   std::vector<std::pair<std::uint32_t, std::uint8_t>> touched;
-  touched.reserve(2 * boundary.edges.size());
+  touched.reserve(2 * boundary.edges.size() + hidden.size());
+  for (std::uint32_t q : hidden) touched.push_back({q, std::uint8_t(0)});
   auto touch = [&](int qi, int qj, int side) {
     if (qi >= 0 && qj >= 0 && qi < qw && qj < qh) touched.push_back({std::uint32_t(qj) * std::uint32_t(qw) + qi, std::uint8_t(1 << side)});
   };

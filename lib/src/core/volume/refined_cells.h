@@ -28,6 +28,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "shadowvol/boundary_edges.h"
@@ -48,7 +49,10 @@ struct RefinedQuads {
   std::vector<std::uint8_t> sides;      ///< per quad: bit k set when side k is a boundary edge
   std::vector<glm::dvec2> centres;      ///< one per ambiguous quad, in quad order
 };
-RefinedQuads findRefinedQuads(const BoundaryEdges& edges, int width, int height);
+/// The quads the boundary edges touch, and the `hidden` quads (sorted quad indices, sides 0: the
+/// sub-grid's quads refined for a hidden surface alone, nearer_surfaces.h).
+RefinedQuads findRefinedQuads(const BoundaryEdges& edges, int width, int height,
+                              std::span<const std::uint32_t> hidden = {});
 
 struct RefinedCells {
   std::vector<Tri> triangles;                     ///< kept triangles, in quad order

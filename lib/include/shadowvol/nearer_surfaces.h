@@ -1,0 +1,50 @@
+// The search for hidden surfaces (the sub-grid's VolumeBuildOptions::nearerSurfaces; docs/volume.md
+// "Hidden surfaces"): which quads of a depth map's grid hold part of a surface that the capture
+// would record nearer than a given depth, found from the triangles' projections, without rays.
+//
+// A map samples the scene once per texel centre. An occluder thinner than a texel (a limb, a wire,
+// a ridge on a shell) can lie between the centres: no sample sees it, so no boundary edge, refined
+// quad or sub-grid node does either, and its shadow is lost. Every triangle the capture could
+// record (back capture: facing away from the light, as the GPU's front-face culling and Embree's
+// back-face filter decide; front and midpoint capture: any) is clipped to the light-view depth range
+// [near, far], projected into texel coordinates, and clipped against each quad square its image
+// overlaps (quad (qi, qj) is the square between texel centres (qi, qj) and (qi + 1, qj + 1)); the
+// quad is flagged when a point of the clipped polygon lies nearer than the quad's limit. The depth
+// is exact at the polygon's corners and its extremes lie there: along a straight line of the image
+// the light-view depth is linear (directional light) or its inverse is (spot light).
+//
+// Conservative where it matters: a triangle that reaches into a quad's closed square is seen there
+// however thin, so an occluder that crosses the side between two quads is found in both. Midpoint
+// capture records the middle of two surfaces, which lies behind the first: the first surface's
+// depth counts, which can flag a quad whose midpoint sample would not be nearer (harmless: the
+// sub-grid then samples it and finds nothing new).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "shadowvol/depth_map.h"
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol {
+
+/// Triangles as the ray tracer stores them: xyz triples (the map's coordinates, as its rays) and
+/// index triples into them.
+struct TriangleSoup {
+  std::span<const float> xyz;
+  std::span<const std::uint32_t> indices;
+};
+
+/// The soup view of a mesh (no copy; valid while the mesh is).
+TriangleSoup soupOf(const TriangleMesh& mesh);
+
+/// For each quad q = qj * (W - 1) + qi of the map's grid, sets flags[q] = 1 when a triangle of
+/// `meshes` that the map's capture mode can record has a point in the quad's square, within the map's
+/// [near, far], whose light-view depth is below limit[q] (see the header comment); other flags are
+/// left as they are. limit and flags hold (W - 1) * (H - 1) entries; a limit at or below the near
+/// plane (or NaN) finds nothing. Parallel over triangles, deterministic. Indices out of range are
+/// a logic error (SV_CHECK).
+void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
+                        std::span<std::uint8_t> flags);
+
+}  // namespace shadowvol

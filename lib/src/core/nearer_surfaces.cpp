@@ -1,0 +1,166 @@
+#include "shadowvol/nearer_surfaces.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol {
+
+TriangleSoup soupOf(const TriangleMesh& mesh) {
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(mesh.triangles[0]) == 3 * sizeof(std::uint32_t));
+  return {std::span<const float>(reinterpret_cast<const float*>(mesh.positions.data()), 3 * mesh.positions.size()),
+          std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(mesh.triangles.data()),
+                                         3 * mesh.triangles.size())};
+}
+
+namespace {
+
+// A clipped triangle has at most 3 + 2 (depth planes) + 4 (quad sides) corners.
+constexpr int kMaxCorners = 9;
+
+// A polygon corner in the image: texel coordinates and an attribute that is linear along the
+// image's straight lines (the depth for a directional light, its inverse for a spot light).
+struct ImageCorner {
+  double x, y, a;
+};
+
+// Sutherland-Hodgman: the part of the polygon `in` (n corners) where s(corner) >= 0, for an s that
+// is linear along the polygon's sides.
+template <typename Corner, typename Side, typename Lerp>
+int clipPolygon(const Corner* in, int n, Corner* out, Side s, Lerp lerp) {
+  int m = 0;
+  for (int k = 0; k < n; ++k) {
+    const Corner& p = in[k];
+    const Corner& q = in[(k + 1) % n];
+    const double sp = s(p), sq = s(q);
+    if (sp >= 0.0) out[m++] = p;
+    if ((sp >= 0.0) != (sq >= 0.0)) out[m++] = lerp(p, q, sp / (sp - sq));
+  }
+  return m;
+}
+
+struct Projection {
+  glm::dmat4 view, projection;
+  double width, height;
+  bool perspective;
+  double nearDepth, farDepth;
+
+  explicit Projection(const DepthMap& map)
+      : view(map.lightView), projection(map.lightProjection), width(map.width), height(map.height),
+        perspective(map.lightType != LightType::Directional),
+        // Never at a spot light's apex (triangle_exit.h's rule), where the image has no point.
+        nearDepth(perspective ? std::max(map.nearPlane, 1e-9 * map.farPlane) : map.nearPlane),
+        farDepth(map.farPlane) {}
+
+  ImageCorner image(const glm::dvec3& v) const {
+    const glm::dvec4 c = projection * glm::dvec4(v, 1.0);
+    const double depth = -v.z;
+    return {(c.x / c.w + 1.0) * 0.5 * width - 0.5, (c.y / c.w + 1.0) * 0.5 * height - 0.5,
+            perspective ? 1.0 / depth : depth};
+  }
+  double depthOf(double a) const { return perspective ? 1.0 / a : a; }
+};
+
+// The polygon's nearest depth (from its corners' attributes).
+double nearestDepth(const Projection& p, const ImageCorner* c, int n) {
+  double a = c[0].a;
+  for (int k = 1; k < n; ++k) a = p.perspective ? std::max(a, c[k].a) : std::min(a, c[k].a);
+  return p.depthOf(a);
+}
+
+// Whether the polygon has a point in the square [qi, qi + 1] x [qj, qj + 1] nearer than `limit`.
+bool nearerInQuad(const Projection& p, const ImageCorner* poly, int n, int qi, int qj, double limit) {
+  std::array<ImageCorner, kMaxCorners> a, b;
+  const auto lerp = [](const ImageCorner& u, const ImageCorner& v, double t) {
+    return ImageCorner{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y), u.a + t * (v.a - u.a)};
+  };
+  const double x0 = qi, x1 = qi + 1.0, y0 = qj, y1 = qj + 1.0;
+  int m = clipPolygon(poly, n, a.data(), [&](const ImageCorner& c) { return c.x - x0; }, lerp);
+  if (m) m = clipPolygon(a.data(), m, b.data(), [&](const ImageCorner& c) { return x1 - c.x; }, lerp);
+  if (m) m = clipPolygon(b.data(), m, a.data(), [&](const ImageCorner& c) { return c.y - y0; }, lerp);
+  if (m) m = clipPolygon(a.data(), m, b.data(), [&](const ImageCorner& c) { return y1 - c.y; }, lerp);
+  return m > 0 && nearestDepth(p, b.data(), m) < limit;
+}
+
+// One triangle (light-view corners) against the quads its image overlaps.
+void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int qw, int qh, std::span<const float> limit,
+                  std::span<std::uint8_t> flags) {
+  std::array<glm::dvec3, 5> a, b;
+  const auto lerp3 = [](const glm::dvec3& u, const glm::dvec3& w, double t) { return u + t * (w - u); };
+  int n = clipPolygon(v.data(), 3, a.data(), [&](const glm::dvec3& c) { return -c.z - p.nearDepth; }, lerp3);
+  if (n) n = clipPolygon(a.data(), n, b.data(), [&](const glm::dvec3& c) { return p.farDepth + c.z; }, lerp3);
+  if (n < 3) return;
+  std::array<ImageCorner, kMaxCorners> poly;
+  double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
+  for (int k = 0; k < n; ++k) {
+    poly[std::size_t(k)] = p.image(b[std::size_t(k)]);
+    minX = std::min(minX, poly[std::size_t(k)].x), maxX = std::max(maxX, poly[std::size_t(k)].x);
+    minY = std::min(minY, poly[std::size_t(k)].y), maxY = std::max(maxY, poly[std::size_t(k)].y);
+  }
+  if (!(maxX >= 0.0 && maxY >= 0.0 && minX <= qw && minY <= qh)) return;  // off the grid (or NaN)
+  const double nearest = nearestDepth(p, poly.data(), n);
+  const int i0 = std::max(0, int(std::floor(minX))), i1 = std::min(qw - 1, int(std::floor(maxX)));
+  const int j0 = std::max(0, int(std::floor(minY))), j1 = std::min(qh - 1, int(std::floor(maxY)));
+  for (int qj = j0; qj <= j1; ++qj)
+    for (int qi = i0; qi <= i1; ++qi) {
+      const std::size_t q = std::size_t(qj) * std::size_t(qw) + std::size_t(qi);
+      std::atomic_ref<std::uint8_t> flag(flags[q]);
+      if (!(nearest < limit[q]) || flag.load(std::memory_order_relaxed)) continue;
+      if (nearerInQuad(p, poly.data(), n, qi, qj, limit[q])) flag.store(1, std::memory_order_relaxed);
+    }
+}
+
+}  // namespace
+
+void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
+                        std::span<std::uint8_t> flags) {
+  const int qw = map.width - 1, qh = map.height - 1;
+  if (qw < 1 || qh < 1) return;
+  SV_CHECK_EQ(limit.size(), std::size_t(qw) * std::size_t(qh));
+  SV_CHECK_EQ(flags.size(), limit.size());
+  float maxLimit = -1.0f;
+  for (float l : limit)
+    if (l > maxLimit) maxLimit = l;
+  const Projection p(map);
+  if (!(double(maxLimit) > p.nearDepth)) return;
+  const bool backOnly = map.capture == CaptureMode::Back;
+  for (const TriangleSoup& mesh : meshes) {
+    SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
+    SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
+    const std::size_t vertices = mesh.xyz.size() / 3;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size() / 3, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        std::array<glm::dvec3, 3> v;
+        for (std::size_t c = 0; c < 3; ++c) {
+          const std::size_t k = mesh.indices[3 * t + c];
+          SV_CHECK_LT(k, vertices);
+          v[c] = glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
+        }
+        // Nearest depth first: most triangles lie on or behind the sheet.
+        const double nearest = -std::max({v[0].z, v[1].z, v[2].z});
+        if (!(nearest < double(maxLimit)) || -std::min({v[0].z, v[1].z, v[2].z}) < p.nearDepth) continue;
+        if (backOnly) {
+          // Facing away from the light: the normal of the counter-clockwise front points along the
+          // light's ray (from the apex through the triangle; -z for a directional light).
+          const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+          const double along = p.perspective ? glm::dot(n, v[0]) : -n.z;
+          if (!(along > 0.0)) continue;
+        }
+        flagTriangle(p, v, qw, qh, limit, flags);
+      }
+    });
+  }
+}
+
+}  // namespace shadowvol
