@@ -4,6 +4,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
@@ -120,6 +122,46 @@ void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int q
     }
 }
 
+// A vertex's image in float, for the quick test that rejects most triangles before the exact one:
+// texel coordinates and light-view depth; x is NaN when the depth lies outside [near, far] (the
+// triangle then needs clipping).
+struct VertexImage {
+  float x, y, depth;
+};
+
+VertexImage vertexImage(const Projection& p, const glm::dvec3& view) {
+  const double depth = -view.z;
+  if (!(depth >= p.nearDepth && depth <= p.farDepth)) return {std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f};
+  const ImageCorner c = p.image(view);
+  return {float(c.x), float(c.y), float(depth)};
+}
+
+// Whether a triangle within [near, far] (its vertices' images) may hold a point nearer than the limit
+// of a quad its image overlaps: false only when it surely does not (its nearest vertex at or beyond
+// every such limit, or, for back capture, its image clearly counter-clockwise: facing the light).
+// The margins cover the float rounding of the images.
+bool mayBeNearer(const VertexImage& a, const VertexImage& b, const VertexImage& c, bool backOnly, int qw, int qh,
+                 std::span<const float> limit) {
+  const float nearest = std::min({a.depth, b.depth, c.depth});
+  const float minX = std::min({a.x, b.x, c.x}), maxX = std::max({a.x, b.x, c.x});
+  const float minY = std::min({a.y, b.y, c.y}), maxY = std::max({a.y, b.y, c.y});
+  const float slack = 1e-4f + 4e-7f * std::max({std::abs(minX), std::abs(maxX), std::abs(minY), std::abs(maxY)});
+  if (backOnly) {
+    const double area = (double(b.x) - a.x) * (double(c.y) - a.y) - (double(b.y) - a.y) * (double(c.x) - a.x);
+    const double extent = double(maxX - minX) + double(maxY - minY) + slack;
+    if (area > 1e-4 * extent * extent) return false;  // counter-clockwise in the image: facing the light
+  }
+  if (!(maxX + slack >= 0.0f && maxY + slack >= 0.0f && minX - slack <= float(qw) && minY - slack <= float(qh)))
+    return false;
+  const int i0 = std::max(0, int(std::floor(minX - slack))), i1 = std::min(qw - 1, int(std::floor(maxX + slack)));
+  const int j0 = std::max(0, int(std::floor(minY - slack))), j1 = std::min(qh - 1, int(std::floor(maxY + slack)));
+  const float below = nearest * (1.0f - 1e-5f);
+  for (int qj = j0; qj <= j1; ++qj)
+    for (int qi = i0; qi <= i1; ++qi)
+      if (below < limit[std::size_t(qj) * std::size_t(qw) + std::size_t(qi)]) return true;
+  return false;
+}
+
 }  // namespace
 
 void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
@@ -138,15 +180,23 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
     SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
     SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
     const std::size_t vertices = mesh.xyz.size() / 3;
+    const auto viewOf = [&](std::size_t k) {
+      return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
+    };
+    // Each vertex's image once (most vertices serve six triangles), then the quick test per triangle.
+    std::vector<VertexImage> image(vertices);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) image[k] = vertexImage(p, viewOf(k));
+    });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.indices.size() / 3, 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
-        std::array<glm::dvec3, 3> v;
-        for (std::size_t c = 0; c < 3; ++c) {
-          const std::size_t k = mesh.indices[3 * t + c];
-          SV_CHECK_LT(k, vertices);
-          v[c] = glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
-        }
+        const std::size_t k0 = mesh.indices[3 * t], k1 = mesh.indices[3 * t + 1], k2 = mesh.indices[3 * t + 2];
+        SV_CHECK_LT(std::max({k0, k1, k2}), vertices);
+        const VertexImage &a = image[k0], &b = image[k1], &c = image[k2];
+        const bool inRange = !std::isnan(a.x) && !std::isnan(b.x) && !std::isnan(c.x);
+        if (inRange && !mayBeNearer(a, b, c, backOnly, qw, qh, limit)) continue;
+        const std::array<glm::dvec3, 3> v{viewOf(k0), viewOf(k1), viewOf(k2)};
         // Nearest depth first: most triangles lie on or behind the sheet.
         const double nearest = -std::max({v[0].z, v[1].z, v[2].z});
         if (!(nearest < double(maxLimit)) || -std::min({v[0].z, v[1].z, v[2].z}) < p.nearDepth) continue;
