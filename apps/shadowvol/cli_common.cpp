@@ -232,8 +232,10 @@ ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene) {
   return r;
 }
 
-std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture) {
-  std::vector<std::string> w = captureWarnings(scene, width, height, capture);
+std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture,
+                                          const VolumeBuildOptions* volume) {
+  const bool search = volume && volume->refineSteps > 0 && volume->refineSubdivisions > 1 && volume->refineHidden;
+  std::vector<std::string> w = captureWarnings(scene, width, height, capture, search ? volume->refineSubdivisions : 1);
   for (const auto& s : w) std::fprintf(stderr, "shadowvol: warning: %s: %s\n", scene.source.c_str(), s.c_str());
   return w;
 }

@@ -92,8 +92,10 @@ struct ResolvedCapture {
 };
 ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene);
 
-/// Prints captureWarnings (capture_warnings.h) for a W x H map to stderr and returns them.
-std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture);
+/// Prints captureWarnings (capture_warnings.h) for a W x H map to stderr and returns them; `volume`
+/// (the volume the map is for, if any) says whether a sub-grid searches for hidden surfaces.
+std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int height, CaptureMode capture,
+                                          const VolumeBuildOptions* volume = nullptr);
 
 /// Largest side accepted for a depth map (texels).
 inline constexpr int kMaxResolution = kMaxDepthMapSide;

@@ -112,7 +112,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         checkNotAnInput("--out", o->out, o->out, scene.files);
         chooseLight(scene, o->light);
         j["lightFit"] = applyLightFit(scene, o->scene, o->resolution);
-        j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode);
+        j["warnings"] = warnAboutCapture(scene, o->resolution, o->resolution, mode, &options);
         const auto t0 = std::chrono::steady_clock::now();
         if (scene.light.type == LightType::Point) {
           cube = captureCubeOnDevice(o->device, scene, o->resolution, mode);

@@ -94,7 +94,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
-      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
+      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture, &ro.volumeOptions);
       ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
       gl::Renderer renderer(toRendererOptions(o->render));
       verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),

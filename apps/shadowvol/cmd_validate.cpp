@@ -199,7 +199,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
-      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture);
+      if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture, &ro.volumeOptions);
       ro = validationRenderOptions(ro);
       // An earlier run's report goes before the work (a probe's finding: a crash left the last
       // run's PASSED in place for a script to read); the inputs are checked by now.

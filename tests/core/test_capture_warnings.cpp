@@ -61,6 +61,18 @@ TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatch
   EXPECT_NE(w[0].find("no texel centre"), std::string::npos) << w[0];
   EXPECT_NE(w[0].find("40 x 40"), std::string::npos) << w[0];  // 16 / 0.4 texels
   EXPECT_TRUE(captureWarnings(s, 64, 64, CaptureMode::Front).empty());  // texels 0.125 apart: caught
+  // A sub-grid that searches for hidden surfaces samples every 1/S texel: at S = 2 the node 7.5 lies
+  // on it, so its shadow is cast and nothing is said.
+  EXPECT_TRUE(captureWarnings(s, 16, 16, CaptureMode::Front, 2).empty());
+  // A speck 0.1 texel wide centred at texel coordinates 7.4 lies between the nodes of S = 4 too
+  // (7.25, 7.5): named, with the map whose sub-grid would catch it (16 / (0.1 x 4)).
+  const glm::dvec3 off = probe.worldPoint(7.4, 7.4, 1.0);
+  TriangleMesh dust = makeBox(0.05, 0.05, 0.05);
+  for (auto& p : dust.positions) p += glm::vec3(float(off.x), 2.0f, float(off.z));
+  const auto d = captureWarnings(sceneWith({SceneObject{"dust", "box", dust}}), 16, 16, CaptureMode::Front, 4);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NE(d[0].find("no node of the 4 x 4 sub-grid"), std::string::npos) << d[0];
+  EXPECT_NE(d[0].find("40 x 40"), std::string::npos) << d[0];
 }
 
 TEST(CaptureWarnings, ObjectSeenEdgeOnSuggestsNoImpossibleMapSize) {

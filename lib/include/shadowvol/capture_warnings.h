@@ -16,7 +16,10 @@ namespace shadowvol {
 ///    so its shadow leaks; front or midpoint capture record it;
 ///  - an object that covers no texel centre (its light-view bounds lie between two neighbouring
 ///    texel centres along an axis): it casts no shadow at this resolution; the message gives the
-///    smallest N x N map whose texel spacing is below its extent. Objects wholly or partly behind a
+///    smallest N x N map whose texel spacing is below its extent. With hiddenSearchGrid = S > 1 (the
+///    volume is refined on an S x S sub-grid that searches for hidden surfaces, volume_builder.h
+///    nearerSurfaces) the sub-grid's nodes, every 1/S texel, count as well: an object that covers
+///    one of them is walled round and casts its shadow. Objects wholly or partly behind a
 ///    spot light's apex plane are not judged;
 ///  - an object with vertices inside the light's window but nearer than its near plane (a given
 ///    near too far out, or fitted planes stretched by an outlier vertex far away): the near plane
@@ -24,6 +27,7 @@ namespace shadowvol {
 ///  - a spot or directional light whose frustum holds no object at all (it points away from the
 ///    scene, or a given near/far range holds nothing): the map sees nothing and the volume is
 ///    empty (said when no object is named as clipped by the near plane).
-std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture);
+std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture,
+                                         int hiddenSearchGrid = 1);
 
 }  // namespace shadowvol

@@ -48,7 +48,8 @@ void pointLightWarnings(const Scene& scene, std::vector<std::string>& out) {
 
 }  // namespace
 
-std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture) {
+std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture,
+                                         int hiddenSearchGrid) {
   std::vector<std::string> out;
   if (capture == CaptureMode::Back) {
     const std::vector<std::string> open = openMeshObjects(scene);
@@ -91,11 +92,13 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
     if (!judged) continue;
     // Entirely outside the map: not this check's business (the frustum does not light it).
     if (hi.x < -0.5 || hi.y < -0.5 || lo.x > width - 0.5 || lo.y > height - 0.5) continue;
-    // A texel centre (integer coordinates) inside [lo, hi] on both axes?
-    const bool coversX = std::floor(hi.x) >= std::ceil(lo.x), coversY = std::floor(hi.y) >= std::ceil(lo.y);
+    // A texel centre (integer coordinates), or a node of the sub-grid that searches for hidden
+    // surfaces (multiples of 1/S), inside [lo, hi] on both axes?
+    const double s = std::max(1, hiddenSearchGrid);
+    const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
     if (coversX && coversY) continue;
     const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
-    const double need = std::ceil(std::max(width, height) / span);
+    const double need = std::ceil(std::max(width, height) / (span * s));
     char remedy[160];
     if (need <= kMaxDepthMapSide)
       std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
@@ -104,11 +107,15 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
                     "no map up to %d x %d would catch it: the light sees it edge-on or it is far smaller than the "
                     "light's frustum",
                     kMaxDepthMapSide, kMaxDepthMapSide);
-    char buf[480];
+    char grid[96] = "";
+    if (hiddenSearchGrid > 1)
+      std::snprintf(grid, sizeof grid, " and no node of the %d x %d sub-grid that searches for it", hiddenSearchGrid,
+                    hiddenSearchGrid);
+    char buf[560];
     std::snprintf(buf, sizeof buf,
-                  "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre: it "
+                  "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre%s: it "
                   "casts no shadow at this resolution (%s)",
-                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, remedy);
+                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, grid, remedy);
     out.push_back(buf);
   }
   // Nothing in the frustum at all, and no object named above as clipped by the near plane.
