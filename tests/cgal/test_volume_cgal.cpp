@@ -134,11 +134,11 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
 
 // Refinement (refineSteps 3, the scene's Embree rays) on every shipped scene, two sizes, every
 // capture and every option combination it allows (the exact cap, flattened or not; the sub-grid
-// with the flattened one): valid closed volumes without coincident vertices (refinement needs no
-// pinch splits).
+// with the flattened one, and its search for hidden surfaces): valid closed volumes without
+// coincident vertices (refinement needs no pinch splits).
 TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
   const auto files = sceneFiles();
-  std::size_t builds = 0, refined = 0;
+  std::size_t builds = 0, refined = 0, hidden = 0;
   for (const auto& file : files) {
     const Scene& scene = cachedScene(file);
     const EmbreeDepthOracle oracle(scene);
@@ -165,22 +165,26 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           if (c.cap == 0) flatVolume = rep.volume;
           else EXPECT_NEAR(rep.volume, flatVolume, 1e-9 * (1 + flatVolume)) << what;  // same region, other cap
           if (c.cap != 0) continue;
-          // The sub-grid (flattened cap only): adaptive 4 x 4 at 32^2, 2 x 2 on every refined quad at 64^2.
+          // The sub-grid (flattened cap only): adaptive 4 x 4 at 32^2, 2 x 2 on every refined quad at 64^2;
+          // with its search for hidden surfaces.
           o.refineChords = false;
           o.refineSubdivisions = res == 32 ? 4 : 2;
           o.refineGridEverywhere = res == 64;
+          o.nearerSurfaces = oracle.nearerSurfaces();
           const auto g = buildVolume(map, o);
           const MeshCheckReport gr = checkMesh(g.mesh);
           ++builds;
           ASSERT_TRUE(gr.valid()) << what << " grid " << o.refineSubdivisions << ": " << gr.summary();
           EXPECT_EQ(gr.coincidentVertices, 0u) << what << " grid " << o.refineSubdivisions;
-          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells) << what;  // the same quads, cut finer
+          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells + g.stats.hiddenQuads) << what;  // and the hidden ones
+          hidden += g.stats.hiddenQuads;
           EXPECT_GE(g.stats.raysCast, g.stats.subgridSamples) << what;
         }
       }
   }
   EXPECT_EQ(builds, files.size() * 2 * 3 * (8 + 4));
   EXPECT_GT(refined, files.size() * 2 * 3 * 8 * 9 / 10);
+  EXPECT_GT(hidden, 0u);  // thin parts of the shipped scenes between texel centres at these sizes
 }
 
 // Random hit levels under a random oracle (hits on other levels, misses, anything): refined
@@ -259,6 +263,7 @@ TEST(VolumeCgal, NoSelfIntersectionsOnSmallCases) {
             vo.refineSubdivisions = steps == 40 ? 4 : 1;
             vo.depthOracle = oracle.oracle();
             vo.surfaceEnds = oracle.surfaceEnds();
+            vo.nearerSurfaces = oracle.nearerSurfaces();  // the sub-grid's search for hidden surfaces
             const auto r = buildVolume(map, vo);
             MeshCheckOptions o;
             o.selfIntersections = true;

@@ -137,9 +137,10 @@ TEST(Validation, RefinedVolumeMatchesCrossingCountsOnEveryScene) {
         SCOPED_TRACE(path.filename().string() + " refined " + toString(tri) + (blur ? " blur, chord points" : ""));
         expectConsistent(renderAndValidate(scene, ro));
         ++frames;
-        // And on the 4 x 4 sub-grid (no chord points).
+        // And on the 4 x 4 sub-grid (no chord points), with its search for hidden surfaces.
         ro.volumeOptions.refineChords = false;
         ro.volumeOptions.refineSubdivisions = 4;
+        ro.volumeOptions.nearerSurfaces = oracle.nearerSurfaces();
         SCOPED_TRACE("sub-grid 4");
         expectConsistent(renderAndValidate(scene, ro));
         ++frames;
