@@ -174,6 +174,43 @@ TEST(NearerSurfaces, EveryQuadWithACapturedCornerIsFlagged) {
     }
 }
 
+// A sliver 0.004 wide across the whole map at 45 degrees flags the quads along it: every quad its
+// centre line passes through, and none farther from that line than its width allows. (The search
+// walks the rows the image crosses, not its bounding box.) A wall edge-on to the light flags
+// nothing: no ray of the capture records it, and neither does a triangle without area.
+TEST(NearerSurfaces, ASliverAcrossTheMapFlagsTheQuadsAlongItAndAnEdgeOnWallNone) {
+  const DepthMap map = makeDepthMap(test::directionalDown(6.0), 256, 256, CaptureMode::Front);
+  TriangleMesh sliver;
+  sliver.positions = {{-3.9f, 1.0f, -3.9f}, {3.9f, 1.0f, 3.9f}, {3.904f, 1.0f, 3.9f}};
+  sliver.triangles = {{0, 1, 2}};
+  const std::vector<std::uint8_t> flags = search(map, sliver, limits(map, float(map.farPlane)));
+  const glm::dvec2 a = map.texelOf({-3.9, 1.0, -3.9}), b = map.texelOf({3.9, 1.0, 3.9});
+  std::vector<std::uint8_t> onLine(flags.size(), 0);
+  for (int k = 0; k <= 100000; ++k) {
+    const glm::dvec2 t = a + (b - a) * (k / 100000.0);
+    onLine[std::size_t(std::floor(t.y)) * 255 + std::size_t(std::floor(t.x))] = 1;
+  }
+  std::size_t flagged = 0;
+  for (int qj = 0; qj < 255; ++qj)
+    for (int qi = 0; qi < 255; ++qi) {
+      const std::size_t q = std::size_t(qj) * 255 + std::size_t(qi);
+      if (onLine[q]) EXPECT_TRUE(flags[q]) << qi << " " << qj;
+      flagged += flags[q];
+      if (!flags[q]) continue;
+      // The square's centre lies within half a diagonal plus the sliver's width of the line.
+      const glm::dvec2 c(qi + 0.5, qj + 0.5), d = glm::normalize(b - a);
+      const double off = std::abs((c.x - a.x) * d.y - (c.y - a.y) * d.x);
+      EXPECT_LE(off, std::sqrt(0.5) + 0.2) << qi << " " << qj;
+    }
+  EXPECT_LT(flagged, 3u * 255u);  // along the diagonal, not its bounding box (255 x 255)
+
+  TriangleMesh wall;  // the plane x = 0.3 from y = 0 to 2: edge-on to the light straight down
+  wall.positions = {{0.3f, 0.0f, -1.0f}, {0.3f, 2.0f, -1.0f}, {0.3f, 2.0f, 1.0f}, {0.3f, 0.0f, 1.0f}};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 2, 1}};  // both facings
+  const std::vector<std::uint8_t> none = search(map, wall, limits(map, float(map.farPlane)));
+  EXPECT_EQ(std::count(none.begin(), none.end(), std::uint8_t(1)), 0);
+}
+
 TEST(NearerSurfaces, DeterministicForAnyThreadCount) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-4.0f, 4.0f), h(-1.0f, 4.0f);

@@ -94,6 +94,32 @@ bool nearerInQuad(const Projection& p, const ImageCorner* poly, int n, int qi, i
   return m > 0 && nearestDepth(p, b.data(), m) < limit;
 }
 
+// The quad rows a polygon's image crosses (within `slack` texels), and in each the columns of the
+// quads it overlaps: f(qj, i0, i1) for each row qj with a nonempty range [i0, i1]. Row by row, so a
+// long thin triangle across the map visits the quads along it, not its bounding box.
+template <typename Row>
+void forEachQuadRow(const ImageCorner* poly, int n, int qw, int qh, double slack, Row f) {
+  double minY = 1e300, maxY = -1e300;
+  for (int k = 0; k < n; ++k) minY = std::min(minY, poly[k].y), maxY = std::max(maxY, poly[k].y);
+  if (!(maxY + slack >= 0.0 && minY - slack <= qh)) return;  // off the grid (or NaN)
+  const int j0 = std::max(0, int(std::floor(minY - slack))), j1 = std::min(qh - 1, int(std::floor(maxY + slack)));
+  const auto lerp = [](const ImageCorner& u, const ImageCorner& v, double t) {
+    return ImageCorner{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y), u.a + t * (v.a - u.a)};
+  };
+  std::array<ImageCorner, kMaxCorners> a, b;
+  for (int qj = j0; qj <= j1; ++qj) {
+    const double y0 = qj - slack, y1 = qj + 1.0 + slack;
+    int m = clipPolygon(poly, n, a.data(), [&](const ImageCorner& c) { return c.y - y0; }, lerp);
+    if (m) m = clipPolygon(a.data(), m, b.data(), [&](const ImageCorner& c) { return y1 - c.y; }, lerp);
+    if (!m) continue;
+    double minX = 1e300, maxX = -1e300;
+    for (int k = 0; k < m; ++k) minX = std::min(minX, b[std::size_t(k)].x), maxX = std::max(maxX, b[std::size_t(k)].x);
+    if (!(maxX + slack >= 0.0 && minX - slack <= qw)) continue;
+    const int i0 = std::max(0, int(std::floor(minX - slack))), i1 = std::min(qw - 1, int(std::floor(maxX + slack)));
+    if (i0 <= i1) f(qj, i0, i1);
+  }
+}
+
 // One triangle (light-view corners) against the quads its image overlaps.
 void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int qw, int qh, std::span<const float> limit,
                   std::span<std::uint8_t> flags) {
@@ -103,23 +129,16 @@ void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int q
   if (n) n = clipPolygon(a.data(), n, b.data(), [&](const glm::dvec3& c) { return p.farDepth + c.z; }, lerp3);
   if (n < 3) return;
   std::array<ImageCorner, kMaxCorners> poly;
-  double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
-  for (int k = 0; k < n; ++k) {
-    poly[std::size_t(k)] = p.image(b[std::size_t(k)]);
-    minX = std::min(minX, poly[std::size_t(k)].x), maxX = std::max(maxX, poly[std::size_t(k)].x);
-    minY = std::min(minY, poly[std::size_t(k)].y), maxY = std::max(maxY, poly[std::size_t(k)].y);
-  }
-  if (!(maxX >= 0.0 && maxY >= 0.0 && minX <= qw && minY <= qh)) return;  // off the grid (or NaN)
+  for (int k = 0; k < n; ++k) poly[std::size_t(k)] = p.image(b[std::size_t(k)]);
   const double nearest = nearestDepth(p, poly.data(), n);
-  const int i0 = std::max(0, int(std::floor(minX))), i1 = std::min(qw - 1, int(std::floor(maxX)));
-  const int j0 = std::max(0, int(std::floor(minY))), j1 = std::min(qh - 1, int(std::floor(maxY)));
-  for (int qj = j0; qj <= j1; ++qj)
+  forEachQuadRow(poly.data(), n, qw, qh, 0.0, [&](int qj, int i0, int i1) {
     for (int qi = i0; qi <= i1; ++qi) {
       const std::size_t q = std::size_t(qj) * std::size_t(qw) + std::size_t(qi);
       std::atomic_ref<std::uint8_t> flag(flags[q]);
       if (!(nearest < limit[q]) || flag.load(std::memory_order_relaxed)) continue;
       if (nearerInQuad(p, poly.data(), n, qi, qj, limit[q])) flag.store(1, std::memory_order_relaxed);
     }
+  });
 }
 
 // A vertex's image in float, for the quick test that rejects most triangles before the exact one:
@@ -151,15 +170,14 @@ bool mayBeNearer(const VertexImage& a, const VertexImage& b, const VertexImage& 
     const double extent = double(maxX - minX) + double(maxY - minY) + slack;
     if (area > 1e-4 * extent * extent) return false;  // counter-clockwise in the image: facing the light
   }
-  if (!(maxX + slack >= 0.0f && maxY + slack >= 0.0f && minX - slack <= float(qw) && minY - slack <= float(qh)))
-    return false;
-  const int i0 = std::max(0, int(std::floor(minX - slack))), i1 = std::min(qw - 1, int(std::floor(maxX + slack)));
-  const int j0 = std::max(0, int(std::floor(minY - slack))), j1 = std::min(qh - 1, int(std::floor(maxY + slack)));
   const float below = nearest * (1.0f - 1e-5f);
-  for (int qj = j0; qj <= j1; ++qj)
-    for (int qi = i0; qi <= i1; ++qi)
-      if (below < limit[std::size_t(qj) * std::size_t(qw) + std::size_t(qi)]) return true;
-  return false;
+  const std::array<ImageCorner, 3> tri{ImageCorner{a.x, a.y, 0.0}, ImageCorner{b.x, b.y, 0.0}, ImageCorner{c.x, c.y, 0.0}};
+  bool may = false;
+  forEachQuadRow(tri.data(), 3, qw, qh, slack, [&](int qj, int i0, int i1) {
+    // (Rows after the first quad that may hold it only cost their clipping.)
+    for (int qi = i0; qi <= i1 && !may; ++qi) may = below < limit[std::size_t(qj) * std::size_t(qw) + std::size_t(qi)];
+  });
+  return may;
 }
 
 }  // namespace
@@ -200,13 +218,14 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
         // Nearest depth first: most triangles lie on or behind the sheet.
         const double nearest = -std::max({v[0].z, v[1].z, v[2].z});
         if (!(nearest < double(maxLimit)) || -std::min({v[0].z, v[1].z, v[2].z}) < p.nearDepth) continue;
-        if (backOnly) {
-          // Facing away from the light: the normal of the counter-clockwise front points along the
-          // light's ray (from the apex through the triangle; -z for a directional light).
-          const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-          const double along = p.perspective ? glm::dot(n, v[0]) : -n.z;
-          if (!(along > 0.0)) continue;
-        }
+        // The capture's facing rule: back capture records only triangles facing away from the light
+        // (the normal of the counter-clockwise front along the ray from the apex through the
+        // triangle; -z for a directional light); no capture records one edge-on to the light or
+        // without area (the cosine of normal and ray below 1e-9: its image has no area).
+        const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+        const glm::dvec3 ray = p.perspective ? v[0] : glm::dvec3(0.0, 0.0, -1.0);
+        const double along = glm::dot(n, ray), edgeOn = 1e-9 * glm::length(n) * glm::length(ray);
+        if (backOnly ? !(along > edgeOn) : !(std::abs(along) > edgeOn)) continue;
         flagTriangle(p, v, qw, qh, limit, flags);
       }
     });
