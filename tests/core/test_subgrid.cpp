@@ -214,6 +214,33 @@ TEST(SubGrid, HiddenSurfaceSearchWallsABarThatNoTexelCentreSees) {
   }
 }
 
+// A bar over the ground that only the centre node of its quads sees (S = 2: nodes every 0.125, the
+// bar 0.08 wide round x = 0): the discontinuity rule on the lattice takes, beyond the ground node at
+// the lattice's edge, the texel grid's step (flat ground), so the bar's sub-edges are split and its
+// walls stand beside it; before, only the bar's own step down on its far side counted, the jump
+// looked like a steep slope, and the sheet sloped from the bar to the texel centres over the lit
+// ground. Front and midpoint capture (both record the ground).
+TEST(SubGrid, AFeatureOneNodeWideAtTheLatticesEdgeIsWalled) {
+  AnalyticScene s;
+  s.boxes.push_back({{0.0, 1.5, 0.3}, {0.04, 0.05, 1.0}, 0.0});
+  s.ground = true;
+  for (CaptureMode mode : {CaptureMode::Front, CaptureMode::Midpoint}) {
+    const DepthMap map = s.depthMap(test::directionalDown(6.0), 32, 32, mode);
+    VolumeBuildOptions o;
+    o.refineSteps = 6;
+    o.refineSubdivisions = 2;
+    o.depthOracle = s.oracle();
+    o.nearerSurfaces = s.nearerSurfaces();
+    o.bias = 0.0;
+    const VolumeBuildResult v = buildVolume(map, o);
+    ASSERT_TRUE(closedOrientedManifold(v.mesh)) << toString(mode);
+    EXPECT_GE(v.stats.hiddenQuads, 8u) << toString(mode);
+    EXPECT_TRUE(inside(v.mesh, {0.0, 0.5, 0.3})) << toString(mode);     // under the bar
+    EXPECT_FALSE(inside(v.mesh, {0.07, 0.5, 0.3})) << toString(mode);   // beside it, over lit ground
+    EXPECT_FALSE(inside(v.mesh, {-0.07, 0.5, 0.3})) << toString(mode);
+  }
+}
+
 // Every option the sub-grid takes, on a sphere and a box over the ground, plates and a bar between
 // the texel centres (these two with the search for hidden surfaces), spot and directional lights,
 // every capture: closed oriented manifolds, and the unrefined quads next to the sub-grid split at

@@ -493,11 +493,30 @@ class SubgridBuilder {
     }
   }
 
-  // The depth step from node `at` to the lattice node (fi, fj) next to it (-1: none there, or far).
+  // The depth step from node `at` to the lattice node (fi, fj) next to it (-1: far there, or off
+  // the map). Where the lattice ends (the next quad is not refined) the step is the texel grid's
+  // own along the same axis, divided by S: at a texel centre the step to the next texel centre,
+  // between two (a side's node) the interpolation of the steps of the side's two corners. Without
+  // it a feature one node wide at the lattice's edge (a thin rod a hidden quad's centre node sees,
+  // S = 2) showed only its own step back down on its far side and was taken for a steep slope.
   double stepTo(const Node& at, std::int64_t fi, std::int64_t fj) const {
     const std::uint32_t k = nodeAt(fi, fj);
-    if (k == kNone || nodes_[k].far) return -1.0;
-    return std::abs(nodes_[k].rule - at.rule);
+    if (k != kNone) return nodes_[k].far ? -1.0 : std::abs(nodes_[k].rule - at.rule);
+    const bool alongI = fi != at.fi;  // the step's axis
+    const std::int64_t along = alongI ? at.fi : at.fj, across = alongI ? at.fj : at.fi;
+    if (along < 0 || across < 0 || along % s_ != 0) return -1.0;  // (always on a grid line here)
+    const int t = int(along / s_), dir = int((alongI ? fi : fj) - along), c0 = int(across / s_);
+    const double f = double(across % s_) / s_;
+    const int w = map_.width, h = map_.height;
+    double step = 0.0;
+    for (int c = c0; c <= c0 + (f > 0.0 ? 1 : 0); ++c) {
+      const int i0 = alongI ? t : c, j0 = alongI ? c : t, i1 = alongI ? t + dir : c, j1 = alongI ? c : t + dir;
+      if (i1 < 0 || j1 < 0 || i1 >= w || j1 >= h || i0 >= w || j0 >= h) return -1.0;
+      const double d0 = sheet_.at(i0, j0), d1 = sheet_.at(i1, j1);
+      if (d0 == farPlane_ || d1 == farPlane_) return -1.0;
+      step += (c == c0 ? 1.0 - f : f) * std::abs(unblurred(i1, j1, d1) - unblurred(i0, j0, d0));
+    }
+    return step / s_;
   }
 
   // boundary_edges.h's rules on the lattice, with the texel footprint divided by S.
