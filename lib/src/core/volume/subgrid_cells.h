@@ -23,7 +23,8 @@
 // As in boundary_edges.h, the rule reads depths without the blur's averaging (a corner's own
 // sample, a virtual node's interpolation of those); the blurred depths only place vertices.
 // The discontinuity rule's steps beyond a sub-edge's ends are those to the next lattice nodes,
-// virtual ones included: a straight interpolation is flatter than a round object's rim, so a few
+// virtual ones included, and where the lattice ends (an unrefined quad beyond) the texel grid's
+// step along that axis divided by S (stepTo): a straight interpolation is flatter than a round object's rim, so a few
 // sub-edges just inside a rim are split as surface edges (harmless, as boundary_edges.h says). Folds are prevented as for the
 // texel grid (boundary_edges.h, keepWallsUnfolded), per sub-cell. Bisection takes `steps` rays per
 // boundary sub-edge, and ambiguous sub-cells (3 or 4 boundary sides) one ray at their centre.
