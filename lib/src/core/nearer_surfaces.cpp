@@ -36,6 +36,10 @@ struct ImageCorner {
   double x, y, a;
 };
 
+ImageCorner lerpCorner(const ImageCorner& u, const ImageCorner& v, double t) {
+  return {u.x + t * (v.x - u.x), u.y + t * (v.y - u.y), u.a + t * (v.a - u.a)};
+}
+
 // Sutherland-Hodgman: the part of the polygon `in` (n corners) where s(corner) >= 0, for an s that
 // is linear along the polygon's sides.
 template <typename Corner, typename Side, typename Lerp>
@@ -83,9 +87,7 @@ double nearestDepth(const Projection& p, const ImageCorner* c, int n) {
 // Whether the polygon has a point in the square [qi, qi + 1] x [qj, qj + 1] nearer than `limit`.
 bool nearerInQuad(const Projection& p, const ImageCorner* poly, int n, int qi, int qj, double limit) {
   std::array<ImageCorner, kMaxCorners> a, b;
-  const auto lerp = [](const ImageCorner& u, const ImageCorner& v, double t) {
-    return ImageCorner{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y), u.a + t * (v.a - u.a)};
-  };
+  const auto lerp = lerpCorner;
   const double x0 = qi, x1 = qi + 1.0, y0 = qj, y1 = qj + 1.0;
   int m = clipPolygon(poly, n, a.data(), [&](const ImageCorner& c) { return c.x - x0; }, lerp);
   if (m) m = clipPolygon(a.data(), m, b.data(), [&](const ImageCorner& c) { return x1 - c.x; }, lerp);
@@ -103,9 +105,7 @@ void forEachQuadRow(const ImageCorner* poly, int n, int qw, int qh, double slack
   for (int k = 0; k < n; ++k) minY = std::min(minY, poly[k].y), maxY = std::max(maxY, poly[k].y);
   if (!(maxY + slack >= 0.0 && minY - slack <= qh)) return;  // off the grid (or NaN)
   const int j0 = std::max(0, int(std::floor(minY - slack))), j1 = std::min(qh - 1, int(std::floor(maxY + slack)));
-  const auto lerp = [](const ImageCorner& u, const ImageCorner& v, double t) {
-    return ImageCorner{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y), u.a + t * (v.a - u.a)};
-  };
+  const auto lerp = lerpCorner;
   std::array<ImageCorner, kMaxCorners> a, b;
   for (int qj = j0; qj <= j1; ++qj) {
     const double y0 = qj - slack, y1 = qj + 1.0 + slack;
