@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <sstream>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 #include <glm/geometric.hpp>
 
@@ -22,6 +19,7 @@
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/grid_unprojector.h"
+#include "volume/hidden_quads.h"
 #include "volume/quad_codes.h"
 #include "volume/refined_cells.h"
 #include "volume/sheet_depths.h"
@@ -292,48 +290,6 @@ bool searchesHidden(const VolumeBuildOptions& options) {
   return options.refineSubdivisions > 1 && options.refineHidden && options.nearerSurfaces && options.depthOracle;
 }
 
-// Stage 1h (the sub-grid's search for hidden surfaces, nearer_surfaces.h): the quads without a
-// boundary side whose square holds a surface the capture records nearer than every corner's sample
-// by more than the discontinuity rule's floor (kJumpFootprints texel footprints at that sample's
-// depth: a sample there would make a boundary edge), or, with every corner far, any surface short
-// of the far plane; marked with kHiddenQuadBit in splitBits, in quad order. The samples are read as
-// the boundary-edge rule reads them (SheetDepthRule::fromStored, the ring far), without the bias.
-std::vector<std::uint32_t> findHiddenQuads(const volume::SheetDepths& sheet, const VolumeBuildOptions& options,
-                                           std::uint8_t* splitBits) {
-  const DepthMap& map = sheet.map();
-  const SheetDepthRule& rule = sheet.rule();
-  const int w = map.width, qw = w - 1, qh = map.height - 1;
-  constexpr float kNone = -std::numeric_limits<float>::infinity();
-  const TexelFootprint footprint = TexelFootprint::of(map);
-  std::vector<float> limit(std::size_t(qw) * std::size_t(qh), kNone);
-  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
-    const auto sample = [&](int i, int j) {  // the captured depth, +inf where the sheet is far
-      if (SheetDepthRule::ring(i, j, w, map.height)) return std::numeric_limits<double>::infinity();
-      const double u = rule.fromStored(map.at(i, j));
-      return u < rule.farPlane ? u - rule.bias : std::numeric_limits<double>::infinity();
-    };
-    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
-      const std::uint8_t* lower = splitBits + std::size_t(qj) * w;
-      const std::uint8_t* upper = lower + w;
-      for (int qi = 0; qi < qw; ++qi) {
-        if ((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1)) continue;  // refined already
-        const double m = std::min({sample(qi, qj), sample(qi + 1, qj), sample(qi, qj + 1), sample(qi + 1, qj + 1)});
-        limit[std::size_t(qj) * qw + qi] =
-            float(std::isinf(m) ? rule.farSnap - rule.bias : m - kJumpFootprints * footprint.at(m));
-      }
-    }
-  });
-  std::vector<std::uint8_t> flags(limit.size(), 0);
-  options.nearerSurfaces(map, limit, flags);
-  std::vector<std::uint32_t> hidden;
-  for (std::size_t q = 0; q < flags.size(); ++q) {
-    if (!flags[q] || limit[q] == kNone) continue;
-    hidden.push_back(std::uint32_t(q));
-    splitBits[(q / std::size_t(qw)) * std::size_t(w) + q % std::size_t(qw)] |= volume::kHiddenQuadBit;
-  }
-  return hidden;
-}
-
 // Stage 1r: the boundary edges (the options' source, else findBoundaryEdges' rule), their bits per
 // texel in splitBits (resized to the map), the hidden quads (stage 1h) and the quads they all touch.
 RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBuildOptions& options,
@@ -348,7 +304,7 @@ RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBui
   std::vector<std::uint32_t> hidden;
   if (searchesHidden(options)) {
     const auto t0 = volume::Clock::now();
-    hidden = findHiddenQuads(sheet, options, splitBits.data());
+    hidden = volume::findHiddenQuads(sheet, options.nearerSurfaces, splitBits.data());
     found.msHidden = volume::msSince(t0);
   }
   found.hiddenQuads = hidden.size();

@@ -1,0 +1,51 @@
+#include "volume/hidden_quads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/boundary_edges.h"
+#include "volume/quad_codes.h"
+
+namespace shadowvol::volume {
+
+std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const NearerSurfaceOracle& search,
+                                           std::uint8_t* splitBits) {
+  const DepthMap& map = sheet.map();
+  const SheetDepthRule& rule = sheet.rule();
+  const int w = map.width, qw = w - 1, qh = map.height - 1;
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  const TexelFootprint footprint = TexelFootprint::of(map);
+  std::vector<float> limit(std::size_t(qw) * std::size_t(qh), kNone);
+  tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
+    const auto sample = [&](int i, int j) {  // the captured depth, +inf where the sheet is far
+      if (SheetDepthRule::ring(i, j, w, map.height)) return std::numeric_limits<double>::infinity();
+      const double u = rule.fromStored(map.at(i, j));
+      return u < rule.farPlane ? u - rule.bias : std::numeric_limits<double>::infinity();
+    };
+    for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      const std::uint8_t* lower = splitBits + std::size_t(qj) * w;
+      const std::uint8_t* upper = lower + w;
+      for (int qi = 0; qi < qw; ++qi) {
+        if ((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1)) continue;  // refined already
+        const double m = std::min({sample(qi, qj), sample(qi + 1, qj), sample(qi, qj + 1), sample(qi + 1, qj + 1)});
+        limit[std::size_t(qj) * qw + qi] =
+            float(std::isinf(m) ? rule.farSnap - rule.bias : m - kJumpFootprints * footprint.at(m));
+      }
+    }
+  });
+  std::vector<std::uint8_t> flags(limit.size(), 0);
+  search(map, limit, flags);
+  std::vector<std::uint32_t> hidden;
+  for (std::size_t q = 0; q < flags.size(); ++q) {
+    if (!flags[q] || limit[q] == kNone) continue;
+    hidden.push_back(std::uint32_t(q));
+    splitBits[(q / std::size_t(qw)) * std::size_t(w) + q % std::size_t(qw)] |= kHiddenQuadBit;
+  }
+  return hidden;
+}
+
+}  // namespace shadowvol::volume

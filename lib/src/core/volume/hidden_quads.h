@@ -1,0 +1,25 @@
+// Stage 1h of the volume builder (the sub-grid's search for hidden surfaces, docs/volume.md
+// "Hidden surfaces"; the geometry in shadowvol/nearer_surfaces.h): which quads without a boundary
+// edge hide an occluder that no texel centre sees, so that the sub-grid samples them too.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shadowvol/depth_oracle.h"
+#include "volume/sheet_depths.h"
+
+namespace shadowvol::volume {
+
+/// The quads without a boundary side (splitBits' bits 0 and 1, findBoundaryEdges) whose square
+/// holds a surface the capture records nearer than every corner's sample by more than the
+/// discontinuity rule's floor (kJumpFootprints texel footprints at that sample's depth: a sample
+/// there would make a boundary edge), or, with every corner far, any surface short of the far
+/// plane, as `search` finds them (EmbreeDepthOracle::nearerSurfaces); each is marked with
+/// kHiddenQuadBit in splitBits (at its lower-left texel), and returned in quad order. The samples
+/// are read as the boundary-edge rule reads them (SheetDepthRule::fromStored, the ring far),
+/// without the bias.
+std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const NearerSurfaceOracle& search,
+                                           std::uint8_t* splitBits);
+
+}  // namespace shadowvol::volume
