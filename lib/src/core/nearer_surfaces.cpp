@@ -97,14 +97,23 @@ bool nearerInQuad(const Projection& p, const ImageCorner* poly, int n, int qi, i
 }
 
 // The quad rows a polygon's image crosses (within `slack` texels), and in each the columns of the
-// quads it overlaps: f(qj, i0, i1) for each row qj with a nonempty range [i0, i1]. Row by row, so a
-// long thin triangle across the map visits the quads along it, not its bounding box.
+// quads it overlaps: f(qj, i0, i1) for each row qj with a nonempty range [i0, i1]. A small image
+// (most triangles) takes its bounding box's quads; a larger one row by row, so that a long thin
+// triangle across the map visits the quads along it, not its bounding box.
 template <typename Row>
 void forEachQuadRow(const ImageCorner* poly, int n, int qw, int qh, double slack, Row f) {
-  double minY = 1e300, maxY = -1e300;
-  for (int k = 0; k < n; ++k) minY = std::min(minY, poly[k].y), maxY = std::max(maxY, poly[k].y);
-  if (!(maxY + slack >= 0.0 && minY - slack <= qh)) return;  // off the grid (or NaN)
+  double minX = 1e300, maxX = -1e300, minY = 1e300, maxY = -1e300;
+  for (int k = 0; k < n; ++k) {
+    minX = std::min(minX, poly[k].x), maxX = std::max(maxX, poly[k].x);
+    minY = std::min(minY, poly[k].y), maxY = std::max(maxY, poly[k].y);
+  }
+  if (!(maxX + slack >= 0.0 && maxY + slack >= 0.0 && minX - slack <= qw && minY - slack <= qh)) return;  // or NaN
   const int j0 = std::max(0, int(std::floor(minY - slack))), j1 = std::min(qh - 1, int(std::floor(maxY + slack)));
+  const int b0 = std::max(0, int(std::floor(minX - slack))), b1 = std::min(qw - 1, int(std::floor(maxX + slack)));
+  if ((j1 - j0 + 1) * (b1 - b0 + 1) <= 16) {
+    for (int qj = j0; qj <= j1; ++qj) f(qj, b0, b1);
+    return;
+  }
   const auto lerp = lerpCorner;
   std::array<ImageCorner, kMaxCorners> a, b;
   for (int qj = j0; qj <= j1; ++qj) {
@@ -112,10 +121,10 @@ void forEachQuadRow(const ImageCorner* poly, int n, int qw, int qh, double slack
     int m = clipPolygon(poly, n, a.data(), [&](const ImageCorner& c) { return c.y - y0; }, lerp);
     if (m) m = clipPolygon(a.data(), m, b.data(), [&](const ImageCorner& c) { return y1 - c.y; }, lerp);
     if (!m) continue;
-    double minX = 1e300, maxX = -1e300;
-    for (int k = 0; k < m; ++k) minX = std::min(minX, b[std::size_t(k)].x), maxX = std::max(maxX, b[std::size_t(k)].x);
-    if (!(maxX + slack >= 0.0 && minX - slack <= qw)) continue;
-    const int i0 = std::max(0, int(std::floor(minX - slack))), i1 = std::min(qw - 1, int(std::floor(maxX + slack)));
+    double lo = 1e300, hi = -1e300;
+    for (int k = 0; k < m; ++k) lo = std::min(lo, b[std::size_t(k)].x), hi = std::max(hi, b[std::size_t(k)].x);
+    if (!(hi + slack >= 0.0 && lo - slack <= qw)) continue;
+    const int i0 = std::max(0, int(std::floor(lo - slack))), i1 = std::min(qw - 1, int(std::floor(hi + slack)));
     if (i0 <= i1) f(qj, i0, i1);
   }
 }
