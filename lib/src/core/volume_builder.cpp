@@ -304,7 +304,7 @@ RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBui
   std::vector<std::uint32_t> hidden;
   if (searchesHidden(options)) {
     const auto t0 = volume::Clock::now();
-    hidden = volume::findHiddenQuads(sheet, options.nearerSurfaces, splitBits.data());
+    hidden = volume::findHiddenQuads(sheet, options.nearerSurfaces, options.refineSubdivisions, splitBits.data());
     found.msHidden = volume::msSince(t0);
   }
   found.hiddenQuads = hidden.size();

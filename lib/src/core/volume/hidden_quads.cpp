@@ -13,7 +13,7 @@
 namespace shadowvol::volume {
 
 std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const NearerSurfaceOracle& search,
-                                           std::uint8_t* splitBits) {
+                                           int subdivisions, std::uint8_t* splitBits) {
   const DepthMap& map = sheet.map();
   const SheetDepthRule& rule = sheet.rule();
   const int w = map.width, qw = w - 1, qh = map.height - 1;
@@ -33,7 +33,7 @@ std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const Neare
         if ((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1)) continue;  // refined already
         const double m = std::min({sample(qi, qj), sample(qi + 1, qj), sample(qi, qj + 1), sample(qi + 1, qj + 1)});
         limit[std::size_t(qj) * qw + qi] =
-            float(std::isinf(m) ? rule.farSnap - rule.bias : m - kJumpFootprints * footprint.at(m));
+            float(std::isinf(m) ? rule.farSnap - rule.bias : m - kJumpFootprints * footprint.at(m) / subdivisions);
       }
     }
   });

@@ -12,14 +12,15 @@
 namespace shadowvol::volume {
 
 /// The quads without a boundary side (splitBits' bits 0 and 1, findBoundaryEdges) whose square
-/// holds a surface the capture records nearer than every corner's sample by more than the
-/// discontinuity rule's floor (kJumpFootprints texel footprints at that sample's depth: a sample
-/// there would make a boundary edge), or, with every corner far, any surface short of the far
-/// plane, as `search` finds them (EmbreeDepthOracle::nearerSurfaces); each is marked with
-/// kHiddenQuadBit in splitBits (at its lower-left texel), and returned in quad order. The samples
-/// are read as the boundary-edge rule reads them (SheetDepthRule::fromStored, the ring far),
-/// without the bias.
+/// holds a surface the capture records nearer than every corner's sample by more than the floor of
+/// the discontinuity rule on an S x S sub-grid (kJumpFootprints texel footprints at that sample's
+/// depth, divided by S = `subdivisions`: what a sub-grid sample there needs to make a boundary
+/// sub-edge with that corner; a nearer limit would flag quads whose sub-grid finds nothing, a farther
+/// one would miss what it resolves), or, with every corner far, any surface short of the far plane,
+/// as `search` finds them (EmbreeDepthOracle::nearerSurfaces); each is marked with kHiddenQuadBit in
+/// splitBits (at its lower-left texel), and returned in quad order. The samples are read as the
+/// boundary-edge rule reads them (SheetDepthRule::fromStored, the ring far), without the bias.
 std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const NearerSurfaceOracle& search,
-                                           std::uint8_t* splitBits);
+                                           int subdivisions, std::uint8_t* splitBits);
 
 }  // namespace shadowvol::volume
