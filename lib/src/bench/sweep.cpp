@@ -64,28 +64,29 @@ SweepMethod refined(CaptureMode capture) {
   return m;
 }
 
-// The refined explicit volume with its depth map from the light pass on every scene
-// (ExplicitDepth::LightPass): hybrid-refined/explicit before 2026-12-05.
-SweepMethod refinedLightPass() {
+// The refined explicit volume (back capture) with its depth map from one fixed source instead of
+// ExplicitDepth::Auto's choice: `key`, and `source` words for the description.
+SweepMethod refinedWithDepth(const char* key, gl::ExplicitDepth depth, const std::string& source) {
   SweepMethod m = refined(CaptureMode::Back);
-  m.key = "hybrid-refined-lightpass/explicit";
-  m.options.explicitDepth = gl::ExplicitDepth::LightPass;
+  m.key = key;
+  m.options.explicitDepth = depth;
   m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
-                  " rays per boundary edge, perfect triangulation), its depth map always from the light pass, " +
+                  " rays per boundary edge, perfect triangulation), its depth map " + source + ", " +
                   captureWords(CaptureMode::Back);
   return m;
 }
 
-// The refined explicit volume with its depth map from the scene's rays instead of the light pass
-// (ExplicitDepth::Rays: one ray per texel centre on the CPU, timed as the frame's light pass).
+// The light pass on every scene (ExplicitDepth::LightPass): hybrid-refined/explicit before 2026-12-05.
+SweepMethod refinedLightPass() {
+  return refinedWithDepth("hybrid-refined-lightpass/explicit", gl::ExplicitDepth::LightPass,
+                          "always from the light pass");
+}
+
+// The scene's rays instead of the light pass (ExplicitDepth::Rays: one ray per texel centre on the
+// CPU, timed as the frame's light pass).
 SweepMethod refinedRayDepth() {
-  SweepMethod m = refined(CaptureMode::Back);
-  m.key = "hybrid-refined-raycast/explicit";
-  m.options.explicitDepth = gl::ExplicitDepth::Rays;
-  m.description = "explicit volume with sub-texel silhouette refinement (" + std::to_string(kSweepRefineSteps) +
-                  " rays per boundary edge, perfect triangulation), its depth map ray-cast on the CPU (one ray per "
-                  "texel centre, no light pass), " + captureWords(CaptureMode::Back);
-  return m;
+  return refinedWithDepth("hybrid-refined-raycast/explicit", gl::ExplicitDepth::Rays,
+                          "ray-cast on the CPU (one ray per texel centre, no light pass)");
 }
 
 // The refined explicit volume with its crossings from the GPU's silhouette walk instead of rays
