@@ -38,7 +38,7 @@ void addLightFitOption(CLI::App& cmd, std::string& fit) {
                  "Light frustum: scene (fitted to the whole scene) or view (narrowed to the receivers the camera "
                  "sees: a spot light re-aims and narrows inside its cone, a directional light shrinks its window; "
                  "more texels where they show, a volume that depends on the camera)")
-      ->check(CLI::IsMember({"scene", "view"}))
+      ->check(CLI::IsMember(namesIn(kLightFitNames)))
       ->capture_default_str();
 }
 
@@ -120,7 +120,7 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_option("--triangulation", o.triangulation,
                  "Quad diagonals: perfect (per quad, the diagonal avoids the odd vertex: smoother shadow edges) or "
                  "fixed (one diagonal everywhere, the thesis's strips)")
-      ->check(CLI::IsMember({"fixed", "perfect"}))
+      ->check(CLI::IsMember(namesIn(kTriangulationNames)))
       ->capture_default_str();
   cmd.add_flag("--blur", o.blur, "Depth blurring: each depth becomes the mean of 9 bilinear samples 1.5 texels apart");
   cmd.add_option("--blur-offset", o.blurOffset,
@@ -132,7 +132,7 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_option("--cap", o.cap,
                  "Far cap: exact (drop far-plane parts, close each region with a flattened far cap) or quad (the "
                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
-      ->check(CLI::IsMember({"exact", "quad"}))
+      ->check(CLI::IsMember(namesIn(kFarCapNames)))
       ->capture_default_str();
   cmd.add_flag("--chord-points", o.chordPoints,
                "With --refine: bend the wall of each quad with two boundary edges at one more crossing inside it (K "
@@ -212,7 +212,7 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
                   "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
                   "first surface, pushed back by a bias: records open meshes) or midpoint (the mean of the first two "
                   "surfaces; the far plane stands in for a missing second one) (README 'Capture modes')")
-      ->check(CLI::IsMember({"auto", "back", "front", "midpoint"}))
+      ->check(CLI::IsMember(namesIn(kCaptureModeNames, {"auto"})))
       ->capture_default_str();
 }
 
@@ -220,7 +220,8 @@ ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene) {
   ResolvedCapture r;
   if (capture != "auto") {
     if (!parseCaptureMode(capture, r.mode))
-      throw InputError("command line", "--capture", capture, "must be auto, back, front or midpoint");
+      throw InputError("command line", "--capture", capture,
+                       "must be " + choicesText(namesIn(kCaptureModeNames, {"auto"})));
     return r;
   }
   const CaptureChoice c = chooseCapture(scene);

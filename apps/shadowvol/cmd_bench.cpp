@@ -117,7 +117,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
                   "Light fits, each a set of cells, separated by spaces or commas: scene (default), view (the light "
                   "fitted to each scene's camera for each resolution; results name the scene <scene>@view)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"scene", "view"}));
+      ->check(CLI::IsMember(namesIn(kLightFitNames)));
   cmd->add_option("--resolutions", o->resolutions, "Depth-map sizes N (N x N; for a point light each cube face is N x N), separated by spaces or commas")
       ->delimiter(',')
       ->capture_default_str();

@@ -31,13 +31,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "volumes of the closed objects; open sheets only receive), dpsm (a point light's dual-paraboloid "
                  "shadow map: two maps of round(N * sqrt(3))^2 texels for --resolution N, the cube map's texel "
                  "count; back or front capture), none (no shadows)")
-      ->check(CLI::IsMember({"hybrid", "shadowmap", "pcf3", "pcf5", "silhouette", "dpsm", "none"}))
+      ->check(CLI::IsMember(namesIn(kShadowMethodNames)))
       ->capture_default_str();
   cmd.add_option("--volume", o.volume,
                  "hybrid: gpu (drawn straight from the depth texture, no read-back: production), explicit (depth "
                  "read back, the CPU-built mesh uploaded) or auto (gpu; for a point light its GPU cube volume, with "
                  "--refine its six refined face volumes)")
-      ->check(CLI::IsMember({"auto", "gpu", "explicit"}))
+      ->check(CLI::IsMember(namesIn(kVolumeSourceNames, {"auto"})))
       ->capture_default_str();
   cmd.add_option("--gpu-draw", o.gpuDraw,
                  "hybrid with --volume gpu and the exact cap: auto (= indexed with GL 4.3, else kept-quads), indexed "
@@ -47,7 +47,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "expands the others; GL 3.3), compute-mesh (a compute pass builds the kept quads' triangles, GL "
                  "4.3), all-quads (every quad through the geometry shader); same stencil (docs/gpu.md 'Skipping the "
                  "far quads')")
-      ->check(CLI::IsMember({"auto", "indexed", "kept-quads", "compute-mesh", "all-quads"}))
+      ->check(CLI::IsMember(namesIn(kGpuVolumeDrawNames, {}, {GpuVolumeDraw::Refined})))
       ->capture_default_str();
   cmd.add_option("--crossings", o.crossings,
                  "With --refine K: where refinement finds each boundary edge's crossing: rays (K bisection rays "
@@ -58,7 +58,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "bisection rays as 'rays', cast on the GPU through a hierarchy of the scene's triangles; back or "
                  "front capture; docs/gpu.md 'Crossings from GPU rays'); auto: rays for --volume explicit, "
                  "gpu-rays for --volume gpu")
-      ->check(CLI::IsMember({"auto", "rays", "gpu-walk", "gpu-rays"}))
+      ->check(CLI::IsMember(namesIn(kRefineCrossingsNames, {"auto"})))
       ->capture_default_str();
   cmd.add_option("--depth-from", o.depthFrom,
                  "hybrid with --volume explicit: where its depth map comes from: gpu (the light pass, read back), "
@@ -66,13 +66,13 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "read-back; on a software GL such as llvmpipe cheaper than rasterising the scene once more at "
                  "small maps) or auto (rays with --refine on a software GL where the scene has at least 0.75 "
                  "triangles per texel, else gpu; README 'Depth map from rays')")
-      ->check(CLI::IsMember({"auto", "gpu", "rays"}))
+      ->check(CLI::IsMember(namesIn(kExplicitDepthNames)))
       ->capture_default_str();
   cmd.add_option("--count", o.count,
                  "hybrid: how the stencil counts the volume: auto (z-pass without the far cap where the camera's "
                  "near rectangle provably lies outside the volume, else z-fail), zfail (always, with the cap), zpass "
                  "(refused where not provably safe); the same stencil where the light reaches (docs/gpu.md)")
-      ->check(CLI::IsMember({"auto", "zfail", "zpass"}))
+      ->check(CLI::IsMember(namesIn(kVolumeCountOptionNames)))
       ->capture_default_str();
   cmd.add_option("--resolution", o.resolution,
                  "Light depth map size N (N x N texels; a point light: six faces of N x N, N up to " +
@@ -127,11 +127,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::
   gl::RenderOptions ro;
   gl::parseShadowMethod(o.method, ro.method);
   gl::parseVolumeSource(o.volume == "auto" ? "gpu" : o.volume, ro.volume);  // auto: the GPU volume
-  ro.gpuVolumeDraw = o.gpuDraw == "indexed"        ? gl::GpuVolumeDraw::Indexed
-                     : o.gpuDraw == "kept-quads"   ? gl::GpuVolumeDraw::KeptQuads
-                     : o.gpuDraw == "compute-mesh" ? gl::GpuVolumeDraw::ComputeMesh
-                     : o.gpuDraw == "all-quads"    ? gl::GpuVolumeDraw::AllQuads
-                                                   : gl::GpuVolumeDraw::Auto;
+  parseGpuVolumeDraw(o.gpuDraw, ro.gpuVolumeDraw);
   gl::parseVolumeCount(o.count, ro.volumeCount);
   if (o.crossings != "auto") parseRefineCrossings(o.crossings, ro.refineCrossings);
   parseExplicitDepth(o.depthFrom, ro.explicitDepth);

@@ -43,7 +43,8 @@ CaptureMode captureModeArg(const std::string& text, const Scene* scene) {
   }
   CaptureMode mode;
   if (!parseCaptureMode(text, mode))
-    throw InputError("python", "capture", text, scene ? "expected auto, back, front or midpoint" : "expected back, front or midpoint");
+    throw InputError("python", "capture", text, "expected " + choicesText(namesIn(kCaptureModeNames, scene ? std::initializer_list<const char*>{"auto"}
+                                                                                    : std::initializer_list<const char*>{})));
   return mode;
 }
 

@@ -32,12 +32,12 @@ struct FrameArgs {
 gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   gl::RenderOptions ro;
   if (!gl::parseShadowMethod(a.method, ro.method))
-    throw InputError("python", "method", a.method, "expected hybrid, shadowmap, pcf3, pcf5, silhouette, dpsm or none");
-  if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected gpu or explicit");
+    throw InputError("python", "method", a.method, "expected " + choicesText(namesIn(kShadowMethodNames)));
+  if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected " + choicesText(namesIn(kVolumeSourceNames)));
   checkResolutionArg(a.resolution, "resolution");
   checkDepthMapSize(a.resolution, a.resolution, "python", "resolution");
   ro.depthWidth = ro.depthHeight = a.resolution;
-  if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected auto, zfail or zpass");
+  if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected " + choicesText(namesIn(kVolumeCountOptionNames)));
   // Arguments the method would ignore are refused, as the command line refuses their flags.
   const bool hybrid = ro.method == gl::ShadowMethod::Hybrid;
   const bool capturing = ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None;

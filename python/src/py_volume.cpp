@@ -23,8 +23,8 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
                                  bool chordPoints, int refineGrid, bool refineGridEverywhere, bool hiddenSearch) {
   VolumeBuildOptions o;
   if (!parseTriangulation(triangulation, o.triangulation))
-    throw InputError("python", "triangulation", triangulation, "expected perfect or fixed");
-  if (!parseFarCap(cap, o.cap)) throw InputError("python", "cap", cap, "expected exact or quad");
+    throw InputError("python", "triangulation", triangulation, "expected " + choicesText(namesIn(kTriangulationNames)));
+  if (!parseFarCap(cap, o.cap)) throw InputError("python", "cap", cap, "expected " + choicesText(namesIn(kFarCapNames)));
   o.blur = blur;
   o.blurOffset = blurOffset;
   o.bias = bias;

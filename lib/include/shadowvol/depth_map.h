@@ -19,14 +19,17 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "shadowvol/enum_names.h"
 #include "shadowvol/light.h"
 
 namespace shadowvol {
 
 enum class CaptureMode { Front, Back, Midpoint };
+inline constexpr EnumNames<CaptureMode, 3> kCaptureModeNames{
+    {{CaptureMode::Back, "back"}, {CaptureMode::Front, "front"}, {CaptureMode::Midpoint, "midpoint"}}};
 
 const char* toString(CaptureMode mode);
-/// Parses "front", "back" or "midpoint"; returns false for anything else.
+/// Parses "back", "front" or "midpoint"; returns false for anything else.
 bool parseCaptureMode(const std::string& text, CaptureMode& mode);
 
 struct DepthMap {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shadowvol/depth_map.h"
+#include "shadowvol/enum_names.h"
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
@@ -27,6 +28,10 @@ enum class ShadowMethod {
   Dpsm,       ///< a point light's dual-paraboloid shadow map (dual_paraboloid.h): two maps of
               ///< dualParaboloidSide(depthWidth)^2 texels, the cube map's texel count; one tap
 };
+inline constexpr EnumNames<ShadowMethod, 7> kShadowMethodNames{
+    {{ShadowMethod::Hybrid, "hybrid"}, {ShadowMethod::ShadowMap, "shadowmap"}, {ShadowMethod::Pcf3, "pcf3"},
+     {ShadowMethod::Pcf5, "pcf5"}, {ShadowMethod::Silhouette, "silhouette"}, {ShadowMethod::Dpsm, "dpsm"},
+     {ShadowMethod::None, "none"}}};
 const char* toString(ShadowMethod m);
 bool parseShadowMethod(const std::string& text, ShadowMethod& m);
 
@@ -34,6 +39,8 @@ enum class VolumeSource {
   Gpu,       ///< drawn straight from the depth texture, no read-back (production default)
   Explicit,  ///< depth read back, buildVolume() on the CPU, the mesh uploaded each frame
 };
+inline constexpr EnumNames<VolumeSource, 2> kVolumeSourceNames{
+    {{VolumeSource::Gpu, "gpu"}, {VolumeSource::Explicit, "explicit"}}};
 const char* toString(VolumeSource v);
 bool parseVolumeSource(const std::string& text, VolumeSource& v);
 
@@ -43,14 +50,22 @@ enum class VolumeCount {
   ZFail,  ///< z-fail with the far cap: right wherever the camera is (the depth clamp keeps the cap)
   ZPass,  ///< z-pass without the far cap; an InputError naming the reason where it is not safe
 };
-const char* toString(VolumeCount c);  ///< "auto", "z-fail", "z-pass"
-bool parseVolumeCount(const std::string& text, VolumeCount& c);  ///< "auto", "zfail", "zpass"
+/// As reports name them (toString) and as options spell them (parseVolumeCount, the command line's
+/// --count, the Python module's count).
+inline constexpr EnumNames<VolumeCount, 3> kVolumeCountNames{
+    {{VolumeCount::Auto, "auto"}, {VolumeCount::ZFail, "z-fail"}, {VolumeCount::ZPass, "z-pass"}}};
+inline constexpr EnumNames<VolumeCount, 3> kVolumeCountOptionNames{
+    {{VolumeCount::Auto, "auto"}, {VolumeCount::ZFail, "zfail"}, {VolumeCount::ZPass, "zpass"}}};
+const char* toString(VolumeCount c);  ///< kVolumeCountNames
+bool parseVolumeCount(const std::string& text, VolumeCount& c);  ///< kVolumeCountOptionNames
 
 enum class TimingMethod {
   GpuTimer,   ///< GL_TIME_ELAPSED queries, one per pass (hardware drivers)
   WallClock,  ///< glFinish before and after each pass, steady_clock in between (no timer queries,
               ///< a software rasteriser such as llvmpipe, or RenderOptions::forceWallClock)
 };
+inline constexpr EnumNames<TimingMethod, 2> kTimingMethodNames{
+    {{TimingMethod::GpuTimer, "gpu-timer-query"}, {TimingMethod::WallClock, "wall-clock-glfinish"}}};
 const char* toString(TimingMethod t);
 
 /// How the GPU volume is drawn. With the exact cap, quads whose four corners lie on the far plane
@@ -70,7 +85,14 @@ enum class GpuVolumeDraw {
   Refined,      ///< not a choice: what RenderResult::gpuVolumeDrawUsed says of a refined GPU volume
                 ///< (volumeOptions.refineSteps > 0: compute passes list its triangles, GL 4.3)
 };
+inline constexpr EnumNames<GpuVolumeDraw, 6> kGpuVolumeDrawNames{
+    {{GpuVolumeDraw::Auto, "auto"}, {GpuVolumeDraw::Indexed, "indexed"}, {GpuVolumeDraw::KeptQuads, "kept-quads"},
+     {GpuVolumeDraw::ComputeMesh, "compute-mesh"}, {GpuVolumeDraw::AllQuads, "all-quads"},
+     {GpuVolumeDraw::Refined, "refined"}}};
 const char* toString(GpuVolumeDraw d);
+/// Parses a choice of kGpuVolumeDrawNames: every name but "refined" (not a choice); false for
+/// anything else.
+bool parseGpuVolumeDraw(const std::string& text, GpuVolumeDraw& d);
 
 /// Where refinement finds its crossings (volumeOptions.refineSteps > 0). The explicit volume takes
 /// Rays or GpuWalk; the refined GPU volume (docs/gpu.md "The refined GPU volume") takes GpuWalk,
@@ -84,7 +106,9 @@ enum class RefineCrossings {
             ///< each cast on the GPU through a hierarchy of the scene's triangles (triangle_bvh.h,
             ///< docs/gpu.md "Crossings from GPU rays"); back or front capture
 };
-const char* toString(RefineCrossings c);  ///< "rays", "gpu-walk", "gpu-rays"
+inline constexpr EnumNames<RefineCrossings, 3> kRefineCrossingsNames{
+    {{RefineCrossings::Rays, "rays"}, {RefineCrossings::GpuWalk, "gpu-walk"}, {RefineCrossings::GpuRays, "gpu-rays"}}};
+const char* toString(RefineCrossings c);
 bool parseRefineCrossings(const std::string& text, RefineCrossings& c);
 
 /// Where the explicit volume's depth map comes from (hybrid, VolumeSource::Explicit, any light).
@@ -99,7 +123,9 @@ enum class ExplicitDepth {
   Rays,       ///< volumeOptions.depthOracle at every texel centre
   Auto,       ///< Rays where chooseExplicitDepth expects them to cost less, else LightPass
 };
-const char* toString(ExplicitDepth d);  ///< "gpu", "rays", "auto"
+inline constexpr EnumNames<ExplicitDepth, 3> kExplicitDepthNames{
+    {{ExplicitDepth::Auto, "auto"}, {ExplicitDepth::LightPass, "gpu"}, {ExplicitDepth::Rays, "rays"}}};
+const char* toString(ExplicitDepth d);
 bool parseExplicitDepth(const std::string& text, ExplicitDepth& d);
 
 struct RenderOptions {

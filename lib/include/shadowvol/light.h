@@ -7,12 +7,19 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "shadowvol/enum_names.h"
+
 namespace shadowvol {
 
 enum class LightType { Spot, Directional, Point };
 
 /// "spot", "directional", "point".
+inline constexpr EnumNames<LightType, 3> kLightTypeNames{
+    {{LightType::Spot, "spot"}, {LightType::Directional, "directional"}, {LightType::Point, "point"}}};
+
 const char* toString(LightType type);
+/// Parses "spot", "directional" or "point"; returns false for anything else.
+bool parseLightType(const std::string& text, LightType& type);
 
 struct Light {
   LightType type = LightType::Spot;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "shadowvol/camera.h"
+#include "shadowvol/enum_names.h"
 #include "shadowvol/light.h"
 #include "shadowvol/triangle_mesh.h"
 
@@ -128,6 +129,7 @@ std::vector<std::string> fitLightAndCamera(Scene& scene);
 /// How the light's frustum is fitted. Scene: to the whole scene as given (fitLightAndCamera, what
 /// loadScene does). View: narrowed to what the camera can see (fitLightToView).
 enum class LightFit { Scene, View };
+inline constexpr EnumNames<LightFit, 2> kLightFitNames{{{LightFit::Scene, "scene"}, {LightFit::View, "view"}}};
 const char* toString(LightFit fit);
 bool parseLightFit(const std::string& text, LightFit& fit);  ///< "scene" or "view"
 

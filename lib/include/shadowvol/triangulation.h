@@ -27,12 +27,17 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "shadowvol/enum_names.h"
+
 namespace shadowvol {
 
 enum class Triangulation {
   Fixed,    ///< diagonal B-D everywhere (the thesis's triangle strips)
   Perfect,  ///< per-quad choice by the plane-distance rule above
 };
+
+inline constexpr EnumNames<Triangulation, 2> kTriangulationNames{
+    {{Triangulation::Fixed, "fixed"}, {Triangulation::Perfect, "perfect"}}};
 
 const char* toString(Triangulation t);
 bool parseTriangulation(const std::string& text, Triangulation& t);

@@ -42,6 +42,7 @@
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/depth_oracle.h"
+#include "shadowvol/enum_names.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "shadowvol/triangulation.h"
 #include "shadowvol/volume_mesh.h"
@@ -52,6 +53,8 @@ enum class FarCap {
   Exact,  ///< drop all-far quads, close each region with a (flattened) far-plane cap (default)
   Quad,   ///< the thesis's cancel rectangle: the full sheet plus one far rectangle facing away
 };
+
+inline constexpr EnumNames<FarCap, 2> kFarCapNames{{{FarCap::Exact, "exact"}, {FarCap::Quad, "quad"}}};
 
 const char* toString(FarCap c);
 bool parseFarCap(const std::string& text, FarCap& c);

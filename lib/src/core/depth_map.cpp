@@ -10,22 +10,9 @@
 
 namespace shadowvol {
 
-const char* toString(CaptureMode mode) {
-  switch (mode) {
-    case CaptureMode::Front: return "front";
-    case CaptureMode::Back: return "back";
-    case CaptureMode::Midpoint: return "midpoint";
-  }
-  return "?";
-}
+const char* toString(CaptureMode mode) { return nameIn(kCaptureModeNames, mode); }
 
-bool parseCaptureMode(const std::string& text, CaptureMode& mode) {
-  if (text == "front") mode = CaptureMode::Front;
-  else if (text == "back") mode = CaptureMode::Back;
-  else if (text == "midpoint") mode = CaptureMode::Midpoint;
-  else return false;
-  return true;
-}
+bool parseCaptureMode(const std::string& text, CaptureMode& mode) { return parseIn(kCaptureModeNames, text, mode); }
 
 glm::dvec2 DepthMap::texelNdc(double i, double j) const {
   return {(i + 0.5) / double(width) * 2.0 - 1.0, (j + 0.5) / double(height) * 2.0 - 1.0};

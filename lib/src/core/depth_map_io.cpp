@@ -263,7 +263,7 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   else throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");
   const std::string cap = need("capture").is_string() ? need("capture").get<std::string>() : "";
   if (!parseCaptureMode(cap, map.capture))
-    throw InputError(sfile, "/capture", need("capture").dump(), "expected front, back or midpoint");
+    throw InputError(sfile, "/capture", need("capture").dump(), "expected " + choicesText(namesIn(kCaptureModeNames)));
   if (!need("near").is_number() || !need("far").is_number())
     throw InputError(sfile, "/near", side["near"].dump(), "near and far must be numbers");
   map.nearPlane = side["near"].get<double>();

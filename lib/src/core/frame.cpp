@@ -4,111 +4,36 @@
 
 namespace shadowvol {
 
-const char* toString(ShadowMethod m) {
-  switch (m) {
-    case ShadowMethod::Hybrid:
-      return "hybrid";
-    case ShadowMethod::ShadowMap:
-      return "shadowmap";
-    case ShadowMethod::Pcf3:
-      return "pcf3";
-    case ShadowMethod::Pcf5:
-      return "pcf5";
-    case ShadowMethod::None:
-      return "none";
-    case ShadowMethod::Silhouette:
-      return "silhouette";
-    case ShadowMethod::Dpsm:
-      return "dpsm";
-  }
-  return "?";
-}
+const char* toString(ShadowMethod m) { return nameIn(kShadowMethodNames, m); }
 
-bool parseShadowMethod(const std::string& text, ShadowMethod& m) {
-  if (text == "hybrid")
-    m = ShadowMethod::Hybrid;
-  else if (text == "shadowmap")
-    m = ShadowMethod::ShadowMap;
-  else if (text == "pcf3")
-    m = ShadowMethod::Pcf3;
-  else if (text == "pcf5")
-    m = ShadowMethod::Pcf5;
-  else if (text == "none")
-    m = ShadowMethod::None;
-  else if (text == "silhouette")
-    m = ShadowMethod::Silhouette;
-  else if (text == "dpsm")
-    m = ShadowMethod::Dpsm;
-  else
-    return false;
+bool parseShadowMethod(const std::string& text, ShadowMethod& m) { return parseIn(kShadowMethodNames, text, m); }
+
+const char* toString(VolumeSource v) { return nameIn(kVolumeSourceNames, v); }
+
+bool parseVolumeSource(const std::string& text, VolumeSource& v) { return parseIn(kVolumeSourceNames, text, v); }
+
+const char* toString(GpuVolumeDraw d) { return nameIn(kGpuVolumeDrawNames, d); }
+
+bool parseGpuVolumeDraw(const std::string& text, GpuVolumeDraw& d) {
+  GpuVolumeDraw parsed;
+  if (!parseIn(kGpuVolumeDrawNames, text, parsed) || parsed == GpuVolumeDraw::Refined) return false;
+  d = parsed;
   return true;
 }
 
-const char* toString(VolumeSource v) {
-  return v == VolumeSource::Gpu ? "gpu" : "explicit";
-}
+const char* toString(VolumeCount c) { return nameIn(kVolumeCountNames, c); }
 
-bool parseVolumeSource(const std::string& text, VolumeSource& v) {
-  if (text == "gpu")
-    v = VolumeSource::Gpu;
-  else if (text == "explicit")
-    v = VolumeSource::Explicit;
-  else
-    return false;
-  return true;
-}
+bool parseVolumeCount(const std::string& text, VolumeCount& c) { return parseIn(kVolumeCountOptionNames, text, c); }
 
-const char* toString(GpuVolumeDraw d) {
-  switch (d) {
-    case GpuVolumeDraw::Auto: return "auto";
-    case GpuVolumeDraw::Indexed: return "indexed";
-    case GpuVolumeDraw::ComputeMesh: return "compute-mesh";
-    case GpuVolumeDraw::KeptQuads: return "kept-quads";
-    case GpuVolumeDraw::Refined: return "refined";
-    default: return "all-quads";
-  }
-}
-
-const char* toString(VolumeCount c) {
-  return c == VolumeCount::Auto ? "auto" : c == VolumeCount::ZPass ? "z-pass" : "z-fail";
-}
-
-bool parseVolumeCount(const std::string& text, VolumeCount& c) {
-  if (text == "auto") c = VolumeCount::Auto;
-  else if (text == "zfail") c = VolumeCount::ZFail;
-  else if (text == "zpass") c = VolumeCount::ZPass;
-  else return false;
-  return true;
-}
-
-const char* toString(RefineCrossings c) {
-  return c == RefineCrossings::GpuWalk ? "gpu-walk" : (c == RefineCrossings::GpuRays ? "gpu-rays" : "rays");
-}
+const char* toString(RefineCrossings c) { return nameIn(kRefineCrossingsNames, c); }
 
 bool parseRefineCrossings(const std::string& text, RefineCrossings& c) {
-  if (text == "rays") c = RefineCrossings::Rays;
-  else if (text == "gpu-walk") c = RefineCrossings::GpuWalk;
-  else if (text == "gpu-rays") c = RefineCrossings::GpuRays;
-  else return false;
-  return true;
+  return parseIn(kRefineCrossingsNames, text, c);
 }
 
-const char* toString(ExplicitDepth d) {
-  switch (d) {
-    case ExplicitDepth::LightPass: return "gpu";
-    case ExplicitDepth::Rays: return "rays";
-    case ExplicitDepth::Auto: return "auto";
-  }
-  return "?";
-}
+const char* toString(ExplicitDepth d) { return nameIn(kExplicitDepthNames, d); }
 
-bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) {
-  if (text == "gpu") d = ExplicitDepth::LightPass;
-  else if (text == "rays") d = ExplicitDepth::Rays;
-  else if (text == "auto") d = ExplicitDepth::Auto;
-  else return false;
-  return true;
-}
+bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) { return parseIn(kExplicitDepthNames, text, d); }
 
 ExplicitDepth chooseExplicitDepth(const RenderOptions& o, std::size_t sceneTriangles, bool softwareRasterizer,
                                   int faces) {
@@ -136,8 +61,6 @@ std::vector<PassTime> passTotals(const std::vector<PassTime>& passes) {
   return out;
 }
 
-const char* toString(TimingMethod t) {
-  return t == TimingMethod::GpuTimer ? "gpu-timer-query" : "wall-clock-glfinish";
-}
+const char* toString(TimingMethod t) { return nameIn(kTimingMethodNames, t); }
 
 }  // namespace shadowvol

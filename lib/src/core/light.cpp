@@ -15,14 +15,9 @@ glm::dvec3 lightUp(const Light& light) {
   return std::abs(d.y) > 0.999 ? glm::dvec3(0.0, 0.0, -1.0) : glm::dvec3(0.0, 1.0, 0.0);
 }
 
-const char* toString(LightType type) {
-  switch (type) {
-    case LightType::Spot: return "spot";
-    case LightType::Directional: return "directional";
-    case LightType::Point: return "point";
-  }
-  return "spot";
-}
+const char* toString(LightType type) { return nameIn(kLightTypeNames, type); }
+
+bool parseLightType(const std::string& text, LightType& type) { return parseIn(kLightTypeNames, text, type); }
 
 glm::dmat4 lightView(const Light& light) {
   if (light.type == LightType::Point) return glm::translate(glm::dmat4(1.0), -light.position);

@@ -163,14 +163,9 @@ std::string describeWindow(const Light& l, double before, double after) {
 
 }  // namespace
 
-const char* toString(LightFit fit) { return fit == LightFit::View ? "view" : "scene"; }
+const char* toString(LightFit fit) { return nameIn(kLightFitNames, fit); }
 
-bool parseLightFit(const std::string& text, LightFit& fit) {
-  if (text == "scene") fit = LightFit::Scene;
-  else if (text == "view") fit = LightFit::View;
-  else return false;
-  return true;
-}
+bool parseLightFit(const std::string& text, LightFit& fit) { return parseIn(kLightFitNames, text, fit); }
 
 LightFitResult fitLightToView(Scene& scene, int mapResolution) {
   LightFitResult r;

@@ -508,10 +508,8 @@ Light readLight(const json& v, const std::string& pointer, const std::string& so
   ObjectReader r(v, pointer, source);
   Light light;
   const std::string type = r.string("type");
-  if (type == "spot") light.type = LightType::Spot;
-  else if (type == "directional") light.type = LightType::Directional;
-  else if (type == "point") light.type = LightType::Point;
-  else r.fail("type", json(type), "expected \"spot\", \"directional\" or \"point\"");
+  if (!parseLightType(type, light.type))
+    r.fail("type", json(type), "expected " + choicesText(namesIn(kLightTypeNames), true));
 
   if (light.type != LightType::Directional || r.has("position")) light.position = r.vec3("position");
   if (light.type == LightType::Point) {

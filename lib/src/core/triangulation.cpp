@@ -2,13 +2,8 @@
 
 namespace shadowvol {
 
-const char* toString(Triangulation t) { return t == Triangulation::Fixed ? "fixed" : "perfect"; }
+const char* toString(Triangulation t) { return nameIn(kTriangulationNames, t); }
 
-bool parseTriangulation(const std::string& text, Triangulation& t) {
-  if (text == "fixed") t = Triangulation::Fixed;
-  else if (text == "perfect") t = Triangulation::Perfect;
-  else return false;
-  return true;
-}
+bool parseTriangulation(const std::string& text, Triangulation& t) { return parseIn(kTriangulationNames, text, t); }
 
 }  // namespace shadowvol

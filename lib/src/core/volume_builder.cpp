@@ -30,19 +30,9 @@
 
 namespace shadowvol {
 
-const char* toString(FarCap c) {
-  return c == FarCap::Exact ? "exact" : "quad";
-}
+const char* toString(FarCap c) { return nameIn(kFarCapNames, c); }
 
-bool parseFarCap(const std::string& text, FarCap& c) {
-  if (text == "exact")
-    c = FarCap::Exact;
-  else if (text == "quad")
-    c = FarCap::Quad;
-  else
-    return false;
-  return true;
-}
+bool parseFarCap(const std::string& text, FarCap& c) { return parseIn(kFarCapNames, text, c); }
 
 namespace {
 
