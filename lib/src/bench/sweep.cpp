@@ -138,14 +138,15 @@ SweepMethod refinedNoSnap(gl::VolumeSource source) {
 }
 
 // The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
-// boundary edge), same steps.
+// boundary edge, and in those hiding a surface between their texel centres: the search, on by
+// default, from the oracle's nearerSurfaces that runSweep attaches), same steps.
 SweepMethod refinedGrid(CaptureMode capture) {
   SweepMethod m = refined(capture);
   m.key = std::string("hybrid-refined-grid") + captureSuffix(capture) +
           "/explicit";
   m.options.volumeOptions.refineSubdivisions = kSweepRefineSubdivisions;
   m.description = "explicit volume with sub-texel silhouette refinement on a " + std::to_string(kSweepRefineSubdivisions) +
-                  "x" + std::to_string(kSweepRefineSubdivisions) + " adaptive sub-grid in the quads with a boundary edge (" +
+                  "x" + std::to_string(kSweepRefineSubdivisions) + " adaptive sub-grid in the quads with a boundary edge or a surface hidden between the texel centres (" +
                   std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + captureWords(capture);
   return m;
 }
