@@ -70,7 +70,9 @@ TEST(EnumNames, VolumeCountGpuDrawAndTimingKeepTheirOwnSpellings) {
     EXPECT_STREQ(toString(e.value), e.name);
     GpuVolumeDraw d = GpuVolumeDraw::AllQuads;
     EXPECT_EQ(parseGpuVolumeDraw(e.name, d), e.value != GpuVolumeDraw::Refined) << e.name;
-    if (e.value != GpuVolumeDraw::Refined) EXPECT_EQ(d, e.value);
+    if (e.value != GpuVolumeDraw::Refined) {
+      EXPECT_EQ(d, e.value);
+    }
   }
   GpuVolumeDraw d = GpuVolumeDraw::Indexed;
   EXPECT_FALSE(parseGpuVolumeDraw("refined", d));

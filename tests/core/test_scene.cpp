@@ -664,5 +664,40 @@ TEST(Scene, TooFewDoubleStepsAcrossAreWarnedAbout) {
   for (const auto& w : larger.warnings) EXPECT_EQ(w.find("double-precision steps"), std::string::npos) << w;
 }
 
+// A mesh file whose own coordinates sit far from its origin for its size: read as float, its detail
+// below a float step is gone before the transform, so loading warns, naming the object's file; the
+// same mesh stored at its origin and moved there by the transform is not warned about.
+TEST(Scene, MeshFileCoordinatesWithTooFewFloatStepsAreWarnedAbout) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "shadowvol_mesh_float_steps";
+  std::filesystem::create_directories(dir);
+  auto writeTetrahedron = [&](const char* name, double at) {
+    std::ofstream f(dir / name);
+    f << "OFF\n4 4 0\n";
+    const double corners[4][3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}};
+    for (const auto& v : corners)
+      f << numberText(at + v[0]) << " " << numberText(v[1]) << " " << numberText(v[2]) << "\n";
+    f << "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  };
+  writeTetrahedron("far.off", 1e7);  // a float step of 1 there: 17 steps across
+  writeTetrahedron("near.off", 0.0);
+  auto sceneWith = [](const char* file, double translate) {
+    return std::string(R"({"objects":[{"type":"plane","size":40},{"type":"mesh","file":")") + file +
+           R"(","transform":{"translate":[)" + numberText(translate) +
+           R"(,2,0]}}],"light":{"type":"spot","position":[3,30,2],"target":[0,0,0]},"camera":{"eye":[0,16,40],"target":[0,1,0]}})";
+  };
+  auto precisionWarnings = [](const SceneLoadResult& r) {
+    std::vector<std::string> w;
+    for (const auto& s : r.warnings)
+      if (s.find("single-precision steps") != std::string::npos) w.push_back(s);
+    return w;
+  };
+  const std::vector<std::string> far = precisionWarnings(parseScene(sceneWith("far.off", -1e7), "far.json", dir));
+  ASSERT_EQ(far.size(), 1u);
+  EXPECT_NE(far[0].find("far.json: /objects/1/file"), std::string::npos) << far[0];
+  EXPECT_NE(far[0].find("far.off"), std::string::npos) << far[0];
+  EXPECT_TRUE(precisionWarnings(parseScene(sceneWith("near.off", 0.0), "near.json", dir)).empty());
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace shadowvol

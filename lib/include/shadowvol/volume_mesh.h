@@ -30,6 +30,11 @@ struct VolumeMesh {
   std::size_t triangleCount() const { return triangles.size(); }
   /// Single-precision copy (for OpenGL upload, Embree, and the mesh writers).
   TriangleMesh toTriangleMesh() const;
+  /// Puts the triangles in one order whatever order they came in: each rotated to begin at its
+  /// smallest index (the winding kept), then sorted. For a mesh listed by parallel GPU passes,
+  /// whose order changes from run to run, so that what is computed from it (the signed volume, a
+  /// written file) does not.
+  void sortTriangles();
 };
 
 }  // namespace shadowvol

@@ -201,8 +201,34 @@ struct ReadObject {
   SceneObject obj;
   std::vector<glm::dvec3> world;
   std::filesystem::path file;  ///< a mesh object's file, as read
-  std::string note;            ///< a warning about the object (its winding repaired), or empty
+  std::vector<std::string> notes;  ///< warnings about the object (its winding repaired, its file's precision)
 };
+
+// A mesh file whose own coordinates hold fewer than kMinMeshFloatSteps single-precision steps
+// across the mesh at their distance from the file's origin: the readers keep float (TriangleMesh),
+// so the file's detail finer than a step is gone before any transform or rebasing can help (a
+// probe's mesh stored at 1e7, README "Scene files"). The same floor as the scene's double steps.
+constexpr double kMinMeshFloatSteps = 2e3;
+
+// The warning about a mesh object's file, `where` naming it (empty when it has steps enough).
+std::string meshFloatPrecisionNote(const TriangleMesh& mesh, const std::string& where) {
+  if (mesh.positions.empty()) return {};
+  glm::dvec3 lo(mesh.positions[0]), hi = lo;
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, glm::dvec3(p));
+    hi = glm::max(hi, glm::dvec3(p));
+  }
+  const double extent = glm::length(hi - lo);
+  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
+  const double step = reach * std::ldexp(1.0, -23);  // a float's spacing at `reach`, at most
+  if (!(extent > 0.0) || !(step > 0.0) || extent / step >= kMinMeshFloatSteps) return {};
+  char buf[240];
+  std::snprintf(buf, sizeof buf,
+                "the mesh is %.3g units across at %.3g from its file's origin, only about %.0f single-precision "
+                "steps: its coordinates are read as float, so its detail finer than %.3g units is lost",
+                extent, reach, extent / step, step);
+  return where + ": " + buf + "; store the mesh nearer its own origin and place it with the object's transform";
+}
 
 // The warning about what orientOutward changed in object `name` (empty when nothing).
 std::string orientationNote(const OrientationResult& o, const std::string& name, std::size_t triangles) {
@@ -323,7 +349,11 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
     r.fail("", json(), std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " +
                            std::to_string(budget) + " the scene may still hold");
   read.world = applyTransform(obj.mesh, readTransform(r));
-  if (obj.type == "mesh") read.note = orientMesh(r, read, source);
+  if (obj.type == "mesh") {
+    if (std::string note = meshFloatPrecisionNote(obj.mesh, source + ": " + r.pointer("file") + " (" + read.file.string() + ")"); !note.empty())
+      read.notes.push_back(std::move(note));
+    if (std::string note = orientMesh(r, read, source); !note.empty()) read.notes.push_back(std::move(note));
+  }
   r.finish();
   for (const auto& p : read.world)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -710,7 +740,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
     budget -= read.obj.mesh.triangleCount();
     scene.objects.push_back(std::move(read.obj));
     if (!read.file.empty()) scene.files.push_back(read.file);
-    if (!read.note.empty()) result.warnings.push_back(std::move(read.note));
+    for (std::string& note : read.notes) result.warnings.push_back(std::move(note));
     world.push_back(std::move(read.world));
   }
   readLights(top, scene, source);

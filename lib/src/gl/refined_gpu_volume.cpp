@@ -102,6 +102,7 @@ VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rul
   mesh.triangles.resize(indices.size() / 3);
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
     mesh.triangles[k] = {number(indices[3 * k]), number(indices[3 * k + 1]), number(indices[3 * k + 2])};
+  mesh.sortTriangles();  // the compute pass lists them in an order that changes from run to run
   return mesh;
 }
 

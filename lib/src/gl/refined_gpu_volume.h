@@ -53,8 +53,9 @@ Refinement refinementFromGpuRecords(const DepthMap& map, const BoundaryEdges& ed
 
 /// The debug path's other half: the GPU's own triangles (the index list read back) as a mesh, each vertex index
 /// placed as volume_refined.vert places it but in double (texels by sheetDepthOf of the read-back
-/// map, crossings from the records), unused indices left out. For the mesh checks (closed,
-/// outward, welded) of what the GPU drew.
+/// map, crossings from the records), unused indices left out, the triangles in sorted order
+/// (VolumeMesh::sortTriangles: the GPU's listing order varies between runs). For the mesh checks
+/// (closed, outward, welded) of what the GPU drew.
 VolumeMesh decodeRefinedGpuVolume(const DepthMap& map, const SheetDepthRule& rule, bool blur,
                                   std::span<const std::uint32_t> indices, std::span<const glm::vec4> records);
 
