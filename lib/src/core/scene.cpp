@@ -204,6 +204,20 @@ struct ReadObject {
   std::vector<std::string> notes;  ///< warnings about the object (its winding repaired, its file's precision)
 };
 
+// How finely coordinates of a format with `mantissaBits` (52: double, 23: float) can place detail
+// in the box lo..hi at its distance from the origin: the box's diagonal, the largest coordinate's
+// magnitude and the format's spacing there (at most).
+struct StepsAcross {
+  double extent = 0.0, reach = 0.0, step = 0.0;
+  StepsAcross(const glm::dvec3& lo, const glm::dvec3& hi, int mantissaBits)
+      : extent(glm::length(hi - lo)),
+        reach(std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)})),
+        step(reach * std::ldexp(1.0, -mantissaBits)) {}
+  double count() const { return extent / step; }
+  /// Fewer than `floor` steps across a box of some size away from the origin.
+  bool fewerThan(double floor) const { return extent > 0.0 && step > 0.0 && count() < floor; }
+};
+
 // A mesh file whose own coordinates hold fewer than kMinMeshFloatSteps single-precision steps
 // across the mesh at their distance from the file's origin: the readers keep float (TriangleMesh),
 // so the file's detail finer than a step is gone before any transform or rebasing can help (a
@@ -218,15 +232,13 @@ std::string meshFloatPrecisionNote(const TriangleMesh& mesh, const std::string& 
     lo = glm::min(lo, glm::dvec3(p));
     hi = glm::max(hi, glm::dvec3(p));
   }
-  const double extent = glm::length(hi - lo);
-  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
-  const double step = reach * std::ldexp(1.0, -23);  // a float's spacing at `reach`, at most
-  if (!(extent > 0.0) || !(step > 0.0) || extent / step >= kMinMeshFloatSteps) return {};
+  const StepsAcross s(lo, hi, 23);
+  if (!s.fewerThan(kMinMeshFloatSteps)) return {};
   char buf[240];
   std::snprintf(buf, sizeof buf,
                 "the mesh is %.3g units across at %.3g from its file's origin, only about %.0f single-precision "
                 "steps: its coordinates are read as float, so its detail finer than %.3g units is lost",
-                extent, reach, extent / step, step);
+                s.extent, s.reach, s.count(), s.step);
   return where + ": " + buf + "; store the mesh nearer its own origin and place it with the object's transform";
 }
 
@@ -496,14 +508,11 @@ void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std
 constexpr double kMinSceneDoubleSteps = 2e3;
 void warnAboutInputPrecision(const Scene& scene, const std::string& source, std::vector<std::string>& warnings) {
   const Bounds3 b = scene.bounds();
-  const glm::dvec3 lo = glm::dvec3(b.min) + scene.origin, hi = glm::dvec3(b.max) + scene.origin;
-  const double extent = glm::length(hi - lo);
-  const double reach = std::max({std::abs(lo.x), std::abs(lo.y), std::abs(lo.z), std::abs(hi.x), std::abs(hi.y), std::abs(hi.z)});
-  const double step = reach * std::ldexp(1.0, -52);
-  if (!(extent > 0.0) || !(step > 0.0) || extent / step >= kMinSceneDoubleSteps) return;
+  const StepsAcross s(glm::dvec3(b.min) + scene.origin, glm::dvec3(b.max) + scene.origin, 52);
+  if (!s.fewerThan(kMinSceneDoubleSteps)) return;
   char buf[200];
-  std::snprintf(buf, sizeof buf, "the scene is %.3g units across at %.3g from the world origin, only about %.0f", extent,
-                reach, extent / step);
+  std::snprintf(buf, sizeof buf, "the scene is %.3g units across at %.3g from the world origin, only about %.0f", s.extent,
+                s.reach, s.count());
   warnings.push_back(source + ": /objects: " + buf +
                      " double-precision steps: its coordinates cannot place detail finer than that, so shadow "
                      "edges and validate's agreement can be off; give the coordinates nearer the origin");
