@@ -48,9 +48,8 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
   map.height = int(std::min<py::ssize_t>(depth.shape(0), 1 << 20));
   map.width = int(std::min<py::ssize_t>(depth.shape(1), 1 << 20));
   checkDepthMapSize(map.width, map.height, "DepthMap.from_array", "depth");
-  if (light == "spot") map.lightType = LightType::Spot;
-  else if (light == "directional") map.lightType = LightType::Directional;
-  else throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");
+  if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
+    throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");
   map.capture = captureModeArg(capture);
   map.lightView = matrixFromNumpy(lightView.cast<py::array_t<double, py::array::forcecast>>(), "light_view");
   map.lightProjection =
@@ -91,7 +90,7 @@ void registerDepth(py::module_& m) {
       .def_property_readonly("width", [](const DepthMap& d) { return d.width; })
       .def_property_readonly("height", [](const DepthMap& d) { return d.height; })
       .def_property_readonly("depth", &depthView, "read-only float32 array, shape (height, width)")
-      .def_property_readonly("light", [](const DepthMap& d) { return d.lightType == LightType::Spot ? "spot" : "directional"; })
+      .def_property_readonly("light", [](const DepthMap& d) { return toString(d.lightType); })
       .def_property_readonly("capture", [](const DepthMap& d) { return std::string(toString(d.capture)); })
       .def_property_readonly("light_view", [](const DepthMap& d) { return matrixToNumpy(d.lightView); },
                              "world -> light view, 4 x 4 (a[row, column])")
@@ -119,7 +118,7 @@ void registerDepth(py::module_& m) {
           py::arg("path"), "Writes a PFM plus its JSON side file (path + '.json'), as `shadowvol depth` does.")
       .def("__repr__", [](const DepthMap& d) {
         return "<shadowvol.DepthMap " + std::to_string(d.width) + "x" + std::to_string(d.height) + " " +
-               (d.lightType == LightType::Spot ? "spot" : "directional") + ", " + toString(d.capture) + ", " +
+               toString(d.lightType) + ", " + toString(d.capture) + ", " +
                std::to_string(d.hitCount()) + " texels hit>";
       });
 

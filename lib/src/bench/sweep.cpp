@@ -31,7 +31,7 @@ std::string captureWords(CaptureMode capture) {
 
 SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureMode capture = CaptureMode::Back) {
   SweepMethod m;
-  const std::string variant = std::string(t == Triangulation::Perfect ? "perfect" : "fixed") + (blur ? "-blur" : "") +
+  const std::string variant = std::string(toString(t)) + (blur ? "-blur" : "") +
                               captureSuffix(capture);
   m.key = "hybrid-" + variant + "/" + gl::toString(source);
   m.family = "hybrid";

@@ -119,7 +119,7 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
   if (!kindOk || !depthOk || !(std::abs(glm::determinant(p)) > 0.0))
     throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
                      std::string("expected the ") + (perspective ? "perspective" : "orthographic") +
-                         " projection of a " + (perspective ? "spot" : "directional") +
+                         " projection of a " + toString(perspective ? LightType::Spot : LightType::Directional) +
                          " light that maps near and far to NDC z -1 and +1");
   // A spot light narrower than a scene's light may be (fov 0.01 degrees: P00, P11 = cot(fov / 2)).
   const double maxCot = 1.0 / std::tan(0.5 * kMinLightFovDegrees * std::numbers::pi / 180.0);
@@ -165,7 +165,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"width", map.width},
       {"height", map.height},
       {"quantity", "light-view depth (-z in light view space), world units; +inf = no hit"},
-      {"light", map.lightType == LightType::Spot ? "spot" : "directional"},
+      {"light", toString(map.lightType)},
       {"capture", toString(map.capture)},
       {"near", map.nearPlane},
       {"far", map.farPlane},
@@ -258,9 +258,8 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   if (need("width") != w || need("height") != h)
     throw InputError(sfile, "/width", side["width"].dump(), "does not match the PFM's size");
   const std::string light = need("light").is_string() ? need("light").get<std::string>() : "";
-  if (light == "spot") map.lightType = LightType::Spot;
-  else if (light == "directional") map.lightType = LightType::Directional;
-  else throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");
+  if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
+    throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");
   const std::string cap = need("capture").is_string() ? need("capture").get<std::string>() : "";
   if (!parseCaptureMode(cap, map.capture))
     throw InputError(sfile, "/capture", need("capture").dump(), "expected " + choicesText(namesIn(kCaptureModeNames)));
