@@ -138,7 +138,7 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
 // coincident vertices (refinement needs no pinch splits).
 TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
   const auto files = sceneFiles();
-  std::size_t builds = 0, refined = 0, hidden = 0;
+  std::size_t builds = 0, refined = 0, hidden = 0, creases = 0;
   for (const auto& file : files) {
     const Scene& scene = cachedScene(file);
     const EmbreeDepthOracle oracle(scene);
@@ -176,15 +176,20 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           ++builds;
           ASSERT_TRUE(gr.valid()) << what << " grid " << o.refineSubdivisions << ": " << gr.summary();
           EXPECT_EQ(gr.coincidentVertices, 0u) << what << " grid " << o.refineSubdivisions;
-          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells + g.stats.hiddenQuads) << what;  // and the hidden ones
+          // and the hidden ones, and with front capture's bias the creases
+          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells + g.stats.hiddenQuads + g.stats.creaseQuads) << what;
           hidden += g.stats.hiddenQuads;
-          EXPECT_GE(g.stats.raysCast, g.stats.subgridSamples) << what;
+          creases += g.stats.creaseQuads;
+          EXPECT_EQ(g.stats.creaseQuads > 0 || g.stats.subgridBiasSamples > 0, g.stats.biasUsed > 0.0 && g.stats.refinedCells > 0)
+              << what;
+          EXPECT_GE(g.stats.raysCast, g.stats.subgridSamples + g.stats.subgridBiasSamples) << what;
         }
       }
   }
   EXPECT_EQ(builds, files.size() * 2 * 3 * (8 + 4));
   EXPECT_GT(refined, files.size() * 2 * 3 * 8 * 9 / 10);
   EXPECT_GT(hidden, 0u);  // thin parts of the shipped scenes between texel centres at these sizes
+  EXPECT_GT(creases, 0u);  // front capture: the meshes' concave folds
 }
 
 // Random hit levels under a random oracle (hits on other levels, misses, anything): refined

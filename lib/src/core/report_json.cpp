@@ -67,6 +67,8 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridFarBoundaryEdges", s.subgridFarBoundaryEdges},
           {"subgridSplitTriangles", s.subgridSplitTriangles},
           {"hiddenQuads", s.hiddenQuads},
+          {"creaseQuads", s.creaseQuads},
+          {"subgridBiasSamples", s.subgridBiasSamples},
           {"raysCast", s.raysCast},
           {"crossingFallbacks", s.crossingFallbacks},
           {"snappedCrossings", s.snappedCrossings},

@@ -19,6 +19,7 @@
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/grid_unprojector.h"
+#include "volume/crease_quads.h"
 #include "volume/hidden_quads.h"
 #include "volume/quad_codes.h"
 #include "volume/refined_cells.h"
@@ -245,6 +246,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   stats.ambiguousCells = sub.ambiguousCells;
   stats.subgridQuads = sub.griddedQuads;
   stats.subgridSamples = sub.samples;
+  stats.subgridBiasSamples = sub.biasSamples;
   stats.subgridBoundaryEdges = sub.boundaryEdges;
   stats.subgridFarBoundaryEdges = sub.farBoundaryEdges;
   stats.raysCast += sub.raysCast;
@@ -271,7 +273,7 @@ struct RefinementFound {
   volume::RefinedQuads quads;
   Refinement refinement;
   volume::ChordPoints chords;
-  std::size_t hiddenQuads = 0;
+  std::size_t hiddenQuads = 0, creaseQuads = 0;
   double msHidden = 0.0;
 };
 
@@ -298,6 +300,14 @@ RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBui
     found.msHidden = volume::msSince(t0);
   }
   found.hiddenQuads = hidden.size();
+  if (options.refineSubdivisions > 1) {  // after the search: a quad it flagged is not a crease quad
+    const std::vector<std::uint32_t> creases =
+        volume::findCreaseQuads(sheet, options.refineSubdivisions, splitBits.data());
+    found.creaseQuads = creases.size();
+    const std::size_t n = hidden.size();
+    hidden.insert(hidden.end(), creases.begin(), creases.end());
+    std::inplace_merge(hidden.begin(), hidden.begin() + std::ptrdiff_t(n), hidden.end());
+  }
   found.quads = volume::findRefinedQuads(found.edges, map.width, map.height, hidden);
   return found;
 }
@@ -466,13 +476,15 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   t0 = Clock::now();
   const GridUnprojector unproject(map);
   const QuadCodes codes = computeQuadCodes(
-      sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr, found.hiddenQuads > 0},
+      sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr,
+                        found.hiddenQuads + found.creaseQuads > 0},
       scratch_->code);
   const QuadGrid grid{w - 1, h - 1, scratch_->code.data()};
   stats.flippedQuads = codes.flipped;
   stats.droppedQuads = codes.dropped;
   stats.refinedCells = codes.refined;
   stats.hiddenQuads = found.hiddenQuads;
+  stats.creaseQuads = found.creaseQuads;
   stats.msHidden = found.msHidden;
   double msSheet = msSince(t0);
 

@@ -38,6 +38,13 @@ bool sheetDepthSpan(const float* __restrict src, double* __restrict d, int b, in
 void validateDepths(const DepthMap& map);
 
 /// The sheet depths of one map under one rule.
+/// The sheet's depth at fraction f from depth d0 to d1 along a straight line in texel space, as the
+/// light's projection interpolates it: linearly for a directional light, its inverse linearly for a
+/// spot light (`perspective`).
+inline double depthAlongEdge(double d0, double d1, double f, bool perspective) {
+  return perspective ? 1.0 / ((1.0 - f) / d0 + f / d1) : (1.0 - f) * d0 + f * d1;
+}
+
 class SheetDepths {
  public:
   SheetDepths(const DepthMap& map, const SheetDepthRule& rule) : map_(map), rule_(rule) {}

@@ -1,9 +1,11 @@
 #include "volume/subgrid_cells.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <span>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -14,6 +16,7 @@
 #include "shadowvol/triangulation.h"
 #include "volume/cell_triangulator.h"
 #include "volume/quad_codes.h"
+#include "volume/subgrid_bias.h"
 
 namespace shadowvol::volume {
 namespace {
@@ -53,12 +56,6 @@ struct SubCell {
 };
 
 constexpr int kSideDqi[4] = {0, 1, 0, -1}, kSideDqj[4] = {-1, 0, 1, 0};
-
-// The depth at fraction f from d0 to d1 along a straight edge of the sheet, as the light's
-// projection interpolates it: 1 / depth is linear in texel space for a spot light.
-double depthAlongEdge(double d0, double d1, double f, bool perspective) {
-  return perspective ? 1.0 / ((1.0 - f) / d0 + f / d1) : (1.0 - f) * d0 + f * d1;
-}
 
 class SubgridBuilder {
  public:
@@ -217,7 +214,8 @@ class SubgridBuilder {
     return u != farPlane_ ? u : sheetDepth;
   }
 
-  // One oracle batch for every node inside a refined quad or between two of them.
+  // One oracle batch for every node inside a refined quad or between two of them, and with a bias
+  // the centres of the sub-cells that hold such a node (lowerSampledBias).
   void sampleNodes() {
     std::vector<std::uint32_t> which;
     std::vector<glm::dvec2> ndc;
@@ -226,6 +224,12 @@ class SubgridBuilder {
         which.push_back(k);
         ndc.push_back(map_.texelNdc(nodes_[k].texel.x, nodes_[k].texel.y));
       }
+    const std::vector<std::array<std::uint32_t, 4>> biasCells = sheet_.rule().bias > 0.0 ? sampledSubCells()
+                                                                                          : std::vector<std::array<std::uint32_t, 4>>{};
+    for (const auto& c : biasCells) {
+      const glm::dvec2 t = 0.25 * (nodes_[c[0]].texel + nodes_[c[1]].texel + nodes_[c[2]].texel + nodes_[c[3]].texel);
+      ndc.push_back(map_.texelNdc(t.x, t.y));
+    }
     std::vector<float> depth(ndc.size(), DepthMap::kNoHit);
     if (!ndc.empty()) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -237,12 +241,44 @@ class SubgridBuilder {
       n.depth = n.rule = sheet_.rule().ofSample(depth[k], o_.blur);
       n.far = n.depth == farPlane_;
     }
+    if (!biasCells.empty()) lowerSampledBias(biasCells, std::span<const float>(depth).subspan(which.size()));
     out_.samples = which.size();
-    out_.raysCast += which.size();
+    out_.biasSamples = biasCells.size();
+    out_.raysCast += ndc.size();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes_.size(), 2048), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k)
         nodes_[k].lv = unproject_.lightViewPoint(nodes_[k].texel.x, nodes_[k].texel.y, nodes_[k].depth);
     });
+  }
+
+  // The corner nodes (A B C D) of every sub-cell of a refined quad that has a sampled corner.
+  std::vector<std::array<std::uint32_t, 4>> sampledSubCells() const {
+    std::vector<std::array<std::uint32_t, 4>> cells;
+    for (std::size_t g = 0; g < quadCount(); ++g)
+      for (int b = 0; b < s_; ++b)
+        for (int a = 0; a < s_; ++a) {
+          const std::array<std::uint32_t, 4> c = {node(g, a, b), node(g, a + 1, b), node(g, a + 1, b + 1), node(g, a, b + 1)};
+          if (std::any_of(c.begin(), c.end(), [&](std::uint32_t k) { return nodes_[k].sampled; })) cells.push_back(c);
+        }
+    return cells;
+  }
+
+  // Each sampled hit node keeps the most bias that a sub-cell holding it needs (subgrid_bias.h,
+  // from its `centre` sample); its depth moves towards the light by the rest. Its rule depth (the
+  // discontinuity rule's) keeps the full bias, as the texel centres' does.
+  void lowerSampledBias(const std::vector<std::array<std::uint32_t, 4>>& cells, std::span<const float> centre) {
+    const SheetDepthRule& rule = sheet_.rule();
+    std::vector<double> keep(nodes_.size(), 0.0);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const std::array<double, 4> corners = {nodes_[cells[c][0]].depth, nodes_[cells[c][1]].depth,
+                                             nodes_[cells[c][2]].depth, nodes_[cells[c][3]].depth};
+      const double need = subCellBias(corners, rule.ofSample(centre[c], o_.blur), rule.bias, s_, perspective_, farPlane_);
+      for (std::uint32_t k : cells[c]) keep[k] = std::max(keep[k], need);
+    }
+    for (std::uint32_t k = 0; k < nodes_.size(); ++k) {
+      Node& n = nodes_[k];
+      if (n.sampled && !n.far) n.depth = std::max(rule.nearPlane, n.depth - (rule.bias - keep[k]));
+    }
   }
 
   std::uint32_t newEdge(std::uint32_t p, std::uint32_t q, int axis) {

@@ -11,7 +11,9 @@
 // sub-edge of the side between them. Its depth:
 //   corners (texel centres): the sheet depth, as every other stage sees it;
 //   inside a refined quad, or on a side between two refined quads: the oracle's sample by the
-//     sheet-depth rule (SheetDepthRule::ofSample, the blur offset added with blur);
+//     sheet-depth rule (SheetDepthRule::ofSample, the blur offset added with blur), with a sheet
+//     bias keeping only the part of it that a sample at each sub-cell's centre shows is needed
+//     (subgrid_bias.h; the discontinuity rule reads the depth with the whole bias);
 //   on a side whose other quad is not refined ("virtual" nodes): no ray. That side is continuous
 //     (a hit-far or discontinuous side is a boundary edge, whose quads are both refined), so its
 //     corners are both far (the nodes are far, and no triangle keeps them) or both hit (one
@@ -118,11 +120,12 @@ struct SubgridCells {
   std::vector<std::uint8_t> gridded;     ///< per quad of `quads`: 1 when it is on the sub-grid
   std::size_t griddedQuads = 0;          ///< quads on the sub-grid
   std::size_t samples = 0;               ///< lattice nodes sampled by the oracle
+  std::size_t biasSamples = 0;           ///< sub-cell centres sampled for the nodes' bias (subgrid_bias.h)
   std::size_t boundaryEdges = 0;         ///< boundary sub-edges (bisected)
   std::size_t farBoundaryEdges = 0;      ///< of which one end is far
   std::size_t ambiguousCells = 0;        ///< sub-cells with 3 or 4 boundary sides
   std::size_t footprintTriangles = 0;    ///< kept triangles that are not walls
-  std::size_t raysCast = 0;              ///< oracle queries: samples, bisection, snap, centres
+  std::size_t raysCast = 0;              ///< oracle queries: samples, bias samples, bisection, snap, centres
   std::size_t snapped = 0;               ///< boundary sub-edges' crossings snapped (crossing_snap.h)
   double msRays = 0.0;                   ///< time inside the oracle (ms)
 };

@@ -1,0 +1,32 @@
+// Stage 1c of the volume builder (the sub-grid with a sheet bias, docs/volume.md "Sub-grid bias"):
+// which quads without a boundary side hold a crease where the sheet bends away from the light, so
+// that the sub-grid samples them and lowers the bias there (subgrid_bias.h).
+//
+// Front capture holds the sheet a texel footprint B behind the lit surface, enough for the sheet's
+// straight interpolation between texel centres never to pass in front of a surface it crosses
+// (acne), and shadows that start within B of the surface are lost: contact shadows in a concave
+// crease (a stem on the ground, a fold of cloth, parts of a model shading each other). The sub-grid
+// samples such a crease S times more finely and measures how far its sheet bends there, so its
+// nodes can keep far less bias; the crease itself makes no boundary edge, so it is found here.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "volume/sheet_depths.h"
+
+namespace shadowvol::volume {
+
+/// The quads without a boundary side (splitBits' bits 0 and 1) and not flagged yet (kHiddenQuadBit)
+/// one of whose corners lies behind the chord of its two neighbours by more than B / S, B the
+/// sheet's bias (rule().bias) and S = `subdivisions`: along the x axis, the y axis or either
+/// diagonal, the chord taken as the projection interpolates (the depth for a directional light, its
+/// inverse for a spot light); a pair with a far or ring neighbour is skipped, and a corner more than
+/// 2 B behind a chord is a discontinuity left to the boundary edges, not a crease. Each is marked with
+/// kHiddenQuadBit in splitBits (at its lower-left texel: the sub-grid takes it as it takes a hidden
+/// quad) and returned in quad order. None when B = 0 (back and midpoint capture by default). The
+/// samples are read as the boundary-edge rule reads them (SheetDepthRule::fromStored), without the
+/// bias and without the blur's averaging.
+std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivisions, std::uint8_t* splitBits);
+
+}  // namespace shadowvol::volume
