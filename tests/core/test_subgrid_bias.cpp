@@ -1,4 +1,4 @@
-// The sub-grid's bias with front capture (docs/volume.md "Sub-grid bias"): the rule a sub-cell's
+// The sub-grid's bias with front capture (docs/volume.md "Sub-grid", step 8): the rule a sub-cell's
 // centre sample sets (volume/subgrid_bias.h), the crease quads (volume/crease_quads.h), and on a
 // sphere sunk into the ground (a concave crease round it) that the volume keeps lit surfaces round
 // the crease out and more of the contact shadow in than the plain refined sheet does.
@@ -156,7 +156,8 @@ TEST(SubgridBias, ACreaseKeepsItsLitSurfacesOutAndMoreOfItsShadowIn) {
         }
         // A ground point is lit when its ray to the light misses the sphere, a sphere point when it
         // faces the light (cosine > 0).
-        const double gap = ground ? clearance(s, light, p) : glm::dot(glm::normalize(p - s.spheres.front().centre), toLight(light, p));
+        const double gap =
+            ground ? clearance(s, light, p) : glm::dot(glm::normalize(p - s.spheres.front().centre), toLight(light, p));
         if (std::abs(gap) < (ground ? 0.05 * texel : 0.05)) continue;  // by the shadow's outline
         if (gap > 0.0) {
           ++litPoints;

@@ -173,7 +173,7 @@ struct VolumeBuildStats {
   std::size_t hiddenQuads = 0;        ///< sub-grid with nearerSurfaces: quads without a boundary edge put on
                                       ///< it for a hidden surface (counted in refinedCells and subgridQuads)
   std::size_t creaseQuads = 0;        ///< sub-grid with a bias: quads without a boundary edge put on it for
-                                      ///< a crease (docs/volume.md "Sub-grid bias"; counted as hiddenQuads are)
+                                      ///< a crease (docs/volume.md "Sub-grid", step 8; counted as hiddenQuads are)
   std::size_t subgridBiasSamples = 0; ///< sub-grid with a bias: rays at sub-cell centres that set its nodes' bias
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are

@@ -1,4 +1,4 @@
-// Stage 1c of the volume builder (the sub-grid with a sheet bias, docs/volume.md "Sub-grid bias"):
+// Stage 1c of the volume builder (the sub-grid with a sheet bias, docs/volume.md "Sub-grid", step 8):
 // which quads without a boundary side hold a crease where the sheet bends away from the light, so
 // that the sub-grid samples them and lowers the bias there (subgrid_bias.h).
 //
@@ -25,8 +25,8 @@ namespace shadowvol::volume {
 /// 2 B behind a chord is a discontinuity left to the boundary edges, not a crease. Each is marked with
 /// kHiddenQuadBit in splitBits (at its lower-left texel: the sub-grid takes it as it takes a hidden
 /// quad) and returned in quad order. None when B = 0 (back and midpoint capture by default). The
-/// samples are read as the boundary-edge rule reads them (SheetDepthRule::fromStored), without the
-/// bias and without the blur's averaging.
+/// samples are read as the boundary-edge rule reads them (SheetDepthRule::fromStored: each with the
+/// bias, which the chord cancels, and without the blur's averaging).
 std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivisions, std::uint8_t* splitBits);
 
 }  // namespace shadowvol::volume

@@ -75,11 +75,12 @@ struct QuadCodeOptions {
                                             ///< +i / +j is a boundary edge (findBoundaryEdges);
                                             ///< kHiddenQuadBit: the quad it is the lower-left corner of
                                             ///< is refined without a boundary side
-  bool hiddenQuads = false;                 ///< kHiddenQuadBit may be set (on any quad, far ones too)
+  bool hiddenQuads = false;                 ///< kHiddenQuadBit may be set (on any quad, far ones too:
+                                            ///< hidden or crease quads)
 };
 
-/// splitBits' bit for a quad refined for a hidden surface (nearer_surfaces.h) alone: the sub-grid
-/// samples it though no boundary edge touches it.
+/// splitBits' bit for a quad refined for a hidden surface (hidden_quads.h) or a crease
+/// (crease_quads.h) alone: the sub-grid samples it though no boundary edge touches it.
 inline constexpr std::uint8_t kHiddenQuadBit = 4;
 
 /// What stage 2 found, per quad row.

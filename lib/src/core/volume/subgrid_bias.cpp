@@ -6,8 +6,8 @@
 
 namespace shadowvol::volume {
 
-double subCellBias(const std::array<double, 4>& corners, double centre, double bias, int subdivisions,
-                   bool perspective, double farPlane) {
+double subCellBias(const std::array<double, 4>& corners, double centre, double bias, int subdivisions, bool perspective,
+                   double farPlane) {
   if (centre == farPlane) return bias;
   for (double d : corners)
     if (d == farPlane) return bias;

@@ -1,4 +1,4 @@
-// The sub-grid's bias (docs/volume.md "Sub-grid bias"): with a sheet bias B > 0 (front capture), how
+// The sub-grid's bias (docs/volume.md "Sub-grid", step 8): with a sheet bias B > 0 (front capture), how
 // much of it each node that the sub-grid samples keeps.
 //
 // B is a texel footprint: the depth a surface tilted 45 degrees from the light changes across a
@@ -34,7 +34,7 @@ inline constexpr double kSubgridBiasFloor = 0.125;
 /// light, its inverse for a spot light), plus the floor. `corners` and `centre` are sheet depths
 /// with the bias B in them (SheetDepthRule::ofSample); B itself where a corner or the centre is far
 /// (`farPlane`) or the centre lies more than 2 B behind (a surface beyond a jump, not this one).
-double subCellBias(const std::array<double, 4>& corners, double centre, double bias, int subdivisions,
-                   bool perspective, double farPlane);
+double subCellBias(const std::array<double, 4>& corners, double centre, double bias, int subdivisions, bool perspective,
+                   double farPlane);
 
 }  // namespace shadowvol::volume

@@ -224,8 +224,8 @@ class SubgridBuilder {
         which.push_back(k);
         ndc.push_back(map_.texelNdc(nodes_[k].texel.x, nodes_[k].texel.y));
       }
-    const std::vector<std::array<std::uint32_t, 4>> biasCells = sheet_.rule().bias > 0.0 ? sampledSubCells()
-                                                                                          : std::vector<std::array<std::uint32_t, 4>>{};
+    std::vector<std::array<std::uint32_t, 4>> biasCells;
+    if (sheet_.rule().bias > 0.0) biasCells = sampledSubCells();
     for (const auto& c : biasCells) {
       const glm::dvec2 t = 0.25 * (nodes_[c[0]].texel + nodes_[c[1]].texel + nodes_[c[2]].texel + nodes_[c[3]].texel);
       ndc.push_back(map_.texelNdc(t.x, t.y));
