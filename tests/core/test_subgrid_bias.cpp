@@ -3,6 +3,7 @@
 // sphere sunk into the ground (a concave crease round it) that the volume keeps lit surfaces round
 // the crease out and more of the contact shadow in than the plain refined sheet does.
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -25,24 +26,28 @@ using volume::kSubgridBiasFloor;
 using volume::subCellBias;
 
 TEST(SubgridBias, ACellSampleSetsItsCornersBias) {
-  const double b = 0.2, far = 50.0;
+  const double b = 0.2, far = 50.0, kInf = std::numeric_limits<double>::infinity();
   const double floor = kSubgridBiasFloor * b / 4;
   // On a plane the centre lies on the sheet: the floor.
-  EXPECT_NEAR(subCellBias({10.0, 11.0, 12.0, 11.0}, 11.0, b, 4, false, far), floor, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 11.0, 12.0, 11.0}, 11.0, kInf, b, 4, false, far), floor, 1e-12);
   // A spot light's plane: the inverse depth is linear; its midpoint is the centre's.
   const double inv[4] = {1.0 / 10.0, 1.0 / 11.0, 1.0 / 12.0, 1.0 / 11.0};
-  EXPECT_NEAR(subCellBias({1 / inv[0], 1 / inv[1], 1 / inv[2], 1 / inv[3]}, 2.0 / (inv[0] + inv[2]), b, 4, true, far),
-              floor, 1e-12);
-  // Behind the sheet by 0.05: that, plus the floor; the lower diagonal's midpoint is the sheet.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, b, 4, false, far), 0.05 + floor, 1e-12);
+  EXPECT_NEAR(
+      subCellBias({1 / inv[0], 1 / inv[1], 1 / inv[2], 1 / inv[3]}, 2.0 / (inv[0] + inv[2]), kInf, b, 4, true, far),
+      floor, 1e-12);
+  // Behind the sheet by 0.05 (the lower diagonal's midpoint is the sheet): twice that where nothing
+  // bounds a fold, the lattice's fold bound where it lies between once and twice, else once.
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, kInf, b, 4, false, far), 0.1 + floor, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, 0.07, b, 4, false, far), 0.07 + floor, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, 0.01, b, 4, false, far), 0.05 + floor, 1e-12);
   // In front of it: the floor; far behind (another surface) or far anywhere: all of the bias.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 9.5, b, 4, false, far), floor, 1e-12);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 2.5 * b, b, 4, false, far), b);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 1.5 * b, b, 4, false, far), b);  // clamped
-  EXPECT_EQ(subCellBias({10.0, far, 10.0, 10.0}, 10.0, b, 4, false, far), b);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, far, b, 4, false, far), b);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 9.5, kInf, b, 4, false, far), floor, 1e-12);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 2.5 * b, kInf, b, 4, false, far), b);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 1.5 * b, kInf, b, 4, false, far), b);  // clamped
+  EXPECT_EQ(subCellBias({10.0, far, 10.0, 10.0}, 10.0, kInf, b, 4, false, far), b);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, far, kInf, b, 4, false, far), b);
   // The floor scales with 1 / S.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0, b, 8, false, far), kSubgridBiasFloor * b / 8, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0, kInf, b, 8, false, far), kSubgridBiasFloor * b / 8, 1e-12);
 }
 
 // A directional light from the side and above (not axis-aligned), over an 8 x 8 square.
@@ -124,7 +129,7 @@ bool inside(const VolumeMesh& m, const glm::dvec3& p) {
 // plain refined one, whose sheet keeps the whole bias. Left out: ground points whose ray to the
 // light passes within 0.05 texel of the sphere, and sphere points within 3 degrees of its
 // terminator (the walls' tolerance round the outline), which leaves out the crease line itself (subgrid_bias.h:
-// there the sheet can pass in front of the surface; with the overhead spot at 10 of its 360 points).
+// there the sheet can pass in front of the surface; with the overhead spot at 2 of its 360 points).
 TEST(SubgridBias, ACreaseKeepsItsLitSurfacesOutAndMoreOfItsShadowIn) {
   const test::AnalyticScene s = sunkSphere();
   for (const Light& light : {slantedLight(), slantedSpot(), test::refinementSpot()}) {

@@ -6,8 +6,8 @@
 
 namespace shadowvol::volume {
 
-double subCellBias(const std::array<double, 4>& corners, double centre, double bias, int subdivisions, bool perspective,
-                   double farPlane) {
+double subCellBias(const std::array<double, 4>& corners, double centre, double foldBound, double bias, int subdivisions,
+                   bool perspective, double farPlane) {
   if (centre == farPlane) return bias;
   for (double d : corners)
     if (d == farPlane) return bias;
@@ -15,8 +15,9 @@ double subCellBias(const std::array<double, 4>& corners, double centre, double b
                                 depthAlongEdge(corners[1], corners[3], 0.5, perspective));
   const double behind = centre - sheet;
   if (behind > 2.0 * bias) return bias;
+  const double fold = behind > 0.0 ? std::min(2.0 * behind, std::max(behind, foldBound)) : 0.0;
   const double floor = kSubgridBiasFloor * bias / subdivisions;
-  return std::clamp(behind + floor, floor, bias);
+  return std::clamp(fold + floor, floor, bias);
 }
 
 }  // namespace shadowvol::volume

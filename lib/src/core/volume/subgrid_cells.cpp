@@ -5,6 +5,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include <tbb/blocked_range.h>
@@ -16,6 +17,7 @@
 #include "shadowvol/triangulation.h"
 #include "volume/cell_triangulator.h"
 #include "volume/quad_codes.h"
+#include "volume/sheet_depths.h"
 #include "volume/subgrid_bias.h"
 
 namespace shadowvol::volume {
@@ -272,13 +274,36 @@ class SubgridBuilder {
     for (std::size_t c = 0; c < cells.size(); ++c) {
       const std::array<double, 4> corners = {nodes_[cells[c][0]].depth, nodes_[cells[c][1]].depth,
                                              nodes_[cells[c][2]].depth, nodes_[cells[c][3]].depth};
-      const double need = subCellBias(corners, rule.ofSample(centre[c], o_.blur), rule.bias, s_, perspective_, farPlane_);
+      const double mid = rule.ofSample(centre[c], o_.blur);
+      const double need = subCellBias(corners, mid, foldBound(cells[c], mid), rule.bias, s_, perspective_, farPlane_);
       for (std::uint32_t k : cells[c]) keep[k] = std::max(keep[k], need);
     }
     for (std::uint32_t k = 0; k < nodes_.size(); ++k) {
       Node& n = nodes_[k];
       if (n.sampled && !n.far) n.depth = std::max(rule.nearPlane, n.depth - (rule.bias - keep[k]));
     }
+  }
+
+  // How far a straight fold inside sub-cell c could lie behind the sheet through its corners, from
+  // the lattice lines along its four sides (subgrid_bias.h): a quarter of the change between the
+  // steps on either side of the sub-cell (in inverse depth for a spot light, scaled back to depth
+  // at `depth`); +inf where a line leaves the lattice or meets a far node.
+  double foldBound(const std::array<std::uint32_t, 4>& c, double depth) const {
+    const std::int64_t fi = nodes_[c[0]].fi, fj = nodes_[c[0]].fj;
+    constexpr double kUnknown = std::numeric_limits<double>::infinity();
+    double most = 0.0;
+    const std::int64_t lines[4][4] = {{fi, fj, 1, 0}, {fi, fj + 1, 1, 0}, {fi, fj, 0, 1}, {fi + 1, fj, 0, 1}};
+    for (const auto& l : lines) {
+      double d[4];
+      for (int m = 0; m < 4; ++m) {
+        const std::uint32_t k = nodeAt(l[0] + (m - 1) * l[2], l[1] + (m - 1) * l[3]);
+        if (k == kNone || nodes_[k].far) return kUnknown;
+        d[m] = perspective_ ? 1.0 / nodes_[k].depth : nodes_[k].depth;
+      }
+      const double change = std::abs((d[3] - d[2]) - (d[1] - d[0])) / 4.0;
+      most = std::max(most, perspective_ ? change * depth * depth : change);
+    }
+    return most;
   }
 
   std::uint32_t newEdge(std::uint32_t p, std::uint32_t q, int axis) {
