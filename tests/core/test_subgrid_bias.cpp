@@ -26,28 +26,44 @@ using volume::kSubgridBiasFloor;
 using volume::subCellBias;
 
 TEST(SubgridBias, ACellSampleSetsItsCornersBias) {
-  const double b = 0.2, far = 50.0, kInf = std::numeric_limits<double>::infinity();
+  const double b = 0.2, far = 50.0;
+  const auto unknown = [] { return std::numeric_limits<double>::infinity(); };
   const double floor = kSubgridBiasFloor * b / 4;
   // On a plane the centre lies on the sheet: the floor.
-  EXPECT_NEAR(subCellBias({10.0, 11.0, 12.0, 11.0}, 11.0, kInf, b, 4, false, far), floor, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 11.0, 12.0, 11.0}, 11.0, unknown, b, 4, false, far), floor, 1e-12);
   // A spot light's plane: the inverse depth is linear; its midpoint is the centre's.
   const double inv[4] = {1.0 / 10.0, 1.0 / 11.0, 1.0 / 12.0, 1.0 / 11.0};
   EXPECT_NEAR(
-      subCellBias({1 / inv[0], 1 / inv[1], 1 / inv[2], 1 / inv[3]}, 2.0 / (inv[0] + inv[2]), kInf, b, 4, true, far),
+      subCellBias({1 / inv[0], 1 / inv[1], 1 / inv[2], 1 / inv[3]}, 2.0 / (inv[0] + inv[2]), unknown, b, 4, true, far),
       floor, 1e-12);
   // Behind the sheet by 0.05 (the lower diagonal's midpoint is the sheet): twice that where nothing
   // bounds a fold, the lattice's fold bound where it lies between once and twice, else once.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, kInf, b, 4, false, far), 0.1 + floor, 1e-12);
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, 0.07, b, 4, false, far), 0.07 + floor, 1e-12);
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, 0.01, b, 4, false, far), 0.05 + floor, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, unknown, b, 4, false, far), 0.1 + floor, 1e-12);
+  EXPECT_NEAR(subCellBias(
+                  {10.0, 10.0, 10.0, 10.4}, 10.05, [] { return 0.07; }, b, 4, false, far),
+              0.07 + floor, 1e-12);
+  EXPECT_NEAR(subCellBias(
+                  {10.0, 10.0, 10.0, 10.4}, 10.05, [] { return 0.01; }, b, 4, false, far),
+              0.05 + floor, 1e-12);
   // In front of it: the floor; far behind (another surface) or far anywhere: all of the bias.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 9.5, kInf, b, 4, false, far), floor, 1e-12);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 2.5 * b, kInf, b, 4, false, far), b);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 1.5 * b, kInf, b, 4, false, far), b);  // clamped
-  EXPECT_EQ(subCellBias({10.0, far, 10.0, 10.0}, 10.0, kInf, b, 4, false, far), b);
-  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, far, kInf, b, 4, false, far), b);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 9.5, unknown, b, 4, false, far), floor, 1e-12);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 2.5 * b, unknown, b, 4, false, far), b);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 1.5 * b, unknown, b, 4, false, far), b);  // clamped
+  EXPECT_EQ(subCellBias({10.0, far, 10.0, 10.0}, 10.0, unknown, b, 4, false, far), b);
+  EXPECT_EQ(subCellBias({10.0, 10.0, 10.0, 10.0}, far, unknown, b, 4, false, far), b);
+  // The fold bound is asked for only where the centre lies behind and the bias is not at its cap.
+  int calls = 0;
+  const auto counted = [&] {
+    ++calls;
+    return 0.0;
+  };
+  subCellBias({10.0, 10.0, 10.0, 10.0}, 9.5, counted, b, 4, false, far);
+  subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0 + 1.5 * b, counted, b, 4, false, far);
+  EXPECT_EQ(calls, 0);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.4}, 10.05, counted, b, 4, false, far), 0.05 + floor, 1e-12);
+  EXPECT_EQ(calls, 1);
   // The floor scales with 1 / S.
-  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0, kInf, b, 8, false, far), kSubgridBiasFloor * b / 8, 1e-12);
+  EXPECT_NEAR(subCellBias({10.0, 10.0, 10.0, 10.0}, 10.0, unknown, b, 8, false, far), kSubgridBiasFloor * b / 8, 1e-12);
 }
 
 // A directional light from the side and above (not axis-aligned), over an 8 x 8 square.

@@ -6,8 +6,8 @@
 
 namespace shadowvol::volume {
 
-double subCellBias(const std::array<double, 4>& corners, double centre, double foldBound, double bias, int subdivisions,
-                   bool perspective, double farPlane) {
+double subCellBias(const std::array<double, 4>& corners, double centre, const std::function<double()>& foldBound,
+                   double bias, int subdivisions, bool perspective, double farPlane) {
   if (centre == farPlane) return bias;
   for (double d : corners)
     if (d == farPlane) return bias;
@@ -15,9 +15,10 @@ double subCellBias(const std::array<double, 4>& corners, double centre, double f
                                 depthAlongEdge(corners[1], corners[3], 0.5, perspective));
   const double behind = centre - sheet;
   if (behind > 2.0 * bias) return bias;
-  const double fold = behind > 0.0 ? std::min(2.0 * behind, std::max(behind, foldBound)) : 0.0;
   const double floor = kSubgridBiasFloor * bias / subdivisions;
-  return std::clamp(fold + floor, floor, bias);
+  if (behind <= 0.0) return floor;
+  if (behind + floor >= bias) return bias;  // the bound cannot lower it
+  return std::min(std::min(2.0 * behind, std::max(behind, foldBound())) + floor, bias);
 }
 
 }  // namespace shadowvol::volume

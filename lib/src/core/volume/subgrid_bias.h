@@ -24,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 
 namespace shadowvol::volume {
 
@@ -38,12 +39,12 @@ inline constexpr double kSubgridBiasFloor = 0.125;
 /// captured surface can lie behind the sheet through its corners (as the projection interpolates:
 /// the depth for a directional light, its inverse for a spot light; the nearer of the two
 /// diagonals' midpoints), plus the floor. That distance: 0 when the `centre` sample lies on or in
-/// front of the sheet, else min(2 x its distance, max(its distance, `foldBound`)), foldBound the
+/// front of the sheet, else min(2 x its distance, max(its distance, `foldBound()`)), foldBound the
 /// lattice's bound on a fold inside the sub-cell (+inf when unknown; see above). `corners` and
 /// `centre` are sheet depths with the bias B in them (SheetDepthRule::ofSample); B itself where a
 /// corner or the centre is far (`farPlane`) or the centre lies more than 2 B behind (a surface
-/// beyond a jump, not this one).
-double subCellBias(const std::array<double, 4>& corners, double centre, double foldBound, double bias, int subdivisions,
-                   bool perspective, double farPlane);
+/// beyond a jump, not this one). `foldBound` is called only where its value can change the result.
+double subCellBias(const std::array<double, 4>& corners, double centre, const std::function<double()>& foldBound,
+                   double bias, int subdivisions, bool perspective, double farPlane);
 
 }  // namespace shadowvol::volume

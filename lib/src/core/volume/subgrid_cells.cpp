@@ -270,14 +270,19 @@ class SubgridBuilder {
   // discontinuity rule's) keeps the full bias, as the texel centres' does.
   void lowerSampledBias(const std::vector<std::array<std::uint32_t, 4>>& cells, std::span<const float> centre) {
     const SheetDepthRule& rule = sheet_.rule();
+    std::vector<double> need(cells.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t c = r.begin(); c != r.end(); ++c) {
+        const std::array<double, 4> corners = {nodes_[cells[c][0]].depth, nodes_[cells[c][1]].depth,
+                                               nodes_[cells[c][2]].depth, nodes_[cells[c][3]].depth};
+        const double mid = rule.ofSample(centre[c], o_.blur);
+        need[c] = subCellBias(
+            corners, mid, [&] { return foldBound(cells[c], mid); }, rule.bias, s_, perspective_, farPlane_);
+      }
+    });
     std::vector<double> keep(nodes_.size(), 0.0);
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      const std::array<double, 4> corners = {nodes_[cells[c][0]].depth, nodes_[cells[c][1]].depth,
-                                             nodes_[cells[c][2]].depth, nodes_[cells[c][3]].depth};
-      const double mid = rule.ofSample(centre[c], o_.blur);
-      const double need = subCellBias(corners, mid, foldBound(cells[c], mid), rule.bias, s_, perspective_, farPlane_);
-      for (std::uint32_t k : cells[c]) keep[k] = std::max(keep[k], need);
-    }
+    for (std::size_t c = 0; c < cells.size(); ++c)
+      for (std::uint32_t k : cells[c]) keep[k] = std::max(keep[k], need[c]);
     for (std::uint32_t k = 0; k < nodes_.size(); ++k) {
       Node& n = nodes_[k];
       if (n.sampled && !n.far) n.depth = std::max(rule.nearPlane, n.depth - (rule.bias - keep[k]));
