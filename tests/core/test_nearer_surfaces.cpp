@@ -124,8 +124,9 @@ TEST(NearerSurfaces, OnlyThePartWithinTheDepthRangeCounts) {
   const std::vector<std::uint8_t> part = search(map, ramp, limits(map, float(map.farPlane)));
   for (int qj = 0; qj < 31; ++qj)
     for (int qi = 0; qi < 31; ++qi)
-      if (part[std::size_t(qj) * 31 + qi])
+      if (part[std::size_t(qj) * 31 + qi]) {
         EXPECT_LE(std::min(map.worldPoint(qi, qj, 1.0).x, map.worldPoint(qi + 1, qj, 1.0).x), 1e-9) << qi << " " << qj;
+      }
   EXPECT_GT(std::count(part.begin(), part.end(), std::uint8_t(1)), 0);
 
   // y = 5 + 0.5 x meets every ray of the spot light at depths 1.4 to 2.4 and rises behind its apex
@@ -194,7 +195,9 @@ TEST(NearerSurfaces, ASliverAcrossTheMapFlagsTheQuadsAlongItAndAnEdgeOnWallNone)
   for (int qj = 0; qj < 255; ++qj)
     for (int qi = 0; qi < 255; ++qi) {
       const std::size_t q = std::size_t(qj) * 255 + std::size_t(qi);
-      if (onLine[q]) EXPECT_TRUE(flags[q]) << qi << " " << qj;
+      if (onLine[q]) {
+        EXPECT_TRUE(flags[q]) << qi << " " << qj;
+      }
       flagged += flags[q];
       if (!flags[q]) continue;
       // The square's centre lies within half a diagonal plus the sliver's width of the line.

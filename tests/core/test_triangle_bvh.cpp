@@ -138,7 +138,9 @@ TEST(TriangleBvh, RaysFindTheNearestHitOfEveryTriangle) {
       if (auto h = hit(m, t, o, d); h && (!brute || *h < *brute)) brute = h;
     const std::optional<double> through = nearestThrough(m, bvh, o, d);
     ASSERT_EQ(brute.has_value(), through.has_value()) << r;
-    if (brute) EXPECT_EQ(*brute, *through) << r;
+    if (brute) {
+      EXPECT_EQ(*brute, *through) << r;
+    }
     hits += brute.has_value();
   }
   EXPECT_GT(hits, 100);  // the rays do meet the soup
