@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "shadowvol/ray_parity.h"
 #include "shadowvol/volume_mesh.h"
 
 namespace shadowvol::test {
@@ -64,6 +65,13 @@ inline ::testing::AssertionResult sameMesh(const VolumeMesh& a, const VolumeMesh
   if (!std::equal(a.triangles.begin(), a.triangles.end(), b.triangles.begin(), b.triangles.end()))
     return ::testing::AssertionFailure() << "triangles differ";
   return ::testing::AssertionSuccess();
+}
+
+// Inside the closed volume by the parity of a ray's crossings (shadowvol/ray_parity.h).
+inline bool insideVolume(const VolumeMesh& m, const glm::dvec3& p) {
+  bool in = false;
+  for (const auto& t : m.triangles) in ^= parityRayCrosses(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  return in;
 }
 
 }  // namespace shadowvol::test

@@ -14,7 +14,6 @@
 #include "analytic_scene.h"
 #include "mesh_invariants.h"
 #include "shadowvol/error.h"
-#include "shadowvol/ray_parity.h"
 #include "shadowvol/volume_builder.h"
 #include "test_util.h"
 
@@ -163,14 +162,6 @@ AnalyticScene hiddenBar(bool ground) {
   return s;
 }
 
-// Inside the closed volume by the parity of a ray's crossings.
-bool inside(const VolumeMesh& m, const glm::dvec3& p) {
-  bool in = false;
-  for (const auto& t : m.triangles)
-    in ^= parityRayCrosses(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-  return in;
-}
-
 // No texel centre sees the bar: without the search for hidden surfaces the volume is empty (back
 // capture) or has no shadow of it (front capture over the ground); with it the quads its image
 // overlaps go on the sub-grid, whose nodes find it, and its walls stand round it.
@@ -188,7 +179,7 @@ TEST(SubGrid, HiddenSurfaceSearchWallsABarThatNoTexelCentreSees) {
     const glm::dvec3 under(0.05, 0.5, 0.3), beside(0.3, 0.5, 0.3), beyond(0.05, 0.5, 1.6);
     const VolumeBuildResult none = buildVolume(map, o);
     EXPECT_EQ(none.stats.hiddenQuads, 0u);
-    EXPECT_FALSE(!none.mesh.triangles.empty() && inside(none.mesh, under)) << ground;
+    EXPECT_FALSE(!none.mesh.triangles.empty() && test::insideVolume(none.mesh, under)) << ground;
     o.nearerSurfaces = s.nearerSurfaces();
     o.refineHidden = false;
     EXPECT_TRUE(test::sameMesh(buildVolume(map, o).mesh, none.mesh)) << ground;
@@ -196,9 +187,9 @@ TEST(SubGrid, HiddenSurfaceSearchWallsABarThatNoTexelCentreSees) {
     const VolumeBuildResult v = buildVolume(map, o);
     ASSERT_TRUE(closedOrientedManifold(v.mesh)) << ground;
     EXPECT_GE(v.stats.hiddenQuads, 8u) << ground;  // 2 long: 8 texels and a part, in one column
-    EXPECT_TRUE(inside(v.mesh, under)) << ground;
-    EXPECT_FALSE(inside(v.mesh, beside)) << ground;
-    EXPECT_FALSE(inside(v.mesh, beyond)) << ground;
+    EXPECT_TRUE(test::insideVolume(v.mesh, under)) << ground;
+    EXPECT_FALSE(test::insideVolume(v.mesh, beside)) << ground;
+    EXPECT_FALSE(test::insideVolume(v.mesh, beyond)) << ground;
     if (ground) continue;  // (the ground's quads at the map's far ring are refined, plain)
     EXPECT_EQ(v.stats.subgridQuads, v.stats.refinedCells);  // the hidden quads, all cut
     // The walls' far vertices within the sub-edges' bisection step of the bar's sides.
@@ -235,9 +226,9 @@ TEST(SubGrid, AFeatureOneNodeWideAtTheLatticesEdgeIsWalled) {
     const VolumeBuildResult v = buildVolume(map, o);
     ASSERT_TRUE(closedOrientedManifold(v.mesh)) << toString(mode);
     EXPECT_GE(v.stats.hiddenQuads, 8u) << toString(mode);
-    EXPECT_TRUE(inside(v.mesh, {0.0, 0.5, 0.3})) << toString(mode);     // under the bar
-    EXPECT_FALSE(inside(v.mesh, {0.07, 0.5, 0.3})) << toString(mode);   // beside it, over lit ground
-    EXPECT_FALSE(inside(v.mesh, {-0.07, 0.5, 0.3})) << toString(mode);
+    EXPECT_TRUE(test::insideVolume(v.mesh, {0.0, 0.5, 0.3})) << toString(mode);     // under the bar
+    EXPECT_FALSE(test::insideVolume(v.mesh, {0.07, 0.5, 0.3})) << toString(mode);   // beside it, over lit ground
+    EXPECT_FALSE(test::insideVolume(v.mesh, {-0.07, 0.5, 0.3})) << toString(mode);
   }
 }
 
