@@ -28,9 +28,12 @@ using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm:
 /// which that straight path leaves the triangle's image (0 when from[k] lies on its edge already;
 /// may exceed 1), NaN where the capture records no single triangle there (no hit; midpoint
 /// capture, which records the middle of two surfaces; a triangle edge-on to the light or reaching
-/// behind a spot light's apex plane). Same calling rules as DepthOracle.
-using SurfaceEndOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> from,
-                                            std::span<const glm::dvec2> to, std::span<double> t)>;
+/// behind a spot light's apex plane). Writes depth[k] = the light-view depth that triangle shows
+/// where the path leaves it (triangleDepthAt, triangle_exit.h), NaN with t[k] or where the light ray
+/// there runs in the triangle's plane. Same calling rules as DepthOracle.
+using SurfaceEndOracle =
+    std::function<void(const DepthMap& map, std::span<const glm::dvec2> from, std::span<const glm::dvec2> to,
+                       std::span<double> t, std::span<double> depth)>;
 
 /// Which quads hide a surface nearer than the sheet (the sub-grid's search for hidden surfaces,
 /// nearer_surfaces.h): sets flags[q] = 1 for each quad q = qj * (W - 1) + qi of the map's grid

@@ -127,6 +127,8 @@ std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, con
 struct CrossingSnap {
   const SurfaceEndOracle* ends = nullptr;  ///< unset: no snap
   std::size_t* snapped = nullptr;          ///< if set, incremented for each crossing snapped
+  bool rimBias = false;                    ///< a snapped crossing's near vertex at rimVertexDepth (the
+                                           ///< sub-grid's: the GPU volume has no mirror of it yet)
 };
 
 /// Bisects every segment with `steps` >= 1 rays (one oracle batch per step for all of them); the

@@ -169,6 +169,10 @@ const SurfaceEndOracle* snapOf(const VolumeBuildOptions& options) {
   return options.refineSnap && options.surfaceEnds && options.depthOracle ? &options.surfaceEnds : nullptr;
 }
 
+// Whether snapped crossings' near vertices keep only the bias the rim needs (crossing_snap.h):
+// with the sub-grid, which the GPU volume does not mirror (the plain refined volume stays the GPU's).
+bool rimBiasOf(const VolumeBuildOptions& options) { return options.refineSubdivisions > 1; }
+
 // Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
 // centre depths), then, with refineChords or `chordTest` (the adaptive sub-grid's choice, which
 // only measures with them), the chord points of the quads with two boundary edges; their counts go
@@ -191,7 +195,7 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     for (Crossing& c : refinement.crossings) keepApartFromEnds(c, 1.0, safe);
   } else {
     refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                     options.refineSteps, centreList, {snapOf(options)});
+                                     options.refineSteps, centreList, {snapOf(options), nullptr, rimBiasOf(options)});
   }
   stats.crossingFallbacks = refinement.fallbacks;
   stats.snappedCrossings = refinement.snapped;
@@ -204,7 +208,7 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   RayBudget budget;
   chords.crossings =
       bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget,
-                     {}, nullptr, {snapOf(options), &stats.snappedCrossings});
+                     {}, nullptr, {snapOf(options), &stats.snappedCrossings, rimBiasOf(options)});
   stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
   stats.raysCast += budget.rays;
   stats.msRays += budget.ms;
@@ -234,6 +238,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   o.perfect = options.triangulation == Triangulation::Perfect;
   o.exact = options.cap == FarCap::Exact;
   o.ends = snapOf(options);
+  o.rimBias = rimBiasOf(options);
   volume::SubgridCells sub =
       volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, firstVertex, plain);
   // Vertex indices stay below kNone: the sheet, the sub-grid's and one centroid per split side at most.

@@ -685,7 +685,7 @@ class SubgridBuilder {
     RayBudget budget;
     if (!segments.empty())
       crossings_ = bisectSegments(map_, segments, sheet_.rule(), o_.blur, oracle_, o_.steps, budget, centres_,
-                                  &centreDepths_, {o_.ends, &out_.snapped});
+                                  &centreDepths_, {o_.ends, &out_.snapped, o_.rimBias});
     out_.raysCast += budget.rays;
     out_.msRays += budget.ms;
     // The crossings' two vertices: texel point, light-view points, world positions.
