@@ -175,22 +175,27 @@ TEST(CrossingSnap, RefinedVolumesStayApartInFloatAtTheFinestSettings) {
   }
 }
 
-// The surface-end oracle also gives the depth of the recorded triangle where the path leaves it
-// (the rim, rimVertexDepth's): on the plate's top, y = 1.55, under the light shining straight down.
-TEST(CrossingSnap, TheSurfaceEndOracleGivesTheTrianglesDepthAtItsEnd) {
+// The surface-end oracle also gives the recorded triangle (the rim's, volume/rim_bias.h): where the
+// path leaves it, its depth is the plate's top, y = 1.55, under the light shining straight down.
+TEST(CrossingSnap, TheSurfaceEndOracleGivesTheTriangleThatEnds) {
   const Scene scene = rotatedPlate(30.0);
   const EmbreeDepthOracle oracle(scene);
   const DepthMap map = captureDepthEmbree(scene, 64, 64, CaptureMode::Front);
   const glm::dvec2 centre = map.texelNdc(31.5, 31.5);
   const std::array<glm::dvec2, 3> from = {centre, centre, map.texelNdc(31.0, 33.0)};
   const std::array<glm::dvec2, 3> to = {map.texelNdc(63.0, 31.5), map.texelNdc(10.0, 55.0), map.texelNdc(31.0, 0.0)};
-  std::array<double, 3> t{}, depth{};
-  oracle.surfaceEnds()(map, from, to, t, depth);
+  std::array<double, 3> t{};
+  std::array<std::array<glm::dvec3, 3>, 3> triangle{};
+  oracle.surfaceEnds()(map, from, to, t, triangle);
+  const TexelUnprojector unproject(map);
   for (std::size_t k = 0; k < t.size(); ++k) {
-    ASSERT_TRUE(std::isfinite(t[k]) && std::isfinite(depth[k])) << k;
+    ASSERT_TRUE(std::isfinite(t[k])) << k;
     const glm::dvec2 f = (from[k] + 1.0) * 0.5 * 64.0 - 0.5, e = (to[k] + 1.0) * 0.5 * 64.0 - 0.5;
     const glm::dvec2 exit = f + t[k] * (e - f);
-    EXPECT_NEAR(map.worldPoint(exit.x, exit.y, depth[k]).y, 1.55, 1e-5) << k;
+    for (const glm::dvec3& corner : triangle[k]) EXPECT_NEAR(corner.y, 1.55, 1e-6) << k;
+    const double depth = triangleDepthAt(unproject, triangle[k], exit);
+    ASSERT_TRUE(std::isfinite(depth)) << k;
+    EXPECT_NEAR(map.worldPoint(exit.x, exit.y, depth).y, 1.55, 1e-6) << k;
   }
 }
 

@@ -4,11 +4,13 @@
 // (shadowvol_embree: EmbreeDepthOracle; tests: analytic scenes).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <span>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "shadowvol/depth_map.h"
 
@@ -28,12 +30,12 @@ using DepthOracle = std::function<void(const DepthMap& map, std::span<const glm:
 /// which that straight path leaves the triangle's image (0 when from[k] lies on its edge already;
 /// may exceed 1), NaN where the capture records no single triangle there (no hit; midpoint
 /// capture, which records the middle of two surfaces; a triangle edge-on to the light or reaching
-/// behind a spot light's apex plane). Writes depth[k] = the light-view depth that triangle shows
-/// where the path leaves it (triangleDepthAt, triangle_exit.h), NaN with t[k] or where the light ray
-/// there runs in the triangle's plane. Same calling rules as DepthOracle.
+/// behind a spot light's apex plane). Writes triangle[k] = that triangle's corners (the map's
+/// coordinates, as its rays: triangleDepthAt in triangle_exit.h reads the depth it shows anywhere),
+/// all NaN with t[k]. Same calling rules as DepthOracle.
 using SurfaceEndOracle =
     std::function<void(const DepthMap& map, std::span<const glm::dvec2> from, std::span<const glm::dvec2> to,
-                       std::span<double> t, std::span<double> depth)>;
+                       std::span<double> t, std::span<std::array<glm::dvec3, 3>> triangle)>;
 
 /// Which quads hide a surface nearer than the sheet (the sub-grid's search for hidden surfaces,
 /// nearer_surfaces.h): sets flags[q] = 1 for each quad q = qj * (W - 1) + qi of the map's grid

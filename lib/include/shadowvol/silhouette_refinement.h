@@ -19,11 +19,15 @@
 // builder's chord points use it too.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/depth_oracle.h"
@@ -35,6 +39,12 @@ struct Crossing {
   double s = 0.5;           ///< edge (or segment) parameter from the near end, in (0, 1)
   double nearDepth = 0.0;   ///< light-view depth of the wall's near vertex (world units)
   double farDepth = 0.0;    ///< light-view depth of the wall's far vertex (the far plane for far edges)
+  /// Snapped (crossing_snap.h): the triangle recorded on the near side, which ends at the crossing
+  /// (the map's coordinates); NaN corners otherwise. The sub-grid's rim bias reads it (rim_bias.h).
+  std::array<glm::dvec3, 3> rim = {glm::dvec3(std::numeric_limits<double>::quiet_NaN()),
+                                   glm::dvec3(std::numeric_limits<double>::quiet_NaN()),
+                                   glm::dvec3(std::numeric_limits<double>::quiet_NaN())};
+  bool hasRim() const { return !std::isnan(rim[0].x); }
   /// Texel coordinates (i, j) of the crossing on edge e.
   static glm::dvec2 texel(const BoundaryEdge& e, double s);
 };
@@ -127,8 +137,6 @@ std::vector<Crossing> bisectWith(std::span<const BisectionSegment> segments, con
 struct CrossingSnap {
   const SurfaceEndOracle* ends = nullptr;  ///< unset: no snap
   std::size_t* snapped = nullptr;          ///< if set, incremented for each crossing snapped
-  bool rimBias = false;                    ///< a snapped crossing's near vertex at rimVertexDepth (the
-                                           ///< sub-grid's: the GPU volume has no mirror of it yet)
 };
 
 /// Bisects every segment with `steps` >= 1 rays (one oracle batch per step for all of them); the

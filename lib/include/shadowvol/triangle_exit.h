@@ -25,10 +25,10 @@ namespace shadowvol {
 /// A `from` just outside the image (float rounding of the ray that found the triangle) exits at 0.
 double triangleExit(const DepthMap& map, const std::array<glm::dvec3, 3>& corners, glm::dvec2 from, glm::dvec2 to);
 
-/// The light-view depth at which the light ray through texel point `at` (texel coordinates) meets
-/// the plane of the triangle `corners` (the map's coordinates): the depth that triangle shows there,
-/// also a little outside it. NaN when the ray runs (almost) in the plane (below 1e-12 of the
-/// normal's length per unit of ray) or meets it at no positive depth.
-double triangleDepthAt(const DepthMap& map, const std::array<glm::dvec3, 3>& corners, glm::dvec2 at);
+/// The light-view depth at which the light ray through texel point `at` (texel coordinates of the
+/// map `unproject` is of) meets the plane of the triangle `corners` (the map's coordinates): the
+/// depth that triangle shows there, also outside it. NaN when the ray runs (almost) in the plane
+/// (below 1e-12 of the normal's length per unit of ray) or meets it at no positive depth.
+double triangleDepthAt(const TexelUnprojector& unproject, const std::array<glm::dvec3, 3>& corners, glm::dvec2 at);
 
 }  // namespace shadowvol

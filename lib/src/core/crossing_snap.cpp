@@ -1,13 +1,13 @@
 #include "shadowvol/crossing_snap.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
 #include "shadowvol/check.h"
-#include "volume/sheet_depths.h"  // depthAlongEdge
 
 namespace shadowvol {
 namespace {
@@ -18,27 +18,10 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-double rimVertexDepth(const DepthMap& map, const BisectionSegment& g, const BisectionBracket& b, double sExit,
-                      double rim, const SheetDepthRule& rule) {
-  const double bias = rule.bias, farPlane = rule.farPlane;
-  if (!(bias > 0.0) || !std::isfinite(rim) || b.dLo == farPlane) return b.dLo;
-  // The rim's triangle carried back to the segment's near end, from its depth at lo (d(lo) less the
-  // bias) and at the rim: needs the two apart by more than rounding.
-  const double length = glm::length(g.farPoint - g.nearPoint);
-  double keep = bias;
-  if ((sExit - b.lo) * length > kRimBaseTexels && g.nearDepth != farPlane) {
-    const double f = -b.lo / (sExit - b.lo);
-    const double back = volume::depthAlongEdge(b.dLo - bias, rim, f, map.lightProjection[2][3] != 0.0);
-    if (std::isfinite(back) && back > 0.0)
-      keep = std::min(bias, kRimBiasFloor * bias + std::max(0.0, back - (g.nearDepth - bias)));
-  }
-  return std::min(b.dLo, std::max(rule.nearPlane, rim + keep));
-}
-
 std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const BisectionSegment> segments,
                                     std::span<const BisectionBracket> brackets, const SheetDepthRule& rule, bool blur,
                                     int steps, const DepthOracle& oracle, const SurfaceEndOracle& ends,
-                                    RayBudget& budget, std::size_t& snapped, bool rimBias) {
+                                    RayBudget& budget, std::size_t& snapped) {
   SV_CHECK_EQ(segments.size(), brackets.size());
   SV_CHECK(bool(oracle) && bool(ends));
   const double farPlane = rule.farPlane, margin = std::ldexp(1.0, -(steps + 2));
@@ -54,19 +37,20 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
     const glm::dvec2 t = g.nearPoint + s * (g.farPoint - g.nearPoint);
     return map.texelNdc(t.x, t.y);
   };
-  // The crossing moved to s where the triangle ends (`rim`: the triangle's depth there); its near
-  // vertex at rimVertexDepth, its far vertex (surface segments) at the probe's surface (`probeDepth`
-  // stored; kNoHit: d(hi) stays).
-  auto snap = [&](std::size_t k, double s, float probeDepth, double rim) {
+  // The crossing moved to s where the triangle `rim` ends; its near vertex stays at the bracket's
+  // d(lo), its far vertex (surface segments) goes to the probe's surface (`probeDepth` stored;
+  // kNoHit: d(hi) stays).
+  auto snap = [&](std::size_t k, double s, float probeDepth, const std::array<glm::dvec3, 3>& rim) {
     Crossing& c = out[k];
     c.s = std::clamp(s, margin, 1.0 - margin);
-    if (rimBias && !blur) c.nearDepth = rimVertexDepth(map, segments[k], b[k], s, rim, rule);
+    c.rim = rim;
     const double beyond = rule.ofSample(probeDepth, blur);
     if (segments[k].surface && beyond != farPlane && beyond > c.nearDepth) c.farDepth = beyond;
     ++snapped;
   };
   std::vector<glm::dvec2> from, to, probe;
-  std::vector<double> t, rimDepth, sExit, sProbe, sRim;
+  std::vector<double> t, sExit, sProbe;
+  std::vector<std::array<glm::dvec3, 3>> triangle, probeTriangle;
   std::vector<float> probeDepth;
   std::vector<std::size_t> next, probing;
   for (int round = 0; round < kSnapRounds && !active.empty(); ++round) {
@@ -74,14 +58,14 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
     from.resize(active.size()), to.resize(active.size());
     for (std::size_t q = 0; q < active.size(); ++q) from[q] = point(active[q], b[active[q]].lo), to[q] = point(active[q], b[active[q]].hi);
     t.assign(active.size(), 0.0);
-    rimDepth.assign(active.size(), 0.0);
+    triangle.resize(active.size());
     auto t0 = std::chrono::steady_clock::now();
-    ends(map, from, to, t, rimDepth);
+    ends(map, from, to, t, triangle);
     budget.ms += msSince(t0);
     budget.rays += active.size();
     // A probe just beyond each end that lies inside its bracket; an end at hi needs none (hi is
     // off the near side already).
-    probing.clear(), probe.clear(), sExit.clear(), sProbe.clear(), sRim.clear();
+    probing.clear(), probe.clear(), sExit.clear(), sProbe.clear(), probeTriangle.clear();
     for (std::size_t q = 0; q < active.size(); ++q) {
       const std::size_t k = active[q];
       // Past hi by more than rounding: the capture at hi records a nearer surface; keep the middle.
@@ -89,13 +73,14 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
       const BisectionBracket& br = b[k];
       const double se = std::min(br.lo + t[q] * (br.hi - br.lo), br.hi);
       if (se == br.hi) {
-        snap(k, se, DepthMap::kNoHit, rimDepth[q]);
+        snap(k, se, DepthMap::kNoHit, triangle[q]);
         continue;
       }
       const double length = glm::length(segments[k].farPoint - segments[k].nearPoint);
       const double sp = se + std::min(kSnapProbeTexels / length, 0.5 * (br.hi - se));
       if (!(sp > se && sp < br.hi)) continue;
-      probing.push_back(q), sExit.push_back(se), sProbe.push_back(sp), probe.push_back(point(k, sp)), sRim.push_back(rimDepth[q]);
+      probing.push_back(q), sExit.push_back(se), sProbe.push_back(sp), probe.push_back(point(k, sp)),
+          probeTriangle.push_back(triangle[q]);
     }
     if (probing.empty()) break;
     probeDepth.assign(probing.size(), DepthMap::kNoHit);
@@ -119,7 +104,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
         next.push_back(k);
         continue;
       }
-      snap(k, sExit[p], probeDepth[p], sRim[p]);
+      snap(k, sExit[p], probeDepth[p], probeTriangle[p]);
     }
     active.swap(next);
   }

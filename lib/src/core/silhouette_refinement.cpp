@@ -120,7 +120,7 @@ std::vector<Crossing> bisectSegments(const DepthMap& map, std::span<const Bisect
   } else {
     const std::vector<BisectionBracket> brackets = bisectBrackets(segments, rule, blur, steps, sample);
     std::size_t snapped = 0;
-    out = snapCrossings(map, segments, brackets, rule, blur, steps, oracle, *snap.ends, budget, snapped, snap.rimBias);
+    out = snapCrossings(map, segments, brackets, rule, blur, steps, oracle, *snap.ends, budget, snapped);
     if (snap.snapped) *snap.snapped += snapped;
   }
   // Apart from the segments' ends in float as well (the header's floatSafeTexels).

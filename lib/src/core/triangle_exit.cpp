@@ -38,9 +38,9 @@ double triangleExit(const DepthMap& map, const std::array<glm::dvec3, 3>& corner
   return std::max(t, 0.0);
 }
 
-double triangleDepthAt(const DepthMap& map, const std::array<glm::dvec3, 3>& corners, glm::dvec2 at) {
+double triangleDepthAt(const TexelUnprojector& unproject, const std::array<glm::dvec3, 3>& corners, glm::dvec2 at) {
   constexpr double none = std::numeric_limits<double>::quiet_NaN();
-  const TexelUnprojector::Ray ray = TexelUnprojector(map).ray(at.x, at.y);  // t = light-view depth
+  const TexelUnprojector::Ray ray = unproject.ray(at.x, at.y);  // t = light-view depth
   const glm::dvec3 n = glm::cross(corners[1] - corners[0], corners[2] - corners[0]);
   const double along = glm::dot(n, ray.direction);
   if (!(std::abs(along) > 1e-12 * glm::length(n) * glm::length(ray.direction))) return none;

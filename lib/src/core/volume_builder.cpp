@@ -23,6 +23,7 @@
 #include "volume/hidden_quads.h"
 #include "volume/quad_codes.h"
 #include "volume/refined_cells.h"
+#include "volume/rim_bias.h"
 #include "volume/sheet_depths.h"
 #include "volume/sheet_emit.h"
 #include "volume/sheet_vertices.h"
@@ -169,9 +170,12 @@ const SurfaceEndOracle* snapOf(const VolumeBuildOptions& options) {
   return options.refineSnap && options.surfaceEnds && options.depthOracle ? &options.surfaceEnds : nullptr;
 }
 
-// Whether snapped crossings' near vertices keep only the bias the rim needs (crossing_snap.h):
-// with the sub-grid, which the GPU volume does not mirror (the plain refined volume stays the GPU's).
-bool rimBiasOf(const VolumeBuildOptions& options) { return options.refineSubdivisions > 1; }
+// Whether snapped crossings' near vertices keep only the bias the rim needs (volume/rim_bias.h):
+// with the sub-grid (which the GPU volume has not: the plain refined volume stays the GPU's), a
+// bias and no blur.
+bool rimBiasOf(const VolumeBuildOptions& options, const volume::SheetDepths& sheet) {
+  return options.refineSubdivisions > 1 && sheet.rule().bias > 0.0 && !options.blur;
+}
 
 // Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
 // centre depths), then, with refineChords or `chordTest` (the adaptive sub-grid's choice, which
@@ -195,8 +199,9 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     for (Crossing& c : refinement.crossings) keepApartFromEnds(c, 1.0, safe);
   } else {
     refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
-                                     options.refineSteps, centreList, {snapOf(options), nullptr, rimBiasOf(options)});
+                                     options.refineSteps, centreList, {snapOf(options)});
   }
+  if (rimBiasOf(options, sheet)) volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
   stats.crossingFallbacks = refinement.fallbacks;
   stats.snappedCrossings = refinement.snapped;
   countBoundaryEdges(edges, stats);
@@ -208,7 +213,7 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
   RayBudget budget;
   chords.crossings =
       bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget,
-                     {}, nullptr, {snapOf(options), &stats.snappedCrossings, rimBiasOf(options)});
+                     {}, nullptr, {snapOf(options), &stats.snappedCrossings});
   stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
   stats.raysCast += budget.rays;
   stats.msRays += budget.ms;
@@ -238,7 +243,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   o.perfect = options.triangulation == Triangulation::Perfect;
   o.exact = options.cap == FarCap::Exact;
   o.ends = snapOf(options);
-  o.rimBias = rimBiasOf(options);
+  o.rimBias = rimBiasOf(options, sheet);
   volume::SubgridCells sub =
       volume::buildSubgridCells(quads, use, vertices, sheet, options.depthOracle, o, firstVertex, plain);
   // Vertex indices stay below kNone: the sheet, the sub-grid's and one centroid per split side at most.

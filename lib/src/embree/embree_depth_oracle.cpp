@@ -58,10 +58,10 @@ DepthOracle EmbreeDepthOracle::oracle() const {
 SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
   const Impl* impl = impl_.get();
   return [impl](const DepthMap& map, std::span<const glm::dvec2> from, std::span<const glm::dvec2> to,
-                std::span<double> t, std::span<double> depth) {
+                std::span<double> t, std::span<std::array<glm::dvec3, 3>> triangle) {
     SV_CHECK_EQ(from.size(), to.size());
     SV_CHECK_EQ(from.size(), t.size());
-    SV_CHECK_EQ(from.size(), depth.size());
+    SV_CHECK_EQ(from.size(), triangle.size());
     const TexelUnprojector unproject(map);
     const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
     const auto texel = [&map](glm::dvec2 ndc) {
@@ -71,7 +71,8 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
         const glm::dvec2 a = texel(from[k]), b = texel(to[k]);
         const CapturedHit hit = captureHit(impl->scene.get(), unproject.ray(a.x, a.y), tNear, tFar, map.capture);
-        t[k] = depth[k] = std::nan("");
+        t[k] = std::nan("");
+        triangle[k].fill(glm::dvec3(std::nan("")));
         if (hit.geomID != RTC_INVALID_GEOMETRY_ID) {
           RTCGeometry geom = rtcGetGeometry(impl->scene.get(), hit.geomID);
           const auto* index = static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
@@ -82,7 +83,7 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
             corners[std::size_t(c)] = glm::dvec3(v[0], v[1], v[2]);
           }
           t[k] = triangleExit(map, corners, a, b);
-          if (!std::isnan(t[k])) depth[k] = triangleDepthAt(map, corners, a + t[k] * (b - a));
+          if (!std::isnan(t[k])) triangle[k] = corners;
         }
       }
     });

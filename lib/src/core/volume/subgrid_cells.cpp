@@ -17,6 +17,7 @@
 #include "shadowvol/triangulation.h"
 #include "volume/cell_triangulator.h"
 #include "volume/quad_codes.h"
+#include "volume/rim_bias.h"
 #include "volume/sheet_depths.h"
 #include "volume/subgrid_bias.h"
 
@@ -685,7 +686,8 @@ class SubgridBuilder {
     RayBudget budget;
     if (!segments.empty())
       crossings_ = bisectSegments(map_, segments, sheet_.rule(), o_.blur, oracle_, o_.steps, budget, centres_,
-                                  &centreDepths_, {o_.ends, &out_.snapped, o_.rimBias});
+                                  &centreDepths_, {o_.ends, &out_.snapped});
+    if (o_.rimBias) lowerRimVertices(segments);
     out_.raysCast += budget.rays;
     out_.msRays += budget.ms;
     // The crossings' two vertices: texel point, light-view points, world positions.
@@ -707,6 +709,19 @@ class SubgridBuilder {
       }
     });
     presetCrossingVertices(segments.size());
+  }
+
+  // Each snapped crossing's near vertex at rimVertexDepth (rim_bias.h), from its sub-edge's near
+  // end (its rule depth: the sample's, with the bias).
+  void lowerRimVertices(std::span<const BisectionSegment> segments) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const BisectionSegment& g = segments[k];
+        Crossing& c = crossings_[k];
+        const glm::dvec2 at = g.nearPoint + c.s * (g.farPoint - g.nearPoint);
+        c.nearDepth = rimVertexDepth(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
+      }
+    });
   }
 
   // The plain crossings' two vertices (their own, from the plain numbering), after the `bisected`.

@@ -101,7 +101,7 @@ struct SubgridOptions {
   bool perfect = true;   ///< the diagonal rule in sub-cells without a boundary side
   bool exact = true;     ///< drop triangles with three far vertices (the sub-grid needs the exact cap)
   const SurfaceEndOracle* ends = nullptr;  ///< snap the sub-edges' crossings (crossing_snap.h); null: no snap
-  bool rimBias = false;                    ///< with the snap: CrossingSnap::rimBias
+  bool rimBias = false;                    ///< with the snap: the near vertices at rimVertexDepth (rim_bias.h)
 };
 
 /// One side of an unrefined quad that carries virtual nodes: its corner vertices and the nodes'

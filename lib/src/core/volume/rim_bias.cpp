@@ -1,0 +1,42 @@
+#include "volume/rim_bias.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/triangle_exit.h"
+
+namespace shadowvol::volume {
+
+double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+                      double nearDepth, const SheetDepthRule& rule) {
+  const double bias = rule.bias;
+  if (!(bias > 0.0) || !c.hasRim()) return c.nearDepth;
+  const double rim = triangleDepthAt(unproject, c.rim, at);
+  if (!std::isfinite(rim)) return c.nearDepth;
+  const double plane = triangleDepthAt(unproject, c.rim, nearEnd);
+  const double keep =
+      std::isfinite(plane) ? std::min(bias, kRimBiasFloor * bias + std::max(0.0, plane - nearDepth)) : bias;
+  return std::min(c.nearDepth, std::max(rule.nearPlane, rim + keep));
+}
+
+void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings) {
+  const SheetDepthRule& rule = sheet.rule();
+  if (!(rule.bias > 0.0)) return;
+  const TexelUnprojector unproject(sheet.map());
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, edges.edges.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          Crossing& c = crossings[k];
+          if (!c.hasRim()) continue;
+          const BoundaryEdge& e = edges.edges[k];
+          const int ni = e.i + (!e.nearAtP && e.axis == 0 ? 1 : 0), nj = e.j + (!e.nearAtP && e.axis == 1 ? 1 : 0);
+          c.nearDepth = rimVertexDepth(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
+                                       sheet.at(ni, nj) - rule.bias, rule);
+        }
+      });
+}
+
+}  // namespace shadowvol::volume

@@ -1,0 +1,45 @@
+// The sub-grid's rim bias (docs/volume.md "Sub-grid", step 9): how much of front capture's bias a
+// snapped crossing's near vertex keeps above the rim, where the recorded surface ends.
+//
+// Front capture holds the whole sheet a texel footprint B behind the surface it records, so that
+// the sheet's straight runs between samples never pass in front of a lit surface (acne). Next to
+// a silhouette seen from the light, where a surface turns away, B is also what loses the shadows
+// that start within it: a model's parts shading each other, the terminator of a faceted curve.
+// The snap (crossing_snap.h) knows the triangle that ends at the crossing, so the vertex can stand
+// on the rim itself plus what the sheet's run from the crossing's near end needs: that run passes
+// in front of the surface between them only where the surface bends away from the light, and then
+// by at most how far the rim triangle's plane, carried on to the near end, lies behind the near
+// end's sample (the surface lies between the run and that plane); a fold towards the silhouette
+// needs nothing.
+#pragma once
+
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "shadowvol/boundary_edges.h"
+#include "shadowvol/depth_map.h"
+#include "shadowvol/silhouette_refinement.h"
+#include "volume/sheet_depths.h"
+
+namespace shadowvol::volume {
+
+/// The least fraction of the bias B that a near vertex keeps above the rim: for the depth
+/// precision and a bend between samples that no plane shows (measured in docs/results/rim-bias).
+inline constexpr double kRimBiasFloor = 1.0 / 8.0;
+
+/// The near vertex depth of crossing c at texel point `at` (of the map `unproject` is of), whose
+/// segment's near end lies at texel point `nearEnd` with sample depth `nearDepth` (without the
+/// bias): with B = rule.bias > 0 and a rim triangle (Crossing::rim), the rim's depth at `at` plus
+/// keep = min(B, kRimBiasFloor * B + e), e = max(0, the rim triangle's depth on the near end's light
+/// ray - nearDepth), never beyond c.nearDepth nor before the near plane; keep = B where the plane
+/// shows no depth there (edge-on). Without B or a rim: c.nearDepth.
+double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+                      double nearDepth, const SheetDepthRule& rule);
+
+/// The texel grid's crossings (plain refinement, before the sub-grid reads them): each snapped
+/// crossing's near vertex moves to rimVertexDepth. Sheet depths without blur (the caller's
+/// condition).
+void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
+
+}  // namespace shadowvol::volume
