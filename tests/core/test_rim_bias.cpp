@@ -38,6 +38,11 @@ TEST(RimBias, ThePlaneOfTheRimSetsWhatTheNearVertexKeeps) {
     EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 0.02, rule), rim + floor + 0.02, 1e-9);
     // Behind it (a fold towards the silhouette): the floor.
     EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + 0.3, rule), rim + floor, 1e-9);
+    // A rim far nearer the light than the near sample (a plane that reaches off): never nearer than
+    // the sample's own surface, d(lo) less the bias.
+    Crossing high = c;
+    high.nearDepth = rim + 0.5 + bias;
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, high, at, nearEnd, plane, rule), rim + 0.5, 1e-9);
     // Far in front: never more than the whole bias, nor beyond d(lo).
     EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 1.0, rule), std::min(rim + bias, c.nearDepth),
                 1e-9);

@@ -39,12 +39,18 @@ struct Crossing {
   double s = 0.5;           ///< edge (or segment) parameter from the near end, in (0, 1)
   double nearDepth = 0.0;   ///< light-view depth of the wall's near vertex (world units)
   double farDepth = 0.0;    ///< light-view depth of the wall's far vertex (the far plane for far edges)
+  // (The three above first: aggregate initialisers {s, near, far} fill them.)
+  /// Where the sub-grid's rim bias moved nearDepth (volume/rim_bias.h): the depth it had, the
+  /// near sample's, which the discontinuity rule reads (sampleNearDepth()); NaN otherwise.
+  double nearSample = std::numeric_limits<double>::quiet_NaN();
   /// Snapped (crossing_snap.h): the triangle recorded on the near side, which ends at the crossing
   /// (the map's coordinates); NaN corners otherwise. The sub-grid's rim bias reads it (rim_bias.h).
   std::array<glm::dvec3, 3> rim = {glm::dvec3(std::numeric_limits<double>::quiet_NaN()),
                                    glm::dvec3(std::numeric_limits<double>::quiet_NaN()),
                                    glm::dvec3(std::numeric_limits<double>::quiet_NaN())};
   bool hasRim() const { return !std::isnan(rim[0].x); }
+  /// The near side's sample depth (with the bias), as the discontinuity rule reads it.
+  double sampleNearDepth() const { return std::isnan(nearSample) ? nearDepth : nearSample; }
   /// Texel coordinates (i, j) of the crossing on edge e.
   static glm::dvec2 texel(const BoundaryEdge& e, double s);
 };

@@ -51,6 +51,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
   std::vector<glm::dvec2> from, to, probe;
   std::vector<double> t, sExit, sProbe;
   std::vector<std::array<glm::dvec3, 3>> triangle, probeTriangle;
+  const std::array<glm::dvec3, 3> kNoTriangle = Crossing().rim;  // NaN corners
   std::vector<float> probeDepth;
   std::vector<std::size_t> next, probing;
   for (int round = 0; round < kSnapRounds && !active.empty(); ++round) {
@@ -58,7 +59,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
     from.resize(active.size()), to.resize(active.size());
     for (std::size_t q = 0; q < active.size(); ++q) from[q] = point(active[q], b[active[q]].lo), to[q] = point(active[q], b[active[q]].hi);
     t.assign(active.size(), 0.0);
-    triangle.resize(active.size());
+    triangle.assign(active.size(), kNoTriangle);
     auto t0 = std::chrono::steady_clock::now();
     ends(map, from, to, t, triangle);
     budget.ms += msSince(t0);

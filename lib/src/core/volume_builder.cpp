@@ -171,10 +171,12 @@ const SurfaceEndOracle* snapOf(const VolumeBuildOptions& options) {
 }
 
 // Whether snapped crossings' near vertices keep only the bias the rim needs (volume/rim_bias.h):
-// with the sub-grid (which the GPU volume has not: the plain refined volume stays the GPU's), a
-// bias and no blur.
+// with the sub-grid (which the GPU volume has not: the plain refined volume stays the GPU's),
+// front capture's bias and no blur (back capture's rim touches the lit faces, docs/volume.md
+// "Refinement").
 bool rimBiasOf(const VolumeBuildOptions& options, const volume::SheetDepths& sheet) {
-  return options.refineSubdivisions > 1 && sheet.rule().bias > 0.0 && !options.blur;
+  return options.refineSubdivisions > 1 && sheet.map().capture == CaptureMode::Front && sheet.rule().bias > 0.0 &&
+         !options.blur;
 }
 
 // Refinement's rays: the boundary edges' crossings (and, with `centres`, the ambiguous quads'
@@ -201,22 +203,23 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     refinement = refineBoundaryEdges(map, edges, sheet.rule(), options.blur, blurred, options.depthOracle,
                                      options.refineSteps, centreList, {snapOf(options)});
   }
-  if (rimBiasOf(options, sheet)) volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
   stats.crossingFallbacks = refinement.fallbacks;
   stats.snappedCrossings = refinement.snapped;
   countBoundaryEdges(edges, stats);
   stats.ambiguousCells = centres ? quads.centres.size() : 0;
   stats.raysCast = refinement.raysCast;
   stats.msRays = refinement.msRays;
-  if (!options.refineChords && !chordTest) return;
-  chords = volume::planChordPoints(quads, sheet, edges, refinement);
-  RayBudget budget;
-  chords.crossings =
-      bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle, options.refineSteps, budget,
-                     {}, nullptr, {snapOf(options), &stats.snappedCrossings});
-  stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
-  stats.raysCast += budget.rays;
-  stats.msRays += budget.ms;
+  if (options.refineChords || chordTest) {
+    chords = volume::planChordPoints(quads, sheet, edges, refinement);
+    RayBudget budget;
+    chords.crossings = bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle,
+                                      options.refineSteps, budget, {}, nullptr, {snapOf(options), &stats.snappedCrossings});
+    stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
+    stats.raysCast += budget.rays;
+    stats.msRays += budget.ms;
+  }
+  // After the chord points, which bisect from the crossings' samples (the discontinuity rule's).
+  if (rimBiasOf(options, sheet)) volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
 }
 
 // The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from firstVertex

@@ -19,7 +19,9 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
   const double plane = triangleDepthAt(unproject, c.rim, nearEnd);
   const double keep =
       std::isfinite(plane) ? std::min(bias, kRimBiasFloor * bias + std::max(0.0, plane - nearDepth)) : bias;
-  return std::min(c.nearDepth, std::max(rule.nearPlane, rim + keep));
+  // Never nearer the light than the near sample's own surface (d(lo) less the bias): a triangle
+  // nearly edge-on to the light, whose plane `at` reaches a little off, cannot pull it further.
+  return std::min(c.nearDepth, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
 }
 
 void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings) {
@@ -33,8 +35,9 @@ void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges,
           if (!c.hasRim()) continue;
           const BoundaryEdge& e = edges.edges[k];
           const int ni = e.i + (!e.nearAtP && e.axis == 0 ? 1 : 0), nj = e.j + (!e.nearAtP && e.axis == 1 ? 1 : 0);
-          c.nearDepth = rimVertexDepth(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
-                                       sheet.at(ni, nj) - rule.bias, rule);
+          const double d = rimVertexDepth(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
+                                           sheet.at(ni, nj) - rule.bias, rule);
+          if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
         }
       });
 }

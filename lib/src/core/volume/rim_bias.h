@@ -32,14 +32,16 @@ inline constexpr double kRimBiasFloor = 1.0 / 8.0;
 /// segment's near end lies at texel point `nearEnd` with sample depth `nearDepth` (without the
 /// bias): with B = rule.bias > 0 and a rim triangle (Crossing::rim), the rim's depth at `at` plus
 /// keep = min(B, kRimBiasFloor * B + e), e = max(0, the rim triangle's depth on the near end's light
-/// ray - nearDepth), never beyond c.nearDepth nor before the near plane; keep = B where the plane
-/// shows no depth there (edge-on). Without B or a rim: c.nearDepth.
+/// ray - nearDepth), never beyond c.nearDepth, nor nearer the light than c.nearDepth - B (the near
+/// sample's own surface: a triangle nearly edge-on, whose plane `at` reaches a little off, cannot
+/// pull it further), nor before the near plane; keep = B where the plane shows no depth there
+/// (edge-on). Without B or a rim: c.nearDepth.
 double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                       double nearDepth, const SheetDepthRule& rule);
 
-/// The texel grid's crossings (plain refinement, before the sub-grid reads them): each snapped
-/// crossing's near vertex moves to rimVertexDepth. Sheet depths without blur (the caller's
-/// condition).
+/// The texel grid's crossings (plain refinement, after its chord points and before the sub-grid
+/// reads them): each snapped crossing's near vertex moves to rimVertexDepth where that is nearer,
+/// the depth it had kept as Crossing::nearSample. Sheet depths without blur (the caller's condition).
 void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
 
 }  // namespace shadowvol::volume

@@ -511,12 +511,13 @@ class SubgridBuilder {
       return;
     }
     const int i = qi + kCornerDi[corner], j = qj + kCornerDj[corner];
-    const double dc = sheet_.at(i, j), rc = unblurred(i, j, dc), dx = nearSide ? c.nearDepth : c.farDepth;
+    const double dc = sheet_.at(i, j), rc = unblurred(i, j, dc);
+    const double dx = nearSide ? c.nearDepth : c.farDepth, rx = nearSide ? c.sampleNearDepth() : c.farDepth;
     SV_CHECK(dc != farPlane_);  // the near side's corner is hit, and so is a surface edge's far one
     const double t = before ? f / x.f : (f - x.f) / (1.0 - x.f);
     n.far = false;
     n.depth = before ? depthAlongEdge(dc, dx, t, perspective_) : depthAlongEdge(dx, dc, t, perspective_);
-    n.rule = before ? depthAlongEdge(rc, dx, t, perspective_) : depthAlongEdge(dx, rc, t, perspective_);
+    n.rule = before ? depthAlongEdge(rc, rx, t, perspective_) : depthAlongEdge(rx, rc, t, perspective_);
   }
 
   // The sub-edges that hold a plain quad's crossing: boundary edges with that crossing.
@@ -712,14 +713,15 @@ class SubgridBuilder {
   }
 
   // Each snapped crossing's near vertex at rimVertexDepth (rim_bias.h), from its sub-edge's near
-  // end (its rule depth: the sample's, with the bias).
+  // end (its rule depth, with the bias: a sample's, or a virtual node's interpolated one).
   void lowerRimVertices(std::span<const BisectionSegment> segments) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
         const BisectionSegment& g = segments[k];
         Crossing& c = crossings_[k];
         const glm::dvec2 at = g.nearPoint + c.s * (g.farPoint - g.nearPoint);
-        c.nearDepth = rimVertexDepth(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
+        const double d = rimVertexDepth(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
+        if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
       }
     });
   }
