@@ -24,6 +24,12 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
   return std::min(c.nearDepth, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
 }
 
+void moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+                         double nearDepth, const SheetDepthRule& rule) {
+  const double d = rimVertexDepth(unproject, c, at, nearEnd, nearDepth, rule);
+  if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
+}
+
 void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings) {
   const SheetDepthRule& rule = sheet.rule();
   if (!(rule.bias > 0.0)) return;
@@ -35,9 +41,8 @@ void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges,
           if (!c.hasRim()) continue;
           const BoundaryEdge& e = edges.edges[k];
           const int ni = e.i + (!e.nearAtP && e.axis == 0 ? 1 : 0), nj = e.j + (!e.nearAtP && e.axis == 1 ? 1 : 0);
-          const double d = rimVertexDepth(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
-                                           sheet.at(ni, nj) - rule.bias, rule);
-          if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
+          moveNearVertexToRim(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj), sheet.at(ni, nj) - rule.bias,
+                              rule);
         }
       });
 }

@@ -39,9 +39,14 @@ inline constexpr double kRimBiasFloor = 1.0 / 8.0;
 double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                       double nearDepth, const SheetDepthRule& rule);
 
+/// Moves c's near vertex to rimVertexDepth where that is nearer the light, keeping the depth it
+/// had as Crossing::nearSample (what the discontinuity rule reads).
+void moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+                         double nearDepth, const SheetDepthRule& rule);
+
 /// The texel grid's crossings (plain refinement, after its chord points and before the sub-grid
-/// reads them): each snapped crossing's near vertex moves to rimVertexDepth where that is nearer,
-/// the depth it had kept as Crossing::nearSample. Sheet depths without blur (the caller's condition).
+/// reads them): moveNearVertexToRim for each snapped crossing, from its edge's near texel. Sheet
+/// depths without blur (the caller's condition).
 void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
 
 }  // namespace shadowvol::volume

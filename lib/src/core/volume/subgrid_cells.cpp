@@ -712,16 +712,15 @@ class SubgridBuilder {
     presetCrossingVertices(segments.size());
   }
 
-  // Each snapped crossing's near vertex at rimVertexDepth (rim_bias.h), from its sub-edge's near
-  // end (its rule depth, with the bias: a sample's, or a virtual node's interpolated one).
+  // moveNearVertexToRim (rim_bias.h) for each crossing, from its sub-edge's near end (its rule
+  // depth, with the bias: a sample's, or a virtual node's interpolated one).
   void lowerRimVertices(std::span<const BisectionSegment> segments) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
         const BisectionSegment& g = segments[k];
         Crossing& c = crossings_[k];
         const glm::dvec2 at = g.nearPoint + c.s * (g.farPoint - g.nearPoint);
-        const double d = rimVertexDepth(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
-        if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
+        moveNearVertexToRim(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
       }
     });
   }
