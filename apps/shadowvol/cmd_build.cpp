@@ -201,8 +201,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       s.ambiguousCells, s.subgridSplitTriangles,
                       hiddenText);
         if (options.refineSubdivisions > 1 && s.biasUsed > 0.0)
-          std::printf("  sub-grid bias: %zu quads for a crease, %zu sub-cell centre samples\n", s.creaseQuads,
-                      s.subgridBiasSamples);
+          std::printf("  sub-grid bias: %zu quads for a crease, %zu sub-cell centre samples, %zu wall tops moved to "
+                      "the rim\n",
+                      s.creaseQuads, s.subgridBiasSamples, s.rimCrossings);
         if (options.refineSubdivisions > 1)
           std::printf("  refinement (%d steps, %d per boundary sub-edge): %zu boundary edges (%zu to the far plane) "
                       "choose %zu refined quads, %zu rays\n",

@@ -61,6 +61,8 @@ TEST(RimBiasVolume, TheWallsTopStandsNearTheRimWithoutAcne) {
   const VolumeBuildResult grid = buildVolume(map, o);
   ASSERT_GT(grid.stats.biasUsed, 0.1);  // the texel footprint, more than the slab's thickness
   ASSERT_GT(grid.stats.snappedCrossings, 50u);
+  EXPECT_GT(grid.stats.rimCrossings, 50u);
+  EXPECT_EQ(plain.stats.rimCrossings, 0u);  // no sub-grid: the walls keep the whole bias
   const double inset = 0.002;  // world units: 1/60 of a texel
   EXPECT_EQ(insideAlongOutline(plain.mesh, inset, kTop - 0.05), 0);
   EXPECT_EQ(insideAlongOutline(grid.mesh, inset, kTop - 0.05), 160);

@@ -175,6 +175,9 @@ struct VolumeBuildStats {
   std::size_t creaseQuads = 0;        ///< sub-grid with a bias: quads without a boundary edge put on it for
                                       ///< a crease (docs/volume.md "Sub-grid", step 8; counted as hiddenQuads are)
   std::size_t subgridBiasSamples = 0; ///< sub-grid with a bias: rays at sub-cell centres that set its nodes' bias
+  std::size_t rimCrossings = 0;       ///< sub-grid with front capture's bias: snapped crossings whose near vertex
+                                      ///< moved towards the rim (the plain refinement's, some then cut, and the
+                                      ///< sub-grid's; docs/volume.md "Sub-grid", step 9)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)

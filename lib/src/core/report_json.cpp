@@ -69,6 +69,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"hiddenQuads", s.hiddenQuads},
           {"creaseQuads", s.creaseQuads},
           {"subgridBiasSamples", s.subgridBiasSamples},
+          {"rimCrossings", s.rimCrossings},
           {"raysCast", s.raysCast},
           {"crossingFallbacks", s.crossingFallbacks},
           {"snappedCrossings", s.snappedCrossings},

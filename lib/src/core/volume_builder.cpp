@@ -219,7 +219,7 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     stats.msRays += budget.ms;
   }
   // After the chord points, which bisect from the crossings' samples (the discontinuity rule's).
-  if (rimBiasOf(options, sheet)) volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
+  if (rimBiasOf(options, sheet)) stats.rimCrossings = volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
 }
 
 // The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from firstVertex
@@ -264,6 +264,7 @@ volume::SubgridCells subgridCells(const volume::RefinedQuads& quads, const volum
   stats.subgridFarBoundaryEdges = sub.farBoundaryEdges;
   stats.raysCast += sub.raysCast;
   stats.snappedCrossings += sub.snapped;
+  stats.rimCrossings += sub.rimCrossings;
   stats.msRays += sub.msRays;
   return sub;
 }

@@ -1,6 +1,7 @@
 #include "volume/rim_bias.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -24,27 +25,34 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
   return std::min(c.nearDepth, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
 }
 
-void moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                          double nearDepth, const SheetDepthRule& rule) {
   const double d = rimVertexDepth(unproject, c, at, nearEnd, nearDepth, rule);
-  if (d < c.nearDepth) c.nearSample = c.nearDepth, c.nearDepth = d;
+  if (!(d < c.nearDepth)) return false;
+  c.nearSample = c.nearDepth, c.nearDepth = d;
+  return true;
 }
 
-void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings) {
+std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges,
+                                  std::vector<Crossing>& crossings) {
   const SheetDepthRule& rule = sheet.rule();
-  if (!(rule.bias > 0.0)) return;
+  if (!(rule.bias > 0.0)) return 0;
   const TexelUnprojector unproject(sheet.map());
+  std::atomic<std::size_t> moved{0};
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, edges.edges.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+        std::size_t n = 0;
         for (std::size_t k = r.begin(); k != r.end(); ++k) {
           Crossing& c = crossings[k];
           if (!c.hasRim()) continue;
           const BoundaryEdge& e = edges.edges[k];
           const int ni = e.i + (!e.nearAtP && e.axis == 0 ? 1 : 0), nj = e.j + (!e.nearAtP && e.axis == 1 ? 1 : 0);
-          moveNearVertexToRim(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj), sheet.at(ni, nj) - rule.bias,
-                              rule);
+          n += moveNearVertexToRim(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
+                                   sheet.at(ni, nj) - rule.bias, rule);
         }
+        moved += n;
       });
+  return moved.load();
 }
 
 }  // namespace shadowvol::volume

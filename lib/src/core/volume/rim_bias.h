@@ -40,13 +40,13 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
                       double nearDepth, const SheetDepthRule& rule);
 
 /// Moves c's near vertex to rimVertexDepth where that is nearer the light, keeping the depth it
-/// had as Crossing::nearSample (what the discontinuity rule reads).
-void moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
+/// had as Crossing::nearSample (what the discontinuity rule reads); returns whether it moved.
+bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                          double nearDepth, const SheetDepthRule& rule);
 
 /// The texel grid's crossings (plain refinement, after its chord points and before the sub-grid
-/// reads them): moveNearVertexToRim for each snapped crossing, from its edge's near texel. Sheet
-/// depths without blur (the caller's condition).
-void lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
+/// reads them): moveNearVertexToRim for each snapped crossing, from its edge's near texel; returns
+/// how many moved. Sheet depths without blur (the caller's condition).
+std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
 
 }  // namespace shadowvol::volume

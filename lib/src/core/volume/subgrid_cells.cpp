@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -715,14 +716,18 @@ class SubgridBuilder {
   // moveNearVertexToRim (rim_bias.h) for each crossing, from its sub-edge's near end (its rule
   // depth, with the bias: a sample's, or a virtual node's interpolated one).
   void lowerRimVertices(std::span<const BisectionSegment> segments) {
+    std::atomic<std::size_t> moved{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, segments.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::size_t n = 0;
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
         const BisectionSegment& g = segments[k];
         Crossing& c = crossings_[k];
         const glm::dvec2 at = g.nearPoint + c.s * (g.farPoint - g.nearPoint);
-        moveNearVertexToRim(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
+        n += moveNearVertexToRim(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
       }
+      moved += n;
     });
+    out_.rimCrossings = moved.load();
   }
 
   // The plain crossings' two vertices (their own, from the plain numbering), after the `bisected`.

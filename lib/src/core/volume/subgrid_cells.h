@@ -128,6 +128,7 @@ struct SubgridCells {
   std::size_t footprintTriangles = 0;    ///< kept triangles that are not walls
   std::size_t raysCast = 0;              ///< oracle queries: samples, bias samples, bisection, snap, centres
   std::size_t snapped = 0;               ///< boundary sub-edges' crossings snapped (crossing_snap.h)
+  std::size_t rimCrossings = 0;          ///< of which near vertices moved towards the rim (rim_bias.h)
   double msRays = 0.0;                   ///< time inside the oracle (ms)
 };
 
