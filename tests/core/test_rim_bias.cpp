@@ -32,20 +32,20 @@ TEST(RimBias, ThePlaneOfTheRimSetsWhatTheNearVertexKeeps) {
     c.nearDepth = triangleDepthAt(unproject, kTilted, {20.59, 30.0}) + bias;  // d(lo): a sample with the bias
     const double floor = volume::kRimBiasFloor * bias;
     // One plane from the near end to the rim: the floor alone.
-    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane, rule), rim + floor, 1e-9);
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + bias, rule), rim + floor, 1e-9);
     // The near end 0.02 in front of the rim's plane (the surface bends away between): the floor plus
     // those 0.02.
-    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 0.02, rule), rim + floor + 0.02, 1e-9);
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 0.02 + bias, rule), rim + floor + 0.02, 1e-9);
     // Behind it (a fold towards the silhouette): the floor.
-    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + 0.3, rule), rim + floor, 1e-9);
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + 0.3 + bias, rule), rim + floor, 1e-9);
     // A rim far nearer the light than the near sample (a plane that reaches off): never nearer than
     // the sample's own surface, d(lo) less the bias.
     Crossing high = c;
     high.nearDepth = rim + 0.5 + bias;
-    EXPECT_NEAR(volume::rimVertexDepth(unproject, high, at, nearEnd, plane, rule), rim + 0.5, 1e-9);
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, high, at, nearEnd, plane + bias, rule), rim + 0.5, 1e-9);
     // Far in front: never more than the whole bias, nor beyond d(lo).
-    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 1.0, rule), std::min(rim + bias, c.nearDepth),
-                1e-9);
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane - 1.0 + bias, rule),
+                std::min(rim + bias, c.nearDepth), 1e-9);
   }
 }
 
@@ -57,13 +57,15 @@ TEST(RimBias, WithoutWhatTheRuleNeedsTheNearVertexStaysAtItsSample) {
   Crossing c;
   c.nearDepth = triangleDepthAt(unproject, kTilted, {20.59, 30.0}) + 0.08;
   EXPECT_FALSE(c.hasRim());  // not snapped
-  EXPECT_EQ(volume::rimVertexDepth(unproject, c, at, nearEnd, plane, SheetDepthRule(map, 0.08, 0.0)), c.nearDepth);
+  EXPECT_EQ(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + 0.08, SheetDepthRule(map, 0.08, 0.0)),
+            c.nearDepth);
   c.rim = kTilted;
   EXPECT_EQ(volume::rimVertexDepth(unproject, c, at, nearEnd, plane, SheetDepthRule(map, 0.0, 0.0)),
             c.nearDepth);  // no bias (back capture)
   // A rim triangle edge-on to the light shining straight down (the plane x = 0.3): no depth there.
   c.rim = {glm::dvec3(0.3, 0, -1), glm::dvec3(0.3, 1, 0), glm::dvec3(0.3, 0, 1)};
-  EXPECT_EQ(volume::rimVertexDepth(unproject, c, at, nearEnd, plane, SheetDepthRule(map, 0.08, 0.0)), c.nearDepth);
+  EXPECT_EQ(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + 0.08, SheetDepthRule(map, 0.08, 0.0)),
+            c.nearDepth);
 }
 
 TEST(RimBias, ATriangleShowsTheDepthOfItsPlaneOnTheLightRay) {

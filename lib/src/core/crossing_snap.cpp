@@ -50,7 +50,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
   };
   std::vector<glm::dvec2> from, to, probe;
   std::vector<double> t, sExit, sProbe;
-  std::vector<std::array<glm::dvec3, 3>> triangle, probeTriangle;
+  std::vector<std::array<glm::dvec3, 3>> triangle;
   const std::array<glm::dvec3, 3> kNoTriangle = Crossing().rim;  // NaN corners
   std::vector<float> probeDepth;
   std::vector<std::size_t> next, probing;
@@ -66,7 +66,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
     budget.rays += active.size();
     // A probe just beyond each end that lies inside its bracket; an end at hi needs none (hi is
     // off the near side already).
-    probing.clear(), probe.clear(), sExit.clear(), sProbe.clear(), probeTriangle.clear();
+    probing.clear(), probe.clear(), sExit.clear(), sProbe.clear();
     for (std::size_t q = 0; q < active.size(); ++q) {
       const std::size_t k = active[q];
       // Past hi by more than rounding: the capture at hi records a nearer surface; keep the middle.
@@ -80,8 +80,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
       const double length = glm::length(segments[k].farPoint - segments[k].nearPoint);
       const double sp = se + std::min(kSnapProbeTexels / length, 0.5 * (br.hi - se));
       if (!(sp > se && sp < br.hi)) continue;
-      probing.push_back(q), sExit.push_back(se), sProbe.push_back(sp), probe.push_back(point(k, sp)),
-          probeTriangle.push_back(triangle[q]);
+      probing.push_back(q), sExit.push_back(se), sProbe.push_back(sp), probe.push_back(point(k, sp));
     }
     if (probing.empty()) break;
     probeDepth.assign(probing.size(), DepthMap::kNoHit);
@@ -105,7 +104,7 @@ std::vector<Crossing> snapCrossings(const DepthMap& map, std::span<const Bisecti
         next.push_back(k);
         continue;
       }
-      snap(k, sExit[p], probeDepth[p], probeTriangle[p]);
+      snap(k, sExit[p], probeDepth[p], triangle[q]);
     }
     active.swap(next);
   }

@@ -19,7 +19,7 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
   if (!std::isfinite(rim)) return c.nearDepth;
   const double plane = triangleDepthAt(unproject, c.rim, nearEnd);
   const double keep =
-      std::isfinite(plane) ? std::min(bias, kRimBiasFloor * bias + std::max(0.0, plane - nearDepth)) : bias;
+      std::isfinite(plane) ? std::min(bias, kRimBiasFloor * bias + std::max(0.0, plane - (nearDepth - bias))) : bias;
   // Never nearer the light than the near sample's own surface (d(lo) less the bias): a triangle
   // nearly edge-on to the light, whose plane `at` reaches a little off, cannot pull it further.
   return std::min(c.nearDepth, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
@@ -47,8 +47,7 @@ std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges&
           if (!c.hasRim()) continue;
           const BoundaryEdge& e = edges.edges[k];
           const int ni = e.i + (!e.nearAtP && e.axis == 0 ? 1 : 0), nj = e.j + (!e.nearAtP && e.axis == 1 ? 1 : 0);
-          n += moveNearVertexToRim(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj),
-                                   sheet.at(ni, nj) - rule.bias, rule);
+          n += moveNearVertexToRim(unproject, c, Crossing::texel(e, c.s), glm::dvec2(ni, nj), sheet.at(ni, nj), rule);
         }
         moved += n;
       });

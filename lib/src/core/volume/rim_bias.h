@@ -29,13 +29,13 @@ namespace shadowvol::volume {
 inline constexpr double kRimBiasFloor = 1.0 / 8.0;
 
 /// The near vertex depth of crossing c at texel point `at` (of the map `unproject` is of), whose
-/// segment's near end lies at texel point `nearEnd` with sample depth `nearDepth` (without the
-/// bias): with B = rule.bias > 0 and a rim triangle (Crossing::rim), the rim's depth at `at` plus
-/// keep = min(B, kRimBiasFloor * B + e), e = max(0, the rim triangle's depth on the near end's light
-/// ray - nearDepth), never beyond c.nearDepth, nor nearer the light than c.nearDepth - B (the near
-/// sample's own surface: a triangle nearly edge-on, whose plane `at` reaches a little off, cannot
-/// pull it further), nor before the near plane; keep = B where the plane shows no depth there
-/// (edge-on). Without B or a rim: c.nearDepth.
+/// segment's near end lies at texel point `nearEnd` with rule depth `nearDepth` (its sample's, with
+/// the bias, as the discontinuity rule reads it): with B = rule.bias > 0 and a rim triangle
+/// (Crossing::rim), the rim's depth at `at` plus keep = min(B, kRimBiasFloor * B + e), e = max(0, the
+/// rim triangle's depth on the near end's light ray - (nearDepth - B)), never beyond c.nearDepth, nor nearer the light
+/// than c.nearDepth - B (the near sample's own surface: a triangle nearly edge-on, whose plane `at` reaches a little
+/// off, cannot pull it further), nor before the near plane; keep = B where the plane shows no depth there (edge-on).
+/// Without B or a rim: c.nearDepth.
 double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                       double nearDepth, const SheetDepthRule& rule);
 
@@ -47,6 +47,7 @@ bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dv
 /// The texel grid's crossings (plain refinement, after its chord points and before the sub-grid
 /// reads them): moveNearVertexToRim for each snapped crossing, from its edge's near texel; returns
 /// how many moved. Sheet depths without blur (the caller's condition).
-std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges, std::vector<Crossing>& crossings);
+std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges,
+                                  std::vector<Crossing>& crossings);
 
 }  // namespace shadowvol::volume

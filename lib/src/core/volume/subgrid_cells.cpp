@@ -723,7 +723,7 @@ class SubgridBuilder {
         const BisectionSegment& g = segments[k];
         Crossing& c = crossings_[k];
         const glm::dvec2 at = g.nearPoint + c.s * (g.farPoint - g.nearPoint);
-        n += moveNearVertexToRim(unproject_, c, at, g.nearPoint, g.nearDepth - sheet_.rule().bias, sheet_.rule());
+        n += moveNearVertexToRim(unproject_, c, at, g.nearPoint, g.nearDepth, sheet_.rule());
       }
       moved += n;
     });
