@@ -453,7 +453,8 @@ class SubgridBuilder {
   }
 
   // Whether node n lies on the surface of a plain quad's triangles `tris`: far where a footprint
-  // triangle holding it is far, else within kPlainQuadFootprints footprints of its depth there.
+  // triangle holding it is far, else within kPlainQuadFootprints footprints of its depth there and,
+  // with a sheet bias, not behind it.
   bool onPlainSurface(const std::vector<LocalTri>& tris, const Node& n, const TexelFootprint& footprint) const {
     for (const LocalTri& t : tris) {
       if (!t.footprint) continue;
@@ -468,6 +469,12 @@ class SubgridBuilder {
       if (farCount != 0 || n.far) continue;
       const double d0 = t.v[0]->depth, d1 = t.v[1]->depth, d2 = t.v[2]->depth;
       const double depth = perspective_ ? 1.0 / (l0 / d0 + l1 / d1 + l2 / d2) : l0 * d0 + l1 * d1 + l2 * d2;
+      // With a sheet bias B (and no blur, whose sheet is meant to leave the surface) the plain
+      // sheet must stay behind the captured surface, the node's rule depth less B: a node whose
+      // surface lies behind it (a valley between a steep and a flat surface that the discontinuity
+      // rule split) would be acne, a lit point inside the volume.
+      const double bias = sheet_.rule().bias;
+      if (bias > 0.0 && !o_.blur && n.rule - bias > depth) return false;
       if (std::abs(n.depth - depth) <= kPlainQuadFootprints * footprint.at(std::min(depth, n.depth))) return true;
     }
     return false;

@@ -41,7 +41,11 @@
 // alone miss when it falls between them), and every sampled node on its sides and inside it lies
 // on its plain triangulation's surface: far where that is far, else within kPlainQuadFootprints
 // texel footprints of its depth (perspective-correct interpolation in the footprint triangle
-// holding the node). Two footprints is the discontinuity
+// holding the node) and, with a sheet bias B and no blur, its captured surface (its sample: the rule
+// depth less B) not behind that depth: else the plain sheet would pass in front of a lit surface
+// (acne; a valley where grazing-lit ground meets an object standing on it, whose step the
+// discontinuity rule splits, put up to a third of a texel of lit ground inside the volume). Two
+// footprints is the discontinuity
 // rule's floor (boundary_edges.h, kJumpFootprints): a smooth rim's curvature moves the depth by
 // less than that within a texel, a fold or a receiver seen past an outline by more (on the default
 // scene at 256^2, without the chord test, one footprint grids 68 % of the refined quads, two 15 %,
