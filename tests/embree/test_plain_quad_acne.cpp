@@ -4,9 +4,10 @@
 // ground rises steeply in the light's depth and meets the dome's flatter face at its base, a valley
 // whose step the discontinuity rule reads as a jump. Its bisection stands a wall in the middle of the
 // step, and the plain quad's sheet from that wall to the dome's texel centre passed up to a third
-// of a texel in front of the lit ground (false shadow along the dome's base on its lit side, 129 of
-// the 146 wrong pixels of hemisphere-grazing.json at 128^2). The test: lit points on the ground
-// round that side of the base lie outside the sub-grid volume.
+// of a texel in front of the lit ground (false shadow along the dome's base on its lit side: the
+// change took hemisphere-grazing.json at 128^2 from 146 false pixels to 17). The test: lit points
+// on the ground round that side of the base lie outside the sub-grid volume (26 of them inside at
+// the smallest gap without the rule).
 #include <cmath>
 #include <string>
 
