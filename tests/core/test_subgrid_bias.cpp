@@ -122,6 +122,27 @@ TEST(SubgridBias, CreaseQuadsLieOnTheCrease) {
   }
 }
 
+// A step between two flat surfaces under a light straight down (the ground's contact with a thin
+// open sheet's edge): the sample just beyond it lies half the step behind the chord of its
+// neighbours, so a step of more than B / S puts the quads along it on the sub-grid
+// (kCreaseChordShare = 1/2), one below B / S does not.
+TEST(SubgridBias, AStepOfMoreThanBOverSIsACrease) {
+  const Light light = test::directionalDown(12.0);
+  const auto stepQuads = [&](double stepInBOverS) {
+    DepthMap map = makeDepthMap(light, 32, 32, CaptureMode::Front);
+    const double bias = defaultBias(map), step = stepInBOverS * bias / 4.0;
+    for (int j = 0; j < map.height; ++j)
+      for (int i = 0; i < map.width; ++i) map.depth[map.index(i, j)] = float(i < 16 ? 5.0 - step : 5.0);
+    return creaseQuadsOf(map, bias, 4);
+  };
+  const std::vector<std::uint32_t> q = stepQuads(1.2);
+  // The far samples next to the step (column 16, rows 1 to 30 inside the ring) lie behind the
+  // chord; the quads holding them are the columns 15 and 16, all 31 rows.
+  EXPECT_EQ(q.size(), 2u * 31u);
+  for (std::uint32_t quad : q) EXPECT_TRUE(quad % 31 == 15 || quad % 31 == 16) << quad;
+  EXPECT_TRUE(stepQuads(0.8).empty());
+}
+
 glm::dvec3 toLight(const Light& light, const glm::dvec3& p) {
   return light.type == LightType::Directional ? -light.direction : glm::normalize(light.position - p);
 }

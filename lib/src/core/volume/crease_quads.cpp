@@ -46,7 +46,7 @@ std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivi
   if (!(bias > 0.0)) return creases;
   const int w = map.width, qw = w - 1, qh = map.height - 1;
   const bool perspective = map.lightProjection[2][3] != 0.0;
-  const double threshold = bias / subdivisions;
+  const double threshold = kCreaseChordShare * bias / subdivisions;
   std::vector<std::uint8_t> behind(std::size_t(w) * std::size_t(map.height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)

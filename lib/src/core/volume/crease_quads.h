@@ -17,9 +17,20 @@
 
 namespace shadowvol::volume {
 
+/// How far behind the chord of its neighbours a sample must lie, in units of B / S, for its quads to
+/// go on the sub-grid: 1/2, so that a step of more than B / S between two flat surfaces (the sample
+/// just beyond it lies half the step behind the chord), or a fold that moves the depth by as much,
+/// is sampled: B / S is what the sub-grid's spacing needs on a surface tilted 45 degrees, and a
+/// step above it shows a shadow there that B hides on the texel grid. Measured (README "Sub-grid
+/// bias", docs/results/crease-step): at 1 (B / S) the contact strip where an open terrain's edge
+/// rises from the ground stayed lost at 128^2 (28 pixels against the 2048^2 map's 22), at 1/2 it is
+/// 18; 0.6 gave 24, 1/4 and 1/10 no more than 1/2 for more quads.
+inline constexpr double kCreaseChordShare = 0.5;
+
 /// The quads without a boundary side (splitBits' bits 0 and 1) and not flagged yet (kHiddenQuadBit)
-/// one of whose corners lies behind the chord of its two neighbours by more than B / S, B the
-/// sheet's bias (rule().bias) and S = `subdivisions`: along the x axis, the y axis or either
+/// one of whose corners lies behind the chord of its two neighbours by more than
+/// kCreaseChordShare x B / S, B the sheet's bias (rule().bias) and S = `subdivisions`: along the x
+/// axis, the y axis or either
 /// diagonal, the chord taken as the projection interpolates (the depth for a directional light, its
 /// inverse for a spot light); a pair with a far or ring neighbour is skipped, and a corner more than
 /// 2 B behind a chord is a discontinuity left to the boundary edges, not a crease. Each is marked with
