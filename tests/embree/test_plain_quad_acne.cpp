@@ -14,10 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "mesh_invariants.h"
+#include "refined_options.h"
 #include "shadowvol/embree/depth_capture.h"
-#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/scene.h"
-#include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
 namespace {
@@ -51,11 +50,8 @@ TEST(PlainQuadAcne, LitGroundAtTheBaseOfADomeStaysOutsideTheVolume) {
   const Scene scene = domeUnderAGrazingLight();
   const EmbreeDepthOracle oracle(scene);
   const DepthMap map = captureDepthEmbree(scene, 128, 128, CaptureMode::Front);
-  VolumeBuildOptions o;
-  o.refineSteps = 6;
+  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
   o.refineSubdivisions = 4;
-  o.depthOracle = oracle.oracle();
-  o.surfaceEnds = oracle.surfaceEnds();
   o.nearerSurfaces = oracle.nearerSurfaces();
   const VolumeBuildResult r = buildVolume(map, o);
   ASSERT_GT(r.stats.biasUsed, 0.0);

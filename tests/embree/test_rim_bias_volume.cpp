@@ -10,10 +10,9 @@
 #include <glm/trigonometric.hpp>
 
 #include "mesh_invariants.h"
+#include "refined_options.h"
 #include "shadowvol/embree/depth_capture.h"
-#include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/scene.h"
-#include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
 namespace {
@@ -52,10 +51,7 @@ TEST(RimBiasVolume, TheWallsTopStandsNearTheRimWithoutAcne) {
   const Scene scene = slab();
   const EmbreeDepthOracle oracle(scene);
   const DepthMap map = captureDepthEmbree(scene, 64, 64, CaptureMode::Front);
-  VolumeBuildOptions o;
-  o.refineSteps = 6;
-  o.depthOracle = oracle.oracle();
-  o.surfaceEnds = oracle.surfaceEnds();
+  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
   const VolumeBuildResult plain = buildVolume(map, o);
   o.refineSubdivisions = 4;
   const VolumeBuildResult grid = buildVolume(map, o);
