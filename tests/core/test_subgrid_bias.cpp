@@ -11,6 +11,7 @@
 
 #include "analytic_scene.h"
 #include "mesh_invariants.h"
+#include "shadowvol/boundary_edges.h"
 #include "shadowvol/sheet_depth.h"
 #include "shadowvol/volume_builder.h"
 #include "test_util.h"
@@ -93,9 +94,12 @@ test::AnalyticScene sunkSphere() {
 }
 const double kCreaseRadius = std::sqrt(1.0 - kCentreY * kCentreY);
 
+// The crease quads of a map, after its boundary edges (as the builder finds them).
 std::vector<std::uint32_t> creaseQuadsOf(const DepthMap& map, double bias, int s) {
-  const volume::SheetDepths sheet(map, SheetDepthRule(map, bias, 0.0));
+  const SheetDepthRule rule(map, bias, 0.0);
+  const volume::SheetDepths sheet(map, rule);
   std::vector<std::uint8_t> bits(std::size_t(map.width) * map.height, 0);
+  findBoundaryEdges(map, rule, false, {}, bits.data());
   return volume::findCreaseQuads(sheet, s, bits.data());
 }
 
@@ -137,10 +141,32 @@ TEST(SubgridBias, AStepOfMoreThanBOverSIsACrease) {
   };
   const std::vector<std::uint32_t> q = stepQuads(1.2);
   // The far samples next to the step (column 16, rows 1 to 30 inside the ring) lie behind the
-  // chord; the quads holding them are the columns 15 and 16, all 31 rows.
-  EXPECT_EQ(q.size(), 2u * 31u);
+  // chord; the quads holding them are the columns 15 and 16, all but the two rows whose sides
+  // touch the ring (far edges: refined quads).
+  EXPECT_EQ(q.size(), 2u * 29u);
   for (std::uint32_t quad : q) EXPECT_TRUE(quad % 31 == 15 || quad % 31 == 16) << quad;
   EXPECT_TRUE(stepQuads(0.8).empty());
+}
+
+// A step of 1.1 more in ground that falls 0.6 per texel (lit at a grazing angle): the discontinuity
+// rule keeps it continuous (1.7 < 3 x 0.6, the steps beside it), so no boundary edge has it, and
+// the sample beyond it lies 1.1 / 2 = 0.55 behind the chord, more than 2 B (B about a 0.25
+// footprint): before 2026-12-05 that counted as a jump and nothing sampled it. With 2 more (2.6 >
+// 1.8) it is a boundary edge, and its quads are refined, not crease quads.
+TEST(SubgridBias, AStepTheBoundaryEdgesKeepContinuousIsACrease) {
+  const Light light = test::directionalDown(30.0);
+  const auto quads = [&](double jump) {
+    DepthMap map = makeDepthMap(light, 32, 32, CaptureMode::Front);
+    for (int j = 0; j < map.height; ++j)
+      for (int i = 0; i < map.width; ++i) map.depth[map.index(i, j)] = float(5.0 + 0.6 * i + (i < 16 ? 0.0 : jump));
+    const double bias = defaultBias(map);
+    EXPECT_LT(2.0 * bias, 0.5 * jump);
+    return creaseQuadsOf(map, bias, 4);
+  };
+  const std::vector<std::uint32_t> q = quads(1.1);
+  EXPECT_EQ(q.size(), 2u * 29u);  // the columns beside the step; the rows next to the ring are refined
+  for (std::uint32_t quad : q) EXPECT_TRUE(quad % 31 == 15 || quad % 31 == 16) << quad;
+  EXPECT_TRUE(quads(2.0).empty());
 }
 
 glm::dvec3 toLight(const Light& light, const glm::dvec3& p) {

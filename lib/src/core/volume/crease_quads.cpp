@@ -13,9 +13,23 @@ namespace {
 
 constexpr double kFar = std::numeric_limits<double>::infinity();
 
+// Whether the boundary edges have the step from texel (i, j) to its neighbour (i + di, j + dj), di
+// and dj in {-1, 0, 1}: along an axis, that grid edge is a boundary edge; along a diagonal, a side of
+// the quad the two share is one (the quad is refined, and its sub-grid samples the step).
+bool stepOnBoundary(const std::uint8_t* splitBits, int width, int i, int j, int di, int dj) {
+  const auto edges = [&](int x, int y) { return splitBits[std::size_t(y) * std::size_t(width) + std::size_t(x)] & 3; };
+  const int x = std::min(i, i + di), y = std::min(j, j + dj);
+  if (dj == 0) return (edges(x, y) & 1) != 0;
+  if (di == 0) return (edges(x, y) & 2) != 0;
+  return ((edges(x, y) | (edges(x, y + 1) & 1) | (edges(x + 1, y) & 2)) != 0);
+}
+
 // How far texel (i, j)'s sample lies behind the chord of its neighbours, the most over the four
 // directions (0 when it lies on or in front of every chord, or has no neighbour pair that counts).
-double behindChord(const SheetDepths& sheet, int i, int j, bool perspective) {
+// More than 2 B behind is a jump, left to the boundary edges where they have it (a step on either
+// side of the sample is on a boundary edge); where they do not (the discontinuity rule keeps a
+// step continuous next to steep neighbours, as on ground lit at a grazing angle) it counts here.
+double behindChord(const SheetDepths& sheet, const std::uint8_t* splitBits, int i, int j, bool perspective) {
   const DepthMap& map = sheet.map();
   const SheetDepthRule& rule = sheet.rule();
   const auto sample = [&](int x, int y) {  // +inf where far, on the ring or off the map
@@ -30,9 +44,12 @@ double behindChord(const SheetDepths& sheet, int i, int j, bool perspective) {
   double most = 0.0;
   for (int d = 0; d < 4; ++d) {
     const double a = sample(i - kDi[d], j - kDj[d]), b = sample(i + kDi[d], j + kDj[d]);
-    if (a == kFar || b == kFar) continue;
+    if (a == kFar || b == kFar) continue;  // so both neighbours lie on the map, off the ring
     const double behind = c - depthAlongEdge(a, b, 0.5, perspective);
-    if (behind <= 2.0 * rule.bias) most = std::max(most, behind);  // more: a jump, not a crease
+    if (behind > 2.0 * rule.bias && (stepOnBoundary(splitBits, map.width, i, j, -kDi[d], -kDj[d]) ||
+                                     stepOnBoundary(splitBits, map.width, i, j, kDi[d], kDj[d])))
+      continue;  // a jump the boundary edges have
+    most = std::max(most, behind);
   }
   return most;
 }
@@ -50,7 +67,7 @@ std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivi
   std::vector<std::uint8_t> behind(std::size_t(w) * std::size_t(map.height), 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < w; ++i) behind[std::size_t(j) * w + i] = behindChord(sheet, i, j, perspective) > threshold;
+      for (int i = 0; i < w; ++i) behind[std::size_t(j) * w + i] = behindChord(sheet, splitBits, i, j, perspective) > threshold;
   });
   for (int qj = 0; qj < qh; ++qj) {
     std::uint8_t* lower = splitBits + std::size_t(qj) * w;
