@@ -27,16 +27,16 @@ namespace shadowvol::volume {
 /// 18; 0.6 gave 24, 1/4 and 1/10 no more than 1/2 for more quads.
 inline constexpr double kCreaseChordShare = 0.5;
 
-/// The quads without a boundary side (splitBits' bits 0 and 1) and not flagged yet (kHiddenQuadBit)
-/// one of whose corners lies behind the chord of its two neighbours by more than
-/// kCreaseChordShare x B / S, B the sheet's bias (rule().bias) and S = `subdivisions`: along the x
-/// axis, the y axis or either
-/// diagonal, the chord taken as the projection interpolates (the depth for a directional light, its
-/// inverse for a spot light); a pair with a far or ring neighbour is skipped, and a corner more than
-/// 2 B behind a chord is a discontinuity left to the boundary edges where they have it (a step on
-/// either side of the corner along that direction is a boundary edge, or, along a diagonal, a side
-/// of the quad it crosses is one); where they do not (a step next to steep neighbours, which the
-/// discontinuity rule keeps continuous: ground lit at a grazing angle) it is a crease too. Each is marked with
+/// The quads without a boundary side (splitBits' bits 0 and 1, which must hold the boundary edges)
+/// and not flagged yet (kHiddenQuadBit) one of whose corners lies behind the chord of its two
+/// neighbours by more than kCreaseChordShare x B / S, B the sheet's bias (rule().bias) and S =
+/// `subdivisions`: along the x axis, the y axis or either diagonal, the chord taken as the
+/// projection interpolates (the depth for a directional light, its inverse for a spot light). A
+/// pair with a far or ring neighbour is skipped. A corner more than 2 B behind a chord is a
+/// discontinuity left to the boundary edges where they have it (a step on either side of the corner
+/// along that direction is a boundary edge, or, along a diagonal, a side of the quad it crosses is
+/// one); where they do not (a step next to steep neighbours, which the discontinuity rule keeps
+/// continuous: ground lit at a grazing angle) it is a crease too. Each is marked with
 /// kHiddenQuadBit in splitBits (at its lower-left texel: the sub-grid takes it as it takes a hidden
 /// quad) and returned in quad order. None when B = 0 (back and midpoint capture by default). The
 /// samples are read as the boundary-edge rule reads them (SheetDepthRule::fromStored: each with the
