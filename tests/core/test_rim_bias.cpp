@@ -49,6 +49,37 @@ TEST(RimBias, ThePlaneOfTheRimSetsWhatTheNearVertexKeeps) {
   }
 }
 
+TEST(RimBias, ARimBehindTheSampleTakesTheNearVertexDownToIt) {
+  for (const Light& light : {test::directionalDown(12.0), test::refinementSpot()}) {
+    const DepthMap map = makeDepthMap(light, 64, 64, CaptureMode::Front);
+    const TexelUnprojector unproject(map);
+    const double bias = 0.08, floor = volume::kRimBiasFloor * bias;
+    const SheetDepthRule rule(map, bias, 0.0);
+    const glm::dvec2 nearEnd(20.0, 30.0), at(20.6, 30.0);
+    const double rim = triangleDepthAt(unproject, kTilted, at), plane = triangleDepthAt(unproject, kTilted, nearEnd);
+    // The last near sample 0.3 in front of the rim (the triangle falls steeply to where it ends).
+    Crossing c;
+    c.rim = kTilted;
+    c.nearDepth = rim - 0.3 + bias;
+    c.farDepth = rim + 2.0;
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, c, at, nearEnd, plane + bias, rule), rim + floor, 1e-9);
+    // Never past the middle between the near and the far sample.
+    Crossing close = c;
+    close.farDepth = c.nearDepth + 0.2;
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, close, at, nearEnd, plane + bias, rule), c.nearDepth + 0.1, 1e-9);
+    // Nor past the triangle's deepest corner, (-3, -0.4, -3): the plane 0.3 below it, off the
+    // triangle, does not count.
+    const glm::dvec2 off = map.texelOf(glm::dvec3(-4.0, -0.7, -2.9));
+    const double corner = unproject.viewDepth(kTilted[0]);
+    ASSERT_GT(triangleDepthAt(unproject, kTilted, off), corner + 0.1);
+    Crossing beyond = c;
+    beyond.nearDepth = corner - 0.3 + bias;
+    EXPECT_NEAR(volume::rimVertexDepth(unproject, beyond, off, off - glm::dvec2(0.6, 0.0),
+                                       triangleDepthAt(unproject, kTilted, off - glm::dvec2(0.6, 0.0)) + bias, rule),
+                corner + floor, 1e-9);
+  }
+}
+
 TEST(RimBias, WithoutWhatTheRuleNeedsTheNearVertexStaysAtItsSample) {
   const DepthMap map = makeDepthMap(test::directionalDown(12.0), 64, 64, CaptureMode::Front);
   const TexelUnprojector unproject(map);

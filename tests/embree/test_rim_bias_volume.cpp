@@ -2,7 +2,9 @@
 // with front capture at 64^2, where the bias B is a texel footprint (0.125 here, more than the
 // slab's thickness). Along its outline the wall's top stands near the rim: a point 0.05 under the
 // top (within B of it) just inside the outline lies in the volume, where the plain refined volume
-// (no sub-grid, the whole B) leaves it out; the top itself stays out (no acne at the rim).
+// (no sub-grid, the whole B) leaves it out; the top itself stays out (no acne at the rim). And a
+// block whose side is lit nearly edge-on: the wall's top at its outline goes down to where the
+// side ends, so the side's lit face stays out of the volume all the way down.
 #include <cmath>
 #include <string>
 
@@ -64,6 +66,59 @@ TEST(RimBiasVolume, TheWallsTopStandsNearTheRimWithoutAcne) {
   EXPECT_EQ(insideAlongOutline(grid.mesh, inset, kTop - 0.05), 160);
   EXPECT_EQ(insideAlongOutline(grid.mesh, inset, kTop - 1e-4), 0);  // the lit top
   EXPECT_EQ(insideAlongOutline(plain.mesh, inset, kTop - 1e-4), 0);
+}
+
+// A block 0.5 high and 2 wide, 1.25 above the ground, turned 0.2 degrees about z under a light
+// straight down: its +x side faces the light at N.L = sin(0.2 deg), about 0.0035, and its image
+// from the light is a strip 0.0017 wide (1/70 of a texel at 64^2) along the block's outline,
+// falling 0.5 in depth across it.
+constexpr double kTilt = 0.2, kBlockTop = 1.75, kBlockHeight = 0.5;
+
+Scene tiltedBlock() {
+  const std::string json =
+      R"({"objects": [{"type": "plane", "name": "ground", "size": 8}, {"type": "box", "name": "block", "size": [2, 0.5, 2],
+      "transform": {"translate": [0, 1.5, 0], "rotate": [0, 0, )" +
+      std::to_string(kTilt) + R"(]}}],
+      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 4},
+      "camera": {"eye": [0, 7, 5], "target": [0, 0, 0], "fov": 50}})";
+  Scene scene = parseScene(json, "block.json", ".").scene;
+  fitLightAndCamera(scene);
+  return scene;
+}
+
+// How many of 40 x 8 points on the block's lit +x side (40 along it, 8 heights from 0.1 to 0.45
+// under its top edge), 1e-4 off it along its normal, lie in the volume.
+int insideOnLitSide(const VolumeMesh& mesh) {
+  const double a = glm::radians(kTilt);
+  const glm::dvec3 normal(std::cos(a), std::sin(a), 0.0);
+  int in = 0;
+  for (int k = 0; k < 40; ++k)
+    for (int h = 0; h < 8; ++h) {
+      const double z = -0.9 + 1.8 * (k + 0.5) / 40.0, y = kBlockHeight / 2 - (0.1 + 0.05 * h);
+      // The block's own frame (centre at the origin) turned about +z, then moved to its centre.
+      const glm::dvec3 local(1.0, y, z);
+      const glm::dvec3 p(std::cos(a) * local.x - std::sin(a) * local.y, std::sin(a) * local.x + std::cos(a) * local.y,
+                         local.z);
+      in += test::insideVolume(mesh, p + glm::dvec3(0, kBlockTop - kBlockHeight / 2, 0) + 1e-4 * normal - mesh.origin)
+                ? 1
+                : 0;
+    }
+  return in;
+}
+
+TEST(RimBiasVolume, ASideLitNearlyEdgeOnStaysOutAllTheWayDown) {
+  const Scene scene = tiltedBlock();
+  const EmbreeDepthOracle oracle(scene);
+  const DepthMap map = captureDepthEmbree(scene, 64, 64, CaptureMode::Front);
+  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
+  o.refineSubdivisions = 4;
+  const VolumeBuildResult grid = buildVolume(map, o);
+  ASSERT_GT(grid.stats.biasUsed, 0.1);  // a texel footprint, 0.125: a fifth of the side's fall
+  ASSERT_GT(grid.stats.rimCrossings, 10u);
+  EXPECT_TRUE(test::closedOrientedManifold(grid.mesh));
+  EXPECT_EQ(insideOnLitSide(grid.mesh), 0);
+  // The block's shadow on the ground is there.
+  EXPECT_TRUE(test::insideVolume(grid.mesh, glm::dvec3(0.3, 0.01, 0.2) - grid.mesh.origin));
 }
 
 }  // namespace

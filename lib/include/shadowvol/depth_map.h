@@ -92,9 +92,11 @@ class TexelUnprojector {
     glm::dvec3 origin, direction;
   };
   Ray ray(double i, double j) const;
+  /// Light-view depth of a world point (the ray parameter t above): -(view * p).z.
+  double viewDepth(const glm::dvec3& world) const;
 
  private:
-  glm::dmat4 invProjection_, invView_, projection_;
+  glm::dmat4 invProjection_, invView_, projection_, view_;
   double width_, height_;
 };
 

@@ -33,6 +33,7 @@ TexelUnprojector::TexelUnprojector(const glm::dmat4& view, const glm::dmat4& pro
     : invProjection_(glm::inverse(projection)),
       invView_(glm::inverse(view)),
       projection_(projection),
+      view_(view),
       width_(width),
       height_(height) {}
 
@@ -56,6 +57,8 @@ TexelUnprojector::Ray TexelUnprojector::ray(double i, double j) const {
   const glm::dvec3 p1 = worldPoint(i, j, 1.0), p2 = worldPoint(i, j, 2.0);
   return {p1 - (p2 - p1), p2 - p1};
 }
+
+double TexelUnprojector::viewDepth(const glm::dvec3& world) const { return -(view_ * glm::dvec4(world, 1.0)).z; }
 
 double DepthMap::viewDepthOf(const glm::dvec3& world) const {
   return -(lightView * glm::dvec4(world, 1.0)).z;

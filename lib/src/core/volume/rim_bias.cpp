@@ -15,20 +15,28 @@ double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm:
                       double nearDepth, const SheetDepthRule& rule) {
   const double bias = rule.bias;
   if (!(bias > 0.0) || !c.hasRim()) return c.nearDepth;
-  const double rim = triangleDepthAt(unproject, c.rim, at);
+  // The triangle's depth where it ends, never past its deepest corner (a crossing a little off
+  // its edge, on a triangle nearly edge-on to the light, cannot carry it further).
+  const double deepest = std::max({unproject.viewDepth(c.rim[0]), unproject.viewDepth(c.rim[1]),
+                                   unproject.viewDepth(c.rim[2])});
+  const double rim = std::min(triangleDepthAt(unproject, c.rim, at), deepest);
   if (!std::isfinite(rim)) return c.nearDepth;
   const double plane = triangleDepthAt(unproject, c.rim, nearEnd);
   const double keep =
       std::isfinite(plane) ? std::min(bias, kRimBiasFloor * bias + std::max(0.0, plane - (nearDepth - bias))) : bias;
   // Never nearer the light than the near sample's own surface (d(lo) less the bias): a triangle
   // nearly edge-on to the light, whose plane `at` reaches a little off, cannot pull it further.
-  return std::min(c.nearDepth, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
+  // Behind d(lo) + B where the rim lies deeper (a lit triangle nearly edge-on to the light falls
+  // steeply from the last sample to where it ends), but never past the middle between the near
+  // and the far sample's depths, which the bisection would have put on the far side.
+  const double deeper = std::max(c.nearDepth, std::min(rim + keep, 0.5 * (c.nearDepth + c.farDepth)));
+  return std::min(deeper, std::max({rule.nearPlane, c.nearDepth - bias, rim + keep}));
 }
 
 bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                          double nearDepth, const SheetDepthRule& rule) {
   const double d = rimVertexDepth(unproject, c, at, nearEnd, nearDepth, rule);
-  if (!(d < c.nearDepth)) return false;
+  if (d == c.nearDepth) return false;
   c.nearSample = c.nearDepth, c.nearDepth = d;
   return true;
 }

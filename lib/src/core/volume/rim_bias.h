@@ -10,7 +10,10 @@
 // in front of the surface between them only where the surface bends away from the light, and then
 // by at most how far the rim triangle's plane, carried on to the near end, lies behind the near
 // end's sample (the surface lies between the run and that plane); a fold towards the silhouette
-// needs nothing.
+// needs nothing. Where the rim lies deeper than the last near sample with the whole bias (a lit
+// triangle nearly edge-on to the light, which falls steeply between that sample and where it
+// ends: the terminator of a faceted curve, a drafted side), the vertex goes down to it, so the
+// sheet no longer passes in front of that triangle's lower part.
 #pragma once
 
 #include <vector>
@@ -32,15 +35,17 @@ inline constexpr double kRimBiasFloor = 1.0 / 8.0;
 /// segment's near end lies at texel point `nearEnd` with rule depth `nearDepth` (its sample's, with
 /// the bias, as the discontinuity rule reads it): with B = rule.bias > 0 and a rim triangle
 /// (Crossing::rim), the rim's depth at `at` plus keep = min(B, kRimBiasFloor * B + e), e = max(0, the
-/// rim triangle's depth on the near end's light ray - (nearDepth - B)), never beyond c.nearDepth, nor nearer the light
-/// than c.nearDepth - B (the near sample's own surface: a triangle nearly edge-on, whose plane `at` reaches a little
-/// off, cannot pull it further), nor before the near plane; keep = B where the plane shows no depth there (edge-on).
-/// Without B or a rim: c.nearDepth.
+/// rim triangle's depth on the near end's light ray - (nearDepth - B)), with the rim's depth no deeper than the
+/// triangle's deepest corner. Not nearer the light than c.nearDepth - B (the near sample's own surface: a triangle
+/// nearly edge-on, whose plane `at` reaches a little off, cannot pull it further), nor before the near plane; beyond
+/// c.nearDepth (d(lo) + B) only where the rim lies deeper, and never past the middle between c.nearDepth and
+/// c.farDepth (where the bisection's rule would put a sample on the far side). keep = B where the plane shows no
+/// depth there (edge-on). Without B or a rim: c.nearDepth.
 double rimVertexDepth(const TexelUnprojector& unproject, const Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                       double nearDepth, const SheetDepthRule& rule);
 
-/// Moves c's near vertex to rimVertexDepth where that is nearer the light, keeping the depth it
-/// had as Crossing::nearSample (what the discontinuity rule reads); returns whether it moved.
+/// Moves c's near vertex to rimVertexDepth where that differs from it, keeping the depth it had as
+/// Crossing::nearSample (what the discontinuity rule reads); returns whether it moved.
 bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dvec2 at, glm::dvec2 nearEnd,
                          double nearDepth, const SheetDepthRule& rule);
 
