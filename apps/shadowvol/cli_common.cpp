@@ -242,10 +242,11 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
 }
 
 void checkResolution(const std::string& option, int resolution, DepthMapUse use) {
-  if (resolution == 2)  // checkDepthMapSize names the others; a depth file is made for a volume too
-    throw InputError("command line", option, "2",
+  // checkDepthMapSize names the others; a depth file is made for a volume too.
+  if (resolution < kMinVolumeMapSide)
+    throw InputError("command line", option, std::to_string(resolution),
                      "must be at least " + std::to_string(kMinVolumeMapSide) +
-                         ": a map's outermost ring of texels lies on the far plane, so a 2 x 2 map's volume is empty");
+                         ": a map's outermost ring of texels lies on the far plane, so a smaller map's volume is empty");
   checkDepthMapSize(resolution, resolution, "command line", option, use);
 }
 

@@ -138,11 +138,13 @@ TEST(Cli, VersionIsTheSameEverywhere) {
 TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "d.pfm").string();
-  for (const char* res : {"0", "-4", "2", "100000"}) {  // 2: a volume of border ring alone, empty
+  for (const char* res : {"0", "-4", "1", "2", "100000"}) {  // 2: a volume of border ring alone, empty
     const CliResult r = runCli(std::string("depth --resolution ") + res + " --out " + out);
     EXPECT_EQ(r.code, 1) << r.out;
     EXPECT_TRUE(contains(r.out, "--resolution")) << r.out;
     EXPECT_TRUE(contains(r.out, res)) << r.out;
+    // Every size below the smallest names the smallest (a probe saw "at least 2" for 0 and 1).
+    if (std::string(res) != "100000") EXPECT_TRUE(contains(r.out, "at least 3")) << r.out;
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir));
   // The largest map the help names is accepted by `depth`, which builds no volume (its memory was

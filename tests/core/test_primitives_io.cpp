@@ -334,6 +334,9 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   l.nearPlane = 1;
   l.farPlane = 2;
   writeDepthMap(makeDepthMap(l, 2, 2, CaptureMode::Back), dir / "ok.pfm");
+  // A side file with a NUL byte after its JSON (the JSON lexer took it for the end of the input).
+  std::ofstream(depthSidecarPath(dir / "ok.pfm"), std::ios::binary | std::ios::app) << std::string(1, '\0') << "{garbage";
+  expectError("ok.pfm", "NUL byte");
   std::filesystem::remove(depthSidecarPath(dir / "ok.pfm"));
   expectError("ok.pfm", "side file");
 }

@@ -541,6 +541,20 @@ TEST(SceneParser, HugeNumbersAndDeepNestingAreNamed) {
   }
 }
 
+// Regression (a hostile-input probe): a valid scene followed by a NUL byte and anything else
+// loaded, the rest ignored (nlohmann's lexer takes NUL for the end of the input).
+TEST(SceneParser, ANulByteIsRefusedWithItsPlace) {
+  std::string text = "{\"objects\": [{\"type\": \"box\"}]}\n";
+  text += '\0';
+  text += "{\"this\": is not json";
+  try {
+    parse(text);
+    FAIL() << "accepted a NUL byte";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("NUL byte at line 2"), std::string::npos) << e.what();
+  }
+}
+
 // Regression (quadratic in the number of objects: 160,000 boxes took 40 s to load, 600,000 over a
 // minute, from nlohmann's callback parser and a triangle count per object): 100,000 objects load
 // in well under the bound (about a second here; the quadratic code took about 15 s).
@@ -563,6 +577,21 @@ TEST(SceneParser, TriangleLimitIsCheckedBeforeGenerating) {
   expectError(withObject(R"({"type":"sphere","tessellation":"uv","segments":8192,"rings":8192})"), "/objects/0/rings");
   expectError(withObject(R"({"type":"hemisphere","segments":8192,"rings":8192})"), "/objects/0/rings");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+}
+
+// Regression (a hostile-input probe): a mesh file over the scene's triangle limit was named
+// "/objects/3 = null"; now its file field and name.
+TEST(SceneParser, AMeshOverTheTriangleLimitIsNamedByItsFile) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "two.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n");
+  try {
+    parseScene(R"({"objects": [{"type": "mesh", "file": "two.off"}]})", "test.json", dir, 1);
+    FAIL() << "accepted 2 triangles over a limit of 1";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "/objects/0/file") << e.what();
+    EXPECT_NE(std::string(e.what()).find("\"two.off\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("2 triangles"), std::string::npos) << e.what();
+  }
 }
 
 // Regression (/dev/zero read as a scene ran for 30-90 s and 2 GB): not a regular file.

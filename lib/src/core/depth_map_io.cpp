@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -245,9 +246,12 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
     throw InputError(sfile, "", "", "larger than a depth map's side file may be (1 MiB)");
   std::ifstream js(sidecar);
   if (!js) throw InputError(sfile, "", "", "cannot open the depth map's side file");
+  const std::string text((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
+  // nlohmann's lexer takes a NUL byte for the end of the input and would ignore what follows.
+  if (text.find('\0') != std::string::npos) throw InputError(sfile, "", "", "a NUL byte: not JSON text");
   json side;
   try {
-    side = json::parse(js);
+    side = json::parse(text);
   } catch (const json::exception& e) {
     throw InputError(sfile, "", "", std::string("malformed JSON: ") + e.what());
   }

@@ -357,9 +357,12 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
   } else {
     obj.mesh = makePrimitive(r, obj.type, budget);
   }
-  if (obj.mesh.triangleCount() > budget)
-    r.fail("", json(), std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " +
-                           std::to_string(budget) + " the scene may still hold");
+  if (obj.mesh.triangleCount() > budget) {  // a mesh file's (and a box's 12) named by what holds them
+    const bool mesh = obj.type == "mesh";
+    r.fail(mesh ? "file" : "type", r.raw(mesh ? "file" : "type"),
+           std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " + std::to_string(budget) +
+               " the scene may still hold");
+  }
   read.world = applyTransform(obj.mesh, readTransform(r));
   if (obj.type == "mesh") {
     if (std::string note = meshFloatPrecisionNote(obj.mesh, source + ": " + r.pointer("file") + " (" + read.file.string() + ")"); !note.empty())
@@ -443,6 +446,10 @@ class JsonShapeCheck : public nlohmann::json_sax<json> {
 };
 
 json parseJson(const std::string& text, const std::string& source) {
+  // JSON text holds no NUL byte (a string spells it \u0000), and nlohmann's lexer would take one
+  // for the end of the input, ignoring whatever follows it.
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(source, "", "", "a NUL byte at " + lineColumn(text, nul + 1) + ": not JSON text");
   JsonShapeCheck shape(source);
   json::sax_parse(text, &shape);  // throws InputError for the shape; a syntax error is left to parse
   try {
