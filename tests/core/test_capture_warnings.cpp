@@ -88,6 +88,35 @@ TEST(CaptureWarnings, ObjectSeenEdgeOnSuggestsNoImpossibleMapSize) {
   EXPECT_EQ(w[0].find("or more would catch it"), std::string::npos) << w[0];
 }
 
+// Regressions (a hostile-input probe): a point light far above a small ball said nothing, its
+// volume empty (the check was a map's, not a cube face's); a mesh of zero-area triangles under a
+// spot light said nothing, its bounds spanning texel centres.
+TEST(CaptureWarnings, APointLightsFaceAndTrianglesWithoutAreaAreJudgedToo) {
+  Scene far = sceneWith({SceneObject{"ball", "sphere", makeIcoSphere(0.3, 2)}});
+  far.light.type = LightType::Point;
+  far.light.position = {0.0, 400.0, 0.0};
+  far.light.nearPlane = 1.0;
+  far.light.farPlane = 500.0;
+  // At 64^2 a face's texel spans about 400 x 2 / 64 = 12.5 units at the ball: named, on the -y face,
+  // with a size within the cube's limit (400 / 0.3 x 64 / 64 / 2, about 1334).
+  const auto w = captureWarnings(far, 64, 64, CaptureMode::Back);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("\"ball\""), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("-y face"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("or more would catch it"), std::string::npos) << w[0];
+  far.light.position = {0.0, 4.0, 0.0};  // near: the ball covers texel centres of the -y face
+  EXPECT_TRUE(captureWarnings(far, 64, 64, CaptureMode::Back).empty());
+
+  TriangleMesh flat;  // collinear corners, and one point: no area anywhere
+  flat.positions = {{-1.0f, 1.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+  flat.triangles = {{0, 1, 2}, {1, 1, 1}};
+  Scene s = asSpot(sceneWith({SceneObject{"flat", "mesh", flat}}), 0.5, 12.0);
+  const auto f = captureWarnings(s, 64, 64, CaptureMode::Front);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_NE(f[0].find("\"flat\""), std::string::npos) << f[0];
+  EXPECT_NE(f[0].find("no area in the light's view"), std::string::npos) << f[0];
+}
+
 // Vertices nearer to the light than its near plane are clipped: said by object, with how many. The
 // light looks down from y = 5 with near 0.5; a box at y = 4.6 reaches into that slab, one at y = 2
 // does not. A spot light with a near plane pushed out (as an outlier vertex far away pushes a

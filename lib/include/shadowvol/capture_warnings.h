@@ -19,8 +19,11 @@ namespace shadowvol {
 ///    smallest N x N map whose texel spacing is below its extent. With hiddenSearchGrid = S > 1 (the
 ///    volume is refined on an S x S sub-grid that searches for hidden surfaces, volume_builder.h
 ///    nearerSurfaces) the sub-grid's nodes, every 1/S texel, count as well: an object that covers
-///    one of them is walled round and casts its shadow. Objects wholly or partly behind a
-///    spot light's apex plane are not judged;
+///    one of them is walled round and casts its shadow. An object whose triangles have no area in
+///    the light's view (seen exactly edge-on, or zero-area triangles only) is named too, whatever
+///    its bounds. Objects wholly or partly behind a spot light's apex plane are not judged; under
+///    a point light, each object that lies on one face of its cube is judged on that N x N face
+///    (W = N), with sizes up to the cube's limit, and one over several faces is not;
 ///  - an object with vertices inside the light's window but nearer than its near plane (a given
 ///    near too far out, or fitted planes stretched by an outlier vertex far away): the near plane
 ///    clips them, so they cast no shadow;

@@ -13,6 +13,15 @@
 namespace shadowvol {
 namespace {
 
+// A W x H map of `light` for its matrices and planes only: no depths (texelOf and viewDepthOf read
+// none), so judging a 16384^2 map, or six cube faces per object, allocates nothing.
+DepthMap probeMap(const Light& light, int width, int height, CaptureMode capture) {
+  DepthMap map = makeDepthMap(light, 1, 1, capture);
+  map.width = width, map.height = height;
+  map.lightProjection = lightProjection(light, double(width) / double(height));
+  return map;
+}
+
 // The vertices of `mesh` that lie inside the light's window (texel coordinates in the map, in front of
 // a spot light's apex plane) but nearer to the light than its near plane, which clips them.
 std::size_t nearClipped(const DepthMap& probe, const glm::dmat4& toClip, const TriangleMesh& mesh) {
@@ -28,12 +37,89 @@ std::size_t nearClipped(const DepthMap& probe, const glm::dmat4& toClip, const T
   return count;
 }
 
+// Whether some triangle of `mesh` has area in the map's texel plane (its image is not a segment or
+// a point): a mesh seen exactly edge-on, or one of zero-area triangles only, covers nothing.
+bool hasAreaInView(const DepthMap& probe, const TriangleMesh& mesh, double span) {
+  const double tiny = 1e-12 * std::max(1.0, span * span);
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec2 a = probe.texelOf(glm::dvec3(mesh.positions[t[0]])),
+                     b = probe.texelOf(glm::dvec3(mesh.positions[t[1]])),
+                     c = probe.texelOf(glm::dvec3(mesh.positions[t[2]]));
+    const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    if (std::abs(cross) > tiny) return true;
+  }
+  return false;
+}
+
+// The warning for an object of `probe`'s map (its light, W x H) that covers no texel centre, nor
+// a node of the S x S sub-grid that searches for hidden surfaces (S = hiddenSearchGrid > 1), or
+// whose triangles have no area in the light's view (the remedy names maps up to maxSide a side);
+// "" when it covers one, lies wholly outside
+// the map (the frustum does not light it: not this check's business) or partly behind a spot
+// light's apex plane (not judged).
+std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hiddenSearchGrid,
+                            const std::string& mapName = "light map", int maxSide = kMaxDepthMapSide) {
+  const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
+  const int width = probe.width, height = probe.height;
+  glm::dvec2 lo(1e300), hi(-1e300);
+  for (const auto& p : o.mesh.positions) {
+    const glm::dvec4 c = toClip * glm::dvec4(glm::dvec3(p), 1.0);
+    if (!(c.w > 0.0)) return "";
+    const glm::dvec2 t = probe.texelOf(glm::dvec3(p));
+    lo = glm::min(lo, t), hi = glm::max(hi, t);
+  }
+  if (hi.x < -0.5 || hi.y < -0.5 || lo.x > width - 0.5 || lo.y > height - 0.5) return "";
+  // A texel centre (integer coordinates), or a sub-grid node (multiples of 1/S), inside [lo, hi]
+  // on both axes, and a triangle with area to hold it?
+  const double s = std::max(1, hiddenSearchGrid);
+  const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
+  const bool area = hasAreaInView(probe, o.mesh, std::max(hi.x - lo.x, hi.y - lo.y));
+  if (coversX && coversY && area) return "";
+  const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
+  const double need = std::ceil(std::max(width, height) / (span * s));
+  char remedy[160];
+  if (area && need <= maxSide)
+    std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
+  else if (area)  // far smaller than the light's window
+    std::snprintf(remedy, sizeof remedy,
+                  "no map up to %d x %d would catch it: the light sees it edge-on or it is far smaller than the "
+                  "light's frustum",
+                  maxSide, maxSide);
+  else
+    std::snprintf(remedy, sizeof remedy,
+                  "no map would catch it: its triangles have no area in the light's view (seen exactly edge-on, "
+                  "or of zero area)");
+  char grid[96] = "";
+  if (hiddenSearchGrid > 1)
+    std::snprintf(grid, sizeof grid, " and no node of the %d x %d sub-grid that searches for it", hiddenSearchGrid,
+                  hiddenSearchGrid);
+  char buf[560];
+  std::snprintf(buf, sizeof buf,
+                "object \"%s\" spans %.2g x %.2g texels of the %d x %d %s and covers no texel centre%s: it "
+                "casts no shadow at this resolution (%s)",
+                o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, mapName.c_str(), grid, remedy);
+  return buf;
+}
+
 // A point light's cube sees every direction; what it misses is what lies inside its near cube
-// (the largest |coordinate| of the offset from it below near, cube_map.h). The check of objects
-// between texel centres is one map's and is not made per cube face.
-void pointLightWarnings(const Scene& scene, std::vector<std::string>& out) {
+// (the largest |coordinate| of the offset from it below near, cube_map.h), and an object between
+// the texel centres of the N x N face that holds all of it (one over several faces is larger than
+// a texel of any of them, and is not judged).
+void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hiddenSearchGrid,
+                        std::vector<std::string>& out) {
   const Light& l = scene.light;
   for (const auto& o : scene.objects) {
+    if (o.mesh.positions.empty()) continue;
+    const int face = cubeLookup(glm::dvec3(o.mesh.positions[0]) - l.position, n).face;
+    bool oneFace = true;
+    for (const auto& p : o.mesh.positions) oneFace = oneFace && cubeLookup(glm::dvec3(p) - l.position, n).face == face;
+    if (oneFace) {
+      const DepthMap probe = probeMap(cubeFaceLight(l, face), n, n, capture);
+      const std::string name = std::string(cubeFaceName(face)) + " face of the light's cube map";
+      // The six faces are held to one map's limit together (cube_map.cpp).
+      if (std::string w = coverageWarning(probe, o, hiddenSearchGrid, name, kMaxDepthMapSide / kCubeFaces); !w.empty())
+        out.push_back(std::move(w));
+    }
     std::size_t clipped = 0;
     for (const auto& p : o.mesh.positions) clipped += cubeDepth(glm::dvec3(p) - l.position) < l.nearPlane;
     if (clipped == 0) continue;
@@ -61,10 +147,10 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
     }
   }
   if (scene.light.type == LightType::Point) {
-    pointLightWarnings(scene, out);
+    pointLightWarnings(scene, width, capture, hiddenSearchGrid, out);
     return out;
   }
-  const DepthMap probe = makeDepthMap(scene.light, width, height, capture);
+  const DepthMap probe = probeMap(scene.light, width, height, capture);
   const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
   const std::size_t before = out.size();
   for (const auto& o : scene.objects) {
@@ -78,45 +164,7 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
                     clipped, o.mesh.positions.size(), o.name.c_str(), probe.nearPlane);
       out.push_back(buf);
     }
-    glm::dvec2 lo(1e300), hi(-1e300);
-    bool judged = true;
-    for (const auto& p : o.mesh.positions) {
-      const glm::dvec4 c = toClip * glm::dvec4(glm::dvec3(p), 1.0);
-      if (!(c.w > 0.0)) {
-        judged = false;  // behind a spot light's apex plane
-        break;
-      }
-      const glm::dvec2 t = probe.texelOf(glm::dvec3(p));
-      lo = glm::min(lo, t), hi = glm::max(hi, t);
-    }
-    if (!judged) continue;
-    // Entirely outside the map: not this check's business (the frustum does not light it).
-    if (hi.x < -0.5 || hi.y < -0.5 || lo.x > width - 0.5 || lo.y > height - 0.5) continue;
-    // A texel centre (integer coordinates), or a node of the sub-grid that searches for hidden
-    // surfaces (multiples of 1/S), inside [lo, hi] on both axes?
-    const double s = std::max(1, hiddenSearchGrid);
-    const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
-    if (coversX && coversY) continue;
-    const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
-    const double need = std::ceil(std::max(width, height) / (span * s));
-    char remedy[160];
-    if (need <= kMaxDepthMapSide)
-      std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
-    else  // an object seen edge-on, or far smaller than the light's window
-      std::snprintf(remedy, sizeof remedy,
-                    "no map up to %d x %d would catch it: the light sees it edge-on or it is far smaller than the "
-                    "light's frustum",
-                    kMaxDepthMapSide, kMaxDepthMapSide);
-    char grid[96] = "";
-    if (hiddenSearchGrid > 1)
-      std::snprintf(grid, sizeof grid, " and no node of the %d x %d sub-grid that searches for it", hiddenSearchGrid,
-                    hiddenSearchGrid);
-    char buf[560];
-    std::snprintf(buf, sizeof buf,
-                  "object \"%s\" spans %.2g x %.2g texels of the %d x %d light map and covers no texel centre%s: it "
-                  "casts no shadow at this resolution (%s)",
-                  o.name.c_str(), hi.x - lo.x, hi.y - lo.y, width, height, grid, remedy);
-    out.push_back(buf);
+    if (std::string w = coverageWarning(probe, o, hiddenSearchGrid); !w.empty()) out.push_back(std::move(w));
   }
   // Nothing in the frustum at all, and no object named above as clipped by the near plane.
   if (out.size() == before) {
