@@ -33,6 +33,7 @@ def methods(k, chords=False, grid=1, hidden=True):
         "refined front 128": ref + ["--resolution", "128", "--capture", "front"],
         "refined front 256": ref + ["--resolution", "256", "--capture", "front"],
         "refined midpoint 128": ref + ["--resolution", "128", "--capture", "midpoint"],
+        "refined midpoint 256": ref + ["--resolution", "256", "--capture", "midpoint"],
         "refined auto 128": ref + ["--resolution", "128", "--capture", "auto"],
         "refined auto 256": ref + ["--resolution", "256", "--capture", "auto"],
         "silhouette": ["--method", "silhouette"],
