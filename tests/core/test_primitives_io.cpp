@@ -303,6 +303,25 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   expectRefused("origin", "[1, 2]", "/origin");
   expectRefused("origin", "[1e300, 0, 0]", "/origin");  // regression: written out as 1e300 (inf in glTF)
   expectRefused("origin", "[0, 0, -2e12]", "/origin");
+  // A third probe's findings: a height that did not match was named as /width; an unknown key, a
+  // format of another version and a checksum that is not a string or of another algorithm passed or
+  // were named vaguely; a key given twice was blamed on the matrix after it.
+  expectRefused("height", "32", "/height");
+  expectRefused("comment", "\"hi\"", "/comment");
+  expectRefused("format", "\"shadowvol depth map 2\"", "/format");
+  expectRefused("depthChecksum", "12", "/depthChecksum");
+  expectRefused("depthChecksum", "\"sha256:abcd\"", "/depthChecksum");
+  {
+    std::string twice = good;
+    twice.insert(twice.find('{') + 1, "\"near\": 1.0, ");
+    test::writeText(side, twice);
+    try {
+      readDepthMap(dir / "d.pfm");
+      FAIL() << "accepted a key twice";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("a key given twice"), std::string::npos) << e.what();
+    }
+  }
   test::writeText(side, good);
   EXPECT_NO_THROW(readDepthMap(dir / "d.pfm"));
 }
@@ -329,6 +348,8 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("long.pfm", "4 bytes after the header's 4 bytes of depths");
   test::writeText(dir / "crlf.pfm", "Pf\r\n1 1\r\n-1.0\r\n" + std::string(4, '\0'));
   expectError("crlf.pfm", "CR LF");
+  test::writeText(dir / "nan.pfm", "Pf\n1 1\nnan\n" + std::string(4, '\0'));  // once "bad PFM size"
+  expectError("nan.pfm", "header scale = nan");
   // A good PFM without its side file.
   Light l;
   l.nearPlane = 1;

@@ -1,10 +1,12 @@
 #include "shadowvol/depth_map_io.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -19,6 +21,7 @@
 #include "shadowvol/scene.h"
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
+#include "json_text.h"
 
 namespace shadowvol {
 namespace {
@@ -200,6 +203,82 @@ static void requireRegularFile(const std::filesystem::path& p, const char* what)
     throw InputError(p.string(), "", "", std::string(what) + " is not a regular file (a folder, device or pipe)");
 }
 
+namespace {
+
+// The side file's "depthChecksum" (optional: files from before it was written lack it):
+// "fnv1a64:" and 16 hex digits of map's depths, or InputError naming what is wrong.
+void checkSideFileChecksum(const json& given, const std::string& sfile, const std::string& file, const DepthMap& map) {
+  const std::string want = given.is_string() ? given.get<std::string>() : "";
+  if (want.rfind("fnv1a64:", 0) != 0)
+    throw InputError(sfile, "/depthChecksum", given.dump().substr(0, 40),
+                     "expected \"fnv1a64:\" and 16 hex digits (the only checksum this shadowvol writes)");
+  if (want != "fnv1a64:" + depthChecksum(map.depth))
+    throw InputError(sfile, "/depthChecksum", want,
+                     "does not match the depths in " + file + ": the side file belongs to another depth map");
+}
+
+// The keys a side file may hold (writeDepthMap's); any other is refused, as a scene file's are.
+const char* const kSideFileKeys[] = {"format", "writer", "width", "height", "quantity", "light", "capture", "near",
+                                     "far", "lightView", "lightProjection", "origin", "depthChecksum"};
+constexpr const char* kSideFileFormat = "shadowvol depth map 1";
+
+// Fills map's light, capture, planes, matrices and origin from the side file of the PFM `file`,
+// whose W x H depths map already holds: the JSON rules of every input (json_text.h), the format
+// named when given, no unknown key, the size and the checksum of those depths.
+void readSideFile(const std::filesystem::path& sidecar, const std::string& file, DepthMap& map) {
+  const std::string sfile = sidecar.string();
+  std::error_code ec;
+  requireRegularFile(sidecar, "the side file");
+  if (std::filesystem::exists(sidecar, ec) && std::filesystem::file_size(sidecar, ec) > (1u << 20))
+    throw InputError(sfile, "", "", "larger than a depth map's side file may be (1 MiB)");
+  std::ifstream js(sidecar, std::ios::binary);
+  if (!js) throw InputError(sfile, "", "", "cannot open the depth map's side file");
+  const json side = parseJsonText(std::string(std::istreambuf_iterator<char>(js), std::istreambuf_iterator<char>()), sfile);
+  if (!side.is_object()) throw InputError(sfile, "", side.dump().substr(0, 40), "expected a JSON object");
+  for (const auto& [key, value] : side.items())
+    if (std::find(std::begin(kSideFileKeys), std::end(kSideFileKeys), key) == std::end(kSideFileKeys))
+      throw InputError(sfile, "/" + key, value.dump().substr(0, 40), "not a field of a depth map's side file");
+  if (side.contains("format") && side["format"] != kSideFileFormat)  // optional: older files lack it
+    throw InputError(sfile, "/format", side["format"].dump(),
+                     std::string("an unknown format: this shadowvol reads \"") + kSideFileFormat + "\"");
+  auto need = [&](const char* key) -> const json& {
+    if (!side.contains(key)) throw InputError(sfile, std::string("/") + key, "", "required field is missing");
+    return side[key];
+  };
+  if (need("width") != map.width)
+    throw InputError(sfile, "/width", side["width"].dump(), "does not match the PFM's width, " + std::to_string(map.width));
+  if (need("height") != map.height)
+    throw InputError(sfile, "/height", side["height"].dump(),
+                     "does not match the PFM's height, " + std::to_string(map.height));
+  const std::string light = need("light").is_string() ? need("light").get<std::string>() : "";
+  if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
+    throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");
+  const std::string cap = need("capture").is_string() ? need("capture").get<std::string>() : "";
+  if (!parseCaptureMode(cap, map.capture))
+    throw InputError(sfile, "/capture", need("capture").dump(), "expected " + choicesText(namesIn(kCaptureModeNames)));
+  for (const char* plane : {"near", "far"})
+    if (!need(plane).is_number()) throw InputError(sfile, std::string("/") + plane, side[plane].dump(), "expected a number");
+  map.nearPlane = side["near"].get<double>();
+  map.farPlane = side["far"].get<double>();
+  if (!(map.farPlane > map.nearPlane))
+    throw InputError(sfile, "/far", side["far"].dump(), "far must be greater than near");
+  map.lightView = matrixFromJson(need("lightView"), sfile, "/lightView");
+  map.lightProjection = matrixFromJson(need("lightProjection"), sfile, "/lightProjection");
+  checkDepthMapLight(map, sfile);
+  if (side.contains("depthChecksum")) checkSideFileChecksum(side["depthChecksum"], sfile, file, map);
+  if (side.contains("origin")) {  // optional: files from before it was written have origin 0
+    const json& o = side["origin"];
+    if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
+      throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
+    map.origin = {o[0].get<double>(), o[1].get<double>(), o[2].get<double>()};
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))  // NaN too
+        throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers within +-1e12, as a scene's");
+  }
+}
+
+}  // namespace
+
 DepthMap readDepthMap(const std::filesystem::path& pfm) {
   const std::string file = pfm.string();
   requireRegularFile(pfm, "the depth map");
@@ -211,11 +290,19 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   in.width(8);  // header tokens are short: "Pf"
   in >> magic;
   in.width(0);
-  in >> w >> h >> scale;
+  in >> w >> h;
   if (magic != "Pf") throw InputError(file, "header", magic, "not a single-channel PFM (expected \"Pf\")");
   if (!in || w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw InputError(file, "header", std::to_string(w) + "x" + std::to_string(h), "bad PFM size");
-  if (!(scale < 0)) throw InputError(file, "header", numberText(scale), "only little-endian PFM is supported");
+  std::string scaleText;
+  in.width(32);
+  in >> scaleText;
+  in.width(0);
+  char* end = nullptr;
+  scale = std::strtod(scaleText.c_str(), &end);
+  if (scaleText.empty() || *end != '\0' || !std::isfinite(scale) || scale == 0.0)
+    throw InputError(file, "header scale", scaleText, "expected a finite, non-zero number (its sign is the byte order)");
+  if (!(scale < 0)) throw InputError(file, "header scale", scaleText, "only little-endian PFM is supported");
   if (in.get() == '\r')  // the single whitespace after the scale
     throw InputError(file, "header", "CR LF", "a PFM header's lines end with a single newline (\\n), not CR LF "
                                               "(the depths would be read one byte off)");
@@ -239,58 +326,7 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   if (!in) throw InputError(file, "data", "", "the file is shorter than its header says");
   checkDepthValues(map, file);
 
-  const auto sidecar = depthSidecarPath(pfm);
-  const std::string sfile = sidecar.string();
-  requireRegularFile(sidecar, "the side file");
-  if (std::filesystem::exists(sidecar, ec) && std::filesystem::file_size(sidecar, ec) > (1u << 20))
-    throw InputError(sfile, "", "", "larger than a depth map's side file may be (1 MiB)");
-  std::ifstream js(sidecar);
-  if (!js) throw InputError(sfile, "", "", "cannot open the depth map's side file");
-  const std::string text((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
-  // nlohmann's lexer takes a NUL byte for the end of the input and would ignore what follows.
-  if (text.find('\0') != std::string::npos) throw InputError(sfile, "", "", "a NUL byte: not JSON text");
-  json side;
-  try {
-    side = json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(sfile, "", "", std::string("malformed JSON: ") + e.what());
-  }
-  auto need = [&](const char* key) -> const json& {
-    if (!side.contains(key)) throw InputError(sfile, std::string("/") + key, "", "required field is missing");
-    return side[key];
-  };
-  if (need("width") != w || need("height") != h)
-    throw InputError(sfile, "/width", side["width"].dump(), "does not match the PFM's size");
-  const std::string light = need("light").is_string() ? need("light").get<std::string>() : "";
-  if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
-    throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");
-  const std::string cap = need("capture").is_string() ? need("capture").get<std::string>() : "";
-  if (!parseCaptureMode(cap, map.capture))
-    throw InputError(sfile, "/capture", need("capture").dump(), "expected " + choicesText(namesIn(kCaptureModeNames)));
-  if (!need("near").is_number() || !need("far").is_number())
-    throw InputError(sfile, "/near", side["near"].dump(), "near and far must be numbers");
-  map.nearPlane = side["near"].get<double>();
-  map.farPlane = side["far"].get<double>();
-  if (!(map.farPlane > map.nearPlane))
-    throw InputError(sfile, "/far", side["far"].dump(), "far must be greater than near");
-  map.lightView = matrixFromJson(need("lightView"), sfile, "/lightView");
-  map.lightProjection = matrixFromJson(need("lightProjection"), sfile, "/lightProjection");
-  checkDepthMapLight(map, sfile);
-  if (side.contains("depthChecksum")) {  // optional: files from before it was written lack it
-    const std::string want = side["depthChecksum"].is_string() ? side["depthChecksum"].get<std::string>() : "";
-    if (want != "fnv1a64:" + depthChecksum(map.depth))
-      throw InputError(sfile, "/depthChecksum", want,
-                       "does not match the depths in " + file + ": the side file belongs to another depth map");
-  }
-  if (side.contains("origin")) {  // optional: files from before it was written have origin 0
-    const json& o = side["origin"];
-    if (!o.is_array() || o.size() != 3 || !o[0].is_number() || !o[1].is_number() || !o[2].is_number())
-      throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers");
-    map.origin = {o[0].get<double>(), o[1].get<double>(), o[2].get<double>()};
-    for (int k = 0; k < 3; ++k)
-      if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))  // NaN too
-        throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers within +-1e12, as a scene's");
-  }
+  readSideFile(depthSidecarPath(pfm), file, map);
   return map;
 }
 
