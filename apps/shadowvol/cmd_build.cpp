@@ -220,10 +220,14 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);
-        if (map.origin != glm::dvec3(0.0))
+        if (map.origin != glm::dvec3(0.0)) {
+          const bool gltf = ext == ".gltf" || ext == ".glb";  // float positions, the origin as the node's translation
           std::printf("  coordinates %s origin (%.17g, %.17g, %.17g)\n",
-                      o->worldCoords ? "in world units (double); local" : "relative to the local", map.origin.x,
-                      map.origin.y, map.origin.z);
+                      gltf            ? "relative to the glTF node, whose translation is the local"
+                      : o->worldCoords ? "in world units (double); local"
+                                       : "relative to the local",
+                      map.origin.x, map.origin.y, map.origin.z);
+        }
         std::printf("wrote %s\n", o->out.c_str());
       }
       return kOk;
