@@ -83,7 +83,15 @@ void addLightChoiceOption(CLI::App& cmd, int& light) {
   cmd.add_option("--light", light,
                  "Which light of a scene with several (its index in the scene's `lights`, from 0): this command "
                  "works on one light's depth map")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const long v = std::strtol(text.c_str(), &end, 10);
+            if (text.empty() || *end != '\0') return "not a light index (a whole number from 0): " + text;
+            if (v < 0) return "a light index counts from 0, not " + text;
+            return {};
+          },
+          "INDEX"))
       ->capture_default_str();
 }
 

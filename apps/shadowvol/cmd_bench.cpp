@@ -146,6 +146,10 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
         return kOk;
       }
       checkOutputFolder("--out", o->out);
+      for (const auto& m : o->methods)  // a probe's finding: "--methods ," took the next option as a method
+        if (m.empty() || m.rfind("--", 0) == 0)
+          throw InputError("command line", "--methods", m.empty() ? "\"\"" : m,
+                           "not a method key (an empty key from a stray comma, or the next option taken as one)");
       const std::filesystem::path dir(o->out);
       SweepReportInfo info;
       info.machine = machineDescription();

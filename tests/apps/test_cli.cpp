@@ -159,6 +159,18 @@ TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
 
 // Regression (a hostile-input probe): --bias 1e6 wrote an empty volume with exit 0, and
 // --shadow-bias took negative values.
+// A probe's finding: --light -1 was answered with a range up to 1.8e308 written out, and --light x
+// with "not in range".
+TEST(Cli, ALightIndexIsAWholeNumberFromZero) {
+  const CliResult neg = runCli("build --light -1 --out x.ply");
+  EXPECT_EQ(neg.code, 2) << neg.out;
+  EXPECT_TRUE(contains(neg.out, "counts from 0, not -1")) << neg.out;
+  const CliResult word = runCli("build --light x --out x.ply");
+  EXPECT_EQ(word.code, 2) << word.out;
+  EXPECT_TRUE(contains(word.out, "not a light index")) << word.out;
+  EXPECT_LT(neg.out.size() + word.out.size(), 400u);
+}
+
 TEST(Cli, OffsetsThatLeaveNothingInShadowAreRefused) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "v.ply").string();
@@ -981,6 +993,11 @@ TEST(CliGl, BenchListsTakeCommas) {
   EXPECT_EQ(u.code, 2) << u.out;
   EXPECT_TRUE(contains(u.out, "--out")) << u.out;
   EXPECT_EQ(runCli("bench --list-methods").code, 0);
+  // A probe's finding: a stray comma made an empty key and took the next option as a method.
+  const CliResult comma = runCli("bench --scenes default --methods , --repeat 1 --out " + (dir / "c").string());
+  EXPECT_EQ(comma.code, 1) << comma.out;
+  EXPECT_TRUE(contains(comma.out, "not a method key")) << comma.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c"));
 }
 
 // --fit view on a small caster over a wide ground: the light's window shrinks, the frame stays
