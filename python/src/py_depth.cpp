@@ -17,6 +17,8 @@ namespace {
 DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
                       const std::string& platform) {
   const CaptureMode mode = captureModeArg(capture, &s.scene);
+  checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
+  checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height");
   py::gil_scoped_release release;
   if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);

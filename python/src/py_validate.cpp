@@ -22,8 +22,11 @@ namespace shadowvol::python {
 #ifdef SHADOWVOL_WITH_GL
 namespace {
 
+// A frame's arguments; the defaults are the Python functions' (registerValidate), against which
+// the arguments a method would ignore are refused.
 struct FrameArgs {
-  std::string method, volume, capture, triangulation, cap, platform, count = "auto";
+  std::string method = "hybrid", volume = "gpu", capture = "auto", triangulation = "perfect", cap = "exact",
+              platform = "auto", count = "auto";
   int resolution = 512, refine = 0;
   bool blur = false;
   std::optional<std::pair<int, int>> size;
@@ -41,13 +44,19 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   // Arguments the method would ignore are refused, as the command line refuses their flags.
   const bool hybrid = ro.method == gl::ShadowMethod::Hybrid;
   const bool capturing = ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None;
+  const FrameArgs defaults;
   const std::pair<bool, const char*> volumeOnly[] = {
-      {a.blur, "blur"}, {a.refine != 0, "refine"}, {a.cap != "exact", "cap"}, {a.triangulation != "perfect", "triangulation"}};
+      {a.blur, "blur"},   {a.refine != 0, "refine"},       {a.cap != "exact", "cap"},
+      {a.triangulation != "perfect", "triangulation"},   {a.volume != defaults.volume, "volume"},
+      {a.count != defaults.count, "count"}};
   for (const auto& [given, name] : volumeOnly)
     if (given && !hybrid)
       throw InputError("python", name, "", "shapes the hybrid method's shadow volume; method " + a.method + " has none");
-  if (!capturing && a.capture != "auto")
+  if (!capturing && a.capture != defaults.capture)
     throw InputError("python", "capture", a.capture, "chooses what a depth map records; method " + a.method + " captures none");
+  if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)
+    throw InputError("python", "resolution", std::to_string(a.resolution),
+                     "sizes the light's depth map; method " + a.method + " captures none");
   ro.capture = capturing ? captureModeArg(a.capture, &scene) : CaptureMode::Back;
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
   if (a.size) {

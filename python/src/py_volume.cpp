@@ -49,6 +49,10 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
   if (refine > 0 && !scene)
     throw InputError("python", "refine", std::to_string(refine),
                      "needs scene=: the refinement casts rays into the scene the depth map was captured from");
+  if (depth.width < kMinVolumeMapSide || depth.height < kMinVolumeMapSide)  // as `build --depth` refuses it
+    throw InputError("python", "depth", std::to_string(depth.width) + "x" + std::to_string(depth.height),
+                     "a volume needs a map of at least " + std::to_string(kMinVolumeMapSide) + " x " +
+                         std::to_string(kMinVolumeMapSide) + " texels: the outermost ring lies on the far plane");
   VolumeBuildResult r;
   {
     py::gil_scoped_release release;
@@ -126,6 +130,13 @@ void registerVolume(py::module_& m) {
         // Indices must be integers: a float array would be truncated without a word.
         if (f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
           throw InputError("export", "F", std::string(py::str(f.dtype())), "expected an integer array of vertex indices");
+        if (f.dtype().kind() == 'u' && f.dtype().itemsize() == 8) {  // would wrap to negative as int64
+          const auto u = f.cast<py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>>();
+          const std::uint64_t* p = u.data();
+          for (py::ssize_t k = 0; k < u.size(); ++k)
+            if (p[k] > std::uint64_t(INT64_MAX))
+              throw InputError("export", "F", std::to_string(p[k]), "a vertex index beyond any vertex array");
+        }
         const VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
         py::gil_scoped_release release;
         writeVolumeMesh(mesh, path, doublePrecision);

@@ -191,6 +191,15 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     with pytest.raises(sv.InputError, match=r"capture = auto"):
         sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
                                capture="auto")
+    with pytest.raises(sv.InputError, match=r"F = 9223372036854775813"):  # once shown wrapped to negative
+        sv.export(V[:3], np.array([[0, 1, 2**63 + 5]], dtype=np.uint64), tmp_path / "u.ply")
+    # A third probe's findings: a 2 x 2 map, whose volume is all border ring, was captured and built.
+    with pytest.raises(sv.InputError, match=r"width = 2"):
+        sv.capture_depth(sv.default_scene(), 2, 2)
+    small = sv.DepthMap.from_array(depth.depth[:2, :2].copy(), depth.light_view, depth.light_projection,
+                                   depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"at least 3 x 3"):
+        sv.build_volume(small)
 
 
 def test_capture_auto_is_the_default_and_follows_the_meshes(tmp_path):
@@ -245,7 +254,11 @@ def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path,
     assert "capture" not in sv.validate(scene, method="silhouette", size=(16, 12))["options"]
     for kw, field in [(dict(method="shadowmap", blur=True), "blur"), (dict(method="none", capture="front"), "capture"),
                       (dict(method="silhouette", refine=3), "refine"), (dict(refine=99), "refine steps"),
-                      (dict(resolution=2), "resolution")]:
+                      (dict(resolution=2), "resolution"),
+                      # a third probe's findings: taken where the command line refuses them
+                      (dict(method="shadowmap", volume="explicit"), "volume"),
+                      (dict(method="shadowmap", count="zfail"), "count"),
+                      (dict(method="none", resolution=64), "resolution")]:
         with pytest.raises(sv.InputError, match=field):
             sv.validate(scene, size=(16, 12), **kw)
     with pytest.raises(sv.InputError, match=r"report_dir"):
