@@ -583,8 +583,12 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
     throw InputError(source, pointer + "/far", numberText(given.farPlane), "far lies before the fitted near plane");
 }
 
-// The warnings about light k (as scene.light): inside a closed mesh; a directional light's plane
-// through the scene.
+// A spot or point light's near plane below far x this (the fit's floor is far x 1e-7, where the
+// light touches geometry) is warned about: float depth keeps about 7 digits.
+constexpr double kMinLightNearFraction = 1e-6;
+
+// The warnings about light k (as scene.light): inside a closed mesh; a near plane so close to the
+// light that depth precision is lost; a directional light's plane through the scene.
 void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::size_t k, const std::string& source,
                     std::vector<std::string>& warnings) {
   const std::string pointer = scene.lightPointer(k);
@@ -592,6 +596,18 @@ void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::si
     if (const SceneObject& o = scene.objects[i]; closed[i] && insideClosedMesh(o.mesh, scene.light.position))
       warnings.push_back(source + ": " + pointer + "/position: the " + toString(scene.light.type) +
                          " light is inside the closed mesh \"" + o.name + "\": everything it lights will be in shadow");
+  // A probe's finding: a point light on a wall had its near plane fitted down to far x 1e-7, and
+  // its refined GPU volume disagreed with its crossing counts along every shadow edge.
+  const Light& l = scene.light;
+  if (l.type != LightType::Directional && l.nearPlane < l.farPlane * kMinLightNearFraction) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "/near: %.6g, %.3g times nearer than the far plane (%.6g): the light (nearly) touches the scene's "
+                  "geometry, and the GPU's depth precision is lost so near it (a refined GPU volume can disagree "
+                  "with its crossing counts); move the light off the surface or give a larger near",
+                  l.nearPlane, l.farPlane / l.nearPlane, l.farPlane);
+    warnings.push_back(source + ": " + pointer + buf);
+  }
   if (scene.light.type == LightType::Directional &&
       detail::depthRange(scene.bounds(), scene.light.position, scene.light.direction).first < 0.0)
     warnings.push_back(source + ": " + pointer + "/position: the plane through the directional light's position cuts "
