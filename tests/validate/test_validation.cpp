@@ -16,6 +16,7 @@
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/cgal/mesh_check.h"
 #include "shadowvol/validate/double_recount.h"
+#include "shadowvol/validate/image_plane_surfaces.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "test_util.h"
 
@@ -872,6 +873,40 @@ TEST(Validation, ImagePlaneTiesAdmitTheSurfaceBehindASceneSilhouette) {
   EXPECT_EQ(same.zfailMax[centre], 1);
   // One corner sees a surface behind the triangle (depth 7): there the triangle is in front, 0 crossings behind.
   EXPECT_EQ(widenImagePlaneTies(volume, camera, hits, {centre}, counts, {2.0, 7.0, 2.0, 2.0}), 1u);
+  EXPECT_EQ(counts.zfailMin[centre], 0);
+  EXPECT_EQ(counts.zfailMax[centre], 1);
+}
+
+// A sliver of the scene whose tip comes within the tie square but between its corners (a probe's
+// open wuson at 160 x 120: an edge 0.0015 px from the centre, the stencil counted behind it): found
+// from the triangles' images (image_plane_surfaces.h), its depth splits the counts as a corner's
+// surface would; the same sliver three squares away is not found.
+TEST(Validation, ImagePlaneTiesAdmitASceneSliverBetweenTheCorners) {
+  const Camera camera = tieCamera();
+  const double rw = kImagePlaneTie * tiePixel() * 7.0 / 5.0;  // the square's half side at z = -2 (depth 7)
+  const std::size_t centre = 31 * 63 + 31;
+  for (double tip : {0.3, 3.0}) {
+    SCOPED_TRACE(tip);
+    TriangleMesh sliver;  // in z = -2, pointing at the view axis, far thinner than the square
+    sliver.positions = {{float(tip * rw), 0.0f, -2.0f}, {float(10 * rw), float(0.05 * rw), -2.0f},
+                        {float(10 * rw), float(-0.05 * rw), -2.0f}};
+    sliver.triangles = {{0u, 1u, 2u}};
+    const auto near = surfaceDepthsNearPixels({&sliver}, camera, {centre}, kImagePlaneTie);
+    ASSERT_EQ(near.size(), 1u);
+    if (tip < 1.0) {
+      ASSERT_EQ(near[0].size(), 1u);
+      EXPECT_NEAR(near[0][0], 7.0, 1e-5);
+    } else {
+      EXPECT_TRUE(near[0].empty());
+    }
+  }
+  // Its depth widens the range as a corner's surface does (the volume's triangle in z = 0 then lies
+  // in front: 0 crossings behind).
+  VolumeMesh volume;
+  volume.positions = {{-1.0, -1.0, 0.0}, {1.0, -1.0, 0.0}, {0.0, 1.0, 0.0}};
+  volume.triangles = {{0u, 2u, 1u}};
+  CrossingCounts counts = oneCrossingEach();
+  EXPECT_EQ(widenImagePlaneTies(volume, camera, tieHits({centre}), {centre}, counts, {2.0, 2.0, 2.0, 2.0}, {{7.0}}), 1u);
   EXPECT_EQ(counts.zfailMin[centre], 0);
   EXPECT_EQ(counts.zfailMax[centre], 1);
 }

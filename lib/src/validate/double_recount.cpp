@@ -345,10 +345,12 @@ std::vector<glm::dvec2> imagePlaneTieCorners() {
 
 std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
                                 const std::vector<std::size_t>& pixels, CrossingCounts& counts,
-                                const std::vector<double>& cornerDepths) {
+                                const std::vector<double>& cornerDepths,
+                                const std::vector<std::vector<double>>& nearDepths) {
   if (pixels.empty() || volume.triangleCount() == 0) return 0;
   const std::vector<glm::dvec2> corners = imagePlaneTieCorners();
   SV_CHECK(cornerDepths.empty() || cornerDepths.size() == corners.size() * pixels.size());
+  SV_CHECK(nearDepths.empty() || nearDepths.size() == pixels.size());
   const std::vector<std::size_t> near = trianglesNear(volume, camera, pixels);
   DoubleCounter counter(volume, near);
   const PrimaryRays rays(camera);
@@ -366,6 +368,9 @@ std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, 
       const double d = cornerDepths[p * corners.size() + c];
       if (d < INFINITY && std::abs(d - own) > tieTolerance(camera, own) * own) depths.push_back(d);
     }
+    if (!nearDepths.empty())
+      for (const double d : nearDepths[p])
+        if (d < INFINITY && std::abs(d - own) > tieTolerance(camera, own) * own) depths.push_back(d);
     int lo = counts.zfailMin[k], hi = counts.zfailMax[k];
     const TexelUnprojector::Ray centre = rays.ray(x, row);
     auto admit = [&](const TexelUnprojector::Ray& ray, double depth, const TexelUnprojector::Ray* along) {

@@ -1,6 +1,7 @@
 #include "shadowvol/validate/frame_validation.h"
 
 #include "shadowvol/validate/double_recount.h"
+#include "shadowvol/validate/image_plane_surfaces.h"
 
 #include <algorithm>
 #include <array>
@@ -248,8 +249,14 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
       const auto cornerDepthsOf = [&](const std::vector<std::size_t>& pixels) {
         return visibleDepths(sceneRt, scene.camera, pixels, imagePlaneTieCorners());
       };
+      std::vector<const TriangleMesh*> meshes;
+      for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+      const auto nearDepthsOf = [&](const std::vector<std::size_t>& pixels) {
+        return surfaceDepthsNearPixels(meshes, scene.camera, pixels, kImagePlaneTie);
+      };
       if (volume) {
-        widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts, cornerDepthsOf(outside));
+        widenImagePlaneTies(*volume, scene.camera, hits, outside, *v.counts, cornerDepthsOf(outside),
+                            nearDepthsOf(outside));
       } else {  // a cube's face volumes: each pixel by the volumes of its faces (pixelFaces)
         std::array<std::vector<std::size_t>, kCubeFaces> byFace;
         for (std::size_t k : outside) {
@@ -259,7 +266,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
         }
         for (int f = 0; f < kCubeFaces; ++f)
           widenImagePlaneTies(frame.faceVolumes[std::size_t(f)], scene.camera, hits, byFace[std::size_t(f)], *v.counts,
-                              cornerDepthsOf(byFace[std::size_t(f)]));
+                              cornerDepthsOf(byFace[std::size_t(f)]), nearDepthsOf(byFace[std::size_t(f)]));
       }
       for (std::size_t k : outside) v.stencilVsCount.imagePlaneTies += admissible(k);
     }

@@ -57,9 +57,12 @@ std::vector<glm::dvec2> imagePlaneTieCorners();
 /// depth along the centre's ray. With `cornerDepths` (four per pixel: the scene's
 /// visible depth along those rays, visibleDepths with imagePlaneTieCorners), where a corner sees
 /// another surface (outside the tie band of the pixel's depth; not background), the centre's and
-/// the corners' rays are split at that depth as well. Returns the number of pixels whose range grew.
+/// the corners' rays are split at that depth as well; so they are at each of `nearDepths[p]` (the
+/// depths along the centre's ray of the scene's triangles whose image comes within the tie square,
+/// image_plane_surfaces.h: a sliver between the corners). Returns the number of pixels whose range grew.
 std::size_t widenImagePlaneTies(const VolumeMesh& volume, const Camera& camera, const CameraHits& hits,
                                 const std::vector<std::size_t>& pixels, CrossingCounts& counts,
-                                const std::vector<double>& cornerDepths = {});
+                                const std::vector<double>& cornerDepths = {},
+                                const std::vector<std::vector<double>>& nearDepths = {});
 
 }  // namespace shadowvol
