@@ -75,20 +75,19 @@ std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hid
   const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
   const bool area = hasAreaInView(probe, o.mesh, std::max(hi.x - lo.x, hi.y - lo.y));
   if (coversX && coversY && area) return "";
+  if (!area)
+    return "object \"" + o.name + "\" has no area in the light's view (its triangles are seen exactly edge-on, or " +
+           "have zero area): it casts no shadow, whatever the resolution";
   const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
   const double need = std::ceil(std::max(width, height) / (span * s));
   char remedy[160];
-  if (area && need <= maxSide)
+  if (need <= maxSide)
     std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
-  else if (area)  // far smaller than the light's window
+  else  // far smaller than the light's window
     std::snprintf(remedy, sizeof remedy,
                   "no map up to %d x %d would catch it: the light sees it edge-on or it is far smaller than the "
                   "light's frustum",
                   maxSide, maxSide);
-  else
-    std::snprintf(remedy, sizeof remedy,
-                  "no map would catch it: its triangles have no area in the light's view (seen exactly edge-on, "
-                  "or of zero area)");
   char grid[96] = "";
   if (hiddenSearchGrid > 1)
     std::snprintf(grid, sizeof grid, " and no node of the %d x %d sub-grid that searches for it", hiddenSearchGrid,
