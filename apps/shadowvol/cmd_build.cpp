@@ -200,6 +200,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       options.refineGridEverywhere ? " (everywhere)" : "", s.subgridSamples, s.subgridBoundaryEdges,
                       s.ambiguousCells, s.subgridSplitTriangles,
                       hiddenText);
+        if (options.refineSubdivisions > 1 && s.thinQuads > 0)
+          std::printf("  sub-grid for thin parts: %zu quads where a part is thinner than the sheet bends\n", s.thinQuads);
         if (options.refineSubdivisions > 1 && s.biasUsed > 0.0)
           std::printf("  sub-grid bias: %zu quads for a crease, %zu sub-cell centre samples, %zu wall tops moved to "
                       "the rim\n",

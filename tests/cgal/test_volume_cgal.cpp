@@ -177,7 +177,9 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           ASSERT_TRUE(gr.valid()) << what << " grid " << o.refineSubdivisions << ": " << gr.summary();
           EXPECT_EQ(gr.coincidentVertices, 0u) << what << " grid " << o.refineSubdivisions;
           // and the hidden ones, and with front capture's bias the creases
-          EXPECT_EQ(g.stats.refinedCells, r.stats.refinedCells + g.stats.hiddenQuads + g.stats.creaseQuads) << what;
+          EXPECT_EQ(g.stats.refinedCells,
+                    r.stats.refinedCells + g.stats.hiddenQuads + g.stats.creaseQuads + g.stats.thinQuads)
+              << what;
           hidden += g.stats.hiddenQuads;
           creases += g.stats.creaseQuads;
           EXPECT_EQ(g.stats.creaseQuads > 0 || g.stats.subgridBiasSamples > 0, g.stats.biasUsed > 0.0 && g.stats.refinedCells > 0)

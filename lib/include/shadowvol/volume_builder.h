@@ -174,6 +174,10 @@ struct VolumeBuildStats {
                                       ///< it for a hidden surface (counted in refinedCells and subgridQuads)
   std::size_t creaseQuads = 0;        ///< sub-grid with a bias: quads without a boundary edge put on it for
                                       ///< a crease (docs/volume.md "Sub-grid", step 8; counted as hiddenQuads are)
+  std::size_t thinQuads = 0;          ///< sub-grid with back capture: quads without a boundary edge put on it for
+                                      ///< a part thinner than the sheet bends there (docs/volume.md "Sub-grid",
+                                      ///< step 10; counted as hiddenQuads are)
+  std::size_t thinRays = 0;           ///< the first-surface rays that measured those parts (in raysCast)
   std::size_t subgridBiasSamples = 0; ///< sub-grid with a bias: rays at sub-cell centres that set its nodes' bias
   std::size_t rimCrossings = 0;       ///< sub-grid with front capture's bias: snapped crossings whose near vertex
                                       ///< moved towards the rim (the plain refinement's, some then cut, and the

@@ -68,6 +68,8 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridSplitTriangles", s.subgridSplitTriangles},
           {"hiddenQuads", s.hiddenQuads},
           {"creaseQuads", s.creaseQuads},
+          {"thinQuads", s.thinQuads},
+          {"thinRays", s.thinRays},
           {"subgridBiasSamples", s.subgridBiasSamples},
           {"rimCrossings", s.rimCrossings},
           {"raysCast", s.raysCast},

@@ -19,6 +19,7 @@
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/crease_quads.h"
+#include "volume/thin_quads.h"
 #include "volume/grid_unprojector.h"
 #include "volume/hidden_quads.h"
 #include "volume/quad_codes.h"
@@ -287,7 +288,7 @@ struct RefinementFound {
   volume::RefinedQuads quads;
   Refinement refinement;
   volume::ChordPoints chords;
-  std::size_t hiddenQuads = 0, creaseQuads = 0;
+  std::size_t hiddenQuads = 0, creaseQuads = 0, thinQuads = 0, thinRays = 0;
   double msHidden = 0.0;
 };
 
@@ -318,8 +319,15 @@ RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBui
     const std::vector<std::uint32_t> creases =
         volume::findCreaseQuads(sheet, options.refineSubdivisions, splitBits.data());
     found.creaseQuads = creases.size();
-    const std::size_t n = hidden.size();
+    std::size_t n = hidden.size();
     hidden.insert(hidden.end(), creases.begin(), creases.end());
+    std::inplace_merge(hidden.begin(), hidden.begin() + std::ptrdiff_t(n), hidden.end());
+    // Back capture: parts thinner than the sheet bends (stage 1t), after the creases (front capture's).
+    const std::vector<std::uint32_t> thin =
+        volume::findThinQuads(sheet, options.depthOracle, splitBits.data(), &found.thinRays);
+    found.thinQuads = thin.size();
+    n = hidden.size();
+    hidden.insert(hidden.end(), thin.begin(), thin.end());
     std::inplace_merge(hidden.begin(), hidden.begin() + std::ptrdiff_t(n), hidden.end());
   }
   found.quads = volume::findRefinedQuads(found.edges, map.width, map.height, hidden);
@@ -491,7 +499,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   const GridUnprojector unproject(map);
   const QuadCodes codes = computeQuadCodes(
       sheet, unproject, {exact, perfect, refine ? scratch_->splitBits.data() : nullptr,
-                        found.hiddenQuads + found.creaseQuads > 0},
+                        found.hiddenQuads + found.creaseQuads + found.thinQuads > 0},
       scratch_->code);
   const QuadGrid grid{w - 1, h - 1, scratch_->code.data()};
   stats.flippedQuads = codes.flipped;
@@ -499,6 +507,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.refinedCells = codes.refined;
   stats.hiddenQuads = found.hiddenQuads;
   stats.creaseQuads = found.creaseQuads;
+  stats.thinQuads = found.thinQuads;
   stats.msHidden = found.msHidden;
   double msSheet = msSince(t0);
 
@@ -509,6 +518,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
                        found.chords, stats);
     msRefine += msSince(tr);
   }
+  stats.thinRays = found.thinRays;  // stage 1t's, cast before the crossings
+  stats.raysCast += found.thinRays;
   t0 = Clock::now();
 
   const double refineBefore = msRefine;  // refinement time spent before this point
