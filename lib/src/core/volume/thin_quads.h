@@ -20,9 +20,10 @@ namespace shadowvol::volume {
 
 /// The least bend looked at, in texel footprints at the sample's depth: on a smooth curved occluder
 /// every sample lies a little off its neighbours' chord, and each such corner costs a ray (the
-/// default scene's sphere at 256²: 3,074 more rays with no floor, 1,997 at 1/16 footprint, 659 at
-/// 1/4, 351 at 1/2, flagging no quad at any; the boeing's and the bunny's flagged quads were the
-/// same at all three floors; docs/results/thin-quads).
+/// default scene's sphere at 256²: 3,074 more rays with no floor, 1,997 at 1/16 footprint, 1,142
+/// at 1/8, 659 at 1/4, 351 at 1/2, flagging no quad at any; the boeing's and the bunny's flagged
+/// quads were the same at every floor, but at 1/2 the valley of tests/embree/test_thin_quads_volume.cpp,
+/// a fold of 0.37 footprint over plates 0.09 footprint thick, was missed; docs/results/thin-quads).
 inline constexpr double kThinChordFloor = 1.0 / 8.0;
 
 /// The quads without a boundary side (splitBits' bits 0 and 1, which must hold the boundary edges)
