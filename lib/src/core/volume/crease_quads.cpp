@@ -6,12 +6,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "volume/chord_offsets.h"
 #include "volume/quad_codes.h"
 
 namespace shadowvol::volume {
 namespace {
-
-constexpr double kFar = std::numeric_limits<double>::infinity();
 
 // Whether the boundary edges have the step from texel (i, j) to its neighbour (i + di, j + dj), di
 // and dj in {-1, 0, 1}: along an axis, that grid edge is a boundary edge; along a diagonal, a side of
@@ -31,26 +30,14 @@ bool stepOnBoundary(const std::uint8_t* splitBits, int width, int i, int j, int 
 // step continuous next to steep neighbours, as on ground lit at a grazing angle) it counts here.
 double behindChord(const SheetDepths& sheet, const std::uint8_t* splitBits, int i, int j, bool perspective) {
   const DepthMap& map = sheet.map();
-  const SheetDepthRule& rule = sheet.rule();
-  const auto sample = [&](int x, int y) {  // +inf where far, on the ring or off the map
-    if (x < 0 || y < 0 || x >= map.width || y >= map.height || SheetDepthRule::ring(x, y, map.width, map.height))
-      return kFar;
-    const double u = rule.fromStored(map.at(x, y));
-    return u < rule.farPlane ? u : kFar;
-  };
-  const double c = sample(i, j);
-  if (c == kFar) return 0.0;
-  constexpr int kDi[4] = {1, 0, 1, 1}, kDj[4] = {0, 1, 1, -1};
+  const double bias = sheet.rule().bias;
   double most = 0.0;
-  for (int d = 0; d < 4; ++d) {
-    const double a = sample(i - kDi[d], j - kDj[d]), b = sample(i + kDi[d], j + kDj[d]);
-    if (a == kFar || b == kFar) continue;  // so both neighbours lie on the map, off the ring
-    const double behind = c - depthAlongEdge(a, b, 0.5, perspective);
-    if (behind > 2.0 * rule.bias && (stepOnBoundary(splitBits, map.width, i, j, -kDi[d], -kDj[d]) ||
-                                     stepOnBoundary(splitBits, map.width, i, j, kDi[d], kDj[d])))
-      continue;  // a jump the boundary edges have
+  forEachChord(sheet, i, j, perspective, [&](int d, double behind) {
+    if (behind > 2.0 * bias && (stepOnBoundary(splitBits, map.width, i, j, -kChordDi[d], -kChordDj[d]) ||
+                                stepOnBoundary(splitBits, map.width, i, j, kChordDi[d], kChordDj[d])))
+      return;  // a jump the boundary edges have
     most = std::max(most, behind);
-  }
+  });
   return most;
 }
 

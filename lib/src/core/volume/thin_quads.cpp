@@ -7,33 +7,17 @@
 #include <glm/vec2.hpp>
 
 #include "shadowvol/boundary_edges.h"
+#include "volume/chord_offsets.h"
 #include "volume/quad_codes.h"
 
 namespace shadowvol::volume {
 namespace {
 
-constexpr double kFar = std::numeric_limits<double>::infinity();
-
 // How far texel (i, j)'s sample lies off the chord of its neighbours, either way, the most over the
 // four directions (0 without a neighbour pair on the map, off the ring and hit).
 double offChord(const SheetDepths& sheet, int i, int j, bool perspective) {
-  const DepthMap& map = sheet.map();
-  const SheetDepthRule& rule = sheet.rule();
-  const auto sample = [&](int x, int y) {  // +inf where far, on the ring or off the map
-    if (x < 0 || y < 0 || x >= map.width || y >= map.height || SheetDepthRule::ring(x, y, map.width, map.height))
-      return kFar;
-    const double u = rule.fromStored(map.at(x, y));
-    return u < rule.farPlane ? u : kFar;
-  };
-  const double c = sample(i, j);
-  if (c == kFar) return 0.0;
-  constexpr int kDi[4] = {1, 0, 1, 1}, kDj[4] = {0, 1, 1, -1};
   double most = 0.0;
-  for (int d = 0; d < 4; ++d) {
-    const double a = sample(i - kDi[d], j - kDj[d]), b = sample(i + kDi[d], j + kDj[d]);
-    if (a == kFar || b == kFar) continue;
-    most = std::max(most, std::abs(c - depthAlongEdge(a, b, 0.5, perspective)));
-  }
+  forEachChord(sheet, i, j, perspective, [&](int, double behind) { most = std::max(most, std::abs(behind)); });
   return most;
 }
 
