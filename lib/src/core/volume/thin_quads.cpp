@@ -52,7 +52,11 @@ std::vector<std::uint32_t> findThinQuads(const SheetDepths& sheet, const DepthOr
       off.push_back(d);
       ndc.emplace_back((i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0);
     }
-  DepthMap front = map;  // the oracle reads the capture mode and the matrices
+  // The map's description with front capture, without its depths (the oracle reads none).
+  DepthMap front;
+  front.width = map.width, front.height = map.height, front.lightType = map.lightType;
+  front.lightView = map.lightView, front.lightProjection = map.lightProjection;
+  front.nearPlane = map.nearPlane, front.farPlane = map.farPlane, front.origin = map.origin;
   front.capture = CaptureMode::Front;
   std::vector<float> first(ndc.size());
   if (!ndc.empty()) oracle(front, ndc, first);
