@@ -47,13 +47,7 @@ int litGroundInside(const VolumeMesh& mesh, double gap) {
 }
 
 TEST(PlainQuadAcne, LitGroundAtTheBaseOfADomeStaysOutsideTheVolume) {
-  const Scene scene = domeUnderAGrazingLight();
-  const EmbreeDepthOracle oracle(scene);
-  const DepthMap map = captureDepthEmbree(scene, 128, 128, CaptureMode::Front);
-  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
-  o.refineSubdivisions = 4;
-  o.nearerSurfaces = oracle.nearerSurfaces();
-  const VolumeBuildResult r = buildVolume(map, o);
+  const VolumeBuildResult r = test::buildOnSubgrid(domeUnderAGrazingLight(), 128, CaptureMode::Front);
   ASSERT_GT(r.stats.biasUsed, 0.0);
   ASSERT_GT(r.stats.subgridQuads, 0u);
   EXPECT_TRUE(test::closedOrientedManifold(r.mesh));

@@ -54,13 +54,7 @@ int litPointsInside(const VolumeMesh& mesh) {
 }
 
 TEST(ThinQuadsVolume, AThinFoldsLitFaceStaysOutOfTheVolume) {
-  const Scene scene = valley();
-  const EmbreeDepthOracle oracle(scene);
-  const DepthMap map = captureDepthEmbree(scene, 32, 32, CaptureMode::Back);
-  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
-  o.refineSubdivisions = 4;
-  o.nearerSurfaces = oracle.nearerSurfaces();
-  const VolumeBuildResult r = buildVolume(map, o);
+  const VolumeBuildResult r = test::buildOnSubgrid(valley(), 32, CaptureMode::Back);
   EXPECT_GT(r.stats.thinQuads, 0u);
   EXPECT_TRUE(test::closedOrientedManifold(r.mesh));
   // 440 of the 800 without the stage (measured with kThinChordFloor set out of reach), 48 with it:
