@@ -36,6 +36,8 @@ def methods(k, chords=False, grid=1, hidden=True):
         "refined midpoint 256": ref + ["--resolution", "256", "--capture", "midpoint"],
         "refined auto 128": ref + ["--resolution", "128", "--capture", "auto"],
         "refined auto 256": ref + ["--resolution", "256", "--capture", "auto"],
+        "refined entry 128": ref + ["--resolution", "128", "--capture", "entry"],
+        "refined entry 256": ref + ["--resolution", "256", "--capture", "entry"],
         "silhouette": ["--method", "silhouette"],
     }
 

@@ -136,7 +136,7 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--bias", o.bias,
                  "World units pushing the sheet away from the light; default: 0 for back and midpoint capture, the "
-                 "texel footprint plus depth precision for front capture (README 'Volume mesh')");
+                 "texel footprint plus depth precision for front and entry capture (README 'Volume mesh')");
   cmd.add_option("--cap", o.cap,
                  "Far cap: exact (drop far-plane parts, close each region with a flattened far cap) or quad (the "
                  "thesis's far rectangle; closed but with coincident faces, for comparison)")
@@ -218,8 +218,11 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
                   "Which surface each texel records: auto (back when every mesh object is closed, else front; "
                   "a note names the open ones), back (the first back face: the thesis's default, no bias; "
                   "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
-                  "first surface, pushed back by a bias: records open meshes) or midpoint (the mean of the first two "
-                  "surfaces; the far plane stands in for a missing second one) (README 'Capture modes')")
+                  "first surface, pushed back by a bias: records open meshes), midpoint (the mean of the first two "
+                  "surfaces; the far plane stands in for a missing second one) or entry (front capture's surface "
+                  "where a back face lies behind it, else nothing: closed occluders' lit sides without the lit ground, "
+                  "front capture's accuracy with the sub-grid at less cost; two rays or light passes) (README 'Capture "
+                  "modes')")
       ->check(CLI::IsMember(namesIn(kCaptureModeNames, {"auto"})))
       ->capture_default_str();
 }

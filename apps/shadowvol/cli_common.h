@@ -80,10 +80,10 @@ void addJsonOption(CLI::App& cmd, bool& json);
 /// Loads the scene (or the default one), printing its warnings to stderr.
 Scene loadSceneOrDefault(const std::string& path);
 
-/// Adds --capture (auto, back, front, midpoint; default auto), one help text for every command.
+/// Adds --capture (auto, back, front, midpoint, entry; default auto), one help text for every command.
 CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture);
 
-/// --capture's value for `scene`: back, front or midpoint as given; auto (the default) chosen by
+/// --capture's value for `scene`: back, front, midpoint or entry as given; auto (the default) chosen by
 /// chooseCapture (capture_choice.h), with a note on stderr when it picks front. `autoReason` is
 /// chooseCapture's sentence, empty when the mode was given.
 struct ResolvedCapture {

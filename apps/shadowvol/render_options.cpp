@@ -83,7 +83,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
   cmd.add_option("--size", o.size, "Image size WIDTHxHEIGHT (default: the scene camera's)");
   cmd.add_option("--shadow-bias", o.shadowBias,
                  "Shadow maps: constant depth bias, world units (default: 0 for back and midpoint capture, the texel "
-                 "footprint plus depth precision for front capture, as the volume's --bias)");
+                 "footprint plus depth precision for front and entry capture, as the volume's --bias)");
   cmd.add_option("--shadow-slope", o.shadowSlope,
                  "Shadow maps: slope-scaled bias, in texel footprints x tan(angle to the light)")
       ->capture_default_str();

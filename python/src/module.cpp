@@ -38,7 +38,9 @@ glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, c
 
 CaptureMode captureModeArg(const std::string& text, const Scene* scene) {
   if (text == "auto") {
-    if (!scene) throw InputError("python", "capture", text, "auto chooses by the scene's meshes: give back, front or midpoint");
+    if (!scene)
+      throw InputError("python", "capture", text,
+                       "auto chooses by the scene's meshes: give back, front, midpoint or entry");
     return chooseCapture(*scene).mode;
   }
   CaptureMode mode;

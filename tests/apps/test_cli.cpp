@@ -98,6 +98,7 @@ TEST(Cli, HelpAndUsage) {
   EXPECT_EQ(depthHelp.code, 0);
   EXPECT_TRUE(contains(depthHelp.out, "--capture"));
   EXPECT_TRUE(contains(depthHelp.out, "midpoint"));
+  EXPECT_TRUE(contains(depthHelp.out, "entry"));
 }
 
 // A misspelt subcommand or option is named with the nearest valid name (regression: `buidl` said
@@ -337,10 +338,23 @@ TEST(Cli, CaptureAutoChoosesFrontForOpenMeshes) {
   ASSERT_EQ(build.code, 0) << build.out;
   EXPECT_TRUE(contains(build.out, "32x32 front capture")) << build.out;
 
+  // Entry capture needs a back face behind what it records, as back capture does: the same warning.
+  const CliResult entry = runCli("depth --resolution 32 --capture entry --scene " + sheet + " --out " + pfm);
+  ASSERT_EQ(entry.code, 0) << entry.out;
+  EXPECT_TRUE(contains(entry.out, "entry capture lets light through the openings of the open mesh \"sheet\""))
+      << entry.out;
+  EXPECT_EQ(readDepthMap(pfm).capture, CaptureMode::Entry);
+
   const CliResult closed = runCli("depth --resolution 32 --out " + pfm);  // the default scene
   ASSERT_EQ(closed.code, 0) << closed.out;
   EXPECT_FALSE(contains(closed.out, "auto chose")) << closed.out;
   EXPECT_TRUE(contains(closed.out, "(back capture")) << closed.out;
+  // On closed meshes entry capture records what back capture does, at front capture's depths.
+  const DepthMap backMap = readDepthMap(pfm);
+  ASSERT_EQ(runCli("depth --resolution 32 --capture entry --out " + pfm).code, 0);
+  const DepthMap entryMap = readDepthMap(pfm);
+  EXPECT_EQ(entryMap.hitCount(), backMap.hitCount());
+  EXPECT_GT(entryMap.hitCount(), 0u);
   EXPECT_EQ(runCli("depth --resolution 32 --capture sideways --out " + pfm).code, 2);
 }
 
@@ -1130,6 +1144,24 @@ namespace {
 // depth/build --device gpu: the light pass through EGL, read back, written or built like a CPU
 // capture. On the shipped scenes the two captures agree texel for texel: the same texels hit, and
 // depths within 1e-4 relative on at least 99.9 % of them (docs/gpu.md "Read-back and encodings").
+// Entry capture resolves two layers: what reads one layer (the refined GPU volume, the walk) refuses
+// it by name (bad input, exit 1); the explicit volume refined with rays takes it.
+TEST(CliGl, EntryCaptureWhereOneLayerIsRead) {
+  if (!contains(runCli("--help").out, "render")) GTEST_SKIP() << "built without the GL renderer";
+  const auto dir = test::tempDir();
+  const std::string png = " --size 64x48 --resolution 32 --out " + (dir / "x.png").string();
+  const CliResult gpu = runCli("render --volume gpu --refine 2 --capture entry" + png);
+  EXPECT_EQ(gpu.code, 1) << gpu.out;
+  EXPECT_TRUE(contains(gpu.out, "entry capture reads two")) << gpu.out;
+  const CliResult walk = runCli("render --volume explicit --refine 2 --crossings gpu-walk --capture entry" + png);
+  EXPECT_EQ(walk.code, 1) << walk.out;
+  EXPECT_TRUE(contains(walk.out, "entry capture reads two")) << walk.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+  const CliResult ok = runCli("render --volume explicit --refine 2 --refine-grid 4 --capture entry" + png);
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "x.png"));
+}
+
 TEST(CliGl, DepthAndBuildCaptureOnTheGpuLikeTheCpu) {
   if (!contains(runCli("--help").out, "render")) GTEST_SKIP() << "built without the GL renderer";
   const auto dir = test::tempDir();

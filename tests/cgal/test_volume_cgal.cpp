@@ -94,7 +94,7 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
   for (const auto& file : files) {
     const Scene& scene = cachedScene(file);
     for (int res : {32, 64})
-      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
+      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint, CaptureMode::Entry}) {
         const DepthMap map = captureDepthEmbree(scene, res, res, mode);
         double exactVolume[2][2] = {{0, 0}, {0, 0}};
         for (const Combo& c : allCombos()) {
@@ -128,7 +128,7 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
         }
       }
   }
-  EXPECT_EQ(builds, files.size() * 2 * 3 * 12);
+  EXPECT_EQ(builds, files.size() * 2 * 4 * 12);
   EXPECT_GT(nonEmpty, builds / 3);
 }
 
@@ -143,7 +143,7 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
     const Scene& scene = cachedScene(file);
     const EmbreeDepthOracle oracle(scene);
     for (int res : {32, 64})
-      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) {
+      for (CaptureMode mode : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint, CaptureMode::Entry}) {
         const DepthMap map = captureDepthEmbree(scene, res, res, mode);
         double flatVolume = 0.0;
         for (const Combo& c : allCombos()) {
@@ -188,10 +188,10 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
         }
       }
   }
-  EXPECT_EQ(builds, files.size() * 2 * 3 * (8 + 4));
-  EXPECT_GT(refined, files.size() * 2 * 3 * 8 * 9 / 10);
+  EXPECT_EQ(builds, files.size() * 2 * 4 * (8 + 4));
+  EXPECT_GT(refined, files.size() * 2 * 4 * 8 * 9 / 10);
   EXPECT_GT(hidden, 0u);  // thin parts of the shipped scenes between texel centres at these sizes
-  EXPECT_GT(creases, 0u);  // front capture: the meshes' concave folds
+  EXPECT_GT(creases, 0u);  // front and entry capture: the meshes' concave folds
 }
 
 // Random hit levels under a random oracle (hits on other levels, misses, anything): refined

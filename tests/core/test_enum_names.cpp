@@ -83,7 +83,8 @@ TEST(EnumNames, VolumeCountGpuDrawAndTimingKeepTheirOwnSpellings) {
 }
 
 TEST(EnumNames, ChoiceListsAndMessagesComeFromTheTables) {
-  EXPECT_EQ(namesIn(kCaptureModeNames, {"auto"}), (std::vector<std::string>{"auto", "back", "front", "midpoint"}));
+  EXPECT_EQ(namesIn(kCaptureModeNames, {"auto"}),
+            (std::vector<std::string>{"auto", "back", "front", "midpoint", "entry"}));
   EXPECT_EQ(namesIn(kGpuVolumeDrawNames, {}, {GpuVolumeDraw::Refined}),
             (std::vector<std::string>{"auto", "indexed", "kept-quads", "compute-mesh", "all-quads"}));
   EXPECT_EQ(choicesText(namesIn(kLightTypeNames), true), "\"spot\", \"directional\" or \"point\"");

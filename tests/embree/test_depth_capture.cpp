@@ -149,9 +149,40 @@ TEST(Capture, MidpointTakesTheTwoNearestSurfacesInAnyHitOrder) {
   } while (std::next_permutation(order.begin(), order.end()));
 }
 
+// Entry capture is front capture's depth wherever back capture records a back face, and no hit
+// elsewhere: a sphere over a ground plane facing the light (which only front capture records), and
+// a single-sided plate facing the light over the sphere (which back capture skips; entry capture
+// records it where the sphere's back face lies behind it).
+TEST(Capture, EntryIsFrontWhereBackHasABackFace) {
+  TriangleMesh plate = makePlane(1.2, 1.2, 2);
+  for (auto& v : plate.positions) v += glm::vec3(0.9f, 3.0f, 0.0f);
+  for (LightType type : {LightType::Spot, LightType::Directional}) {
+    const Scene s = sceneOf(makeLight(type), {makeIcoSphere(1.5, 4), makePlane(30, 30, 8), plate});
+    const DepthMap front = captureDepthEmbree(s, 64, 64, CaptureMode::Front);
+    const DepthMap back = captureDepthEmbree(s, 64, 64, CaptureMode::Back);
+    const DepthMap entry = captureDepthEmbree(s, 64, 64, CaptureMode::Entry);
+    EXPECT_EQ(entry.capture, CaptureMode::Entry);
+    std::size_t hits = 0, plateHits = 0, groundOnly = 0;
+    for (std::size_t k = 0; k < entry.depth.size(); ++k) {
+      if (DepthMap::isNoHit(back.depth[k])) {
+        EXPECT_TRUE(DepthMap::isNoHit(entry.depth[k])) << k;
+        groundOnly += !DepthMap::isNoHit(front.depth[k]);
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(entry.depth[k], front.depth[k]) << k;
+      EXPECT_LT(entry.depth[k], back.depth[k]) << k;  // the sphere's lit side before its back
+      plateHits += entry.depth[k] < 7.5f;
+    }
+    EXPECT_GT(hits, 200u) << toString(type);
+    EXPECT_GT(plateHits, 10u) << toString(type);  // the plate (depth about 7) over the sphere
+    EXPECT_GT(groundOnly, 2000u) << toString(type);  // lit ground: front capture's, not entry's
+  }
+}
+
 TEST(Capture, IsDeterministic) {
   const Scene s = sceneOf(makeLight(LightType::Spot), {makeIcoSphere(1.5, 4), makePlane(30, 30, 8)});
-  for (CaptureMode m : {CaptureMode::Front, CaptureMode::Back, CaptureMode::Midpoint}) {
+  for (CaptureMode m : {CaptureMode::Front, CaptureMode::Back, CaptureMode::Midpoint, CaptureMode::Entry}) {
     const DepthMap a = captureDepthEmbree(s, 64, 64, m), b = captureDepthEmbree(s, 64, 64, m);
     EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float))) << toString(m);
   }

@@ -57,6 +57,11 @@ TEST(GlLightPass, FrontCaptureMatchesEmbree) {
 TEST(GlLightPass, MidpointCaptureMatchesEmbree) {
   expectMatchesEmbree(gltest::clutterScene(), 96, 96, CaptureMode::Midpoint);
 }
+// Two passes (every face, then back faces only) resolved on read-back.
+TEST(GlLightPass, EntryCaptureMatchesEmbree) {
+  expectMatchesEmbree(defaultScene(), 96, 96, CaptureMode::Entry);
+  expectMatchesEmbree(gltest::clutterScene(), 96, 96, CaptureMode::Entry);
+}
 TEST(GlLightPass, DirectionalBackCaptureMatchesEmbree) {
   expectMatchesEmbree(gltest::plateScene(), 64, 64, CaptureMode::Back);
 }

@@ -189,7 +189,7 @@ TEST(Validation, RayCastDepthIsTheEmbreeCaptureAndMatchesCrossingCounts) {
     scene.camera.width = 128;
     scene.camera.height = 96;
     const EmbreeDepthOracle oracle(scene);
-    for (auto capture : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint})
+    for (auto capture : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint, CaptureMode::Entry})
       for (int steps : {0, 4}) {
         expectRayCastDepth(scene, oracle, capture, steps, 64, 64);
         ++frames;

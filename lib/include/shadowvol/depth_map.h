@@ -24,12 +24,27 @@
 
 namespace shadowvol {
 
-enum class CaptureMode { Front, Back, Midpoint };
-inline constexpr EnumNames<CaptureMode, 3> kCaptureModeNames{
-    {{CaptureMode::Back, "back"}, {CaptureMode::Front, "front"}, {CaptureMode::Midpoint, "midpoint"}}};
+/// What a texel records (Embree: embree/depth_capture.h; GPU: the light pass): Front the first
+/// surface, Back the first back face, Midpoint the mean of the first two surfaces, Entry the first
+/// surface in front of the first back face (where the light enters the closed occluder that Back
+/// records; no hit where Back has none, so lit receivers facing the light stay unrecorded).
+enum class CaptureMode { Front, Back, Midpoint, Entry };
+inline constexpr EnumNames<CaptureMode, 4> kCaptureModeNames{{{CaptureMode::Back, "back"},
+                                                               {CaptureMode::Front, "front"},
+                                                               {CaptureMode::Midpoint, "midpoint"},
+                                                               {CaptureMode::Entry, "entry"}}};
+
+/// Whether the map records lit surfaces facing the light (Front, Entry): the sheet then lies on
+/// them and takes a bias (defaultBias), and the sub-grid measures what it needs (docs/volume.md).
+inline bool recordsLitSurfaces(CaptureMode mode) { return mode == CaptureMode::Front || mode == CaptureMode::Entry; }
+/// Whether only a back face makes a texel hit (Back, Entry): the hidden-surface search then looks
+/// at back faces only, and the occluders must be closed.
+inline bool needsBackFace(CaptureMode mode) { return mode == CaptureMode::Back || mode == CaptureMode::Entry; }
+/// Whether the light pass takes two depth layers and resolves them (Midpoint, Entry).
+inline bool usesTwoLayers(CaptureMode mode) { return mode == CaptureMode::Midpoint || mode == CaptureMode::Entry; }
 
 const char* toString(CaptureMode mode);
-/// Parses "back", "front" or "midpoint"; returns false for anything else.
+/// Parses "back", "front", "midpoint" or "entry"; returns false for anything else.
 bool parseCaptureMode(const std::string& text, CaptureMode& mode);
 
 struct DepthMap {

@@ -6,7 +6,9 @@
 // a ridge on a shell) can lie between the centres: no sample sees it, so no boundary edge, refined
 // quad or sub-grid node does either, and its shadow is lost. Every triangle the capture could
 // record (back capture: facing away from the light, as the GPU's front-face culling and Embree's
-// back-face filter decide; front and midpoint capture: any) is clipped to the light-view depth range
+// back-face filter decide; front and midpoint capture: any; entry capture: those facing away and
+// every triangle of a closed mesh, whose faces towards the light have a back face behind them) is
+// clipped to the light-view depth range
 // [near, far], projected into texel coordinates, and clipped against each quad square its image
 // overlaps (quad (qi, qj) is the square between texel centres (qi, qj) and (qi + 1, qj + 1)); the
 // quad is flagged when a point of the clipped polygon lies nearer than the quad's limit. The depth
@@ -33,9 +35,11 @@ namespace shadowvol {
 struct TriangleSoup {
   std::span<const float> xyz;
   std::span<const std::uint32_t> indices;
+  /// A closed surface (isClosedSurface): entry capture records its faces towards the light too.
+  bool closed = false;
 };
 
-/// The soup view of a mesh (no copy; valid while the mesh is).
+/// The soup view of a mesh (no copy; valid while the mesh is); `closed` as isClosedSurface(mesh).
 TriangleSoup soupOf(const TriangleMesh& mesh);
 
 /// For each quad q = qj * (W - 1) + qi of the map's grid, sets flags[q] = 1 when a triangle of

@@ -19,14 +19,14 @@
 namespace shadowvol {
 namespace {
 
-// A method key's capture: "-front", "-midpoint", nothing for back capture (the default).
+// A method key's capture: "-front", "-midpoint", "-entry", nothing for back capture (the default).
 std::string captureSuffix(CaptureMode capture) {
   return capture == CaptureMode::Back ? "" : std::string("-") + toString(capture);
 }
 
 // A method description's capture: "back capture", "front capture (default bias)", ...
 std::string captureWords(CaptureMode capture) {
-  return std::string(toString(capture)) + " capture" + (capture == CaptureMode::Front ? " (default bias)" : "");
+  return std::string(toString(capture)) + " capture" + (recordsLitSurfaces(capture) ? " (default bias)" : "");
 }
 
 SweepMethod hybrid(Triangulation t, bool blur, gl::VolumeSource source, CaptureMode capture = CaptureMode::Back) {
@@ -314,7 +314,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint}) v.push_back(refined(c));
     v.push_back(refinedRayDepth());
     v.push_back(refinedLightPass());
-    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGrid(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));

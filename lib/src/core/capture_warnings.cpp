@@ -136,12 +136,13 @@ void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hidd
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture,
                                          int hiddenSearchGrid) {
   std::vector<std::string> out;
-  if (capture == CaptureMode::Back) {
+  if (needsBackFace(capture)) {
     const std::vector<std::string> open = openMeshObjects(scene);
     if (!open.empty()) {
       std::string names;
       for (const auto& n : open) names += (names.empty() ? "\"" : ", \"") + n + "\"";
-      out.push_back("back capture lets light through the openings of the open mesh" + std::string(open.size() > 1 ? "es " : " ") +
+      out.push_back(std::string(toString(capture)) + " capture lets light through the openings of the open mesh" +
+                    std::string(open.size() > 1 ? "es " : " ") +
                     names + ": their shadows leak; front or midpoint capture (--capture front|midpoint) records them");
     }
   }

@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/triangle_adjacency.h"
 
 namespace shadowvol {
 
@@ -22,7 +23,8 @@ TriangleSoup soupOf(const TriangleMesh& mesh) {
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && sizeof(mesh.triangles[0]) == 3 * sizeof(std::uint32_t));
   return {std::span<const float>(reinterpret_cast<const float*>(mesh.positions.data()), 3 * mesh.positions.size()),
           std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(mesh.triangles.data()),
-                                         3 * mesh.triangles.size())};
+                                         3 * mesh.triangles.size()),
+          isClosedSurface(mesh)};
 }
 
 namespace {
@@ -202,8 +204,8 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
     if (l > maxLimit) maxLimit = l;
   const Projection p(map);
   if (!(double(maxLimit) > p.nearDepth)) return;
-  const bool backOnly = map.capture == CaptureMode::Back;
   for (const TriangleSoup& mesh : meshes) {
+    const bool backOnly = map.capture == CaptureMode::Back || (map.capture == CaptureMode::Entry && !mesh.closed);
     SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
     SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
     const std::size_t vertices = mesh.xyz.size() / 3;

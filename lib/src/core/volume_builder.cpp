@@ -42,7 +42,7 @@ namespace {
 // defaultBias from the map's metadata: light view and projection, size, far plane, capture.
 double defaultBiasOf(const glm::dmat4& view, const glm::dmat4& projection, int width, int height, double farPlane,
                      CaptureMode capture) {
-  if (capture != CaptureMode::Front) return 0.0;
+  if (!recordsLitSurfaces(capture)) return 0.0;
   // Texel footprint at the far plane (the largest over the map for a spot light; constant for a
   // directional one): the depth change across one texel of a receiver tilted 45 degrees.
   const TexelUnprojector unproject(view, projection, width, height);
@@ -173,10 +173,10 @@ const SurfaceEndOracle* snapOf(const VolumeBuildOptions& options) {
 
 // Whether snapped crossings' near vertices keep only the bias the rim needs (volume/rim_bias.h):
 // with the sub-grid (which the GPU volume has not: the plain refined volume stays the GPU's),
-// front capture's bias and no blur (back capture's rim touches the lit faces, docs/volume.md
+// front or entry capture's bias and no blur (back capture's rim touches the lit faces, docs/volume.md
 // "Refinement").
 bool rimBiasOf(const VolumeBuildOptions& options, const volume::SheetDepths& sheet) {
-  return options.refineSubdivisions > 1 && sheet.map().capture == CaptureMode::Front && sheet.rule().bias > 0.0 &&
+  return options.refineSubdivisions > 1 && recordsLitSurfaces(sheet.map().capture) && sheet.rule().bias > 0.0 &&
          !options.blur;
 }
 

@@ -65,15 +65,35 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
-  if (mode == CaptureMode::Midpoint) return {};
+namespace {
+
+// One ray: the first hit in [tNear, tFar], on back faces only with `backOnly`.
+CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, bool backOnly) {
   RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
   CaptureContext c;
   rtcInitIntersectContext(&c.ctx);
-  if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
+  if (backOnly) c.ctx.filter = backFaceFilter;
   rtcIntersect1(scene, &c.ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
+}
+
+}  // namespace
+
+CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
+  switch (mode) {
+    case CaptureMode::Front: return firstHit(scene, ray, tNear, tFar, false);
+    case CaptureMode::Back: return firstHit(scene, ray, tNear, tFar, true);
+    case CaptureMode::Entry: {
+      // The first back face, then the first surface up to it (itself where nothing lies before it).
+      const CapturedHit back = firstHit(scene, ray, tNear, tFar, true);
+      if (back.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+      const CapturedHit first = firstHit(scene, ray, tNear, back.depth, false);
+      return first.geomID == RTC_INVALID_GEOMETRY_ID ? back : first;
+    }
+    case CaptureMode::Midpoint: break;
+  }
+  return {};
 }
 
 float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {

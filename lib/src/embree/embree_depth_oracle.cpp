@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <mutex>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,6 +11,7 @@
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
 #include "shadowvol/nearer_surfaces.h"
+#include "shadowvol/triangle_adjacency.h"
 #include "shadowvol/triangle_exit.h"
 
 namespace shadowvol {
@@ -18,6 +20,27 @@ struct EmbreeDepthOracle::Impl {
   EmbreeDevice device;
   EmbreeScene scene;
   std::vector<TriangleSoup> soups;  // views of the Embree scene's own buffers, geometry by geometry
+  // Whether each soup is a closed surface (TriangleSoup::closed), found on entry capture's first
+  // search (isClosedSurface on a copy; the other captures do not read it).
+  std::once_flag closedOnce;
+  std::vector<TriangleSoup> closedSoups;
+  std::span<const TriangleSoup> soupsFor(CaptureMode capture) {
+    if (capture != CaptureMode::Entry) return soups;
+    std::call_once(closedOnce, [this] {
+      closedSoups = soups;
+      for (TriangleSoup& s : closedSoups) {
+        TriangleMesh m;
+        m.positions.resize(s.xyz.size() / 3);
+        for (std::size_t k = 0; k < m.positions.size(); ++k)
+          m.positions[k] = {s.xyz[3 * k], s.xyz[3 * k + 1], s.xyz[3 * k + 2]};
+        m.triangles.resize(s.indices.size() / 3);
+        for (std::size_t t = 0; t < m.triangles.size(); ++t)
+          m.triangles[t] = {s.indices[3 * t], s.indices[3 * t + 1], s.indices[3 * t + 2]};
+        s.closed = isClosedSurface(m);
+      }
+    });
+    return closedSoups;
+  }
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
     for (const auto& o : s.objects) meshes.push_back(&o.mesh);
@@ -92,9 +115,9 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
 }
 
 NearerSurfaceOracle EmbreeDepthOracle::nearerSurfaces() const {
-  const Impl* impl = impl_.get();
+  Impl* impl = impl_.get();
   return [impl](const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags) {
-    findNearerSurfaces(map, impl->soups, limit, flags);
+    findNearerSurfaces(map, impl->soupsFor(map.capture), limit, flags);
   };
 }
 

@@ -20,7 +20,7 @@ void DualParaboloidPass::setUniforms(const Program& program, const DualParaboloi
 
 void DualParaboloidPass::draw(const DualParaboloid& dp, CaptureMode mode, int subdivision,
                               const std::function<void()>& drawScene) {
-  SV_CHECK(mode != CaptureMode::Midpoint);
+  SV_CHECK(!usesTwoLayers(mode));
   SV_CHECK(subdivision == 1 || subdivision == 2 || subdivision == 4 || subdivision == 8);
   if (dp.side != side_) {
     texture_ = makeTexture();

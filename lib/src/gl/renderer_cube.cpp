@@ -102,8 +102,8 @@ void Renderer::Impl::cubeShadowPass(int n, CaptureMode mode) {
     cubeShadowSize = n;
   }
   eachCubeFace(n, mode, [&](int f) {
-    if (mode == CaptureMode::Midpoint) resolvePass(mode);
-    const Texture& face = mode == CaptureMode::Midpoint ? resolvedDepth : layer0;
+    if (usesTwoLayers(mode)) resolvePass(mode);
+    const Texture& face = usesTwoLayers(mode) ? resolvedDepth : layer0;
     SV_GL(glCopyImageSubData(face.id(), GL_TEXTURE_2D, 0, 0, 0, 0, cubeShadow.id(), GL_TEXTURE_CUBE_MAP, 0, 0, 0, f, n,
                              n, 1));
   });

@@ -187,8 +187,8 @@ void Renderer::Impl::volumeInput(const RenderOptions& o, LightFrame& f, const Vo
       TimedPass t(timer, "crossings");
       findGpuCrossings(vo, result.biasUsed, *f.volumeDepth, o.refineCrossings, o.capture);
     }
-  } else if (o.method != ShadowMethod::None && o.capture == CaptureMode::Midpoint && !f.point) {
-    TimedPass t(timer, "resolve");  // the mean's window depth for the hardware compare
+  } else if (o.method != ShadowMethod::None && usesTwoLayers(o.capture) && !f.point) {
+    TimedPass t(timer, "resolve");  // the two layers' window depth for the hardware compare
     resolvePass(o.capture);
   }
 }
@@ -248,7 +248,7 @@ void Renderer::Impl::shadeWithMap(const RenderOptions& o, const CameraSetup& cam
   if (f.dpsm) setParaboloidUniforms(o);
   sceneProgram.set("writeVisibility", writeVisibility ? 1 : 0);
   if (added) addDiffuseState(false);
-  if (taps && !f.point) bindTexture(2, o.capture == CaptureMode::Midpoint ? resolvedDepth : layer0, shadowSampler);
+  if (taps && !f.point) bindTexture(2, usesTwoLayers(o.capture) ? resolvedDepth : layer0, shadowSampler);
   if (taps && f.point && f.dpsm) bindTexture(2, paraboloid.texture(), shadowSampler);
   if (taps && f.point && !f.dpsm) bindCube(3, cubeShadow, shadowSampler);
   drawScene();

@@ -73,6 +73,16 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
     drawScene();
     bindTexture(0, Texture(), fetchSampler);
   }
+  if (mode == CaptureMode::Entry) {  // the nearest back face: where layer0's surface counts
+    SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, layer1Fbo.id()));
+    SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
+    SV_GL(glEnable(GL_CULL_FACE));
+    SV_GL(glCullFace(GL_FRONT));
+    lightProgram.use();
+    lightProgram.set("worldToLightClip", toFloat(worldToLightClip));
+    drawScene();
+    SV_GL(glDisable(GL_CULL_FACE));
+  }
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
 }
 
@@ -125,7 +135,7 @@ void Renderer::Impl::resolvePass(CaptureMode mode) {
   resolveProgram.use();
   resolveProgram.set("layer0", 0);
   resolveProgram.set("layer1", 1);
-  resolveProgram.set("midpoint", mode == CaptureMode::Midpoint ? 1 : 0);
+  resolveProgram.set("layers", mode == CaptureMode::Midpoint ? 1 : mode == CaptureMode::Entry ? 2 : 0);
   resolveProgram.set("depthParams", depthParams(proj));
   resolveProgram.set("farPlane", float(light.farPlane));
   bindTexture(0, layer0, fetchSampler);
@@ -157,7 +167,7 @@ DepthMap Renderer::Impl::readBack(CaptureMode mode) {
   std::vector<float> w0(n), w1;
   SV_GL(glBindTexture(GL_TEXTURE_2D, layer0.id()));
   SV_GL(glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w0.data()));
-  if (mode == CaptureMode::Midpoint) {
+  if (usesTwoLayers(mode)) {
     w1.resize(n);
     SV_GL(glBindTexture(GL_TEXTURE_2D, layer1.id()));
     SV_GL(glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w1.data()));
@@ -166,6 +176,7 @@ DepthMap Renderer::Impl::readBack(CaptureMode mode) {
   const glm::dmat4 p = reversedZ(map.lightProjection);
   for (std::size_t k = 0; k < n; ++k) {
     if (w0[k] <= 0.0f) continue;  // cleared: the light saw nothing (kNoHit)
+    if (mode == CaptureMode::Entry && w1[k] <= 0.0f) continue;  // no back face: nothing recorded
     double d = viewDepthFromWindow(p, double(w0[k]));
     if (mode == CaptureMode::Midpoint)
       d = 0.5 * (d + (w1[k] <= 0.0f ? map.farPlane : viewDepthFromWindow(p, double(w1[k]))));

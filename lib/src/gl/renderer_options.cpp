@@ -30,8 +30,8 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     throw InputError("RenderOptions", "method", toString(o.method),
                      "a point light's cube shadow map needs OpenGL 4.3 (glCopyImageSubData); this context has " +
                          context.info().glVersion);
-  if (o.method == ShadowMethod::Dpsm && o.capture == CaptureMode::Midpoint)
-    throw InputError("RenderOptions", "capture", "midpoint",
+  if (o.method == ShadowMethod::Dpsm && usesTwoLayers(o.capture))
+    throw InputError("RenderOptions", "capture", toString(o.capture),
                      "the dual-paraboloid map takes back or front capture (it has no second layer)");
   const int s = o.paraboloidSubdivision;
   if (s != 1 && s != 2 && s != 4 && s != 8)
@@ -109,10 +109,10 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
                        "the refined GPU volume " + why);
     };
     if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
-    if (o.capture == CaptureMode::Midpoint)
-      refuse(
-          "finds its crossings on one layer (its rays or its walk); midpoint capture is the mean of two: use "
-          "back or front capture, or the explicit volume with rays");
+    if (usesTwoLayers(o.capture))
+      refuse(std::string("finds its crossings on one layer (its rays or its walk); ") + toString(o.capture) +
+             " capture reads two (midpoint: their mean; entry: the first surface where a back face lies behind "
+             "it): use back or front capture, or the explicit volume with rays");
     if (o.volumeOptions.cap != FarCap::Exact)
       refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
@@ -149,10 +149,9 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     if (!hasCompute)
       refuse("gpu-walk",
              "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
-    if (o.capture == CaptureMode::Midpoint)
-      refuse("gpu-walk",
-             "the silhouette walk follows one layer; midpoint capture is the mean of two: use rays "
-             "(RefineCrossings::Rays) or back or front capture");
+    if (usesTwoLayers(o.capture))
+      refuse("gpu-walk", std::string("the silhouette walk follows one layer; ") + toString(o.capture) +
+                             " capture reads two: use rays (RefineCrossings::Rays) or back or front capture");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
       refuse("gpu-walk",
              "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "

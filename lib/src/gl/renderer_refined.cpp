@@ -70,7 +70,7 @@ void Renderer::Impl::refinedGpuDebugMeshes(const CameraSetup& cam, const RenderO
 
 const Texture* Renderer::Impl::gpuVolumeDepth(const RenderOptions& o, bool indexedVolume, PassTimer& timer) {
   const VolumeBuildOptions& vo = o.volumeOptions;
-  volumeReadsWindowDepth = indexedVolume && o.capture != CaptureMode::Midpoint && !vo.blur;  // refined too
+  volumeReadsWindowDepth = indexedVolume && !usesTwoLayers(o.capture) && !vo.blur;  // refined too
   const Texture* depth = &layer0;
   if (!volumeReadsWindowDepth) {
     TimedPass t(timer, "resolve");

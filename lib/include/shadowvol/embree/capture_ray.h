@@ -12,7 +12,7 @@ namespace shadowvol {
 /// TexelUnprojector::ray), within [tNear, tFar]; DepthMap::kNoHit when nothing is recorded.
 float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode);
 
-/// The hit captureRay records, for front and back capture: its depth, geometry and triangle;
+/// The hit captureRay records, for front, back and entry capture: its depth, geometry and triangle;
 /// geomID RTC_INVALID_GEOMETRY_ID when nothing is recorded (and always for midpoint capture, whose
 /// record is the middle of two hits, no triangle's).
 struct CapturedHit {

@@ -17,6 +17,10 @@ namespace shadowvol {
 ///    from itself; the texel is kNoHit unless a back face lies behind it.
 ///  - Midpoint: the mean of the first and second surface hit (any facing). With only one surface
 ///    on the ray, the second is the far plane (as the GPU's cleared second layer).
+///  - Entry: the first surface (any facing) up to the first back face, and kNoHit where Back has
+///    none: front capture's depth on what back capture records. A closed occluder's lit side
+///    without the lit receivers facing the light (an open ground plane), so the volume's sheet
+///    covers the occluders only, as with back capture (two rays per texel).
 /// Parallel over rows (TBB) and deterministic: each texel is computed independently. A size that
 /// checkDepthMapSize refuses (below 2 or above kMaxDepthMapSide a side, or more than half of the
 /// machine's memory) is an InputError naming it.

@@ -1,5 +1,6 @@
-// The sub-grid's rim bias (docs/volume.md "Sub-grid", step 9): how much of front capture's bias a
-// snapped crossing's near vertex keeps above the rim, where the recorded surface ends.
+// The sub-grid's rim bias (docs/volume.md "Sub-grid", step 9): how much of front (or entry)
+// capture's bias a snapped crossing's near vertex keeps above the rim, where the recorded surface
+// ends.
 //
 // Front capture holds the whole sheet a texel footprint B behind the surface it records, so that
 // the sheet's straight runs between samples never pass in front of a lit surface (acne). Next to

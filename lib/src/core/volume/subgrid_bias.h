@@ -1,5 +1,5 @@
-// The sub-grid's bias (docs/volume.md "Sub-grid", step 8): with a sheet bias B > 0 (front capture), how
-// much of it each node that the sub-grid samples keeps.
+// The sub-grid's bias (docs/volume.md "Sub-grid", step 8): with a sheet bias B > 0 (front or entry
+// capture), how much of it each node that the sub-grid samples keeps.
 //
 // B is a texel footprint: the depth a surface tilted 45 degrees from the light changes across a
 // texel, what the sheet's straight interpolation between texel centres needs to stay behind a
