@@ -215,6 +215,15 @@ def test_capture_auto_is_the_default_and_follows_the_meshes(tmp_path):
     assert sv.capture_depth(sv.default_scene(), 16, 16).capture == "back"
 
 
+def test_entry_capture_is_front_where_back_has_a_back_face():
+    scene = sv.default_scene()
+    back, front, entry = (sv.capture_depth(scene, 48, 48, capture=c).depth for c in ("back", "front", "entry"))
+    hit = np.isfinite(entry)
+    assert np.array_equal(hit, np.isfinite(back)) and hit.any()
+    assert np.array_equal(entry[hit], front[hit])
+    assert np.isfinite(front).sum() > hit.sum()  # front capture records the lit ground too
+
+
 def test_library_message_is_the_command_lines(tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"objects": [{"type": "sphere", "radius": -1}]}))
