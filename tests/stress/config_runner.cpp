@@ -26,6 +26,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.refined && !c.refused && !pointLight(c)) runs.push_back(RunKind::Walk);  // rays only for the cube
   if (c.refined && !c.refused) runs.push_back(RunKind::RayDepth);  // the map from rays, too (a point light's six)
   if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);  // a point light's: its face volumes
+  if (c.refined && !c.refused) runs.push_back(RunKind::Entry);  // entry capture, refined as Refined
   runs.push_back(RunKind::Build);
   return runs;
 }
@@ -45,13 +46,14 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, bool point, const fs::pat
         resolution,           "--size",           s.size,    "--volume",
         kind == RunKind::Gpu || kind == RunKind::GpuRefined ? "gpu" : "explicit",
         "--report",           reportDir.string(), "--json"};
-    if (kind == RunKind::Front) {
+    if (kind == RunKind::Front || kind == RunKind::Entry) {
       r.argv.push_back("--capture");
-      r.argv.push_back("front");
+      r.argv.push_back(kind == RunKind::Front ? "front" : "entry");
     }
-    if (kind == RunKind::Refined && point)  // the cube volume's refinement: rays alone
+    const bool refined = kind == RunKind::Refined || kind == RunKind::Entry;
+    if (refined && point)  // the cube volume's refinement: rays alone
       for (const char* a : {"--refine", "6"}) r.argv.push_back(a);
-    else if (kind == RunKind::Refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
+    else if (refined)  // silhouette refinement on the sub-grid: the rays go to the same scene
       for (const char* a : {"--refine", "6", "--refine-grid", "4"}) r.argv.push_back(a);
     if (kind == RunKind::Walk)  // refinement with the crossings from the GPU's walk over the triangles
       for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
@@ -97,6 +99,8 @@ const char* runName(RunKind k) {
       return "ray-depth";
     case RunKind::GpuRefined:
       return "gpu-refined";
+    case RunKind::Entry:
+      return "entry";
     case RunKind::Build:
       return "build";
   }
