@@ -215,12 +215,16 @@ void castRefinementRays(const volume::SheetDepths& sheet, const BoundaryEdges& e
     RayBudget budget;
     chords.crossings = bisectSegments(map, chords.segments, sheet.rule(), options.blur, options.depthOracle,
                                       options.refineSteps, budget, {}, nullptr, {snapOf(options), &stats.snappedCrossings});
-    stats.chordPoints = chords.segments.size();  // the adaptive sub-grid's decide only, they are not vertices
+    stats.chordPoints = chords.segments.size();  // with the adaptive sub-grid: its choice, and the plain quads' bends
     stats.raysCast += budget.rays;
     stats.msRays += budget.ms;
   }
-  // After the chord points, which bisect from the crossings' samples (the discontinuity rule's).
-  if (rimBiasOf(options, sheet)) stats.rimCrossings = volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
+  // After the chord points, which bisect from the crossings' samples (the discontinuity rule's);
+  // the chord points themselves are the adaptive sub-grid's plain quads' vertices.
+  if (rimBiasOf(options, sheet)) {
+    stats.rimCrossings = volume::lowerPlainRimVertices(sheet, edges, refinement.crossings);
+    if (chordTest) stats.rimCrossings += volume::lowerSegmentRimVertices(sheet, chords.segments, chords.crossings);
+  }
 }
 
 // The sub-grid (refineSubdivisions > 1): its triangles, cap edges and vertices from firstVertex
@@ -279,6 +283,20 @@ volume::RefinedQuads plainQuadsOf(const volume::RefinedQuads& quads, const std::
     plain.sides.push_back(quads.sides[q]);
   }
   return plain;  // two boundary sides each: no centres
+}
+
+// The chord points of the plain quads (plainQuadsOf's order): the same points and vertex slots,
+// ofQuad reduced to the quads left plain, used where they bend the wall by more than the floor.
+volume::ChordPoints plainChordsOf(const volume::ChordPoints& chords, const std::vector<std::uint8_t>& gridded,
+                                  int steps) {
+  volume::ChordPoints plain;
+  plain.segments = chords.segments;
+  plain.crossings = chords.crossings;
+  plain.bendFloor = volume::kPlainChordBendFloor;
+  plain.steps = steps;
+  for (std::size_t q = 0; q < chords.ofQuad.size(); ++q)
+    if (!gridded[q]) plain.ofQuad.push_back(chords.ofQuad[q]);
+  return plain;
 }
 
 // What refinement finds before the vertices are laid out: the boundary edges, the quads they
@@ -370,8 +388,11 @@ RefinedStage buildRefinedCells(const RefinementFound& found, const volume::Texel
                        adaptive ? &plain : nullptr, stats);
   if (adaptive) {
     r.plainQuads = plainQuadsOf(found.quads, r.sub.gridded);
+    // The plain quads' walls bend at the chord points their choice measured (within two bisection
+    // errors of the straight wall, or the quad would have been cut): no more rays.
+    const volume::ChordPoints chords = plainChordsOf(found.chords, r.sub.gridded, options.refineSteps);
     r.cells = volume::triangulateRefinedCells(r.plainQuads, use, vertices, sheet, found.edges, found.refinement,
-                                              nullptr, perfect, exact, base.crossing, base.chord);
+                                              &chords, perfect, exact, base.crossing, base.chord);
     r.capEdges = std::move(r.cells.capEdges);
   }
   r.cells.triangles.insert(r.cells.triangles.end(), r.sub.triangles.begin(), r.sub.triangles.end());
@@ -390,8 +411,8 @@ void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const R
   const bool adaptive = subgrid && !options.refineGridEverywhere;
   if (subgrid)
     std::copy(r.sub.positions.begin(), r.sub.positions.end(), mesh.positions.begin() + std::ptrdiff_t(base.subgrid));
-  if (!subgrid || adaptive) {
-    const volume::ChordPoints* chordPoints = options.refineChords ? &found.chords : nullptr;
+  if (!subgrid || adaptive) {  // the adaptive sub-grid's plain quads bend at their chord points
+    const volume::ChordPoints* chordPoints = options.refineChords || adaptive ? &found.chords : nullptr;
     volume::emitCrossingVertices(map, found.edges, found.refinement, chordPoints, base.crossing, base.chord, mesh);
   }
   std::copy(r.cells.triangles.begin(), r.cells.triangles.end(),
@@ -530,7 +551,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   VertexBases base;
   base.crossing = std::uint32_t(vertices.count());
   base.chord = std::uint32_t(base.crossing + 2 * found.edges.edges.size());
-  base.subgrid = adaptive ? base.chord : base.crossing;  // after the plain crossings, if any
+  // after the plain crossings and chord points, if any
+  base.subgrid = adaptive ? std::uint32_t(base.chord + 2 * found.chords.segments.size()) : base.crossing;
   CapBoundary boundary;
   RefinedStage refined;
   double msEdges = 0.0;

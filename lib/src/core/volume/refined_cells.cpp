@@ -98,6 +98,16 @@ void assembleCell(int qi, int qj, std::uint8_t sides, const SheetDepths& sheet, 
 }
 
 
+bool ChordPoints::bends(std::size_t k, glm::dvec2 x, glm::dvec2 y) const {
+  if (!(bendFloor > 0.0)) return true;
+  const glm::dvec2 d = y - x;
+  const double length = std::hypot(d.x, d.y);
+  if (length == 0.0) return false;
+  const double off = std::abs(cross2(d, texel(k) - x)) / length;
+  const BisectionSegment& g = segments[k];
+  return off > bendFloor * glm::length(g.farPoint - g.nearPoint) * std::ldexp(1.0, -(steps + 1));
+}
+
 ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet, const BoundaryEdges& boundary,
                             const Refinement& refinement) {
   const int qw = sheet.map().width - 1;
@@ -185,7 +195,12 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
         const bool ambiguous = std::popcount(unsigned(quads.sides[q])) >= 3;
         const double centre = ambiguous ? refinement.centreDepths[centreOf[q]] : farPlane;
         CellVertex mNear, mFar;  // the chord point's vertices, if any
-        const std::size_t k = chords ? chords->ofQuad[q] : ChordPoints::kNone;
+        std::size_t k = chords ? chords->ofQuad[q] : ChordPoints::kNone;
+        if (k != ChordPoints::kNone) {
+          int split[4];
+          splitSides(quads.sides[q], split);
+          if (!chords->bends(k, cell.a[split[0]].texel, cell.a[split[1]].texel)) k = ChordPoints::kNone;  // straight
+        }
         if (k != ChordPoints::kNone) {
           const Crossing& x = chords->crossings[k];
           mNear.texel = mFar.texel = chords->texel(k);

@@ -85,11 +85,25 @@ struct ChordPoints {
   std::vector<std::size_t> ofQuad;          ///< per refined quad: its chord point, or kNone
   std::vector<BisectionSegment> segments;   ///< in quad order
   std::vector<Crossing> crossings;          ///< one per segment (bisectSegments)
+  /// A chord point bends the wall only where it lies off the straight wall between the quad's two
+  /// crossings by more than bendFloor times its own bisection error (its segment's length x
+  /// 2^-(steps + 1)); 0: always (refineChords).
+  double bendFloor = 0.0;
+  int steps = 0;
   glm::dvec2 texel(std::size_t k) const {
     const BisectionSegment& g = segments[k];
     return g.nearPoint + crossings[k].s * (g.farPoint - g.nearPoint);
   }
+  /// Whether chord point k bends the wall between crossings x and y (texel coordinates).
+  bool bends(std::size_t k, glm::dvec2 x, glm::dvec2 y) const;
 };
+
+/// The adaptive sub-grid's plain quads bend their walls at their chord points (measured by the
+/// choice, within kChordBendErrors of the straight wall, or the quad is cut) beyond a quarter of
+/// the chord point's bisection error: a straight outline (a box's edge, whose snapped crossings and
+/// chord point lie on one line) keeps its straight wall, whose sheet the fan from a chord point
+/// would tilt between the wall and a corner close to it.
+inline constexpr double kPlainChordBendFloor = 0.25;
 
 /// Plans one chord point per quad with exactly two boundary edges (see the header comment).
 ChordPoints planChordPoints(const RefinedQuads& quads, const SheetDepths& sheet, const BoundaryEdges& edges,

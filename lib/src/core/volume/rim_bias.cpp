@@ -62,4 +62,20 @@ std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges&
   return moved.load();
 }
 
+std::size_t lowerSegmentRimVertices(const SheetDepths& sheet, std::span<const BisectionSegment> segments,
+                                    std::vector<Crossing>& crossings) {
+  const SheetDepthRule& rule = sheet.rule();
+  if (!(rule.bias > 0.0)) return 0;
+  const TexelUnprojector unproject(sheet.map());
+  std::size_t moved = 0;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    Crossing& c = crossings[k];
+    if (!c.hasRim()) continue;
+    const BisectionSegment& g = segments[k];
+    moved += moveNearVertexToRim(unproject, c, g.nearPoint + c.s * (g.farPoint - g.nearPoint), g.nearPoint,
+                                 g.nearDepth, rule);
+  }
+  return moved;
+}
+
 }  // namespace shadowvol::volume

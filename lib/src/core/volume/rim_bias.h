@@ -17,6 +17,7 @@
 // sheet no longer passes in front of that triangle's lower part.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -55,5 +56,10 @@ bool moveNearVertexToRim(const TexelUnprojector& unproject, Crossing& c, glm::dv
 /// how many moved. Sheet depths without blur (the caller's condition).
 std::size_t lowerPlainRimVertices(const SheetDepths& sheet, const BoundaryEdges& edges,
                                   std::vector<Crossing>& crossings);
+
+/// The same for the crossings of bisection segments that are no grid edges (the plain quads' chord
+/// points with the adaptive sub-grid): from each segment's near point and its near depth.
+std::size_t lowerSegmentRimVertices(const SheetDepths& sheet, std::span<const BisectionSegment> segments,
+                                    std::vector<Crossing>& crossings);
 
 }  // namespace shadowvol::volume
