@@ -115,6 +115,9 @@ TEST(SubGrid, SphereWallsOnItsSilhouetteCircleWithinTheSubEdgeStep) {
         EXPECT_EQ(v.stats.raysCast, sampling + 6 * (v.stats.boundaryEdges + v.stats.chordPoints) + v.stats.thinRays)
             << what;
         EXPECT_GT(v.stats.chordPoints, 0u) << what;
+        // The circle bends the plain quads' walls at their chord points (docs/volume.md "Sub-grid", step 6).
+        EXPECT_GT(v.stats.plainBends, 0u) << what;
+        EXPECT_LE(v.stats.plainBends, v.stats.refinedCells - v.stats.subgridQuads) << what;
       }
     }
 }

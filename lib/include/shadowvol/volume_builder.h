@@ -178,6 +178,8 @@ struct VolumeBuildStats {
                                       ///< a part thinner than the sheet bends there (docs/volume.md "Sub-grid",
                                       ///< step 10; counted as hiddenQuads are)
   std::size_t thinRays = 0;           ///< the first-surface rays that measured those parts (in raysCast)
+  std::size_t plainBends = 0;         ///< adaptive sub-grid: plain quads whose wall bends at its chord point
+                                      ///< (docs/volume.md "Sub-grid", step 6; no ray of its own)
   std::size_t subgridBiasSamples = 0; ///< sub-grid with a bias: rays at sub-cell centres that set its nodes' bias
   std::size_t rimCrossings = 0;       ///< sub-grid with front capture's bias: snapped crossings whose near vertex
                                       ///< moved towards the rim (the plain refinement's, some then cut, and the

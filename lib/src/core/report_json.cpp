@@ -70,6 +70,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"creaseQuads", s.creaseQuads},
           {"thinQuads", s.thinQuads},
           {"thinRays", s.thinRays},
+          {"plainBends", s.plainBends},
           {"subgridBiasSamples", s.subgridBiasSamples},
           {"rimCrossings", s.rimCrossings},
           {"raysCast", s.raysCast},

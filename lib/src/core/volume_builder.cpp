@@ -393,6 +393,7 @@ RefinedStage buildRefinedCells(const RefinementFound& found, const volume::Texel
     const volume::ChordPoints chords = plainChordsOf(found.chords, r.sub.gridded, options.refineSteps);
     r.cells = volume::triangulateRefinedCells(r.plainQuads, use, vertices, sheet, found.edges, found.refinement,
                                               &chords, perfect, exact, base.crossing, base.chord);
+    stats.plainBends = r.cells.bends;
     r.capEdges = std::move(r.cells.capEdges);
   }
   r.cells.triangles.insert(r.cells.triangles.end(), r.sub.triangles.begin(), r.sub.triangles.end());

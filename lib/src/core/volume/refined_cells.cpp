@@ -174,6 +174,7 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
     std::vector<CapEdge> capEdges;
     std::vector<std::array<CapPoint, 3>> footprint;
     std::vector<std::uint32_t> perQuad;  // kept triangles of each of the row's quads
+    std::size_t bends = 0;
   };
   std::vector<RowOut> rows(qh);
   tbb::parallel_for(tbb::blocked_range<int>(0, qh, 4), [&](const tbb::blocked_range<int>& range) {
@@ -211,6 +212,7 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
           mFar.lv = unproject.lightViewPoint(mFar.texel.x, mFar.texel.y, mFar.depth);
           mNear.cap = mFar.cap = {std::uint32_t(k), CapPoint::Kind::Chord};
         }
+        out.bends += k != ChordPoints::kNone;
         tris.clear();
         CellTriangulator(perfect, tris)
             .run(cell.corners, cell.a, cell.b, quads.sides[q], centre, farPlane, k != ChordPoints::kNone ? &mNear : nullptr,
@@ -226,6 +228,7 @@ RefinedCells triangulateRefinedCells(const RefinedQuads& quads, const TexelUse& 
   result.firstTriangle.push_back(0);
   for (RowOut& row : rows) {
     for (std::uint32_t n : row.perQuad) result.firstTriangle.push_back(result.firstTriangle.back() + n);
+    result.bends += row.bends;
     result.triangles.insert(result.triangles.end(), row.triangles.begin(), row.triangles.end());
     result.capEdges.insert(result.capEdges.end(), row.capEdges.begin(), row.capEdges.end());
     result.footprint.insert(result.footprint.end(), row.footprint.begin(), row.footprint.end());

@@ -60,6 +60,7 @@ struct RefinedCells {
   std::vector<CapEdge> capEdges;                  ///< the far cap's boundary edges, in quad order
   std::vector<std::array<CapPoint, 3>> footprint; ///< triangles that are not walls (counter-clockwise
                                                   ///< in texel space): what the mirrored cap mirrors
+  std::size_t bends = 0;                          ///< quads whose wall bends at a chord point
 };
 
 /// The loop of one refined quad: its corners A B C D, and for each boundary side k its crossing's
