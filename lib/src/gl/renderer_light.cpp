@@ -49,15 +49,17 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
     SV_GL(glEnable(GL_CULL_FACE));
     SV_GL(glCullFace(GL_FRONT));
   }
-  const Program& first = markOccupancy && recordTriangles ? lightMarkTriangleProgram
-                         : markOccupancy                  ? lightMarkProgram
-                         : recordTriangles                ? lightTriangleProgram
-                                                          : lightProgram;
+  // Entry capture marks the texels its second pass (the back faces) covers: those it records.
+  const bool markFirst = markOccupancy && mode != CaptureMode::Entry;
+  const Program& first = markFirst && recordTriangles ? lightMarkTriangleProgram
+                         : markFirst                  ? lightMarkProgram
+                         : recordTriangles            ? lightTriangleProgram
+                                                      : lightProgram;
   first.use();
   first.set("worldToLightClip", toFloat(worldToLightClip));
-  if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
+  if (markFirst) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
   drawScene();
-  if (markOccupancy) {
+  if (markFirst) {
     SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
     SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
   }
@@ -78,9 +80,15 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
     SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
     SV_GL(glEnable(GL_CULL_FACE));
     SV_GL(glCullFace(GL_FRONT));
-    lightProgram.use();
-    lightProgram.set("worldToLightClip", toFloat(worldToLightClip));
+    const Program& back = markOccupancy ? lightMarkProgram : lightProgram;
+    back.use();
+    back.set("worldToLightClip", toFloat(worldToLightClip));
+    if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
     drawScene();
+    if (markOccupancy) {
+      SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
+      SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
+    }
     SV_GL(glDisable(GL_CULL_FACE));
   }
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));

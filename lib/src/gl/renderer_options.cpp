@@ -111,8 +111,9 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
     if (usesTwoLayers(o.capture))
       refuse(std::string("finds its crossings on one layer (its rays or its walk); ") + toString(o.capture) +
-             " capture reads two (midpoint: their mean; entry: the first surface where a back face lies behind "
-             "it): use back or front capture, or the explicit volume with rays");
+             " capture reads two (" +
+             (o.capture == CaptureMode::Midpoint ? "their mean" : "the first surface where a back face lies behind it") +
+             "): use back or front capture, or the explicit volume with rays");
     if (o.volumeOptions.cap != FarCap::Exact)
       refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
