@@ -244,9 +244,13 @@ struct Renderer::Impl {
   void drawFullScreenTriangle();
 
   void drawScene();
+  /// The scene into the bound depth target with `program` (a light program), setting the
+  /// occupancy bits of the texels it covers with `markOccupancy` (a light_mark program).
+  void drawLightLayer(const Program& program, const glm::dmat4& worldToLightClip, bool markOccupancy);
 
-  /// The light's depth into layer0 (and layer1 for midpoint): window depth (reversed Z), cleared to
-  /// 0. With markOccupancy (the indexed GPU volume, GL 4.3) the first layer's fragments also set
+  /// The light's depth into layer0 (and layer1: for midpoint the peeled second surface, for entry
+  /// the nearest back face): window depth (reversed Z), cleared to 0. With markOccupancy (the
+  /// indexed GPU volume, GL 4.3) the first layer's fragments (entry: the back faces') also set
   /// their bits in `occupancy` (light_mark.frag).
   void lightPass(int w, int h, CaptureMode mode, bool markOccupancy, bool recordTriangles = false);
 

@@ -31,6 +31,17 @@ void Renderer::Impl::drawScene() {
   SV_GL(glBindVertexArray(0));
 }
 
+void Renderer::Impl::drawLightLayer(const Program& program, const glm::dmat4& worldToLightClip, bool markOccupancy) {
+  program.use();
+  program.set("worldToLightClip", toFloat(worldToLightClip));
+  if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
+  drawScene();
+  if (markOccupancy) {
+    SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
+    SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
+  }
+}
+
 void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupancy, bool recordTriangles) {
   ensureLightTargets(w, h);
   if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
@@ -55,14 +66,7 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
                          : markFirst                  ? lightMarkProgram
                          : recordTriangles            ? lightTriangleProgram
                                                       : lightProgram;
-  first.use();
-  first.set("worldToLightClip", toFloat(worldToLightClip));
-  if (markFirst) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
-  drawScene();
-  if (markFirst) {
-    SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
-    SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
-  }
+  drawLightLayer(first, worldToLightClip, markFirst);
   occupancyValid = markOccupancy;
   SV_GL(glDisable(GL_CULL_FACE));
   if (mode == CaptureMode::Midpoint) {
@@ -80,15 +84,7 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
     SV_GL(glClear(GL_DEPTH_BUFFER_BIT));
     SV_GL(glEnable(GL_CULL_FACE));
     SV_GL(glCullFace(GL_FRONT));
-    const Program& back = markOccupancy ? lightMarkProgram : lightProgram;
-    back.use();
-    back.set("worldToLightClip", toFloat(worldToLightClip));
-    if (markOccupancy) SV_GL(glBindImageTexture(0, occupancy.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
-    drawScene();
-    if (markOccupancy) {
-      SV_GL(glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI));
-      SV_GL(glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT));
-    }
+    drawLightLayer(markOccupancy ? lightMarkProgram : lightProgram, worldToLightClip, markOccupancy);
     SV_GL(glDisable(GL_CULL_FACE));
   }
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
