@@ -88,6 +88,14 @@ inline Light directionalDown(double farPlane = 12.0) {
 }
 
 /// A scene of these objects under a directional light straight down (far plane 6), no camera set.
+// A scene file's text parsed as `name` (relative paths from "."), its light and camera fitted as
+// loading a file does.
+inline Scene fittedScene(const std::string& json, const std::string& name) {
+  Scene scene = parseScene(json, name, ".").scene;
+  fitLightAndCamera(scene);
+  return scene;
+}
+
 inline Scene sceneWith(std::vector<SceneObject> objects) {
   Scene s;
   s.objects = std::move(objects);

@@ -29,9 +29,7 @@ Scene rotatedPlate(double turn) {
       "transform": {"translate": [0, 1.5, 0], "rotate": [0, )" + std::to_string(turn) + R"(, 0]}}],
       "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 4},
       "camera": {"eye": [0, 7, 5], "target": [0, 0, 0], "fov": 50}})";
-  Scene scene = parseScene(json, "plate.json", ".").scene;
-  fitLightAndCamera(scene);
-  return scene;
+  return test::fittedScene(json, "plate.json");
 }
 
 // How far (world units) the crossing of edge e lies from the plate's outline: its point in the

@@ -17,6 +17,7 @@
 #include "refined_options.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/scene.h"
+#include "test_util.h"
 
 namespace shadowvol {
 namespace {
@@ -27,9 +28,7 @@ Scene domeUnderAGrazingLight() {
       {"type": "hemisphere", "name": "dome", "radius": 1, "segments": 96, "rings": 24}],
       "light": {"type": "directional", "direction": [-1, -0.18, -0.25]},
       "camera": {"eye": [-3, 5, 8], "target": [-2, 0, 0], "fov": 45}})";
-  Scene scene = parseScene(json, "dome.json", ".").scene;
-  fitLightAndCamera(scene);
-  return scene;
+  return test::fittedScene(json, "dome.json");
 }
 
 // How many of the ground points at distance `gap` outside the dome's base (just above the ground),

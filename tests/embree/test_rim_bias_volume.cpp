@@ -15,6 +15,7 @@
 #include "refined_options.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/scene.h"
+#include "test_util.h"
 
 namespace shadowvol {
 namespace {
@@ -28,9 +29,7 @@ Scene slab() {
       std::to_string(kTurn) + R"(, 0]}}],
       "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 4},
       "camera": {"eye": [0, 7, 5], "target": [0, 0, 0], "fov": 50}})";
-  Scene scene = parseScene(json, "slab.json", ".").scene;
-  fitLightAndCamera(scene);
-  return scene;
+  return test::fittedScene(json, "slab.json");
 }
 
 // How many of the points `inset` inside the slab's outline (world units, in its own frame), at
@@ -94,9 +93,7 @@ Scene tiltedBlock() {
       std::to_string(kTilt) + R"(]}}],
       "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 4},
       "camera": {"eye": [0, 7, 5], "target": [0, 0, 0], "fov": 50}})";
-  Scene scene = parseScene(json, "block.json", ".").scene;
-  fitLightAndCamera(scene);
-  return scene;
+  return test::fittedScene(json, "block.json");
 }
 
 // How many of 40 x 8 points on the block's lit +x side (40 along it, 8 heights from 0.1 to 0.45

@@ -14,6 +14,7 @@
 #include "refined_options.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/scene.h"
+#include "test_util.h"
 
 namespace shadowvol {
 namespace {
@@ -31,9 +32,7 @@ Scene valley() {
                            ", " + plate("b", -1.0) +
                            R"(], "light": {"type": "directional", "direction": [0, -1, 0]},
       "camera": {"eye": [0, 4, 5], "target": [0, 0.8, 0], "fov": 50}})";
-  Scene scene = parseScene(json, "valley.json", ".").scene;
-  fitLightAndCamera(scene);
-  return scene;
+  return test::fittedScene(json, "valley.json");
 }
 
 // How many of 40 x 20 points on the plates' lit top faces within 0.15 of the valley (along the
