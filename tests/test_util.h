@@ -87,7 +87,6 @@ inline Light directionalDown(double farPlane = 12.0) {
   return light;
 }
 
-/// A scene of these objects under a directional light straight down (far plane 6), no camera set.
 // A scene file's text parsed as `name` (relative paths from "."), its light and camera fitted as
 // loading a file does.
 inline Scene fittedScene(const std::string& json, const std::string& name) {
@@ -96,10 +95,37 @@ inline Scene fittedScene(const std::string& json, const std::string& name) {
   return scene;
 }
 
+/// A scene of these objects under a directional light straight down (far plane 6), no camera set.
 inline Scene sceneWith(std::vector<SceneObject> objects) {
   Scene s;
   s.objects = std::move(objects);
   s.light = directionalDown(6.0);
+  return s;
+}
+
+/// A closed wedge under a directional light straight down: the right triangle (0, 0), (width, 0),
+/// (0, height) in x-y, extruded over z in [-1, 1]. Its sloped face is lit at the cosine
+/// width / sqrt(width^2 + height^2), and its bottom is the back face behind it. The light's window
+/// (half extent width, centred over x = width / 2) puts half of the map's columns on the slope; a
+/// camera looks at the wedge's side.
+inline Scene grazedWedgeScene(double width, double height) {
+  const float w = float(width), h = float(height);
+  TriangleMesh m;
+  m.positions = {{0, 0, -1}, {w, 0, -1}, {0, h, -1}, {0, 0, 1}, {w, 0, 1}, {0, h, 1}};
+  m.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {0, 3, 5}, {0, 5, 2}, {1, 2, 5}, {1, 5, 4}};
+  Scene s;
+  s.source = "grazed wedge";
+  s.objects.push_back({"wedge", "wedge", std::move(m)});
+  s.light.type = LightType::Directional;
+  s.light.position = {0.5 * width, height + 5.0, 0.0};
+  s.light.direction = {0, -1, 0};
+  s.light.halfExtent = width;
+  s.light.nearPlane = 1.0;
+  s.light.farPlane = height + 10.0;
+  s.camera.eye = {0.0, 0.5 * height, 4.0 * height};
+  s.camera.target = {0.0, 0.5 * height, 0.0};
+  s.camera.nearPlane = 1.0;
+  s.camera.farPlane = 8.0 * height;
   return s;
 }
 

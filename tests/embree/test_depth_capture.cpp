@@ -10,6 +10,7 @@
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
 #include "shadowvol/primitives.h"
+#include "test_util.h"
 
 namespace shadowvol {
 namespace {
@@ -177,6 +178,27 @@ TEST(Capture, EntryIsFrontWhereBackHasABackFace) {
     EXPECT_GT(hits, 200u) << toString(type);
     EXPECT_GT(plateHits, 10u) << toString(type);  // the plate (depth about 7) over the sphere
     EXPECT_GT(groundOnly, 2000u) << toString(type);  // lit ground: front capture's, not entry's
+  }
+}
+
+// Entry capture passes over a face lit nearly edge-on (cosine with the ray below kEntryGrazingCos):
+// over a wedge's sloped face lit at half that cosine it records the bottom, the back face behind
+// (back capture's depth), and over one lit at twice that cosine the slope (front capture's).
+TEST(Capture, EntryPassesOverFacesLitNearlyEdgeOn) {
+  for (double share : {0.5, 2.0}) {
+    const double c = share * kEntryGrazingCos, height = 20.0;
+    const Scene s = test::grazedWedgeScene(height * c / std::sqrt(1.0 - c * c), height);
+    const DepthMap front = captureDepthEmbree(s, 32, 32, CaptureMode::Front);
+    const DepthMap back = captureDepthEmbree(s, 32, 32, CaptureMode::Back);
+    const DepthMap entry = captureDepthEmbree(s, 32, 32, CaptureMode::Entry);
+    std::size_t onSlope = 0;
+    for (std::size_t k = 0; k < entry.depth.size(); ++k) {
+      if (DepthMap::isNoHit(back.depth[k])) continue;
+      const bool slope = front.depth[k] < back.depth[k] - 0.01f;
+      onSlope += slope;
+      EXPECT_EQ(entry.depth[k], slope && share < 1.0 ? back.depth[k] : front.depth[k]) << share << " " << k;
+    }
+    EXPECT_GT(onSlope, 400u) << share;  // 16 of the 32 columns
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include "gl_test_support.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "test_util.h"
 
 using namespace shadowvol;
 
@@ -61,6 +62,15 @@ TEST(GlLightPass, MidpointCaptureMatchesEmbree) {
 TEST(GlLightPass, EntryCaptureMatchesEmbree) {
   expectMatchesEmbree(defaultScene(), 96, 96, CaptureMode::Entry);
   expectMatchesEmbree(gltest::clutterScene(), 96, 96, CaptureMode::Entry);
+}
+// The first layer passes over faces lit nearly edge-on as the Embree capture does: a wedge's
+// slope lit at half kEntryGrazingCos (its bottom recorded) and at twice it (the slope recorded).
+TEST(GlLightPass, EntryCaptureOfFacesLitNearlyEdgeOnMatchesEmbree) {
+  for (double share : {0.5, 2.0}) {
+    const double c = share * kEntryGrazingCos, height = 20.0;
+    expectMatchesEmbree(test::grazedWedgeScene(height * c / std::sqrt(1.0 - c * c), height), 32, 32,
+                        CaptureMode::Entry);
+  }
 }
 TEST(GlLightPass, DirectionalBackCaptureMatchesEmbree) {
   expectMatchesEmbree(gltest::plateScene(), 64, 64, CaptureMode::Back);

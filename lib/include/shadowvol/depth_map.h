@@ -27,7 +27,8 @@ namespace shadowvol {
 /// What a texel records (Embree: embree/depth_capture.h; GPU: the light pass): Front the first
 /// surface, Back the first back face, Midpoint the mean of the first two surfaces, Entry the first
 /// surface in front of the first back face (where the light enters the closed occluder that Back
-/// records; no hit where Back has none, so lit receivers facing the light stay unrecorded).
+/// records; no hit where Back has none, so lit receivers facing the light stay unrecorded; a face
+/// lit nearly edge-on is passed over, kEntryGrazingCos).
 enum class CaptureMode { Front, Back, Midpoint, Entry };
 inline constexpr EnumNames<CaptureMode, 4> kCaptureModeNames{{{CaptureMode::Back, "back"},
                                                                {CaptureMode::Front, "front"},
@@ -40,6 +41,14 @@ inline bool recordsLitSurfaces(CaptureMode mode) { return mode == CaptureMode::F
 /// Whether only a back face makes a texel hit (Back, Entry): the hidden-surface search then looks
 /// at back faces only, and the occluders must be closed.
 inline bool needsBackFace(CaptureMode mode) { return mode == CaptureMode::Back || mode == CaptureMode::Entry; }
+/// Entry capture passes over a face lit nearly edge-on: one whose cosine with the light's ray is
+/// below this (1/256: its direct light is under one 8-bit level of the light's, so lit or shadowed
+/// it shades the same). It records the back face behind instead, as back capture would. Why: the
+/// sheet on such a face lies only bias x cos from it, and the camera cannot tell which side of the
+/// sheet the face is (a drafted side lit straight down, at N.L = 0.0025, showed as false shadow);
+/// behind a closed mesh's lit face the next surface is its back face, so nothing the face would
+/// shadow is lost (docs/results/entry-grazing).
+inline constexpr double kEntryGrazingCos = 1.0 / 256.0;
 /// Whether the light pass takes two depth layers and resolves them (Midpoint, Entry).
 inline bool usesTwoLayers(CaptureMode mode) { return mode == CaptureMode::Midpoint || mode == CaptureMode::Entry; }
 

@@ -38,6 +38,19 @@ void backFaceFilter(const RTCFilterFunctionNArguments* args) {
   if (!(dx * nx + dy * ny + dz * nz > 0.0f)) args->valid[0] = 0;
 }
 
+// Entry capture's first surface: reject a face that is not a back face and meets the ray at a
+// cosine below kEntryGrazingCos (lit nearly edge-on, or edge-on), so the ray goes on to the back
+// face behind it. In double, so the rule does not depend on the order of the products.
+void enteringFaceFilter(const RTCFilterFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, 0), RTCRayN_dir_y(args->ray, args->N, 0),
+                     RTCRayN_dir_z(args->ray, args->N, 0));
+  const glm::dvec3 n(RTCHitN_Ng_x(args->hit, args->N, 0), RTCHitN_Ng_y(args->hit, args->N, 0),
+                     RTCHitN_Ng_z(args->hit, args->N, 0));
+  const double along = glm::dot(d, n);
+  if (along <= 0.0 && -along < kEntryGrazingCos * glm::length(d) * glm::length(n)) args->valid[0] = 0;
+}
+
 // Midpoint capture: reject every hit (so traversal sees all of them) and keep the two nearest
 // distinct distances.
 void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
@@ -67,12 +80,16 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
 
 namespace {
 
-// One ray: the first hit in [tNear, tFar], on back faces only with `backOnly`.
-CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, bool backOnly) {
+// Which faces a ray of firstHit may stop at.
+enum class Faces { Any, Back, Entering };
+
+// One ray: the first hit in [tNear, tFar] on the faces `faces` admits.
+CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, Faces faces) {
   RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
   CaptureContext c;
   rtcInitIntersectContext(&c.ctx);
-  if (backOnly) c.ctx.filter = backFaceFilter;
+  if (faces == Faces::Back) c.ctx.filter = backFaceFilter;
+  if (faces == Faces::Entering) c.ctx.filter = enteringFaceFilter;
   rtcIntersect1(scene, &c.ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
@@ -82,13 +99,14 @@ CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNe
 
 CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
   switch (mode) {
-    case CaptureMode::Front: return firstHit(scene, ray, tNear, tFar, false);
-    case CaptureMode::Back: return firstHit(scene, ray, tNear, tFar, true);
+    case CaptureMode::Front: return firstHit(scene, ray, tNear, tFar, Faces::Any);
+    case CaptureMode::Back: return firstHit(scene, ray, tNear, tFar, Faces::Back);
     case CaptureMode::Entry: {
-      // The first back face, then the first surface up to it (itself where nothing lies before it).
-      const CapturedHit back = firstHit(scene, ray, tNear, tFar, true);
+      // The first back face, then the first surface up to it that is not lit nearly edge-on
+      // (itself where nothing lies before it).
+      const CapturedHit back = firstHit(scene, ray, tNear, tFar, Faces::Back);
       if (back.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-      const CapturedHit first = firstHit(scene, ray, tNear, back.depth, false);
+      const CapturedHit first = firstHit(scene, ray, tNear, back.depth, Faces::Entering);
       return first.geomID == RTC_INVALID_GEOMETRY_ID ? back : first;
     }
     case CaptureMode::Midpoint: break;

@@ -8,6 +8,7 @@ Renderer::Impl::Impl(const RendererOptions& options)
     : context(EglContext::create(options.context)), shaders(options.shaderDir) {
   lightProgram = Program(shaders, "light.vert", "depth_only.frag");
   peelProgram = Program(shaders, "light.vert", "depth_peel.frag");
+  lightEntryProgram = Program(shaders, "light.vert", "light_entry.frag");
   resolveProgram =
       Program(shaders, {"fullscreen.vert"}, {"version_330.glsl", "light_window_depth.glsl", "resolve.frag"});
   blurProgram = Program(shaders, "fullscreen.vert", "blur.frag");

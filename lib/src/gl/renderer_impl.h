@@ -134,7 +134,7 @@ struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
   ShaderLibrary shaders;
-  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
+  Program lightProgram, peelProgram, lightEntryProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
   Program cubeFaceIdProgram, cubeFaceMaskProgram;  // the refined GPU cube volume's face image and masks
   Program volumeGpuProgram;
   Program volumeKeepProgram, volumeGpuKeptProgram;   // GpuVolumeDraw::KeptQuads
@@ -247,6 +247,8 @@ struct Renderer::Impl {
   /// The scene into the bound depth target with `program` (a light program), setting the
   /// occupancy bits of the texels it covers with `markOccupancy` (a light_mark program).
   void drawLightLayer(const Program& program, const glm::dmat4& worldToLightClip, bool markOccupancy);
+  /// Entry capture's first layer: the uniforms of its test for faces lit nearly edge-on.
+  void setEntryFacingUniforms();
 
   /// The light's depth into layer0 (and layer1: for midpoint the peeled second surface, for entry
   /// the nearest back face): window depth (reversed Z), cleared to 0. With markOccupancy (the

@@ -42,6 +42,15 @@ void Renderer::Impl::drawLightLayer(const Program& program, const glm::dmat4& wo
   }
 }
 
+// Entry capture's first layer passes over faces lit nearly edge-on (light_entry.frag).
+void Renderer::Impl::setEntryFacingUniforms() {
+  lightEntryProgram.use();
+  lightEntryProgram.set("lightType", int(light.type));
+  lightEntryProgram.set("lightPosition", glm::vec3(light.position));
+  lightEntryProgram.set("lightDirection", glm::vec3(glm::normalize(light.direction)));
+  lightEntryProgram.set("grazingCos", float(kEntryGrazingCos));
+}
+
 void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupancy, bool recordTriangles) {
   ensureLightTargets(w, h);
   if (markOccupancy) clearOccupancy((w + 7) / 8, (h + 3) / 4);
@@ -65,7 +74,9 @@ void Renderer::Impl::lightPass(int w, int h, CaptureMode mode, bool markOccupanc
   const Program& first = markFirst && recordTriangles ? lightMarkTriangleProgram
                          : markFirst                  ? lightMarkProgram
                          : recordTriangles            ? lightTriangleProgram
+                         : mode == CaptureMode::Entry ? lightEntryProgram
                                                       : lightProgram;
+  if (&first == &lightEntryProgram) setEntryFacingUniforms();
   drawLightLayer(first, worldToLightClip, markFirst);
   occupancyValid = markOccupancy;
   SV_GL(glDisable(GL_CULL_FACE));
