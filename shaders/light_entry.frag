@@ -2,7 +2,7 @@
 // Entry capture's first layer (the light pass draws every face; resolve.frag keeps it where a back
 // face lies behind): a face lit nearly edge-on, whose cosine with the light's ray is below
 // grazingCos (kEntryGrazingCos, depth_map.h), is passed over, so the back face behind it is
-// recorded there, as the Embree capture's entering-face filter does (depth_capture.cpp).
+// recorded there, as the Embree capture's entryFilter does (depth_capture.cpp).
 in vec3 worldPos;            // light.vert
 uniform int lightType;       // LightType: 0 spot, 1 directional (a point light's faces are spot lights)
 uniform vec3 lightPosition;  // world, spot apex

@@ -38,17 +38,36 @@ void backFaceFilter(const RTCFilterFunctionNArguments* args) {
   if (!(dx * nx + dy * ny + dz * nz > 0.0f)) args->valid[0] = 0;
 }
 
-// Entry capture's first surface: reject a face that is not a back face and meets the ray at a
-// cosine below kEntryGrazingCos (lit nearly edge-on, or edge-on), so the ray goes on to the back
-// face behind it. In double, so the rule does not depend on the order of the products.
-void enteringFaceFilter(const RTCFilterFunctionNArguments* args) {
+// Entry capture in one traversal: back faces are accepted (Embree then narrows the ray to each,
+// ending at the first), every other face is rejected, and the nearest of them that is not lit
+// nearly edge-on (cosine with the ray below kEntryGrazingCos, in double so that the rule does not
+// depend on the order of the products) is kept here. Any face before the first back face is seen,
+// as the ray reaches at least that far.
+struct EntryContext {
+  RTCIntersectContext ctx;
+  float t = INFINITY;  // the nearest entering face's distance
+  unsigned geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;
+};
+
+void entryFilter(const RTCFilterFunctionNArguments* args) {
   if (args->valid[0] == 0) return;
   const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, 0), RTCRayN_dir_y(args->ray, args->N, 0),
                      RTCRayN_dir_z(args->ray, args->N, 0));
   const glm::dvec3 n(RTCHitN_Ng_x(args->hit, args->N, 0), RTCHitN_Ng_y(args->hit, args->N, 0),
                      RTCHitN_Ng_z(args->hit, args->N, 0));
   const double along = glm::dot(d, n);
-  if (along <= 0.0 && -along < kEntryGrazingCos * glm::length(d) * glm::length(n)) args->valid[0] = 0;
+  if (along > 0.0) return;  // a back face: accepted
+  args->valid[0] = 0;
+  if (-along < kEntryGrazingCos * glm::length(d) * glm::length(n)) return;  // lit nearly edge-on
+  auto* c = reinterpret_cast<EntryContext*>(const_cast<RTCIntersectContext*>(args->context));
+  const float t = RTCRayN_tfar(args->ray, args->N, 0);
+  const unsigned g = RTCHitN_geomID(args->hit, args->N, 0), p = RTCHitN_primID(args->hit, args->N, 0);
+  // The nearest; among equally near faces the lowest ids, whatever the traversal's order.
+  if (t < c->t || (t == c->t && (g < c->geomID || (g == c->geomID && p < c->primID)))) {
+    c->t = t;
+    c->geomID = g;
+    c->primID = p;
+  }
 }
 
 // Midpoint capture: reject every hit (so traversal sees all of them) and keep the two nearest
@@ -80,18 +99,27 @@ void twoLayerFilter(const RTCFilterFunctionNArguments* args) {
 
 namespace {
 
-// Which faces a ray of firstHit may stop at.
-enum class Faces { Any, Back, Entering };
-
-// One ray: the first hit in [tNear, tFar] on the faces `faces` admits.
-CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, Faces faces) {
+// One ray: the first hit in [tNear, tFar], on back faces only with `backOnly`.
+CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, bool backOnly) {
   RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
   CaptureContext c;
   rtcInitIntersectContext(&c.ctx);
-  if (faces == Faces::Back) c.ctx.filter = backFaceFilter;
-  if (faces == Faces::Entering) c.ctx.filter = enteringFaceFilter;
+  if (backOnly) c.ctx.filter = backFaceFilter;
   rtcIntersect1(scene, &c.ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
+}
+
+// Entry capture's ray (entryFilter): the first back face, and the first face up to it that is not
+// lit nearly edge-on where there is one (the back face itself where not).
+CapturedHit entryHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar) {
+  RTCRayHit rh = makeRayHit(ray.origin, ray.direction, tNear, tFar);
+  EntryContext c;
+  rtcInitIntersectContext(&c.ctx);
+  c.ctx.filter = entryFilter;
+  rtcIntersect1(scene, &c.ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  if (c.t <= rh.ray.tfar) return {c.t, c.geomID, c.primID};
   return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
 }
 
@@ -99,16 +127,9 @@ CapturedHit firstHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNe
 
 CapturedHit captureHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, float tFar, CaptureMode mode) {
   switch (mode) {
-    case CaptureMode::Front: return firstHit(scene, ray, tNear, tFar, Faces::Any);
-    case CaptureMode::Back: return firstHit(scene, ray, tNear, tFar, Faces::Back);
-    case CaptureMode::Entry: {
-      // The first back face, then the first surface up to it that is not lit nearly edge-on
-      // (itself where nothing lies before it).
-      const CapturedHit back = firstHit(scene, ray, tNear, tFar, Faces::Back);
-      if (back.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-      const CapturedHit first = firstHit(scene, ray, tNear, back.depth, Faces::Entering);
-      return first.geomID == RTC_INVALID_GEOMETRY_ID ? back : first;
-    }
+    case CaptureMode::Front: return firstHit(scene, ray, tNear, tFar, false);
+    case CaptureMode::Back: return firstHit(scene, ray, tNear, tFar, true);
+    case CaptureMode::Entry: return entryHit(scene, ray, tNear, tFar);
     case CaptureMode::Midpoint: break;
   }
   return {};

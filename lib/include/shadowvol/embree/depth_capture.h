@@ -20,7 +20,8 @@ namespace shadowvol {
 ///  - Entry: the first surface (any facing) up to the first back face, and kNoHit where Back has
 ///    none: front capture's depth on what back capture records. A closed occluder's lit side
 ///    without the lit receivers facing the light (an open ground plane), so the volume's sheet
-///    covers the occluders only, as with back capture (two rays per texel). A face lit nearly
+///    covers the occluders only, as with back capture (one ray per texel, which records the nearest
+///    front face it meets before it ends on the first back face). A face lit nearly
 ///    edge-on (cosine with the ray below kEntryGrazingCos, depth_map.h) is passed over, so the
 ///    back face behind it is recorded there.
 /// Parallel over rows (TBB) and deterministic: each texel is computed independently. A size that
