@@ -39,6 +39,11 @@ def methods(k, chords=False, grid=1, hidden=True):
         "refined entry 128": ref + ["--resolution", "128", "--capture", "entry"],
         "refined entry 256": ref + ["--resolution", "256", "--capture", "entry"],
         "silhouette": ["--method", "silhouette"],
+        # The refined GPU volume (no sub-grid, chord points or a choice of crossings: the GPU's rays).
+        "gpu refined back 128": ["--volume", "gpu", "--refine", str(k), "--resolution", "128"] + back,
+        "gpu refined back 256": ["--volume", "gpu", "--refine", str(k), "--resolution", "256"] + back,
+        "gpu refined entry 128": ["--volume", "gpu", "--refine", str(k), "--resolution", "128", "--capture", "entry"],
+        "gpu refined entry 256": ["--volume", "gpu", "--refine", str(k), "--resolution", "256", "--capture", "entry"],
     }
 
 

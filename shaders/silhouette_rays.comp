@@ -4,7 +4,9 @@
 // (silhouette_refinement.h's bisectWith and edgeSegment, rule for rule) with each ray cast here,
 // through triangle_bvh.h's hierarchy of the scene's triangles, by the capture rule of the light
 // pass (depth_capture.h's captureRay): the nearest hit in [near, far] for front capture, the
-// nearest back face (its counter-clockwise normal along the ray) for back capture.
+// nearest back face (its counter-clockwise normal along the ray) for back capture, and for entry
+// capture the nearest face up to the nearest back face that is not lit nearly edge-on (the back
+// face itself where there is none; nothing without a back face).
 // One invocation per slot of walk_slots.comp's list, dispatched indirectly in rows of work groups:
 //   slot 3 t + k, k = axis (0, 1): texel t's boundary edge along k: refineSteps halvings of the
 //     bracket from the near end N to the far end R, then, with snapCrossings, crossing_snap.h's
@@ -25,7 +27,8 @@ layout(std430, binding = 7) readonly buffer WalkSlots { uint walkSlots[]; };
 layout(rgba32f, binding = 0) writeonly uniform image2DArray crossingRecords;
 uniform mat4 lightViewToWorld;   // inverse of V_light, composed in double
 uniform int refineSteps;         // K: rays per boundary edge
-uniform int backCapture;         // 1: back faces only; 0: the nearest hit (front capture)
+uniform int captureRule;         // kFrontRule, kBackRule or kEntryRule
+uniform float grazingCos;        // entry: kEntryGrazingCos (depth_map.h)
 uniform int nodeCount;           // 0: no triangles
 uniform int snapCrossings;       // 1: crossing_snap.h's snap after bisection (VolumeBuildOptions::refineSnap)
 uniform mat4 worldToLightView;   // V_light, composed in double (the snap's triangle images)
@@ -34,6 +37,7 @@ const int kStack = 64;                    // kBvhMaxDepth (silhouette_rays.cpp a
 const float kNoHitDepth = uintBitsToFloat(0x7f800000u);  // +infinity, DepthMap::kNoHit
 const float kBarycentricSlack = 1e-6;     // a ray through a shared edge hits both triangles
 const uint kNoTriangle = 0xffffffffu;
+const int kFrontRule = 0, kBackRule = 1, kEntryRule = 2;  // silhouette_rays.cpp sets captureRule
 const int kSnapRounds = 3;                // crossing_snap.h (SnapConstantsMatchTheShader keeps them in step)
 const float kSnapProbeTexels = 1.0 / 4096.0;
 const float kSnapEndSlack = 1e-9;
@@ -51,11 +55,16 @@ float boxEntry(uint n, vec3 o, vec3 inv, float t0, float t1) {
 }
 
 // Triangle k (leaf order) against the ray: its parameter when hit within [t0, tBest) and
-// accepted by the capture rule, else tBest.
-float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest) {
+// accepted by the capture rule (kBackRule: back faces only), else tBest. `back`: whether it is a
+// back face; `grazing`: a face that is not, lit nearly edge-on (cosine below grazingCos).
+float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest, out bool back, out bool grazing) {
   vec3 v0 = bvhCorners[3u * k].xyz, v1 = bvhCorners[3u * k + 1u].xyz, v2 = bvhCorners[3u * k + 2u].xyz;
   vec3 e1 = v1 - v0, e2 = v2 - v0;
-  if (backCapture != 0 && !(dot(cross(e1, e2), d) > 0.0)) return tBest;
+  vec3 normal = cross(e1, e2);
+  float along = dot(normal, d);
+  back = along > 0.0;
+  grazing = !back && -along < grazingCos * length(normal) * length(d);
+  if (captureRule == kBackRule && !back) return tBest;
   vec3 p = cross(d, e2);
   float det = dot(e1, p);
   if (det == 0.0) return tBest;
@@ -69,6 +78,9 @@ float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest) {
   float t = dot(e2, q) * invDet;
   return t >= t0 && t < tBest ? t : tBest;
 }
+
+// The next float above x (x finite and >= 0): hitTriangle's bound that lets t == x through.
+float nextFloat(float x) { return uintBitsToFloat(floatBitsToUint(x) + 1u); }
 
 // 1 / d, finite: a component of magnitude below 1e-30 counts as +-1e-30 (+ for 0), as Embree's
 // traversal takes it. So a ray that does not move along an axis and lies exactly on a box's
@@ -94,6 +106,8 @@ float castRayHit(vec2 u, out uint triangle) {
   vec3 d = (lightViewToWorld * vec4(b, 0.0)).xyz;
   vec3 inv = safeInverse(d);
   float range = farPlane - nearPlane, best = range;
+  float bestFront = kNoHitDepth;  // entry: the nearest face seen that is neither a back face nor grazing
+  uint frontTriangle = kNoTriangle;
   uint stack[kStack];
   float entries[kStack];  // each stacked node's entry parameter: skipped once a hit lies before it
   int top = 0;
@@ -109,7 +123,16 @@ float castRayHit(vec2 u, out uint triangle) {
     if (entries[top] > best) continue;
     if (nodes[n].count > 0u) {
       for (uint k = nodes[n].first; k < nodes[n].first + nodes[n].count; ++k) {
-        float t = hitTriangle(k, o, d, 0.0, best);
+        bool back, grazing;
+        // Entry: any face up to the nearest back face so far (included) is a candidate.
+        float t = hitTriangle(k, o, d, 0.0, captureRule == kEntryRule ? nextFloat(best) : best, back, grazing);
+        if (captureRule == kEntryRule && !back) {
+          if (!grazing && t <= best && (t < bestFront || (t == bestFront && k < frontTriangle))) {
+            bestFront = t;
+            frontTriangle = k;
+          }
+          continue;
+        }
         if (t < best) {
           best = t;
           triangle = k;
@@ -137,6 +160,10 @@ float castRayHit(vec2 u, out uint triangle) {
     }
   }
   if (!(best < range)) triangle = kNoTriangle;
+  if (captureRule == kEntryRule && best < range && bestFront <= best) {  // (entry: no back face, no record)
+    best = bestFront;
+    triangle = frontTriangle;
+  }
   return best < range ? nearPlane + best : kNoHitDepth;
 }
 float castRay(vec2 u) {

@@ -173,8 +173,8 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                   "the sweep uses (README 'Silhouette refinement'). Needs --cap exact (docs/volume.md "
                   "'Refinement'). In render and validate with --volume gpu the GPU casts the same K rays per edge "
                   "itself (bench: hybrid-refined/gpu), or walks over the scene's triangles with --crossings "
-                  "gpu-walk (exact: K > 0 only switches it on; bench: hybrid-refined-walk/gpu); back or front capture "
-                  "(docs/gpu.md 'The refined GPU volume')")
+                  "gpu-walk (exact: K > 0 only switches it on; bench: hybrid-refined-walk/gpu); back, front or entry "
+                  "capture (the walk: back or front) (docs/gpu.md 'The refined GPU volume')")
       ->check(CLI::Range(0, kMaxRefineSteps))
       ->capture_default_str();
 }

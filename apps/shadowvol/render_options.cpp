@@ -55,8 +55,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
                  "triangles from the one each texel recorded to the silhouette edge: exact, no rays, K only "
                  "switches it on; GL 4.3, back or front capture, not with --chord-points or --refine-grid; "
                  "docs/gpu.md 'Crossings from a triangle walk') or gpu-rays (--volume gpu only: the same K "
-                 "bisection rays as 'rays', cast on the GPU through a hierarchy of the scene's triangles; back or "
-                 "front capture; docs/gpu.md 'Crossings from GPU rays'); auto: rays for --volume explicit, "
+                 "bisection rays as 'rays', cast on the GPU through a hierarchy of the scene's triangles; back, "
+                 "front or entry capture; docs/gpu.md 'Crossings from GPU rays'); auto: rays for --volume explicit, "
                  "gpu-rays for --volume gpu")
       ->check(CLI::IsMember(namesIn(kRefineCrossingsNames, {"auto"})))
       ->capture_default_str();

@@ -71,11 +71,12 @@ FrameValidation renderAndValidate(const Scene& scene, gl::RenderOptions ro) {
 // stencil against the crossing counts of the explicit cube volume of the same faces (for the GPU
 // volume, its CPU mirror: RenderOptions::keepVolume).
 // With `refineSteps`, the explicit volume refined by the scene's rays (cube_volume.h), or the
-// refined GPU cube volume (its six face volumes, each checked and counted: back and front capture).
+// refined GPU cube volume (its six face volumes, each checked and counted: back, front and entry
+// capture).
 void expectCubeVolumeMatchesCrossingCounts(gl::VolumeSource source, std::initializer_list<int> sizes,
                                            gl::GpuVolumeDraw draw = gl::GpuVolumeDraw::Auto, int refineSteps = 0) {
   const bool faces = source == gl::VolumeSource::Gpu && refineSteps > 0;
-  const std::vector<CaptureMode> modes = faces ? std::vector{CaptureMode::Back, CaptureMode::Front}
+  const std::vector<CaptureMode> modes = faces ? std::vector{CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}
                                                : std::vector{CaptureMode::Back, CaptureMode::Front, CaptureMode::Midpoint};
   int frames = 0;
   for (const Scene& scene : {room(), lampOverSphere()}) {

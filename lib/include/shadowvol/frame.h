@@ -104,7 +104,7 @@ enum class RefineCrossings {
             ///< GL 4.3, refineSteps > 0 only switches it on; not with chord points or the sub-grid
   GpuRays,  ///< the refined GPU volume only: the same bisection as Rays, refineSteps rays per edge,
             ///< each cast on the GPU through a hierarchy of the scene's triangles (triangle_bvh.h,
-            ///< docs/gpu.md "Crossings from GPU rays"); back or front capture
+            ///< docs/gpu.md "Crossings from GPU rays"); back, front or entry capture
 };
 inline constexpr EnumNames<RefineCrossings, 3> kRefineCrossingsNames{
     {{RefineCrossings::Rays, "rays"}, {RefineCrossings::GpuWalk, "gpu-walk"}, {RefineCrossings::GpuRays, "gpu-rays"}}};

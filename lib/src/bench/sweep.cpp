@@ -316,7 +316,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(refinedLightPass());
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
-    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpu(c));
+    for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGpu(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));
     for (auto source : {gl::VolumeSource::Explicit, gl::VolumeSource::Gpu}) v.push_back(refinedNoSnap(source));
     v.push_back(cubeShadowMap("cube-shadowmap", gl::ShadowMethod::ShadowMap,

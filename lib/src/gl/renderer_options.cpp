@@ -109,11 +109,9 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
                        "the refined GPU volume " + why);
     };
     if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
-    if (usesTwoLayers(o.capture))
-      refuse(std::string("finds its crossings on one layer (its rays or its walk); ") + toString(o.capture) +
-             " capture reads two (" +
-             (o.capture == CaptureMode::Midpoint ? "their mean" : "the first surface where a back face lies behind it") +
-             "): use back or front capture, or the explicit volume with rays");
+    if (o.capture == CaptureMode::Midpoint)
+      refuse("finds its crossings by one surface's rule (its rays or its walk); midpoint capture records the mean "
+             "of two: use back, front or entry capture, or the explicit volume with rays");
     if (o.volumeOptions.cap != FarCap::Exact)
       refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)

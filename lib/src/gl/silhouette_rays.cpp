@@ -6,6 +6,7 @@
 #include <glm/vec4.hpp>
 
 #include "shadowvol/check.h"
+#include "shadowvol/depth_map.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
 #include "shadowvol/triangle_bvh.h"
@@ -62,7 +63,7 @@ void SilhouetteRays::ensureHierarchy() {
 
 void SilhouetteRays::dispatchGrid(const WalkInputs& in, int steps, CaptureMode capture, bool snap,
                                   GLintptr indirectOffset) {
-  SV_CHECK(capture == CaptureMode::Back || capture == CaptureMode::Front);
+  SV_CHECK(capture != CaptureMode::Midpoint);
   ensureHierarchy();
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, triangles_.id()));
   SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, nodes_.id()));
@@ -71,7 +72,9 @@ void SilhouetteRays::dispatchGrid(const WalkInputs& in, int steps, CaptureMode c
   program_.set("worldToLightView", in.worldToLightView);
   program_.set("snapCrossings", snap ? 1 : 0);
   program_.set("refineSteps", steps);
-  program_.set("backCapture", capture == CaptureMode::Back ? 1 : 0);
+  // silhouette_rays.comp's kFrontRule, kBackRule, kEntryRule.
+  program_.set("captureRule", capture == CaptureMode::Back ? 1 : capture == CaptureMode::Entry ? 2 : 0);
+  program_.set("grazingCos", float(kEntryGrazingCos));
   program_.set("nodeCount", int(std::min<std::size_t>(nodeCount_, 0x7fffffff)));
   SV_GL(glDispatchComputeIndirect(indirectOffset));
   for (GLuint b = 3; b < 5; ++b) SV_GL(glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0));
