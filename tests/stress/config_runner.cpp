@@ -27,6 +27,7 @@ std::vector<RunKind> runsOf(const StressConfig& c) {
   if (c.refined && !c.refused) runs.push_back(RunKind::RayDepth);  // the map from rays, too (a point light's six)
   if (c.refined && !c.refused) runs.push_back(RunKind::GpuRefined);  // a point light's: its face volumes
   if (c.refined && !c.refused) runs.push_back(RunKind::Entry);  // entry capture, refined as Refined
+  if (c.refined && !c.refused) runs.push_back(RunKind::GpuEntry);  // entry capture, refined as GpuRefined
   runs.push_back(RunKind::Build);
   return runs;
 }
@@ -44,9 +45,9 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, bool point, const fs::pat
     r.argv = {
         s.shadowvol.string(), "validate",         "--scene", scene.string(), "--resolution",
         resolution,           "--size",           s.size,    "--volume",
-        kind == RunKind::Gpu || kind == RunKind::GpuRefined ? "gpu" : "explicit",
+        kind == RunKind::Gpu || kind == RunKind::GpuRefined || kind == RunKind::GpuEntry ? "gpu" : "explicit",
         "--report",           reportDir.string(), "--json"};
-    if (kind == RunKind::Front || kind == RunKind::Entry) {
+    if (kind == RunKind::Front || kind == RunKind::Entry || kind == RunKind::GpuEntry) {
       r.argv.push_back("--capture");
       r.argv.push_back(kind == RunKind::Front ? "front" : "entry");
     }
@@ -59,7 +60,7 @@ RunOutcome runOne(RunKind kind, const fs::path& scene, bool point, const fs::pat
       for (const char* a : {"--refine", "6", "--crossings", "gpu-walk"}) r.argv.push_back(a);
     if (kind == RunKind::RayDepth)  // refinement of a depth map ray-cast on the CPU (no light pass)
       for (const char* a : {"--refine", "6", "--depth-from", "rays"}) r.argv.push_back(a);
-    if (kind == RunKind::GpuRefined)  // the refined GPU volume: edges, walk and cells on the GPU
+    if (kind == RunKind::GpuRefined || kind == RunKind::GpuEntry)  // the refined GPU volume: edges, rays, cells
       for (const char* a : {"--refine", "6"}) r.argv.push_back(a);
   }
   r.process = runProcess(r.argv, dir / "stdout.txt", dir / "stderr.txt", s.timeoutSeconds);
@@ -101,6 +102,8 @@ const char* runName(RunKind k) {
       return "gpu-refined";
     case RunKind::Entry:
       return "entry";
+    case RunKind::GpuEntry:
+      return "gpu-entry";
     case RunKind::Build:
       return "build";
   }

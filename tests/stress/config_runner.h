@@ -17,7 +17,7 @@
 namespace shadowvol::stress {
 
 /// What is run: `validate --volume explicit`, `--volume gpu`, `--volume explicit --capture front`, `build`.
-enum class RunKind { Explicit, Gpu, Front, Refined, Walk, RayDepth, GpuRefined, Entry, Build };
+enum class RunKind { Explicit, Gpu, Front, Refined, Walk, RayDepth, GpuRefined, Entry, GpuEntry, Build };
 const char* runName(RunKind k);
 
 struct RunSettings {
