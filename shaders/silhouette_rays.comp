@@ -56,14 +56,15 @@ float boxEntry(uint n, vec3 o, vec3 inv, float t0, float t1) {
 
 // Triangle k (leaf order) against the ray: its parameter when hit within [t0, tBest) and
 // accepted by the capture rule (kBackRule: back faces only), else tBest. `back`: whether it is a
-// back face; `grazing`: a face that is not, lit nearly edge-on (cosine below grazingCos).
+// back face; `grazing` (kEntryRule only): a face that is not, lit nearly edge-on (cosine below
+// grazingCos).
 float hitTriangle(uint k, vec3 o, vec3 d, float t0, float tBest, out bool back, out bool grazing) {
   vec3 v0 = bvhCorners[3u * k].xyz, v1 = bvhCorners[3u * k + 1u].xyz, v2 = bvhCorners[3u * k + 2u].xyz;
   vec3 e1 = v1 - v0, e2 = v2 - v0;
   vec3 normal = cross(e1, e2);
   float along = dot(normal, d);
   back = along > 0.0;
-  grazing = !back && -along < grazingCos * length(normal) * length(d);
+  grazing = captureRule == kEntryRule && !back && -along < grazingCos * length(normal) * length(d);
   if (captureRule == kBackRule && !back) return tBest;
   vec3 p = cross(d, e2);
   float det = dot(e1, p);
