@@ -1,6 +1,7 @@
 // Helpers shared by the test folders.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -103,12 +104,13 @@ inline Scene sceneWith(std::vector<SceneObject> objects) {
   return s;
 }
 
-/// A closed wedge under a directional light straight down: the right triangle (0, 0), (width, 0),
-/// (0, height) in x-y, extruded over z in [-1, 1]. Its sloped face is lit at the cosine
-/// width / sqrt(width^2 + height^2), and its bottom is the back face behind it. The light's window
-/// (half extent width, centred over x = width / 2) puts half of the map's columns on the slope; a
-/// camera looks at the wedge's side.
-inline Scene grazedWedgeScene(double width, double height) {
+/// A closed wedge under a directional light straight down whose sloped face is lit at the cosine
+/// `cosToLight`: the right triangle (0, 0), (width, 0), (0, height) in x-y, extruded over z in
+/// [-1, 1], width = height cos / sin. Its bottom is the back face behind the slope. The light's
+/// window (half extent width, centred over x = width / 2) puts half of the map's columns on the
+/// slope; a camera looks at the wedge's side.
+inline Scene grazedWedgeScene(double cosToLight, double height = 20.0) {
+  const double width = height * cosToLight / std::sqrt(1.0 - cosToLight * cosToLight);
   const float w = float(width), h = float(height);
   TriangleMesh m;
   m.positions = {{0, 0, -1}, {w, 0, -1}, {0, h, -1}, {0, 0, 1}, {w, 0, 1}, {0, h, 1}};

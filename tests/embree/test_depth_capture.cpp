@@ -186,8 +186,7 @@ TEST(Capture, EntryIsFrontWhereBackHasABackFace) {
 // (back capture's depth), and over one lit at twice that cosine the slope (front capture's).
 TEST(Capture, EntryPassesOverFacesLitNearlyEdgeOn) {
   for (double share : {0.5, 2.0}) {
-    const double c = share * kEntryGrazingCos, height = 20.0;
-    const Scene s = test::grazedWedgeScene(height * c / std::sqrt(1.0 - c * c), height);
+    const Scene s = test::grazedWedgeScene(share * kEntryGrazingCos);
     const DepthMap front = captureDepthEmbree(s, 32, 32, CaptureMode::Front);
     const DepthMap back = captureDepthEmbree(s, 32, 32, CaptureMode::Back);
     const DepthMap entry = captureDepthEmbree(s, 32, 32, CaptureMode::Entry);
