@@ -66,7 +66,8 @@ TEST(GlLightPass, EntryCaptureMatchesEmbree) {
 // The first layer passes over faces lit nearly edge-on as the Embree capture does: a wedge's
 // slope lit at half kEntryGrazingCos (its bottom recorded) and at twice it (the slope recorded).
 TEST(GlLightPass, EntryCaptureOfFacesLitNearlyEdgeOnMatchesEmbree) {
-  for (double share : {0.5, 2.0}) expectMatchesEmbree(test::grazedWedgeScene(share * kEntryGrazingCos), 32, 32, CaptureMode::Entry);
+  for (double share : {0.5, 2.0})
+    expectMatchesEmbree(test::grazedWedgeScene(share * kEntryGrazingCos), 32, 32, CaptureMode::Entry);
 }
 TEST(GlLightPass, DirectionalBackCaptureMatchesEmbree) {
   expectMatchesEmbree(gltest::plateScene(), 64, 64, CaptureMode::Back);
