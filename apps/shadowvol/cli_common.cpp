@@ -221,8 +221,9 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
                   "first surface, pushed back by a bias: records open meshes), midpoint (the mean of the first two "
                   "surfaces; the far plane stands in for a missing second one) or entry (front capture's surface "
                   "where a back face lies behind it, else nothing: closed occluders' lit sides without the lit ground, "
-                  "front capture's accuracy with the sub-grid at less cost; a face lit nearly edge-on, N.L below 1/256, "
-                  "is passed over for the back face behind it; on the GPU two light passes) (README 'Capture modes')")
+                  "front capture's accuracy with the sub-grid at less cost; a face lit nearly edge-on, N.L below "
+                  "1/256, is passed over for the back face behind it; on the GPU two light passes) (README 'Capture "
+                  "modes')")
       ->check(CLI::IsMember(namesIn(kCaptureModeNames, {"auto"})))
       ->capture_default_str();
 }

@@ -134,7 +134,8 @@ struct Renderer::Impl {
   // Declared first: destroyed last, so every GL object below is deleted with its context current.
   EglContext context;
   ShaderLibrary shaders;
-  Program lightProgram, peelProgram, lightEntryProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
+  Program lightProgram, peelProgram, resolveProgram, blurProgram, sceneProgram, ambientOverProgram, volumeProgram;
+  Program lightEntryProgram;  // entry capture's first layer (light_entry.frag)
   Program cubeFaceIdProgram, cubeFaceMaskProgram;  // the refined GPU cube volume's face image and masks
   Program volumeGpuProgram;
   Program volumeKeepProgram, volumeGpuKeptProgram;   // GpuVolumeDraw::KeptQuads
