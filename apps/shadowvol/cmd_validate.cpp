@@ -163,6 +163,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
     bool selfIntersections = false;
     double maxError = kDefaultMaxError;
     double maxMissedShare = kDefaultMaxMissedShare;
+    double exactOffsetScale = 1.0;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(
@@ -185,6 +186,17 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                   "Accuracy verdict: the largest share of the exact shadow's pixels the method may miss (judged when "
                   "the exact shadow has at least 100 pixels; an empty volume misses all of it)")
       ->check(finiteRange(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--exact-offset-scale", o->exactOffsetScale,
+                  "Diagnostic: scale the exact shadow rays' start offset off the surface (in (0, 1]; 1 = the "
+                  "reference every documented figure uses); a smaller one shows which pixels' exact class depends "
+                  "on it (docs/results/reference-offset)")
+      ->check(finiteRange(0.0, 1.0) & CLI::Validator(
+                                         [](std::string& text) -> std::string {
+                                           return std::strtod(text.c_str(), nullptr) > 0.0 ? std::string()
+                                                                                           : "must be above 0: " + text;
+                                         },
+                                         ""))
       ->capture_default_str();
   cmd->callback([&run, o] {
     checkRenderOptionConflicts(o->render);
@@ -213,6 +225,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       vo.selfIntersections = o->selfIntersections;
       vo.maxError = o->maxError;
       vo.maxMissedShare = o->maxMissedShare;
+      vo.exactOffsetScale = o->exactOffsetScale;
       // Each light's checks on a scene with that light alone (the shadows are per light; the
       // image is the frame's, every light's diffuse term added).
       const std::vector<LightValidation> checks = validateEveryLight(scene, ro, result, vo);
@@ -238,7 +251,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"shadowBias", shadowBiasFor(scene.light, ro)},
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},
-                      {"selfIntersections", o->selfIntersections}};
+                      {"selfIntersections", o->selfIntersections},
+                      {"exactOffsetScale", o->exactOffsetScale}};
       if (capturesMap(ro)) j["options"]["capture"] = toString(ro.capture);  // silhouette and none capture no map
       if (!captureAuto.empty()) j["options"]["captureAuto"] = captureAuto;   // --capture auto's reason
       if (o->render.shape.refineGrid > 1) {  // the sub-grid, and whether it searched for hidden surfaces

@@ -96,7 +96,7 @@ double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localSc
 }
 
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double offset) {
+                                     double offset, double offsetScale) {
   const Light& light = description.light;
   const bool point = light.type == LightType::Point;
   const glm::dmat4 lv = lightView(light), lp = point ? glm::dmat4(1.0) : lightProjection(light);
@@ -130,7 +130,7 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
         continue;
       }
       const double local = std::min(glm::length(p - description.camera.eye), tfar);
-      const double off = shadowRayOffsetAt(offset, p, local);
+      const double off = offsetScale * shadowRayOffsetAt(offset, p, local);
       const glm::dvec3 org = p + n * off;
       RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - off : INFINITY)).ray;
       RTCIntersectContext ctx;

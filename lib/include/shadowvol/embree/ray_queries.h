@@ -60,10 +60,12 @@ double shadowRayOffset(const Scene& scene);
 double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale);
 
 /// Exact shadows: one occlusion ray per visible point towards the light (to the spot light's
-/// apex; along -direction for a directional light), started `offset` off the surface along its
-/// normal. Parallel and deterministic.
+/// apex; along -direction for a directional light), started shadowRayOffsetAt(offset, ...) x
+/// `offsetScale` off the surface along its normal (offsetScale 1: the reference every documented
+/// figure uses; other values measure how much a frame's reference depends on that offset,
+/// ValidationOptions::exactOffsetScale). Parallel and deterministic.
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double offset);
+                                     double offset, double offsetScale = 1.0);
 
 /// Signed crossing counts of a closed volume along each camera ray.
 ///  zfail[k]: from the visible point to infinity, +1 for each crossing that leaves the volume

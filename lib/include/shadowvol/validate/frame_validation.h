@@ -61,6 +61,11 @@ struct ValidationOptions {
   /// ... and its missed shadow pixels at most this share of the exact shadow's pixels, when the
   /// exact shadow has at least kMinShadowPixels (so an empty volume over a small shadow fails too).
   double maxMissedShare = kDefaultMaxMissedShare;
+  /// The exact shadow rays' offset off the surface, scaled (exactShadows' offsetScale, in (0, 1]):
+  /// 1 is the reference every documented figure uses; less shows which pixels' exact class depends
+  /// on that offset (near shadow boundaries on surfaces lit at a grazing angle, and close to the
+  /// shadows' own outlines: docs/results/reference-offset).
+  double exactOffsetScale = 1.0;
 };
 
 /// Agreement of two per-pixel quantities over a set of pixels.
