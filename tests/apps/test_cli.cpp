@@ -77,7 +77,7 @@ TEST(Cli, HelpAndUsage) {
     EXPECT_EQ(r.code, 2) << bad;
     EXPECT_TRUE(contains(r.out, "--max-missed")) << r.out;
   }
-  for (const char* bad : {"nan", "0", "-0.5", "2"}) {  // the exact reference's offset scale: (0, 1]
+  for (const char* bad : {"nan", "-0.5", "2"}) {  // the exact reference's offset scale: [0, 1]
     const CliResult r = runCli(std::string("validate --report x-report --exact-offset-scale ") + bad);
     EXPECT_EQ(r.code, 2) << bad;
     EXPECT_TRUE(contains(r.out, "--exact-offset-scale")) << r.out;

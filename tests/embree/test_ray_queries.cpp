@@ -44,7 +44,7 @@ TEST(RayQueries, ExactShadowsOfThePlateMatchItsFootprint) {
   const EmbreeDevice device;
   const EmbreeScene rt(device, meshesOf(s));
   const CameraHits hits = castPrimaryRays(rt, s.camera);
-  const auto cls = exactShadows(rt, s, hits, shadowRayOffset(s));
+  const auto cls = exactShadows(rt, s, hits);
   int shadowed = 0, lit = 0, outside = 0, checked = 0;
   const double margin = 0.15;  // more than a pixel's footprint on the ground here
   for (std::size_t k = 0; k < cls.size(); ++k) {
@@ -67,6 +67,100 @@ TEST(RayQueries, ExactShadowsOfThePlateMatchItsFootprint) {
   EXPECT_GT(shadowed, 100);
   EXPECT_GT(lit, 100);
   EXPECT_GT(outside, 100);
+}
+
+// A square sheet (2 x 2, no thickness) at height 0.1 over the ground, lit at 3 degrees above the
+// horizon: its shadow is the square moved 0.1 / tan 3 degrees = 1.91 along x, and a start offset
+// d along the ground's normal moves the shadow's edges across x by d / tan 3 degrees (19 d).
+Scene grazedSheetScene() {
+  Scene s;
+  s.objects.push_back({"ground", "plane", makePlane(8, 8, 1)});
+  TriangleMesh sheet = makePlane(2, 2, 1);
+  for (auto& p : sheet.positions) p.y += 0.1f;
+  s.objects.push_back({"sheet", "plane", sheet});
+  const double a = 3.0 * M_PI / 180.0;
+  s.light.type = LightType::Directional;
+  s.light.direction = {std::cos(a), -std::sin(a), 0.0};
+  s.light.position = -30.0 * s.light.direction;
+  s.light.halfExtent = 20;
+  s.light.nearPlane = 0.1;
+  s.light.farPlane = 100;
+  s.camera.eye = {1.9, 6, 5};
+  s.camera.target = {1.9, 0, 0};
+  s.camera.up = {0, 1, 0};
+  s.camera.fovYDegrees = 45;
+  s.camera.width = 160;
+  s.camera.height = 120;
+  s.camera.nearPlane = 0.5;
+  s.camera.farPlane = 30;
+  return s;
+}
+
+// Ground pixels whose exact class is known analytically with a margin of 1e-3 (in the sheet's
+// plane), and how many of them `cls` gets wrong.
+int groundPixelsWrong(const Scene& s, const CameraHits& hits, const std::vector<PixelClass>& cls, int* checked) {
+  const glm::dvec3 d = s.light.direction;
+  int wrong = 0;
+  *checked = 0;
+  for (std::size_t k = 0; k < cls.size(); ++k) {
+    if (hits.isBackground(k) || std::abs(hits.point[k].y) > 1e-6) continue;
+    const glm::dvec3 onSheet = hits.point[k] - (0.1 / -d.y) * d;  // back along the light to y = 0.1
+    const double m = std::max(std::abs(onSheet.x), std::abs(onSheet.z));
+    if (std::abs(m - 1.0) < 1e-3) continue;
+    ++*checked;
+    wrong += cls[k] != (m < 1.0 ? PixelClass::Shadowed : PixelClass::Lit);
+  }
+  return wrong;
+}
+
+// Regression (docs/results/reference-offset): the legacy reference started each shadow ray 1e-4 of
+// the scene's radius (5.7e-4 here) off the surface, which moves this shadow's edges by 0.011 and
+// called lit a band of shadowed pixels along them; the default starts at round-off's floor.
+TEST(RayQueries, ExactShadowsOfASheetLitAtAGrazingAngleMatchTheAnalyticShadow) {
+  const Scene s = grazedSheetScene();
+  const EmbreeDevice device;
+  const EmbreeScene rt(device, meshesOf(s));
+  const CameraHits hits = castPrimaryRays(rt, s.camera);
+  int checked = 0;
+  EXPECT_EQ(groundPixelsWrong(s, hits, exactShadows(rt, s, hits), &checked), 0);
+  EXPECT_GT(checked, 10000);
+  const int legacyWrong = groundPixelsWrong(s, hits, exactShadows(rt, s, hits, shadowRayOffset(s)), &checked);
+  EXPECT_GT(legacyWrong, 0);  // 5 pixels with Embree 3.13
+}
+
+// No acne: every point of a convex mesh that faces the light is lit, at the origin and far from it,
+// though the shadow rays start only a few float spacings off the surface.
+TEST(RayQueries, ExactShadowsLightEveryPointOfALitSphereFacingTheLight) {
+  for (const double away : {0.0, 1e3}) {
+    Scene s;
+    TriangleMesh ball = makeIcoSphere(1.0, 5);
+    for (auto& p : ball.positions) p += glm::vec3(float(away));
+    s.objects.push_back({"ball", "sphere", ball});
+    s.light.type = LightType::Directional;
+    s.light.direction = glm::normalize(glm::dvec3(0.3, -1.0, 0.2));
+    s.light.position = glm::dvec3(away) - 10.0 * s.light.direction;
+    s.light.halfExtent = 2;
+    s.light.nearPlane = 1;
+    s.light.farPlane = 20;
+    s.camera.eye = glm::dvec3(away) + glm::dvec3(1.0, 2.0, 3.0);
+    s.camera.target = glm::dvec3(away);
+    s.camera.up = {0, 1, 0};
+    s.camera.fovYDegrees = 45;
+    s.camera.width = s.camera.height = 200;
+    s.camera.nearPlane = 0.5;
+    s.camera.farPlane = 30;
+    const EmbreeDevice device;
+    const EmbreeScene rt(device, meshesOf(s));
+    const CameraHits hits = castPrimaryRays(rt, s.camera);
+    const std::vector<PixelClass> cls = exactShadows(rt, s, hits);
+    int lit = 0, shadowed = 0;
+    for (PixelClass c : cls) {
+      lit += c == PixelClass::Lit;
+      shadowed += c == PixelClass::Shadowed;
+    }
+    EXPECT_EQ(shadowed, 0) << away;
+    EXPECT_GT(lit, 5000) << away;
+  }
 }
 
 TEST(RayQueries, PrimaryRaysSampleGlPixelCentresTopRowFirst) {

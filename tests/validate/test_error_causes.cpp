@@ -34,7 +34,7 @@ Split splitOf(const std::string& objects, int res, CaptureMode mode) {
   for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
   const EmbreeScene sceneRt(device, meshes);
   const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
-  const std::vector<PixelClass> exact = exactShadows(sceneRt, scene, hits, shadowRayOffset(scene));
+  const std::vector<PixelClass> exact = exactShadows(sceneRt, scene, hits);
   const TriangleMesh volumeF = volume.mesh.toTriangleMesh();
   const EmbreeScene volumeRt(device, {&volumeF});
   const CrossingCounts counts = countCrossings(volumeRt, scene.camera, hits);
@@ -86,7 +86,7 @@ TEST(ErrorCauses, NoErrorsNoRays) {
   const EmbreeDevice device;
   const EmbreeScene sceneRt(device, {&scene.objects[0].mesh});
   const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
-  const std::vector<PixelClass> exact = exactShadows(sceneRt, scene, hits, shadowRayOffset(scene));
+  const std::vector<PixelClass> exact = exactShadows(sceneRt, scene, hits);
   std::vector<std::uint8_t> shadowed(exact.size());
   for (std::size_t k = 0; k < exact.size(); ++k) shadowed[k] = exact[k] == PixelClass::Shadowed;
   const ErrorCauses c = splitErrorCauses(scene, map, 0.25, hits, exact, shadowed);

@@ -703,7 +703,7 @@ TEST(Validation, ThresholdsOutsideZeroToOneAreRefused) {
     o.maxMissedShare = bad;
     EXPECT_THROW(validateFrame(scene, map, {}, frame, o), InputError) << bad;
   }
-  for (double bad : {std::nan(""), 0.0, -0.1, 1.5}) {  // the exact reference's offset scale: (0, 1]
+  for (double bad : {std::nan(""), -0.1, 1.5}) {  // the exact reference's offset scale: [0, 1]
     ValidationOptions o;
     o.exactOffsetScale = bad;
     EXPECT_THROW(validateFrame(scene, map, {}, frame, o), InputError) << bad;

@@ -510,7 +510,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       std::vector<const TriangleMesh*> meshes;
       for (const auto& obj : scene.objects) meshes.push_back(&obj.mesh);
       const EmbreeScene rt(device, meshes);
-      exact = exactShadows(rt, scene, castPrimaryRays(rt, scene.camera), shadowRayOffset(scene));
+      exact = exactShadows(rt, scene, castPrimaryRays(rt, scene.camera));
       renderer.setScene(scene);
       oracle.reset();
       loaded = key;

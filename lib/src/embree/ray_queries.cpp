@@ -37,6 +37,19 @@ void collectAll(const RTCFilterFunctionNArguments* args) {
   args->valid[0] = 0;  // reject: traversal goes on and reports every hit
 }
 
+// A shadow ray's context: the triangle its visible point lies on, which the ray passes through.
+struct SkipContext {
+  RTCIntersectContext ctx;
+  unsigned geomID, primID;
+};
+
+void skipOwnTriangle(const RTCFilterFunctionNArguments* args) {
+  if (args->valid[0] == 0) return;
+  const auto* c = reinterpret_cast<const SkipContext*>(args->context);
+  if (RTCHitN_geomID(args->hit, args->N, 0) == c->geomID && RTCHitN_primID(args->hit, args->N, 0) == c->primID)
+    args->valid[0] = 0;
+}
+
 }  // namespace
 
 CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
@@ -47,6 +60,7 @@ CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
   h.depth.assign(n, INFINITY);
   h.point.assign(n, glm::dvec3(0.0));
   h.normal.assign(n, glm::vec3(0.0f));
+  h.triangle.assign(n, {RTC_INVALID_GEOMETRY_ID, RTC_INVALID_GEOMETRY_ID});
   const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
   tbb::parallel_for(tbb::blocked_range<int>(0, h.height), [&](const tbb::blocked_range<int>& rows) {
     for (int r = rows.begin(); r != rows.end(); ++r)
@@ -60,6 +74,7 @@ CameraHits castPrimaryRays(const EmbreeScene& scene, const Camera& camera) {
         const std::size_t k = std::size_t(r) * std::size_t(h.width) + std::size_t(x);
         h.depth[k] = rh.ray.tfar;
         h.point[k] = pr.origin + double(rh.ray.tfar) * pr.direction;
+        h.triangle[k] = {rh.hit.geomID, rh.hit.primID};
         glm::vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
         const float len = glm::length(ng);
         ng = len > 0.0f ? ng / len : glm::vec3(0.0f);
@@ -92,11 +107,11 @@ double shadowRayOffset(const Scene& scene) { return 1e-4 * std::max(scene.bounds
 
 double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale) {
   const double size = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  return std::max(std::min(sceneOffset, 1e-3 * localScale), std::ldexp(size + localScale, -18));
+  return std::max(std::min(sceneOffset, 1e-3 * localScale), std::ldexp(size + localScale, -21));
 }
 
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double offset, double offsetScale) {
+                                     double sceneOffset) {
   const Light& light = description.light;
   const bool point = light.type == LightType::Point;
   const glm::dmat4 lv = lightView(light), lp = point ? glm::dmat4(1.0) : lightProjection(light);
@@ -130,12 +145,13 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
         continue;
       }
       const double local = std::min(glm::length(p - description.camera.eye), tfar);
-      const double off = offsetScale * shadowRayOffsetAt(offset, p, local);
+      const double off = shadowRayOffsetAt(sceneOffset, p, local);
       const glm::dvec3 org = p + n * off;
       RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - off : INFINITY)).ray;
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      rtcOccluded1(scene.get(), &ctx, &ray);
+      SkipContext ctx{{}, hits.triangle[k].geomID, hits.triangle[k].primID};
+      rtcInitIntersectContext(&ctx.ctx);
+      ctx.ctx.filter = skipOwnTriangle;
+      rtcOccluded1(scene.get(), &ctx.ctx, &ray);
       out[k] = ray.tfar < 0.0f ? PixelClass::Shadowed : PixelClass::Lit;  // Embree sets tfar = -inf on a hit
     }
   });

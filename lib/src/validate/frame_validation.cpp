@@ -165,9 +165,9 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   if (!(options.maxMissedShare >= 0.0 && options.maxMissedShare <= 1.0))
     throw InputError("ValidationOptions", "maxMissedShare", numberText(options.maxMissedShare),
                      "must be in [0, 1]");
-  if (!(options.exactOffsetScale > 0.0 && options.exactOffsetScale <= 1.0))
+  if (!(options.exactOffsetScale >= 0.0 && options.exactOffsetScale <= 1.0))
     throw InputError("ValidationOptions", "exactOffsetScale", numberText(options.exactOffsetScale),
-                     "must be in (0, 1]");
+                     "must be in [0, 1]");
 
   FrameValidation v;
   v.width = frame.width;
@@ -179,7 +179,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
   const EmbreeScene sceneRt(device, meshes);
   const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
-  v.exact = exactShadows(sceneRt, scene, hits, shadowRayOffset(scene), options.exactOffsetScale);
+  v.exact = exactShadows(sceneRt, scene, hits, options.exactOffsetScale * shadowRayOffset(scene));
   for (PixelClass c : v.exact) {
     switch (c) {
       case PixelClass::Background: ++v.background; break;

@@ -26,6 +26,10 @@ struct CameraHits {
   std::vector<float> depth;        ///< camera view depth (-z in camera view) of the visible point; +inf = background
   std::vector<glm::dvec3> point;   ///< world position of the visible point (undefined for background)
   std::vector<glm::vec3> normal;   ///< unit geometric normal, turned to face the camera
+  struct Triangle {
+    unsigned geomID, primID;  ///< Embree's ids of the triangle hit (RTC_INVALID_GEOMETRY_ID for background)
+  };
+  std::vector<Triangle> triangle;
   bool isBackground(std::size_t k) const { return !(depth[k] < INFINITY); }
 };
 
@@ -47,25 +51,31 @@ enum class PixelClass : std::uint8_t {
   Shadowed = 4,
 };
 
-/// The documented shadow-ray offset's scene part: 1e-4 of the scene's bounding radius. exactShadows
-/// uses it at each point p capped by its local scale and floored by float's spacing there:
-///   max(min(offset, 1e-3 * local), 2^-18 * (max|p| + local)),  local = distance from p to the
-///   camera (and to a spot light, whichever is smaller),
-/// along the normal towards the light side. The cap keeps a large ground (radius 1e6) from
-/// lifting rays from a small object by 141 units; the floor stays 2^-18 / 2^-24 = 64 float
-/// spacings above where Embree's float hit point may lie. In shipped scenes the cap never binds.
+/// The legacy shadow-ray offset's scene part: 1e-4 of the scene's bounding radius. The exact
+/// reference no longer uses it by default (sceneOffset 0 below): it called lit a band of shadowed
+/// points along shadows' outlines (docs/results/reference-offset). `validate --exact-offset-scale 1`
+/// passes it, to repeat figures measured before 2026-12-06.
 double shadowRayOffset(const Scene& scene);
 
-/// The offset actually used at p (see shadowRayOffset).
+/// The offset along the normal at which a shadow ray from p starts:
+///   max(min(sceneOffset, 1e-3 * local), 2^-21 * (max|p| + local)),  local = distance from p to the
+///   camera (and to a spot light, whichever is smaller).
+/// The floor, at least four float spacings (float's spacing at a magnitude m is at most 2^-23 m) of
+/// the point's coordinates and of its distance along the camera ray, lifts the start above the
+/// round-off of Embree's float hit point, so that the triangles next to the one the point lies on
+/// are not hit at a distance of round-off (measured: with 2^-23 the first such pixels appear, with
+/// no floor one or two per frame; docs/results/reference-offset). The cap keeps a large ground
+/// (radius 1e6) from lifting rays from a small object far when a scene part is given.
 double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale);
 
 /// Exact shadows: one occlusion ray per visible point towards the light (to the spot light's
-/// apex; along -direction for a directional light), started shadowRayOffsetAt(offset, ...) x
-/// `offsetScale` off the surface along its normal (offsetScale 1: the reference every documented
-/// figure uses; other values measure how much a frame's reference depends on that offset,
-/// ValidationOptions::exactOffsetScale). Parallel and deterministic.
+/// apex; along -direction for a directional light), started shadowRayOffsetAt(sceneOffset, ...)
+/// off the surface along its normal, and passing through the triangle the point lies on (a filter
+/// skips it, so round-off in the hit point cannot shadow a point by its own triangle). The
+/// default, sceneOffset 0, starts each ray at the floor: the reference every figure since
+/// 2026-12-06 uses. Parallel and deterministic.
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double offset, double offsetScale = 1.0);
+                                     double sceneOffset = 0.0);
 
 /// Signed crossing counts of a closed volume along each camera ray.
 ///  zfail[k]: from the visible point to infinity, +1 for each crossing that leaves the volume

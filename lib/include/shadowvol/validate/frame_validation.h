@@ -61,11 +61,12 @@ struct ValidationOptions {
   /// ... and its missed shadow pixels at most this share of the exact shadow's pixels, when the
   /// exact shadow has at least kMinShadowPixels (so an empty volume over a small shadow fails too).
   double maxMissedShare = kDefaultMaxMissedShare;
-  /// The exact shadow rays' offset off the surface, scaled (exactShadows' offsetScale, in (0, 1]):
-  /// 1 is the reference every documented figure uses; less shows which pixels' exact class depends
-  /// on that offset (near shadow boundaries on surfaces lit at a grazing angle, and close to the
-  /// shadows' own outlines: docs/results/reference-offset).
-  double exactOffsetScale = 1.0;
+  /// The exact shadow rays' start: this multiple of the legacy scene offset (shadowRayOffset, 1e-4
+  /// of the scene's radius) along the normal, in [0, 1]. 0, the default, is the sharp reference
+  /// (only the round-off floor, exactShadows); 1 repeats figures measured before 2026-12-06, whose
+  /// reference called lit a band of shadowed points along shadows' outlines
+  /// (docs/results/reference-offset).
+  double exactOffsetScale = 0.0;
 };
 
 /// Agreement of two per-pixel quantities over a set of pixels.
