@@ -215,8 +215,8 @@ Scene loadSceneOrDefault(const std::string& path) {
 CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
   return cmd
       .add_option("--capture", capture,
-                  "Which surface each texel records: auto (back when every mesh object is closed, else front; "
-                  "a note names the open ones), back (the first back face: the thesis's default, no bias; "
+                  "Which surface each texel records: auto (front when a mesh object is open, and a note names "
+                  "it; else entry for a shadow volume's map and back for a shadow map or the GPU's walk), back (the first back face: the thesis's default, no bias; "
                   "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
                   "first surface, pushed back by a bias: records open meshes), midpoint (the mean of the first two "
                   "surfaces; the far plane stands in for a missing second one) or entry (front capture's surface "
@@ -228,7 +228,7 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
       ->capture_default_str();
 }
 
-ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene) {
+ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene, CaptureUse use) {
   ResolvedCapture r;
   if (capture != "auto") {
     if (!parseCaptureMode(capture, r.mode))
@@ -236,10 +236,10 @@ ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene) {
                        "must be " + choicesText(namesIn(kCaptureModeNames, {"auto"})));
     return r;
   }
-  const CaptureChoice c = chooseCapture(scene);
+  const CaptureChoice c = chooseCapture(scene, use);
   r.mode = c.mode;
   r.autoReason = c.reason;
-  if (c.mode != CaptureMode::Back)
+  if (!c.openMeshes.empty())
     std::fprintf(stderr, "shadowvol: note: %s: --capture auto chose %s\n",
                  scene.source.c_str(), c.reason.c_str());
   return r;

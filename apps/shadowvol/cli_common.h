@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/report_json.h"
 #include "shadowvol/scene.h"
@@ -84,13 +85,13 @@ Scene loadSceneOrDefault(const std::string& path);
 CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture);
 
 /// --capture's value for `scene`: back, front, midpoint or entry as given; auto (the default) chosen by
-/// chooseCapture (capture_choice.h), with a note on stderr when it picks front. `autoReason` is
-/// chooseCapture's sentence, empty when the mode was given.
+/// chooseCapture (capture_choice.h) for a map used as `use`, with a note on stderr when it picks
+/// front (an open mesh). `autoReason` is chooseCapture's sentence, empty when the mode was given.
 struct ResolvedCapture {
   CaptureMode mode = CaptureMode::Back;
   std::string autoReason;
 };
-ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene);
+ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene, CaptureUse use);
 
 /// Prints captureWarnings (capture_warnings.h) for a W x H map to stderr and returns them; `volume`
 /// (the volume the map is for, if any) says whether a sub-grid searches for hidden surfaces.

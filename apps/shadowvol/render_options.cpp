@@ -133,7 +133,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::
   parseExplicitDepth(o.depthFrom, ro.explicitDepth);
   ro.depthWidth = ro.depthHeight = o.resolution;
   if (o.method != "silhouette" && o.method != "none") {  // those capture no map
-    const ResolvedCapture capture = resolveCapture(o.capture, scene);
+    const ResolvedCapture capture = resolveCapture(o.capture, scene, captureUse(ro));
     ro.capture = capture.mode;
     if (captureAutoReason) *captureAutoReason = capture.autoReason;
   }

@@ -36,12 +36,12 @@ glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, c
   return m;
 }
 
-CaptureMode captureModeArg(const std::string& text, const Scene* scene) {
+CaptureMode captureModeArg(const std::string& text, const Scene* scene, CaptureUse use) {
   if (text == "auto") {
     if (!scene)
       throw InputError("python", "capture", text,
                        "auto chooses by the scene's meshes: give back, front, midpoint or entry");
-    return chooseCapture(*scene).mode;
+    return chooseCapture(*scene, use).mode;
   }
   CaptureMode mode;
   if (!parseCaptureMode(text, mode))

@@ -11,6 +11,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/volume_builder.h"
@@ -34,8 +35,10 @@ py::array_t<double> matrixToNumpy(const glm::dmat4& m);
 glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what);
 
 /// The enum value named `text`; throws InputError naming the keyword argument and listing the choices.
-/// "auto" (chooseCapture, capture_choice.h) needs the scene the map is captured from.
-CaptureMode captureModeArg(const std::string& text, const Scene* scene = nullptr);
+/// "auto" (chooseCapture, capture_choice.h) needs the scene the map is captured from and what the
+/// map is for.
+CaptureMode captureModeArg(const std::string& text, const Scene* scene = nullptr,
+                           CaptureUse use = CaptureUse::ShadowMap);
 
 /// A light depth map's side N as the command line takes it (kMinVolumeMapSide .. kMaxDepthMapSide);
 /// InputError naming `what` otherwise.

@@ -57,7 +57,7 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)
     throw InputError("python", "resolution", std::to_string(a.resolution),
                      "sizes the light's depth map; method " + a.method + " captures none");
-  ro.capture = capturing ? captureModeArg(a.capture, &scene) : CaptureMode::Back;
+  ro.capture = capturing ? captureModeArg(a.capture, &scene, captureUse(ro)) : CaptureMode::Back;
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
   if (a.size) {
     const auto [w, h] = *a.size;
@@ -75,7 +75,7 @@ void describeCapture(const Scene& scene, const FrameArgs& a, const gl::RenderOpt
                      std::vector<std::string>& warnings) {
   if (ro.method == gl::ShadowMethod::Silhouette || ro.method == gl::ShadowMethod::None) return;
   options["capture"] = toString(ro.capture);
-  if (a.capture == "auto") options["captureAuto"] = chooseCapture(scene).reason;
+  if (a.capture == "auto") options["captureAuto"] = chooseCapture(scene, captureUse(ro)).reason;
   warnings = captureWarnings(scene, ro.depthWidth, ro.depthHeight, ro.capture);
 }
 

@@ -350,14 +350,15 @@ TEST(Cli, CaptureAutoChoosesFrontForOpenMeshes) {
       << entry.out;
   EXPECT_EQ(readDepthMap(pfm).capture, CaptureMode::Entry);
 
-  const CliResult closed = runCli("depth --resolution 32 --out " + pfm);  // the default scene
+  // Closed meshes (the default scene): auto takes entry capture for a volume's map, no note.
+  const CliResult closed = runCli("depth --resolution 32 --out " + pfm);
   ASSERT_EQ(closed.code, 0) << closed.out;
   EXPECT_FALSE(contains(closed.out, "auto chose")) << closed.out;
-  EXPECT_TRUE(contains(closed.out, "(back capture")) << closed.out;
+  EXPECT_TRUE(contains(closed.out, "(entry capture")) << closed.out;
   // On closed meshes entry capture records what back capture does, at front capture's depths.
-  const DepthMap backMap = readDepthMap(pfm);
-  ASSERT_EQ(runCli("depth --resolution 32 --capture entry --out " + pfm).code, 0);
   const DepthMap entryMap = readDepthMap(pfm);
+  ASSERT_EQ(runCli("depth --resolution 32 --capture back --out " + pfm).code, 0);
+  const DepthMap backMap = readDepthMap(pfm);
   EXPECT_EQ(entryMap.hitCount(), backMap.hitCount());
   EXPECT_GT(entryMap.hitCount(), 0u);
   EXPECT_EQ(runCli("depth --resolution 32 --capture sideways --out " + pfm).code, 2);
@@ -818,6 +819,24 @@ TEST(CliGl, ValidateReportsTheCaptureAutoChose) {
   EXPECT_FALSE(back["passed"].get<bool>());  // the sheet casts no shadow: all of it missed
   const auto silhouette = validate("--method silhouette", "silhouette");
   EXPECT_FALSE(silhouette["options"].contains("capture"));  // captures no map
+}
+
+// On closed meshes (the default scene) --capture auto takes entry capture for a volume, back capture
+// for a shadow map and for the GPU's silhouette walk (one layer: entry's two would be refused).
+TEST(CliGl, CaptureAutoOnClosedMeshesFollowsTheMethod) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  auto capture = [&](const std::string& extra, const char* name) {
+    const CliResult r =
+        runCli("validate --size 80x60 --resolution 32 " + extra + " --report " + (dir / name).string());
+    EXPECT_TRUE(r.code == 0 || r.code == 3) << r.out;
+    const auto j = nlohmann::json::parse(std::ifstream(dir / name / "report.json"));
+    return j["options"]["capture"].get<std::string>() + " | " + j["options"]["captureAuto"].get<std::string>();
+  };
+  EXPECT_EQ(capture("", "gpu"), "entry | entry capture: no mesh object is open, and the map is a volume's");
+  EXPECT_EQ(capture("--volume explicit --refine 2", "explicit").substr(0, 5), "entry");
+  EXPECT_EQ(capture("--method shadowmap", "map"), "back | back capture: no mesh object is open");
+  EXPECT_EQ(capture("--volume gpu --refine 2 --crossings gpu-walk", "walk").substr(0, 4), "back");
 }
 
 TEST(CliGl, ValidateReportFolderHoldsOneRun) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "shadowvol/capture_choice.h"
+#include "shadowvol/frame.h"
 #include "shadowvol/primitives.h"
 #include "test_util.h"
 
@@ -16,22 +17,27 @@ TriangleMesh openBowl() {
   return bowl;
 }
 
-TEST(CaptureChoice, ClosedMeshesAndGeneratedObjectsGiveBack) {
-  // The plane is open, but generated objects do not decide: a plane is a receiver.
+// Closed meshes: entry capture for a volume's map, back capture for a shadow map and for the maps
+// read as one layer. The plane is open, but generated objects do not decide: a plane is a receiver.
+TEST(CaptureChoice, ClosedMeshesGiveEntryForAVolumeAndBackForAMap) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
                              SceneObject{"crate", "mesh", makeBox(1.0, 1.0, 1.0)}});
-  const CaptureChoice c = chooseCapture(s);
-  EXPECT_EQ(c.mode, CaptureMode::Back);
-  EXPECT_TRUE(c.openMeshes.empty());
-  EXPECT_NE(c.reason.find("no mesh object is open"), std::string::npos) << c.reason;
+  for (CaptureUse use : {CaptureUse::ShadowMap, CaptureUse::Volume, CaptureUse::OneLayer}) {
+    const CaptureChoice c = chooseCapture(s, use);
+    EXPECT_EQ(c.mode, use == CaptureUse::Volume ? CaptureMode::Entry : CaptureMode::Back) << int(use);
+    EXPECT_TRUE(c.openMeshes.empty());
+    EXPECT_NE(c.reason.find("no mesh object is open"), std::string::npos) << c.reason;
+  }
 }
 
 TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
                              SceneObject{"bowl", "mesh", openBowl()}});
-  const CaptureChoice c = chooseCapture(s);
+  for (CaptureUse use : {CaptureUse::ShadowMap, CaptureUse::OneLayer})
+    EXPECT_EQ(chooseCapture(s, use).mode, CaptureMode::Front) << int(use);
+  const CaptureChoice c = chooseCapture(s, CaptureUse::Volume);
   EXPECT_EQ(c.mode, CaptureMode::Front);
   EXPECT_EQ(c.openMeshes, std::vector<std::string>{"bowl"});
   EXPECT_NE(c.reason.find("\"bowl\""), std::string::npos) << c.reason;
@@ -43,23 +49,37 @@ TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
 TEST(CaptureChoice, StlSplitClosedMeshIsClosed) {
   TriangleMesh stl = test::splitVertices(makeBox(1.0, 1.0, 1.0));
   stl.triangles.push_back({0, 0, 1});
-  EXPECT_EQ(chooseCapture(sceneWith({SceneObject{"stl box", "mesh", stl}})).mode, CaptureMode::Back);
+  EXPECT_EQ(chooseCapture(sceneWith({SceneObject{"stl box", "mesh", stl}}), CaptureUse::ShadowMap).mode,
+            CaptureMode::Back);
 }
 
 TEST(CaptureChoice, ManyOpenMeshesNamedUpToThreeInSceneOrder) {
   std::vector<SceneObject> objects;
   for (const char* name : {"a", "b", "c", "d", "e"}) objects.push_back(SceneObject{name, "mesh", openBowl()});
-  const CaptureChoice c = chooseCapture(sceneWith(std::move(objects)));
+  const CaptureChoice c = chooseCapture(sceneWith(std::move(objects)), CaptureUse::Volume);
   EXPECT_EQ(c.mode, CaptureMode::Front);
   EXPECT_EQ(c.openMeshes, (std::vector<std::string>{"a", "b", "c", "d", "e"}));
   EXPECT_NE(c.reason.find("\"a\", \"b\", \"c\" and 2 more"), std::string::npos) << c.reason;
   EXPECT_EQ(c.reason.find("\"d\""), std::string::npos) << c.reason;
 }
 
+// What a frame's map is for: a hybrid volume's sheet, but one layer for the GPU's walk and for
+// dual-paraboloid maps; a shadow map for the other methods.
+TEST(CaptureChoice, TheUseOfAFramesMap) {
+  RenderOptions o;
+  EXPECT_EQ(captureUse(o), CaptureUse::Volume);
+  o.refineCrossings = RefineCrossings::GpuWalk;
+  EXPECT_EQ(captureUse(o), CaptureUse::OneLayer);
+  o = {};
+  for (ShadowMethod m : {ShadowMethod::ShadowMap, ShadowMethod::Pcf3, ShadowMethod::Pcf5})
+    EXPECT_EQ(captureUse(RenderOptions{.method = m}), CaptureUse::ShadowMap) << toString(m);
+  EXPECT_EQ(captureUse(RenderOptions{.method = ShadowMethod::Dpsm}), CaptureUse::OneLayer);
+}
+
 // The same scene gives the same choice (no state between calls).
 TEST(CaptureChoice, Deterministic) {
   const Scene s = sceneWith({SceneObject{"bowl", "mesh", openBowl()}});
-  const CaptureChoice a = chooseCapture(s), b = chooseCapture(s);
+  const CaptureChoice a = chooseCapture(s, CaptureUse::Volume), b = chooseCapture(s, CaptureUse::Volume);
   EXPECT_EQ(a.mode, b.mode);
   EXPECT_EQ(a.reason, b.reason);
 }

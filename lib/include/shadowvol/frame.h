@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "shadowvol/capture_choice.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/enum_names.h"
 #include "shadowvol/volume_builder.h"
@@ -178,6 +179,11 @@ struct RenderOptions {
   /// oracle's rays (ExplicitDepth; Rays needs volumeOptions.depthOracle).
   ExplicitDepth explicitDepth = ExplicitDepth::LightPass;
 };
+
+/// What a frame with these options uses its depth map for (capture_choice.h; `--capture auto`
+/// decides by it): a hybrid volume's sheet, unless the GPU's silhouette walk follows its one layer;
+/// dual-paraboloid maps are one layer too; every other method compares depths as a shadow map.
+CaptureUse captureUse(const RenderOptions& o);
 
 /// ExplicitDepth::Auto takes the rays when the scene has at least this many triangles per texel of
 /// the map (a point light's six faces counted) and the rasteriser is a software one. Measured on

@@ -11,12 +11,13 @@ std::vector<std::string> openMeshObjects(const Scene& scene) {
   return open;
 }
 
-CaptureChoice chooseCapture(const Scene& scene) {
+CaptureChoice chooseCapture(const Scene& scene, CaptureUse use) {
   CaptureChoice c;
   c.openMeshes = openMeshObjects(scene);
   if (c.openMeshes.empty()) {
-    c.mode = CaptureMode::Back;
-    c.reason = "back capture: no mesh object is open";
+    c.mode = use == CaptureUse::Volume ? CaptureMode::Entry : CaptureMode::Back;
+    c.reason = use == CaptureUse::Volume ? "entry capture: no mesh object is open, and the map is a volume's"
+                                         : "back capture: no mesh object is open";
     return c;
   }
   c.mode = CaptureMode::Front;

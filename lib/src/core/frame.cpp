@@ -35,6 +35,12 @@ const char* toString(ExplicitDepth d) { return nameIn(kExplicitDepthNames, d); }
 
 bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) { return parseIn(kExplicitDepthNames, text, d); }
 
+CaptureUse captureUse(const RenderOptions& o) {
+  if (o.method == ShadowMethod::Hybrid)
+    return o.refineCrossings == RefineCrossings::GpuWalk ? CaptureUse::OneLayer : CaptureUse::Volume;
+  return o.method == ShadowMethod::Dpsm ? CaptureUse::OneLayer : CaptureUse::ShadowMap;
+}
+
 ExplicitDepth chooseExplicitDepth(const RenderOptions& o, std::size_t sceneTriangles, bool softwareRasterizer,
                                   int faces) {
   if (o.explicitDepth != ExplicitDepth::Auto) return o.explicitDepth;

@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
 #include "shadowvol/depth_map.h"
 
@@ -112,6 +113,7 @@ double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localSc
 
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
                                      double sceneOffset) {
+  SV_CHECK_EQ(hits.triangle.size(), hits.depth.size());  // hits from castPrimaryRays
   const Light& light = description.light;
   const bool point = light.type == LightType::Point;
   const glm::dmat4 lv = lightView(light), lp = point ? glm::dmat4(1.0) : lightProjection(light);
