@@ -132,12 +132,12 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::
   if (o.crossings != "auto") parseRefineCrossings(o.crossings, ro.refineCrossings);
   parseExplicitDepth(o.depthFrom, ro.explicitDepth);
   ro.depthWidth = ro.depthHeight = o.resolution;
+  ro.volumeOptions = toVolumeBuildOptions(o.shape);
   if (o.method != "silhouette" && o.method != "none") {  // those capture no map
     const ResolvedCapture capture = resolveCapture(o.capture, scene, captureUse(ro));
     ro.capture = capture.mode;
     if (captureAutoReason) *captureAutoReason = capture.autoReason;
   }
-  ro.volumeOptions = toVolumeBuildOptions(o.shape);
   ro.shadowBiasConstant = o.shadowBias;
   ro.shadowBiasSlope = o.shadowSlope;
   ro.paraboloidSubdivision = o.dpsmSubdivide;

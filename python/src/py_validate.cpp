@@ -57,8 +57,8 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
   if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)
     throw InputError("python", "resolution", std::to_string(a.resolution),
                      "sizes the light's depth map; method " + a.method + " captures none");
-  ro.capture = capturing ? captureModeArg(a.capture, &scene, captureUse(ro)) : CaptureMode::Back;
   ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
+  ro.capture = capturing ? captureModeArg(a.capture, &scene, captureUse(ro)) : CaptureMode::Back;
   if (a.size) {
     const auto [w, h] = *a.size;
     if (w < 1 || h < 1 || w > 16384 || h > 16384)

@@ -350,15 +350,14 @@ TEST(Cli, CaptureAutoChoosesFrontForOpenMeshes) {
       << entry.out;
   EXPECT_EQ(readDepthMap(pfm).capture, CaptureMode::Entry);
 
-  // Closed meshes (the default scene): auto takes entry capture for a volume's map, no note.
-  const CliResult closed = runCli("depth --resolution 32 --out " + pfm);
+  const CliResult closed = runCli("depth --resolution 32 --out " + pfm);  // the default scene
   ASSERT_EQ(closed.code, 0) << closed.out;
   EXPECT_FALSE(contains(closed.out, "auto chose")) << closed.out;
-  EXPECT_TRUE(contains(closed.out, "(entry capture")) << closed.out;
+  EXPECT_TRUE(contains(closed.out, "(back capture")) << closed.out;
   // On closed meshes entry capture records what back capture does, at front capture's depths.
-  const DepthMap entryMap = readDepthMap(pfm);
-  ASSERT_EQ(runCli("depth --resolution 32 --capture back --out " + pfm).code, 0);
   const DepthMap backMap = readDepthMap(pfm);
+  ASSERT_EQ(runCli("depth --resolution 32 --capture entry --out " + pfm).code, 0);
+  const DepthMap entryMap = readDepthMap(pfm);
   EXPECT_EQ(entryMap.hitCount(), backMap.hitCount());
   EXPECT_GT(entryMap.hitCount(), 0u);
   EXPECT_EQ(runCli("depth --resolution 32 --capture sideways --out " + pfm).code, 2);
@@ -821,8 +820,9 @@ TEST(CliGl, ValidateReportsTheCaptureAutoChose) {
   EXPECT_FALSE(silhouette["options"].contains("capture"));  // captures no map
 }
 
-// On closed meshes (the default scene) --capture auto takes entry capture for a volume, back capture
-// for a shadow map and for the GPU's silhouette walk (one layer: entry's two would be refused).
+// On closed meshes (the default scene) --capture auto takes entry capture for a refined volume, back
+// capture for an unrefined one, for a shadow map and for the GPU's silhouette walk (one layer:
+// entry's two would be refused).
 TEST(CliGl, CaptureAutoOnClosedMeshesFollowsTheMethod) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();
@@ -833,8 +833,10 @@ TEST(CliGl, CaptureAutoOnClosedMeshesFollowsTheMethod) {
     const auto j = nlohmann::json::parse(std::ifstream(dir / name / "report.json"));
     return j["options"]["capture"].get<std::string>() + " | " + j["options"]["captureAuto"].get<std::string>();
   };
-  EXPECT_EQ(capture("", "gpu"), "entry | entry capture: no mesh object is open, and the map is a volume's");
-  EXPECT_EQ(capture("--volume explicit --refine 2", "explicit").substr(0, 5), "entry");
+  EXPECT_EQ(capture("", "gpu"), "back | back capture: no mesh object is open");
+  EXPECT_EQ(capture("--volume explicit --refine 2", "explicit"),
+            "entry | entry capture: no mesh object is open, and the map is a refined volume's");
+  EXPECT_EQ(capture("--volume gpu --refine 2", "gpu-refined").substr(0, 5), "entry");
   EXPECT_EQ(capture("--method shadowmap", "map"), "back | back capture: no mesh object is open");
   EXPECT_EQ(capture("--volume gpu --refine 2 --crossings gpu-walk", "walk").substr(0, 4), "back");
 }

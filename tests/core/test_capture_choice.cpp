@@ -17,15 +17,16 @@ TriangleMesh openBowl() {
   return bowl;
 }
 
-// Closed meshes: entry capture for a volume's map, back capture for a shadow map and for the maps
-// read as one layer. The plane is open, but generated objects do not decide: a plane is a receiver.
-TEST(CaptureChoice, ClosedMeshesGiveEntryForAVolumeAndBackForAMap) {
+// Closed meshes: entry capture for a refined volume's map, back capture for an unrefined volume's,
+// for a shadow map and for the maps read as one layer. The plane is open, but generated objects do not decide: a plane is a receiver.
+TEST(CaptureChoice, ClosedMeshesGiveEntryForARefinedVolumeAndBackOtherwise) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
                              SceneObject{"crate", "mesh", makeBox(1.0, 1.0, 1.0)}});
-  for (CaptureUse use : {CaptureUse::ShadowMap, CaptureUse::Volume, CaptureUse::OneLayer}) {
+  for (CaptureUse use :
+       {CaptureUse::ShadowMap, CaptureUse::Volume, CaptureUse::RefinedVolume, CaptureUse::OneLayer}) {
     const CaptureChoice c = chooseCapture(s, use);
-    EXPECT_EQ(c.mode, use == CaptureUse::Volume ? CaptureMode::Entry : CaptureMode::Back) << int(use);
+    EXPECT_EQ(c.mode, use == CaptureUse::RefinedVolume ? CaptureMode::Entry : CaptureMode::Back) << int(use);
     EXPECT_TRUE(c.openMeshes.empty());
     EXPECT_NE(c.reason.find("no mesh object is open"), std::string::npos) << c.reason;
   }
@@ -35,9 +36,9 @@ TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},
                              SceneObject{"bowl", "mesh", openBowl()}});
-  for (CaptureUse use : {CaptureUse::ShadowMap, CaptureUse::OneLayer})
+  for (CaptureUse use : {CaptureUse::ShadowMap, CaptureUse::Volume, CaptureUse::OneLayer})
     EXPECT_EQ(chooseCapture(s, use).mode, CaptureMode::Front) << int(use);
-  const CaptureChoice c = chooseCapture(s, CaptureUse::Volume);
+  const CaptureChoice c = chooseCapture(s, CaptureUse::RefinedVolume);
   EXPECT_EQ(c.mode, CaptureMode::Front);
   EXPECT_EQ(c.openMeshes, std::vector<std::string>{"bowl"});
   EXPECT_NE(c.reason.find("\"bowl\""), std::string::npos) << c.reason;
@@ -56,18 +57,20 @@ TEST(CaptureChoice, StlSplitClosedMeshIsClosed) {
 TEST(CaptureChoice, ManyOpenMeshesNamedUpToThreeInSceneOrder) {
   std::vector<SceneObject> objects;
   for (const char* name : {"a", "b", "c", "d", "e"}) objects.push_back(SceneObject{name, "mesh", openBowl()});
-  const CaptureChoice c = chooseCapture(sceneWith(std::move(objects)), CaptureUse::Volume);
+  const CaptureChoice c = chooseCapture(sceneWith(std::move(objects)), CaptureUse::RefinedVolume);
   EXPECT_EQ(c.mode, CaptureMode::Front);
   EXPECT_EQ(c.openMeshes, (std::vector<std::string>{"a", "b", "c", "d", "e"}));
   EXPECT_NE(c.reason.find("\"a\", \"b\", \"c\" and 2 more"), std::string::npos) << c.reason;
   EXPECT_EQ(c.reason.find("\"d\""), std::string::npos) << c.reason;
 }
 
-// What a frame's map is for: a hybrid volume's sheet, but one layer for the GPU's walk and for
-// dual-paraboloid maps; a shadow map for the other methods.
+// What a frame's map is for: a hybrid volume's sheet (refined or not), but one layer for the GPU's
+// walk and for dual-paraboloid maps; a shadow map for the other methods.
 TEST(CaptureChoice, TheUseOfAFramesMap) {
   RenderOptions o;
   EXPECT_EQ(captureUse(o), CaptureUse::Volume);
+  o.volumeOptions.refineSteps = 6;
+  EXPECT_EQ(captureUse(o), CaptureUse::RefinedVolume);
   o.refineCrossings = RefineCrossings::GpuWalk;
   EXPECT_EQ(captureUse(o), CaptureUse::OneLayer);
   o = {};
@@ -79,7 +82,7 @@ TEST(CaptureChoice, TheUseOfAFramesMap) {
 // The same scene gives the same choice (no state between calls).
 TEST(CaptureChoice, Deterministic) {
   const Scene s = sceneWith({SceneObject{"bowl", "mesh", openBowl()}});
-  const CaptureChoice a = chooseCapture(s, CaptureUse::Volume), b = chooseCapture(s, CaptureUse::Volume);
+  const CaptureChoice a = chooseCapture(s, CaptureUse::RefinedVolume), b = chooseCapture(s, CaptureUse::RefinedVolume);
   EXPECT_EQ(a.mode, b.mode);
   EXPECT_EQ(a.reason, b.reason);
 }

@@ -212,7 +212,7 @@ def test_capture_auto_is_the_default_and_follows_the_meshes(tmp_path):
                                 "camera": {"eye": [0, 3, 6], "target": [0, 0, 0]}}))
     assert sv.capture_depth(sv.load_scene(path), 16, 16).capture == "front"
     assert sv.capture_depth(sv.load_scene(path), 16, 16, capture="back").capture == "back"
-    assert sv.capture_depth(sv.default_scene(), 16, 16).capture == "entry"  # closed: a volume's map
+    assert sv.capture_depth(sv.default_scene(), 16, 16).capture == "back"
 
 
 def test_entry_capture_is_front_where_back_has_a_back_face():
@@ -257,9 +257,9 @@ def test_validate_returns_the_report(tmp_path, scene):
 @needs_gl
 def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path, scene):
     report = sv.validate(scene, resolution=16, size=(16, 12))
-    assert report["options"]["capture"] == "entry" and report["options"]["captureAuto"].startswith("entry capture")
-    shadow_map = sv.validate(scene, method="shadowmap", resolution=16, size=(16, 12))
-    assert shadow_map["options"]["capture"] == "back" and shadow_map["options"]["captureAuto"].startswith("back capture")
+    assert report["options"]["capture"] == "back" and report["options"]["captureAuto"].startswith("back capture")
+    refined = sv.validate(scene, resolution=16, size=(16, 12), volume="explicit", refine=2)
+    assert refined["options"]["capture"] == "entry" and refined["options"]["captureAuto"].startswith("entry capture")
     assert report["warnings"] == []
     assert sv.validate(scene, resolution=16, size=(16, 12), capture="front")["options"] == {"capture": "front"}
     assert "capture" not in sv.validate(scene, method="silhouette", size=(16, 12))["options"]

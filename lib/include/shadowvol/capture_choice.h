@@ -18,9 +18,10 @@ std::vector<std::string> openMeshObjects(const Scene& scene);
 
 /// What a depth map is for, which decides the capture `--capture auto` takes on closed meshes.
 enum class CaptureUse {
-  ShadowMap,  ///< compared with each pixel's light depth: back capture needs no bias
-  Volume,     ///< a hybrid shadow volume's sheet: entry capture measured best (README "Capture modes")
-  OneLayer,   ///< read as one layer (the GPU's silhouette walk, dual-paraboloid maps): back capture
+  ShadowMap,      ///< compared with each pixel's light depth: back capture needs no bias
+  Volume,         ///< an unrefined hybrid volume's sheet: back capture (entry's second pass did not pay)
+  RefinedVolume,  ///< a refined hybrid volume's sheet: entry capture measured best
+  OneLayer,       ///< read as one layer (the GPU's silhouette walk, dual-paraboloid maps): back capture
 };
 
 struct CaptureChoice {
@@ -31,16 +32,17 @@ struct CaptureChoice {
 };
 
 /// Front capture (the nearest surface, with its documented bias) when a mesh object is open. When
-/// every mesh is closed: entry capture for a volume (its sheet on the occluders' lit sides, passed
-/// over to the back face where a face is lit nearly edge-on; against the sharp exact reference it
-/// misclassified fewer pixels than back capture on 18 of 22 closed-mesh scenes with the sub-grid at
-/// 128², and its plain volume on 17 of 22 at 256²: docs/results/sharp-reference), back capture (no
-/// bias; the thesis's default) for a shadow map (entry's lit-side depths need front's bias, which
-/// cost up to 9 times back capture's error on those scenes) and for one-layer uses, which cannot
-/// take entry's two layers. Generated objects (plane, sphere, box, cylinder, hemisphere, tree) do
-/// not decide: their shapes are known, a plane is a receiver. Midpoint capture, which also records
-/// open meshes, is never chosen: it costs a second depth layer and measured worse. Deterministic:
-/// the same scene gives the same choice.
+/// every mesh is closed: entry capture for a refined volume (its sheet on the occluders' lit sides;
+/// against the sharp exact reference, with the sub-grid at 128², it misclassified fewer pixels than
+/// back capture on 16 of 22 closed-mesh scenes and as many on 3, and meets the 128² goal where back
+/// capture misses it: docs/results/capture-auto-entry), else back capture (no bias; the thesis's
+/// default): for a shadow map (entry's lit-side depths need front's bias, up to 9 times back
+/// capture's error on those scenes), for an unrefined volume (entry lowered its error on 17 of 22
+/// at 256² but cost 1.10 to 1.51 times the default render's frame on llvmpipe, its second light
+/// pass), and for one-layer uses, which cannot take entry's two layers. Generated objects (plane,
+/// sphere, box, cylinder, hemisphere, tree) do not decide: their shapes are known, a plane is a
+/// receiver. Midpoint capture, which also records open meshes, is never chosen: it costs a second
+/// depth layer. Deterministic: the same scene gives the same choice.
 CaptureChoice chooseCapture(const Scene& scene, CaptureUse use);
 
 }  // namespace shadowvol

@@ -181,8 +181,9 @@ struct RenderOptions {
 };
 
 /// What a frame with these options uses its depth map for (capture_choice.h; `--capture auto`
-/// decides by it): a hybrid volume's sheet, unless the GPU's silhouette walk follows its one layer;
-/// dual-paraboloid maps are one layer too; every other method compares depths as a shadow map.
+/// decides by it): a hybrid volume's sheet, refined when volumeOptions.refineSteps > 0, unless the
+/// GPU's silhouette walk follows its one layer; dual-paraboloid maps are one layer too; every other
+/// method compares depths as a shadow map.
 CaptureUse captureUse(const RenderOptions& o);
 
 /// ExplicitDepth::Auto takes the rays when the scene has at least this many triangles per texel of

@@ -15,9 +15,10 @@ CaptureChoice chooseCapture(const Scene& scene, CaptureUse use) {
   CaptureChoice c;
   c.openMeshes = openMeshObjects(scene);
   if (c.openMeshes.empty()) {
-    c.mode = use == CaptureUse::Volume ? CaptureMode::Entry : CaptureMode::Back;
-    c.reason = use == CaptureUse::Volume ? "entry capture: no mesh object is open, and the map is a volume's"
-                                         : "back capture: no mesh object is open";
+    const bool entry = use == CaptureUse::RefinedVolume;
+    c.mode = entry ? CaptureMode::Entry : CaptureMode::Back;
+    c.reason = entry ? "entry capture: no mesh object is open, and the map is a refined volume's"
+                     : "back capture: no mesh object is open";
     return c;
   }
   c.mode = CaptureMode::Front;

@@ -36,8 +36,10 @@ const char* toString(ExplicitDepth d) { return nameIn(kExplicitDepthNames, d); }
 bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) { return parseIn(kExplicitDepthNames, text, d); }
 
 CaptureUse captureUse(const RenderOptions& o) {
-  if (o.method == ShadowMethod::Hybrid)
-    return o.refineCrossings == RefineCrossings::GpuWalk ? CaptureUse::OneLayer : CaptureUse::Volume;
+  if (o.method == ShadowMethod::Hybrid) {
+    if (o.refineCrossings == RefineCrossings::GpuWalk) return CaptureUse::OneLayer;
+    return o.volumeOptions.refineSteps > 0 ? CaptureUse::RefinedVolume : CaptureUse::Volume;
+  }
   return o.method == ShadowMethod::Dpsm ? CaptureUse::OneLayer : CaptureUse::ShadowMap;
 }
 
