@@ -216,7 +216,8 @@ CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture) {
   return cmd
       .add_option("--capture", capture,
                   "Which surface each texel records: auto (front when a mesh object is open, and a note names "
-                  "it; else entry for a refined volume (--refine K > 0) and back otherwise), back (the first back face: the thesis's default, no bias; "
+                  "it; else entry for a refined volume (--refine K > 0) and back otherwise), back (the first "
+                  "back face: the thesis's default, no bias; "
                   "single-sided geometry facing the light is skipped, so an open mesh's shadow leaks), front (the "
                   "first surface, pushed back by a bias: records open meshes), midpoint (the mean of the first two "
                   "surfaces; the far plane stands in for a missing second one) or entry (front capture's surface "

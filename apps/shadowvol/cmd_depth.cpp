@@ -47,7 +47,8 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
         throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
       Scene scene = loadSceneOrDefault(o->scene.scene);
       checkOneMapLight(scene, std::size_t(std::max(o->light, 0)));  // by its pointer, before any note
-      const ResolvedCapture capture = resolveCapture(o->capture, scene, CaptureUse::Volume);  // as build --depth reads it (unrefined)
+      // An unrefined volume's map, as build --depth reads it.
+      const ResolvedCapture capture = resolveCapture(o->capture, scene, CaptureUse::Volume);
       const CaptureMode mode = capture.mode;
       checkNotAnInput("--out", o->out, o->out, scene.files);
       checkNotAnInput("--out", o->out, depthSidecarPath(o->out), scene.files, "its side file");

@@ -16,7 +16,8 @@ namespace {
 
 DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
                       const std::string& platform) {
-  const CaptureMode mode = captureModeArg(capture, &s.scene, CaptureUse::Volume);  // as build_volume reads it (unrefined)
+  // An unrefined volume's map, as build_volume reads it.
+  const CaptureMode mode = captureModeArg(capture, &s.scene, CaptureUse::Volume);
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height");

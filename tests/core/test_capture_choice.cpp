@@ -18,7 +18,8 @@ TriangleMesh openBowl() {
 }
 
 // Closed meshes: entry capture for a refined volume's map, back capture for an unrefined volume's,
-// for a shadow map and for the maps read as one layer. The plane is open, but generated objects do not decide: a plane is a receiver.
+// for a shadow map and for the maps read as one layer. The plane is open, but generated objects do
+// not decide: a plane is a receiver.
 TEST(CaptureChoice, ClosedMeshesGiveEntryForARefinedVolumeAndBackOtherwise) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},

@@ -63,9 +63,10 @@ double shadowRayOffset(const Scene& scene);
 /// The floor, at least four float spacings (float's spacing at a magnitude m is at most 2^-23 m) of
 /// the point's coordinates and of its distance along the camera ray, lifts the start above the
 /// round-off of Embree's float hit point, so that the triangles next to the one the point lies on
-/// are not hit at a distance of round-off (measured: with 2^-23 the first such pixels appear, with
-/// no floor one or two per frame; docs/results/reference-offset). The cap keeps a large ground
-/// (radius 1e6) from lifting rays from a small object far when a scene part is given.
+/// are not hit at a distance of round-off (the floors measured on six scenes:
+/// docs/results/reference-offset).
+/// The cap keeps a large ground (radius 1e6) from lifting rays from a small object far when a scene
+/// part is given.
 double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localScale);
 
 /// Exact shadows: one occlusion ray per visible point towards the light (to the spot light's
