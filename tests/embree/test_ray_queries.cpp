@@ -1,4 +1,5 @@
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -9,27 +10,39 @@
 namespace shadowvol {
 namespace {
 
-// The plate scene: a 2 x 2 plate at y = 1.5 over a ground plane, light straight down.
-Scene plateScene() {
+// A camera looking from `eye` at `target`, y up, 160 x 120 pixels, near 0.5, far 30.
+Camera lookingAt(const glm::dvec3& eye, const glm::dvec3& target, double fovYDegrees) {
+  Camera c;
+  c.eye = eye;
+  c.target = target;
+  c.up = {0, 1, 0};
+  c.fovYDegrees = fovYDegrees;
+  c.width = 160;
+  c.height = 120;
+  c.nearPlane = 0.5;
+  c.farPlane = 30;
+  return c;
+}
+
+// An 8 x 8 ground plane and `occluder` (of `type`) lifted by `height` over it; no light yet.
+Scene overGround(const char* name, const char* type, TriangleMesh occluder, float height) {
   Scene s;
   s.objects.push_back({"ground", "plane", makePlane(8, 8, 1)});
-  TriangleMesh plate = makeBox(2, 0.1, 2);
-  for (auto& p : plate.positions) p.y += 1.5f;
-  s.objects.push_back({"plate", "box", plate});
+  for (auto& p : occluder.positions) p.y += height;
+  s.objects.push_back({name, type, std::move(occluder)});
+  return s;
+}
+
+// The plate scene: a 2 x 2 plate at y = 1.5 over a ground plane, light straight down.
+Scene plateScene() {
+  Scene s = overGround("plate", "box", makeBox(2, 0.1, 2), 1.5f);
   s.light.type = LightType::Directional;
   s.light.direction = {0, -1, 0};
   s.light.position = {0, 5, 0};
   s.light.halfExtent = 3;  // the ground beyond |x| or |z| > 3 is outside the light
   s.light.nearPlane = 0.5;
   s.light.farPlane = 6;
-  s.camera.eye = {6, 5, 4.5};  // from the side: the ground under the plate is visible
-  s.camera.target = {0, 0, 0};
-  s.camera.up = {0, 1, 0};
-  s.camera.fovYDegrees = 60;
-  s.camera.width = 160;
-  s.camera.height = 120;
-  s.camera.nearPlane = 0.5;
-  s.camera.farPlane = 30;
+  s.camera = lookingAt({6, 5, 4.5}, {0, 0, 0}, 60);  // from the side: the ground under the plate is visible
   return s;
 }
 
@@ -39,12 +52,19 @@ std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
   return m;
 }
 
+// A scene's Embree copy and its camera's primary hits.
+struct Cast {
+  EmbreeDevice device;
+  EmbreeScene rt;
+  CameraHits hits;
+  explicit Cast(const Scene& s) : rt(device, meshesOf(s)), hits(castPrimaryRays(rt, s.camera)) {}
+};
+
 TEST(RayQueries, ExactShadowsOfThePlateMatchItsFootprint) {
   const Scene s = plateScene();
-  const EmbreeDevice device;
-  const EmbreeScene rt(device, meshesOf(s));
-  const CameraHits hits = castPrimaryRays(rt, s.camera);
-  const auto cls = exactShadows(rt, s, hits);
+  const Cast c(s);
+  const CameraHits& hits = c.hits;
+  const auto cls = exactShadows(c.rt, s, hits);
   int shadowed = 0, lit = 0, outside = 0, checked = 0;
   const double margin = 0.15;  // more than a pixel's footprint on the ground here
   for (std::size_t k = 0; k < cls.size(); ++k) {
@@ -73,11 +93,7 @@ TEST(RayQueries, ExactShadowsOfThePlateMatchItsFootprint) {
 // horizon: its shadow is the square moved 0.1 / tan 3 degrees = 1.91 along x, and a start offset
 // d along the ground's normal moves the shadow's edges across x by d / tan 3 degrees (19 d).
 Scene grazedSheetScene() {
-  Scene s;
-  s.objects.push_back({"ground", "plane", makePlane(8, 8, 1)});
-  TriangleMesh sheet = makePlane(2, 2, 1);
-  for (auto& p : sheet.positions) p.y += 0.1f;
-  s.objects.push_back({"sheet", "plane", sheet});
+  Scene s = overGround("sheet", "plane", makePlane(2, 2, 1), 0.1f);
   const double a = 3.0 * M_PI / 180.0;
   s.light.type = LightType::Directional;
   s.light.direction = {std::cos(a), -std::sin(a), 0.0};
@@ -85,14 +101,7 @@ Scene grazedSheetScene() {
   s.light.halfExtent = 20;
   s.light.nearPlane = 0.1;
   s.light.farPlane = 100;
-  s.camera.eye = {1.9, 6, 5};
-  s.camera.target = {1.9, 0, 0};
-  s.camera.up = {0, 1, 0};
-  s.camera.fovYDegrees = 45;
-  s.camera.width = 160;
-  s.camera.height = 120;
-  s.camera.nearPlane = 0.5;
-  s.camera.farPlane = 30;
+  s.camera = lookingAt({1.9, 6, 5}, {1.9, 0, 0}, 45);
   return s;
 }
 
@@ -118,13 +127,12 @@ int groundPixelsWrong(const Scene& s, const CameraHits& hits, const std::vector<
 // called lit a band of shadowed pixels along them; the default starts at round-off's floor.
 TEST(RayQueries, ExactShadowsOfASheetLitAtAGrazingAngleMatchTheAnalyticShadow) {
   const Scene s = grazedSheetScene();
-  const EmbreeDevice device;
-  const EmbreeScene rt(device, meshesOf(s));
-  const CameraHits hits = castPrimaryRays(rt, s.camera);
+  const Cast c(s);
   int checked = 0;
-  EXPECT_EQ(groundPixelsWrong(s, hits, exactShadows(rt, s, hits), &checked), 0);
+  EXPECT_EQ(groundPixelsWrong(s, c.hits, exactShadows(c.rt, s, c.hits), &checked), 0);
   EXPECT_GT(checked, 10000);
-  const int legacyWrong = groundPixelsWrong(s, hits, exactShadows(rt, s, hits, shadowRayOffset(s)), &checked);
+  const int legacyWrong =
+      groundPixelsWrong(s, c.hits, exactShadows(c.rt, s, c.hits, shadowRayOffset(s)), &checked);
   EXPECT_GT(legacyWrong, 0);  // 5 pixels with Embree 3.13
 }
 
@@ -142,24 +150,16 @@ TEST(RayQueries, ExactShadowsLightEveryPointOfALitSphereFacingTheLight) {
     s.light.halfExtent = 2;
     s.light.nearPlane = 1;
     s.light.farPlane = 20;
-    s.camera.eye = glm::dvec3(away) + glm::dvec3(1.0, 2.0, 3.0);
-    s.camera.target = glm::dvec3(away);
-    s.camera.up = {0, 1, 0};
-    s.camera.fovYDegrees = 45;
-    s.camera.width = s.camera.height = 200;
-    s.camera.nearPlane = 0.5;
-    s.camera.farPlane = 30;
-    const EmbreeDevice device;
-    const EmbreeScene rt(device, meshesOf(s));
-    const CameraHits hits = castPrimaryRays(rt, s.camera);
-    const std::vector<PixelClass> cls = exactShadows(rt, s, hits);
+    s.camera = lookingAt(glm::dvec3(away) + glm::dvec3(1.0, 2.0, 3.0), glm::dvec3(away), 45);
+    const Cast c(s);
+    const std::vector<PixelClass> cls = exactShadows(c.rt, s, c.hits);
     int lit = 0, shadowed = 0;
     for (PixelClass c : cls) {
       lit += c == PixelClass::Lit;
       shadowed += c == PixelClass::Shadowed;
     }
     EXPECT_EQ(shadowed, 0) << away;
-    EXPECT_GT(lit, 5000) << away;
+    EXPECT_GT(lit, 3000) << away;
   }
 }
 
