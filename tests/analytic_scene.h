@@ -121,9 +121,13 @@ struct AnalyticScene {
 
   /// The search for hidden surfaces over mesh() (findNearerSurfaces).
   NearerSurfaceOracle nearerSurfaces() const {
-    return [m = mesh()](const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags) {
-      const TriangleSoup soup = soupOf(m);
+    return [m = mesh()](const DepthMap& map, std::span<const float> limit, std::span<const float> rimLimit,
+                        std::span<std::uint8_t> flags) {
+      TriangleSoup soup = soupOf(m);
+      const std::vector<std::uint32_t> rims = openRims(m);
+      soup.rims = rims;
       findNearerSurfaces(map, std::span<const TriangleSoup>(&soup, 1), limit, flags);
+      if (!rimLimit.empty()) findOpenRims(map, std::span<const TriangleSoup>(&soup, 1), rimLimit, flags);
     };
   }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -102,6 +103,24 @@ inline Scene sceneWith(std::vector<SceneObject> objects) {
   s.objects = std::move(objects);
   s.light = directionalDown(6.0);
   return s;
+}
+
+/// A square plate of side `size` at height y, single-sided and facing up (+y), with a square hole
+/// [x0, x1] x [z0, z1] inside it: a 3 x 3 grid of cells on the lines x = -size/2, x0, x1, size/2
+/// (z likewise) without its middle cell. Welded; its rims are the 4 outer edges and the hole's 4.
+inline TriangleMesh holedPlate(double size, double y, double x0, double x1, double z0, double z1) {
+  const double xs[4] = {-0.5 * size, x0, x1, 0.5 * size}, zs[4] = {-0.5 * size, z0, z1, 0.5 * size};
+  TriangleMesh m;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) m.positions.push_back(glm::vec3(float(xs[i]), float(y), float(zs[j])));
+  const auto at = [](int i, int j) { return std::uint32_t(4 * j + i); };
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      if (i == 1 && j == 1) continue;  // the hole
+      m.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});  // counter-clockwise from above
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  return m;
 }
 
 /// A closed wedge under a directional light straight down whose sloped face is lit at the cosine

@@ -188,10 +188,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                     s.quads ? 100.0 * double(s.flippedQuads) / double(s.quads) : 0.0);
         std::printf("  cap triangles %zu -> %zu after flattening; %zu split vertices; bias %.3g\n", s.capTrianglesBefore,
                     s.capTrianglesAfter, s.splitVertices, s.biasUsed);
-        char hiddenText[96];
+        char hiddenText[128];
         if (options.refineHidden)
-          std::snprintf(hiddenText, sizeof hiddenText, "%zu quads for a hidden surface (search %.1f ms)",
-                        s.hiddenQuads, s.msHidden);
+          std::snprintf(hiddenText, sizeof hiddenText, "%zu quads for a hidden surface (%zu for a rim; search %.1f ms)",
+                        s.hiddenQuads, s.rimQuads, s.msHidden);
         else
           std::snprintf(hiddenText, sizeof hiddenText, "no search for hidden surfaces (--no-hidden-search)");
         if (options.refineSubdivisions > 1)

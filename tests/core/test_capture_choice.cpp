@@ -75,9 +75,12 @@ TEST(CaptureChoice, TheUseOfAFramesMap) {
   o.refineCrossings = RefineCrossings::GpuWalk;
   EXPECT_EQ(captureUse(o), CaptureUse::OneLayer);
   o = {};
-  for (ShadowMethod m : {ShadowMethod::ShadowMap, ShadowMethod::Pcf3, ShadowMethod::Pcf5})
-    EXPECT_EQ(captureUse(RenderOptions{.method = m}), CaptureUse::ShadowMap) << toString(m);
-  EXPECT_EQ(captureUse(RenderOptions{.method = ShadowMethod::Dpsm}), CaptureUse::OneLayer);
+  for (ShadowMethod m : {ShadowMethod::ShadowMap, ShadowMethod::Pcf3, ShadowMethod::Pcf5}) {
+    o.method = m;
+    EXPECT_EQ(captureUse(o), CaptureUse::ShadowMap) << toString(m);
+  }
+  o.method = ShadowMethod::Dpsm;
+  EXPECT_EQ(captureUse(o), CaptureUse::OneLayer);
 }
 
 // The same scene gives the same choice (no state between calls).

@@ -45,7 +45,7 @@ TEST(NearerSurfacesEmbree, EveryQuadWithACapturedCornerIsFlagged) {
         }
       ASSERT_GT(withHit, 100u) << name;
       std::vector<std::uint8_t> flags(limit.size(), 0);
-      search(map, limit, flags);
+      search(map, limit, {}, flags);
       std::size_t missing = 0, flagged = 0;
       for (std::size_t q = 0; q < limit.size(); ++q) {
         missing += limit[q] > 0.0f && !flags[q];
@@ -71,7 +71,7 @@ TEST(NearerSurfacesEmbree, BackCaptureFindsWhatItCaptures) {
     EXPECT_EQ(map.hitCount() > 0, turned);
     std::vector<float> limit(31 * 31, float(map.farPlane));
     std::vector<std::uint8_t> flags(limit.size(), 0);
-    oracle.nearerSurfaces()(map, limit, flags);
+    oracle.nearerSurfaces()(map, limit, {}, flags);
     EXPECT_EQ(std::count(flags.begin(), flags.end(), std::uint8_t(1)) > 0, turned);
   }
 }
@@ -102,7 +102,7 @@ TEST(NearerSurfacesEmbree, EntryCaptureFindsTheLitSideOfClosedMeshes) {
         ++underBox;
       }
     std::vector<std::uint8_t> flags(limit.size(), 0);
-    oracle.nearerSurfaces()(map, limit, flags);
+    oracle.nearerSurfaces()(map, limit, {}, flags);
     std::size_t flagged = 0, flaggedUnder = 0;
     for (std::size_t q = 0; q < flags.size(); ++q) {
       flagged += flags[q];

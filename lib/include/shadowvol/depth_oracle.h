@@ -40,10 +40,13 @@ using SurfaceEndOracle =
 /// Which quads hide a surface nearer than the sheet (the sub-grid's search for hidden surfaces,
 /// nearer_surfaces.h): sets flags[q] = 1 for each quad q = qj * (W - 1) + qi of the map's grid
 /// whose square holds a point of a surface the map's capture can record, nearer than limit[q]
-/// (light-view depth); leaves the other flags. The Embree oracle answers it from the scene's
-/// triangles (findNearerSurfaces). Same calling rules as DepthOracle.
-using NearerSurfaceOracle =
-    std::function<void(const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags)>;
+/// (light-view depth), and flags[q] |= kRimFlag (nearer_surfaces.h) where a point of an open
+/// mesh's rim (a border: where light passes through a hole or around a sheet's edge) lies in that
+/// square nearer than rimLimit[q] (empty rimLimit: no rim search); leaves the other flags. The
+/// Embree oracle answers it from the scene's triangles and rims (findNearerSurfaces,
+/// findOpenRims). Same calling rules as DepthOracle.
+using NearerSurfaceOracle = std::function<void(const DepthMap& map, std::span<const float> limit,
+                                               std::span<const float> rimLimit, std::span<std::uint8_t> flags)>;
 
 /// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
 /// the oracle at the texel's centre: the map a capture by the oracle's rays stores (with

@@ -20,10 +20,18 @@
 // capture records the middle of two surfaces, which lies behind the first: the first surface's
 // depth counts, which can flag a quad whose midpoint sample would not be nearer (harmless: the
 // sub-grid then samples it and finds nothing new).
+//
+// The open rims (findOpenRims): an open mesh's border (a hole in a shell, the edge of a cloth or a
+// sheet) can lie between the centres too: every corner of a quad records the surface, and the gap
+// in it, where light passes, is lost. The rims are the mesh's edges without a neighbour
+// (triangleNeighbours: welded by position; an edge of three or more triangles counts as well); a
+// quad is flagged when a point of a rim within [near, far] in its closed square lies nearer than its
+// limit, clipped as the triangles are.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "shadowvol/depth_map.h"
 #include "shadowvol/triangle_mesh.h"
@@ -37,7 +45,16 @@ struct TriangleSoup {
   std::span<const std::uint32_t> indices;
   /// A closed surface (isClosedSurface): entry capture records its faces towards the light too.
   bool closed = false;
+  /// The open rims (openRims: vertex index pairs, two per edge) for findOpenRims; empty: none.
+  std::span<const std::uint32_t> rims;
 };
+
+/// The edges of `mesh` without a neighbour (triangleNeighbours' rule: an open border, an edge of
+/// three or more triangles), as pairs of vertex indices (two entries per edge), in triangle order;
+/// the edges of triangles with two equal corners (no area) are left out. Empty for a closed mesh
+/// (isClosedSurface), without welding when it is closed as stored (closedAsStored: two closed parts
+/// that touch along an edge have no rim there).
+std::vector<std::uint32_t> openRims(const TriangleMesh& mesh);
 
 /// The soup view of a mesh (no copy; valid while the mesh is); `closed` as isClosedSurface(mesh).
 TriangleSoup soupOf(const TriangleMesh& mesh);
@@ -50,5 +67,12 @@ TriangleSoup soupOf(const TriangleMesh& mesh);
 /// a logic error (SV_CHECK).
 void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
                         std::span<std::uint8_t> flags);
+
+/// As findNearerSurfaces for the meshes' rims (TriangleSoup::rims, any capture mode): sets
+/// flags[q] |= kRimFlag where a point of a rim within [near, far] in quad q's closed square lies
+/// nearer than limit[q]. Parallel over rims, deterministic; indices out of range: SV_CHECK.
+inline constexpr std::uint8_t kRimFlag = 2;
+void findOpenRims(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
+                  std::span<std::uint8_t> flags);
 
 }  // namespace shadowvol

@@ -33,8 +33,12 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh);
 /// The orientation on loading takes this one (it walks the links).
 bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t>& neighbours);
 
-/// Closed as stored (every edge of the vertex indices, in the triangles without a repeated index,
-/// used by exactly two triangles), or after welding equal positions (closedByNeighbours: STL and
+/// Closed as stored: every edge of the vertex indices, in the triangles without a repeated index,
+/// used by exactly two triangles (and at least one such triangle). No welding: one sort of the
+/// edges, cheaper than triangleNeighbours.
+bool closedAsStored(const TriangleMesh& mesh);
+
+/// Closed as stored (closedAsStored), or after welding equal positions (closedByNeighbours: STL and
 /// soups store every corner apart). The scene's warnings take this one: two closed parts that
 /// touch along a face are closed as stored, though not once welded.
 bool isClosedSurface(const TriangleMesh& mesh);

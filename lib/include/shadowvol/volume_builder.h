@@ -172,6 +172,8 @@ struct VolumeBuildStats {
   std::size_t subgridSplitTriangles = 0; ///< sub-grid: triangles of unrefined and plain refined quads split at its side nodes
   std::size_t hiddenQuads = 0;        ///< sub-grid with nearerSurfaces: quads without a boundary edge put on
                                       ///< it for a hidden surface (counted in refinedCells and subgridQuads)
+  std::size_t rimQuads = 0;           ///< of the hiddenQuads, those put on it for an open mesh's rim alone
+                                      ///< (a hole or a sheet's edge between the texel centres)
   std::size_t creaseQuads = 0;        ///< sub-grid with a bias: quads without a boundary edge put on it for
                                       ///< a crease (docs/volume.md "Sub-grid", step 8; counted as hiddenQuads are)
   std::size_t thinQuads = 0;          ///< sub-grid with back capture: quads without a boundary edge put on it for

@@ -24,7 +24,7 @@ TriangleSoup soupOf(const TriangleMesh& mesh) {
   return {std::span<const float>(reinterpret_cast<const float*>(mesh.positions.data()), 3 * mesh.positions.size()),
           std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(mesh.triangles.data()),
                                          3 * mesh.triangles.size()),
-          isClosedSurface(mesh)};
+          isClosedSurface(mesh), {}};
 }
 
 namespace {
@@ -131,14 +131,17 @@ void forEachQuadRow(const ImageCorner* poly, int n, int qw, int qh, double slack
   }
 }
 
-// One triangle (light-view corners) against the quads its image overlaps.
-void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int qw, int qh, std::span<const float> limit,
-                  std::span<std::uint8_t> flags) {
+// A triangle or a rim segment (n = 3 or 2 light-view corners) against the quads its image overlaps:
+// sets `bit` in the flag of each quad whose closed square holds a point of it nearer than its limit.
+void flagPolygon(const Projection& p, const glm::dvec3* v, int n, int qw, int qh, std::span<const float> limit,
+                 std::span<std::uint8_t> flags, std::uint8_t bit) {
+  // Clipping a segment (a polygon of two corners) may repeat a corner: at most 4 of them.
   std::array<glm::dvec3, 5> a, b;
+  const int minCorners = n;
   const auto lerp3 = [](const glm::dvec3& u, const glm::dvec3& w, double t) { return u + t * (w - u); };
-  int n = clipPolygon(v.data(), 3, a.data(), [&](const glm::dvec3& c) { return -c.z - p.nearDepth; }, lerp3);
+  n = clipPolygon(v, n, a.data(), [&](const glm::dvec3& c) { return -c.z - p.nearDepth; }, lerp3);
   if (n) n = clipPolygon(a.data(), n, b.data(), [&](const glm::dvec3& c) { return p.farDepth + c.z; }, lerp3);
-  if (n < 3) return;
+  if (n < minCorners) return;
   std::array<ImageCorner, kMaxCorners> poly;
   for (int k = 0; k < n; ++k) poly[std::size_t(k)] = p.image(b[std::size_t(k)]);
   const double nearest = nearestDepth(p, poly.data(), n);
@@ -146,8 +149,8 @@ void flagTriangle(const Projection& p, const std::array<glm::dvec3, 3>& v, int q
     for (int qi = i0; qi <= i1; ++qi) {
       const std::size_t q = std::size_t(qj) * std::size_t(qw) + std::size_t(qi);
       std::atomic_ref<std::uint8_t> flag(flags[q]);
-      if (!(nearest < limit[q]) || flag.load(std::memory_order_relaxed)) continue;
-      if (nearerInQuad(p, poly.data(), n, qi, qj, limit[q])) flag.store(1, std::memory_order_relaxed);
+      if (!(nearest < limit[q]) || (flag.load(std::memory_order_relaxed) & bit)) continue;
+      if (nearerInQuad(p, poly.data(), n, qi, qj, limit[q])) flag.fetch_or(bit, std::memory_order_relaxed);
     }
   });
 }
@@ -191,7 +194,29 @@ bool mayBeNearer(const VertexImage& a, const VertexImage& b, const VertexImage& 
   return may;
 }
 
+// The largest limit (NaN ones aside), -1 when there is none.
+float largestLimit(std::span<const float> limit) {
+  float maxLimit = -1.0f;
+  for (float l : limit)
+    if (l > maxLimit) maxLimit = l;
+  return maxLimit;
+}
+
 }  // namespace
+
+std::vector<std::uint32_t> openRims(const TriangleMesh& mesh) {
+  if (closedAsStored(mesh)) return {};  // welding can join its parts, never open it
+  const std::vector<std::int32_t> neighbours = triangleNeighbours(mesh);
+  std::vector<std::uint32_t> rims;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const auto& pos = mesh.positions;
+    if (pos[tri[0]] == pos[tri[1]] || pos[tri[1]] == pos[tri[2]] || pos[tri[2]] == pos[tri[0]]) continue;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (neighbours[3 * t + k] == kNoNeighbour) rims.insert(rims.end(), {tri[k], tri[(k + 1) % 3]});
+  }
+  return rims;
+}
 
 void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
                         std::span<std::uint8_t> flags) {
@@ -199,9 +224,7 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
   if (qw < 1 || qh < 1) return;
   SV_CHECK_EQ(limit.size(), std::size_t(qw) * std::size_t(qh));
   SV_CHECK_EQ(flags.size(), limit.size());
-  float maxLimit = -1.0f;
-  for (float l : limit)
-    if (l > maxLimit) maxLimit = l;
+  const float maxLimit = largestLimit(limit);
   const Projection p(map);
   if (!(double(maxLimit) > p.nearDepth)) return;
   for (const TriangleSoup& mesh : meshes) {
@@ -237,7 +260,34 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
         const glm::dvec3 ray = p.perspective ? v[0] : glm::dvec3(0.0, 0.0, -1.0);
         const double along = glm::dot(n, ray), edgeOn = 1e-9 * glm::length(n) * glm::length(ray);
         if (backOnly ? !(along > edgeOn) : !(std::abs(along) > edgeOn)) continue;
-        flagTriangle(p, v, qw, qh, limit, flags);
+        flagPolygon(p, v.data(), 3, qw, qh, limit, flags, 1);
+      }
+    });
+  }
+}
+
+void findOpenRims(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
+                  std::span<std::uint8_t> flags) {
+  const int qw = map.width - 1, qh = map.height - 1;
+  if (qw < 1 || qh < 1) return;
+  SV_CHECK_EQ(limit.size(), std::size_t(qw) * std::size_t(qh));
+  SV_CHECK_EQ(flags.size(), limit.size());
+  const float maxLimit = largestLimit(limit);
+  const Projection p(map);
+  if (!(double(maxLimit) > p.nearDepth)) return;
+  for (const TriangleSoup& mesh : meshes) {
+    SV_CHECK_EQ(mesh.rims.size() % 2, 0u);
+    const std::size_t vertices = mesh.xyz.size() / 3;
+    const auto viewOf = [&](std::size_t k) {
+      SV_CHECK_LT(k, vertices);
+      return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
+    };
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.rims.size() / 2, 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t e = r.begin(); e != r.end(); ++e) {
+        const std::array<glm::dvec3, 2> v{viewOf(mesh.rims[2 * e]), viewOf(mesh.rims[2 * e + 1])};
+        if (!(-std::max(v[0].z, v[1].z) < double(maxLimit))) continue;  // behind every limit
+        flagPolygon(p, v.data(), 2, qw, qh, limit, flags, kRimFlag);
       }
     });
   }

@@ -67,6 +67,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"subgridFarBoundaryEdges", s.subgridFarBoundaryEdges},
           {"subgridSplitTriangles", s.subgridSplitTriangles},
           {"hiddenQuads", s.hiddenQuads},
+          {"rimQuads", s.rimQuads},
           {"creaseQuads", s.creaseQuads},
           {"thinQuads", s.thinQuads},
           {"thinRays", s.thinRays},

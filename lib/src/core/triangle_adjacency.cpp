@@ -67,11 +67,8 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
   return neighbours;
 }
 
-namespace {
-
-// Every undirected edge of the indices used by exactly two triangles. A sorted array of edge keys,
-// 8 bytes per edge (a std::map here took 64 and, under ASan, passed the fuzzer's 500 MB on a legal
-// 118,000 triangle hemisphere).
+// A sorted array of edge keys, 8 bytes per edge (a std::map here took 64 and, under ASan, passed
+// the fuzzer's 500 MB on a legal 118,000 triangle hemisphere).
 bool closedAsStored(const TriangleMesh& m) {
   std::vector<std::uint64_t> edges;
   edges.reserve(3 * m.triangles.size());
@@ -87,8 +84,6 @@ bool closedAsStored(const TriangleMesh& m) {
       return false;
   return true;
 }
-
-}  // namespace
 
 bool isClosedSurface(const TriangleMesh& mesh) {
   return closedAsStored(mesh) || closedByNeighbours(mesh, triangleNeighbours(mesh));

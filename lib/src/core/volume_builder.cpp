@@ -306,7 +306,7 @@ struct RefinementFound {
   volume::RefinedQuads quads;
   Refinement refinement;
   volume::ChordPoints chords;
-  std::size_t hiddenQuads = 0, creaseQuads = 0, thinQuads = 0, thinRays = 0;
+  std::size_t hiddenQuads = 0, rimQuads = 0, creaseQuads = 0, thinQuads = 0, thinRays = 0;
   double msHidden = 0.0;
 };
 
@@ -329,7 +329,8 @@ RefinementFound findRefinement(const volume::SheetDepths& sheet, const VolumeBui
   std::vector<std::uint32_t> hidden;
   if (searchesHidden(options)) {
     const auto t0 = volume::Clock::now();
-    hidden = volume::findHiddenQuads(sheet, options.nearerSurfaces, options.refineSubdivisions, splitBits.data());
+    hidden = volume::findHiddenQuads(sheet, options.nearerSurfaces, options.refineSubdivisions, splitBits.data(),
+                                     &found.rimQuads);
     found.msHidden = volume::msSince(t0);
   }
   found.hiddenQuads = hidden.size();
@@ -528,6 +529,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   stats.droppedQuads = codes.dropped;
   stats.refinedCells = codes.refined;
   stats.hiddenQuads = found.hiddenQuads;
+  stats.rimQuads = found.rimQuads;
   stats.creaseQuads = found.creaseQuads;
   stats.thinQuads = found.thinQuads;
   stats.msHidden = found.msHidden;

@@ -20,26 +20,34 @@ struct EmbreeDepthOracle::Impl {
   EmbreeDevice device;
   EmbreeScene scene;
   std::vector<TriangleSoup> soups;  // views of the Embree scene's own buffers, geometry by geometry
-  // Whether each soup is a closed surface (TriangleSoup::closed), found on entry capture's first
-  // search (isClosedSurface on a copy; the other captures do not read it).
-  std::once_flag closedOnce;
-  std::vector<TriangleSoup> closedSoups;
+  // Each soup's rims (TriangleSoup::rims) and whether it is a closed surface (TriangleSoup::closed),
+  // found on the first search (on a copy of its triangles).
+  std::once_flag shapeOnce;
+  std::vector<std::vector<std::uint32_t>> rims;
+  std::vector<TriangleSoup> closedSoups;  // soups with `closed` and `rims` set (entry capture)
+  std::vector<TriangleSoup> openSoups;    // soups with `rims` set, `closed` false (the other captures)
+  static TriangleMesh meshOf(const TriangleSoup& s) {
+    TriangleMesh m;
+    m.positions.resize(s.xyz.size() / 3);
+    for (std::size_t k = 0; k < m.positions.size(); ++k) m.positions[k] = {s.xyz[3 * k], s.xyz[3 * k + 1], s.xyz[3 * k + 2]};
+    m.triangles.resize(s.indices.size() / 3);
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      m.triangles[t] = {s.indices[3 * t], s.indices[3 * t + 1], s.indices[3 * t + 2]};
+    return m;
+  }
+  // Entry capture reads `closed` (its faces towards the light count); the others must not.
   std::span<const TriangleSoup> soupsFor(CaptureMode capture) {
-    if (capture != CaptureMode::Entry) return soups;
-    std::call_once(closedOnce, [this] {
-      closedSoups = soups;
-      for (TriangleSoup& s : closedSoups) {
-        TriangleMesh m;
-        m.positions.resize(s.xyz.size() / 3);
-        for (std::size_t k = 0; k < m.positions.size(); ++k)
-          m.positions[k] = {s.xyz[3 * k], s.xyz[3 * k + 1], s.xyz[3 * k + 2]};
-        m.triangles.resize(s.indices.size() / 3);
-        for (std::size_t t = 0; t < m.triangles.size(); ++t)
-          m.triangles[t] = {s.indices[3 * t], s.indices[3 * t + 1], s.indices[3 * t + 2]};
-        s.closed = isClosedSurface(m);
+    std::call_once(shapeOnce, [this] {
+      rims.resize(soups.size());
+      closedSoups = openSoups = soups;
+      for (std::size_t g = 0; g < soups.size(); ++g) {
+        const TriangleMesh m = meshOf(soups[g]);
+        rims[g] = openRims(m);
+        closedSoups[g].rims = openSoups[g].rims = rims[g];
+        closedSoups[g].closed = rims[g].empty() && !m.triangles.empty();  // = isClosedSurface(m)
       }
     });
-    return closedSoups;
+    return capture == CaptureMode::Entry ? closedSoups : openSoups;
   }
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
@@ -53,7 +61,8 @@ struct EmbreeDepthOracle::Impl {
       const auto* v = static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
       const auto* i = static_cast<const std::uint32_t*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
       if (v && i && !m.triangles.empty())
-        soups.push_back({std::span<const float>(v, 3 * m.positions.size()), std::span<const std::uint32_t>(i, 3 * m.triangles.size())});
+        soups.push_back({std::span<const float>(v, 3 * m.positions.size()), std::span<const std::uint32_t>(i, 3 * m.triangles.size()),
+                         false, {}});
     }
   }
 };
@@ -116,8 +125,11 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
 
 NearerSurfaceOracle EmbreeDepthOracle::nearerSurfaces() const {
   Impl* impl = impl_.get();
-  return [impl](const DepthMap& map, std::span<const float> limit, std::span<std::uint8_t> flags) {
-    findNearerSurfaces(map, impl->soupsFor(map.capture), limit, flags);
+  return [impl](const DepthMap& map, std::span<const float> limit, std::span<const float> rimLimit,
+                std::span<std::uint8_t> flags) {
+    const std::span<const TriangleSoup> soups = impl->soupsFor(map.capture);
+    findNearerSurfaces(map, soups, limit, flags);
+    if (!rimLimit.empty()) findOpenRims(map, soups, rimLimit, flags);
   };
 }
 

@@ -25,8 +25,9 @@ class EmbreeDepthOracle {
   /// The SurfaceEndOracle (depth_oracle.h) of the same scene and capture rule: one ray per query
   /// (captureHit), then triangleExit (triangle_exit.h) on the triangle it records.
   SurfaceEndOracle surfaceEnds() const;
-  /// The NearerSurfaceOracle (depth_oracle.h) of the same scene: findNearerSurfaces
-  /// (nearer_surfaces.h) over the triangles the oracle's rays see.
+  /// The NearerSurfaceOracle (depth_oracle.h) of the same scene: findNearerSurfaces and
+  /// findOpenRims (nearer_surfaces.h) over the triangles the oracle's rays see (their rims found
+  /// once, on the first search).
   NearerSurfaceOracle nearerSurfaces() const;
 
  private:
