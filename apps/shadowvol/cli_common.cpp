@@ -159,9 +159,9 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                "on the sub-grid's samples (which the default leaves plain); for comparison, more triangles");
   cmd.add_flag("--no-hidden-search", o.noHiddenSearch,
                "With --refine-grid: do not look for surfaces hidden between the texel centres (an occluder thinner "
-               "than a texel that no sample sees: a limb, a wire, a ridge), which by default also go on the "
-               "sub-grid, found from the scene's triangles without rays; for comparison (docs/volume.md 'Hidden "
-               "surfaces')");
+               "than a texel that no sample sees: a limb, a wire, a ridge) or for gaps there (an open mesh's rim: "
+               "a hole, a sheet's edge), which by default also go on the sub-grid, found from the scene's "
+               "triangles without rays; for comparison (docs/volume.md 'Hidden surfaces')");
   cmd.add_flag("--no-snap", o.noSnap,
                "With --refine: leave each crossing in the middle of its last bisection bracket (within 2^-(K+1) "
                "texel of the outline) instead of moving it to where the triangle recorded on its near side ends "

@@ -137,17 +137,21 @@ SweepMethod refinedNoSnap(gl::VolumeSource source) {
   return m;
 }
 
-// The refined volume on the sub-grid (kSweepRefineSubdivisions per texel side in the quads with a
-// boundary edge, and in those hiding a surface between their texel centres: the search, on by
-// default, from the oracle's nearerSurfaces that runSweep attaches), same steps.
-SweepMethod refinedGrid(CaptureMode capture) {
+// The refined volume on the sub-grid (S = kSweepRefineSubdivisions per texel side, or `subdivisions`,
+// in the quads with a boundary edge, and in those hiding a surface or an open rim between their
+// texel centres: the search, on by default, from the oracle's nearerSurfaces that runSweep
+// attaches), same steps. Keys: hybrid-refined-grid[-capture]/explicit at the default S, with the S
+// after "grid" otherwise (hybrid-refined-grid8-entry/explicit).
+SweepMethod refinedGrid(CaptureMode capture, int subdivisions = kSweepRefineSubdivisions) {
   SweepMethod m = refined(capture);
-  m.key = std::string("hybrid-refined-grid") + captureSuffix(capture) +
-          "/explicit";
-  m.options.volumeOptions.refineSubdivisions = kSweepRefineSubdivisions;
-  m.description = "explicit volume with sub-texel silhouette refinement on a " + std::to_string(kSweepRefineSubdivisions) +
-                  "x" + std::to_string(kSweepRefineSubdivisions) + " adaptive sub-grid in the quads with a boundary edge or a surface hidden between the texel centres (" +
-                  std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " + captureWords(capture);
+  const std::string s = std::to_string(subdivisions);
+  m.key = std::string("hybrid-refined-grid") + (subdivisions == kSweepRefineSubdivisions ? "" : s) +
+          captureSuffix(capture) + "/explicit";
+  m.options.volumeOptions.refineSubdivisions = subdivisions;
+  m.description = "explicit volume with sub-texel silhouette refinement on a " + s + "x" + s +
+                  " adaptive sub-grid in the quads with a boundary edge or a surface or gap hidden between the texel "
+                  "centres (" + std::to_string(kSweepRefineSteps) + " steps, perfect triangulation), " +
+                  captureWords(capture);
   return m;
 }
 
@@ -315,6 +319,8 @@ const std::vector<SweepMethod>& sweepMethods() {
     v.push_back(refinedRayDepth());
     v.push_back(refinedLightPass());
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c));
+    // S = 8: what --capture auto takes with the finer sub-grid (entry on closed meshes, front on open ones).
+    for (CaptureMode c : {CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c, 8));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGpu(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));
