@@ -12,7 +12,9 @@
 // hashed).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "shadowvol/triangle_mesh.h"
@@ -36,7 +38,8 @@ bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t
 /// Closed as stored: every edge of the vertex indices, in the triangles without a repeated index,
 /// used by exactly two triangles (and at least one such triangle). No welding: one sort of the
 /// edges, cheaper than triangleNeighbours.
-bool closedAsStored(const TriangleMesh& mesh);
+bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles);
+inline bool closedAsStored(const TriangleMesh& mesh) { return closedAsStored(std::span(mesh.triangles)); }
 
 /// Closed as stored (closedAsStored), or after welding equal positions (closedByNeighbours: STL and
 /// soups store every corner apart). The scene's warnings take this one: two closed parts that

@@ -31,11 +31,23 @@ std::vector<std::uint32_t> weldByPosition(const std::vector<glm::vec3>& position
   return weld;
 }
 
-struct DirectedEdge {
-  std::uint64_t key;   // (smaller welded vertex << 32) | larger
-  std::uint32_t slot;  // 3 t + k
-  bool forward;        // runs from the smaller welded vertex to the larger
+// An edge end in the bucket of its smaller welded vertex.
+struct EdgeEnd {
+  std::uint32_t larger;  // the larger welded vertex
+  std::uint32_t slot;    // 3 t + k
+  bool forward;          // runs from the smaller welded vertex to the larger
+  bool operator<(const EdgeEnd& o) const { return larger != o.larger ? larger < o.larger : slot < o.slot; }
 };
+
+// Offsets of the buckets (one per vertex id below `vertices`) that `count(f)` fills: f(key) is
+// called once for each entry's bucket key; start[v] .. start[v + 1] is bucket v.
+template <typename ForEachKey>
+std::vector<std::size_t> bucketStarts(std::size_t vertices, ForEachKey forEachKey) {
+  std::vector<std::size_t> start(vertices + 1, 0);
+  forEachKey([&](std::uint32_t key) { ++start[std::size_t(key) + 1]; });
+  for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+  return start;
+}
 
 }  // namespace
 
@@ -44,30 +56,46 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
   if (n >= std::size_t(kFlippedNeighbour))
     throw InputError("triangle mesh", "triangles", std::to_string(n), "the triangle walk's neighbours take fewer than 2^30 triangles");
   const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions);
-  std::vector<DirectedEdge> edges;
-  edges.reserve(3 * n);
-  for (std::size_t t = 0; t < n; ++t) {
+  // Each triangle's welded corners, or none for a degenerate one (no neighbours).
+  const auto corners = [&](std::size_t t, std::uint32_t (&w)[3]) {
     const auto& tri = mesh.triangles[t];
-    const std::uint32_t w[3] = {weld[tri[0]], weld[tri[1]], weld[tri[2]]};
-    if (w[0] == w[1] || w[1] == w[2] || w[2] == w[0]) continue;  // degenerate: no neighbours
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = w[k], b = w[(k + 1) % 3];
-      edges.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), std::uint32_t(3 * t + k), a < b});
-    }
-  }
-  tbb::parallel_sort(edges.begin(), edges.end(),
-                     [](const DirectedEdge& a, const DirectedEdge& b) { return std::tie(a.key, a.slot) < std::tie(b.key, b.slot); });
+    w[0] = weld[tri[0]], w[1] = weld[tri[1]], w[2] = weld[tri[2]];
+    return w[0] != w[1] && w[1] != w[2] && w[2] != w[0];
+  };
+  const std::vector<std::size_t> start = bucketStarts(mesh.positions.size(), [&](auto add) {
+    std::uint32_t w[3];
+    for (std::size_t t = 0; t < n; ++t)
+      if (corners(t, w))
+        for (int k = 0; k < 3; ++k) add(std::min(w[k], w[(k + 1) % 3]));
+  });
+  std::vector<EdgeEnd> ends(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  std::uint32_t w[3];
+  for (std::size_t t = 0; t < n; ++t)
+    if (corners(t, w))
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = w[k], b = w[(k + 1) % 3];
+        ends[fill[std::min(a, b)]++] = {std::max(a, b), std::uint32_t(3 * t + std::size_t(k)), a < b};
+      }
   std::vector<std::int32_t> neighbours(3 * n, kNoNeighbour);
-  for (std::size_t b = 0; b < edges.size();) {
-    std::size_t e = b + 1;
-    while (e < edges.size() && edges[e].key == edges[b].key) ++e;
-    if (e - b == 2) {
-      const std::int32_t flipped = edges[b].forward == edges[b + 1].forward ? kFlippedNeighbour : 0;
-      neighbours[edges[b].slot] = std::int32_t(edges[b + 1].slot / 3) | flipped;
-      neighbours[edges[b + 1].slot] = std::int32_t(edges[b].slot / 3) | flipped;
+  // Buckets are disjoint and each link is written from its own bucket: parallel, deterministic.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.positions.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t v = r.begin(); v != r.end(); ++v) {
+      const auto first = ends.begin() + std::ptrdiff_t(start[v]), last = ends.begin() + std::ptrdiff_t(start[v + 1]);
+      std::sort(first, last);
+      for (auto b = first; b != last;) {
+        auto e = b + 1;
+        while (e != last && e->larger == b->larger) ++e;
+        if (e - b == 2) {
+          const std::int32_t flipped = b->forward == (b + 1)->forward ? kFlippedNeighbour : 0;
+          neighbours[b->slot] = std::int32_t((b + 1)->slot / 3) | flipped;
+          neighbours[(b + 1)->slot] = std::int32_t(b->slot / 3) | flipped;
+        }
+        b = e;
+      }
     }
-    b = e;
-  }
+  });
   return neighbours;
 }
 
@@ -75,20 +103,20 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
 // per vertex, linear time; a std::map here once took 64 bytes an edge and, under ASan, passed the
 // fuzzer's 500 MB on a legal 118,000 triangle hemisphere), then each vertex's few larger ends
 // sorted and read in pairs.
-bool closedAsStored(const TriangleMesh& m) {
+bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles) {
   const auto valid = [](const std::array<std::uint32_t, 3>& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
   std::size_t vertices = 0;
-  for (const auto& t : m.triangles)
+  for (const auto& t : triangles)
     if (valid(t)) vertices = std::max<std::size_t>(vertices, std::size_t(std::max({t[0], t[1], t[2]})) + 1);
   if (vertices == 0) return false;
-  std::vector<std::size_t> start(vertices + 1, 0);
-  for (const auto& t : m.triangles)
-    if (valid(t))
-      for (int k = 0; k < 3; ++k) ++start[std::size_t(std::min(t[k], t[(k + 1) % 3])) + 1];
-  for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> larger(start[vertices]);
+  const std::vector<std::size_t> start = bucketStarts(vertices, [&](auto add) {
+    for (const auto& t : triangles)
+      if (valid(t))
+        for (int k = 0; k < 3; ++k) add(std::min(t[k], t[(k + 1) % 3]));
+  });
+  std::vector<std::uint32_t> larger(start.back());
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (const auto& t : m.triangles)
+  for (const auto& t : triangles)
     if (valid(t))
       for (int k = 0; k < 3; ++k) {
         const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
@@ -97,7 +125,7 @@ bool closedAsStored(const TriangleMesh& m) {
   std::atomic<bool> closed{true};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t v = r.begin(); v != r.end() && closed.load(std::memory_order_relaxed); ++v) {
-      const auto b = larger.begin() + start[v], e = larger.begin() + start[v + 1];
+      const auto b = larger.begin() + std::ptrdiff_t(start[v]), e = larger.begin() + std::ptrdiff_t(start[v + 1]);
       std::sort(b, e);
       for (auto k = b; k != e; k += 2)
         if (k + 1 == e || *k != *(k + 1) || (k + 2 != e && *(k + 2) == *k)) {

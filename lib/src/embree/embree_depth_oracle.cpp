@@ -41,6 +41,13 @@ struct EmbreeDepthOracle::Impl {
       rims.resize(soups.size());
       closedSoups = openSoups = soups;
       for (std::size_t g = 0; g < soups.size(); ++g) {
+        const std::span<const std::uint32_t> i = soups[g].indices;
+        // Closed as stored (most closed meshes): no rims, and no copy to weld.
+        static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t));
+        if (closedAsStored({reinterpret_cast<const std::array<std::uint32_t, 3>*>(i.data()), i.size() / 3})) {
+          closedSoups[g].closed = true;
+          continue;
+        }
         const TriangleMesh m = meshOf(soups[g]);
         rims[g] = openRims(m);
         closedSoups[g].rims = openSoups[g].rims = rims[g];
