@@ -194,12 +194,29 @@ bool mayBeNearer(const VertexImage& a, const VertexImage& b, const VertexImage& 
   return may;
 }
 
-// The largest limit (NaN ones aside), -1 when there is none.
-float largestLimit(std::span<const float> limit) {
+// What both searches check and read first: the quad grid's size (qw x qh) and the largest limit;
+// `searching` false when no quad's limit lies beyond the near plane (nothing can be flagged).
+struct SearchGrid {
+  int qw = 0, qh = 0;
   float maxLimit = -1.0f;
+  bool searching = false;
+};
+
+SearchGrid searchGrid(const DepthMap& map, const Projection& p, std::span<const float> limit,
+                      std::span<const std::uint8_t> flags) {
+  SearchGrid g{map.width - 1, map.height - 1};
+  if (g.qw < 1 || g.qh < 1) return g;
+  SV_CHECK_EQ(limit.size(), std::size_t(g.qw) * std::size_t(g.qh));
+  SV_CHECK_EQ(flags.size(), limit.size());
   for (float l : limit)
-    if (l > maxLimit) maxLimit = l;
-  return maxLimit;
+    if (l > g.maxLimit) g.maxLimit = l;  // NaN limits aside
+  g.searching = double(g.maxLimit) > p.nearDepth;
+  return g;
+}
+
+// Vertex k of a soup in the light's view space (double).
+glm::dvec3 viewPoint(const Projection& p, const TriangleSoup& mesh, std::size_t k) {
+  return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
 }
 
 }  // namespace
@@ -220,21 +237,17 @@ std::vector<std::uint32_t> openRims(const TriangleMesh& mesh) {
 
 void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
                         std::span<std::uint8_t> flags) {
-  const int qw = map.width - 1, qh = map.height - 1;
-  if (qw < 1 || qh < 1) return;
-  SV_CHECK_EQ(limit.size(), std::size_t(qw) * std::size_t(qh));
-  SV_CHECK_EQ(flags.size(), limit.size());
-  const float maxLimit = largestLimit(limit);
   const Projection p(map);
-  if (!(double(maxLimit) > p.nearDepth)) return;
+  const SearchGrid g = searchGrid(map, p, limit, flags);
+  if (!g.searching) return;
+  const int qw = g.qw, qh = g.qh;
+  const float maxLimit = g.maxLimit;
   for (const TriangleSoup& mesh : meshes) {
     const bool backOnly = map.capture == CaptureMode::Back || (map.capture == CaptureMode::Entry && !mesh.closed);
     SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
     SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
     const std::size_t vertices = mesh.xyz.size() / 3;
-    const auto viewOf = [&](std::size_t k) {
-      return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
-    };
+    const auto viewOf = [&](std::size_t k) { return viewPoint(p, mesh, k); };
     // Each vertex's image once (most vertices serve six triangles), then the quick test per triangle.
     std::vector<VertexImage> image(vertices);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -268,26 +281,22 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
 
 void findOpenRims(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,
                   std::span<std::uint8_t> flags) {
-  const int qw = map.width - 1, qh = map.height - 1;
-  if (qw < 1 || qh < 1) return;
-  SV_CHECK_EQ(limit.size(), std::size_t(qw) * std::size_t(qh));
-  SV_CHECK_EQ(flags.size(), limit.size());
-  const float maxLimit = largestLimit(limit);
   const Projection p(map);
-  if (!(double(maxLimit) > p.nearDepth)) return;
+  const SearchGrid g = searchGrid(map, p, limit, flags);
+  if (!g.searching) return;
   for (const TriangleSoup& mesh : meshes) {
     SV_CHECK_EQ(mesh.rims.size() % 2, 0u);
     const std::size_t vertices = mesh.xyz.size() / 3;
     const auto viewOf = [&](std::size_t k) {
       SV_CHECK_LT(k, vertices);
-      return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
+      return viewPoint(p, mesh, k);
     };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.rims.size() / 2, 1024),
                       [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t e = r.begin(); e != r.end(); ++e) {
         const std::array<glm::dvec3, 2> v{viewOf(mesh.rims[2 * e]), viewOf(mesh.rims[2 * e + 1])};
-        if (!(-std::max(v[0].z, v[1].z) < double(maxLimit))) continue;  // behind every limit
-        flagPolygon(p, v.data(), 2, qw, qh, limit, flags, kRimFlag);
+        if (!(-std::max(v[0].z, v[1].z) < double(g.maxLimit))) continue;  // behind every limit
+        flagPolygon(p, v.data(), 2, g.qw, g.qh, limit, flags, kRimFlag);
       }
     });
   }
