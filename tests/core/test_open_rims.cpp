@@ -1,6 +1,7 @@
 // The open rims (nearer_surfaces.h: openRims, findOpenRims): an open mesh's border edges, and the
 // quads whose squares they pass through in front of a limit. On a plate with a hole between the
-// texel centres, a closed box, a box stored as a soup, and a degenerate triangle.
+// texel centres, a closed box, a box stored as a soup, a degenerate triangle, a soup with
+// round-off seams and a non-manifold fin.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -57,6 +58,43 @@ TEST(OpenRims, TheBorderEdgesOfAnOpenMeshAndNoneOfAClosedOne) {
   degenerate.positions.push_back(glm::vec3(5.0f, 0.0f, 0.0f));
   degenerate.triangles.push_back({0, 0, std::uint32_t(degenerate.positions.size() - 1)});
   EXPECT_TRUE(openRims(degenerate).empty());
+}
+
+// A soup whose copies of a vertex differ by round-off (here up to 1e-6 of the diagonal) has a seam
+// along every edge; each seam's two rims seal each other (kRimSealShare), so only the plate's border
+// and its hole stay. So do the copies of a non-manifold edge (three triangles on one edge).
+TEST(OpenRims, ASoupsSeamsAndANonManifoldEdgeAreSealed) {
+  const TriangleMesh p = plate();
+  TriangleMesh soup;
+  std::uint32_t jitter = 1;
+  for (const auto& t : p.triangles) {
+    const auto base = std::uint32_t(soup.positions.size());
+    for (int c = 0; c < 3; ++c) {
+      jitter = jitter * 1103515245u + 12345u;  // deterministic, +-2e-6 per coordinate
+      const float d = (float((jitter >> 16) % 2001) - 1000.0f) * 2e-9f;
+      soup.positions.push_back(p.positions[t[std::size_t(c)]] + glm::vec3(d, -d, 0.5f * d));
+    }
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const std::vector<std::uint32_t> rims = openRims(soup);
+  ASSERT_EQ(rims.size(), 2u * 16u);  // the border's 12 and the hole's 4, as welded
+  for (std::uint32_t k : rims) {
+    const glm::vec3 v = soup.positions[k];
+    const bool outer = std::max(std::abs(v.x), std::abs(v.z)) > 1.4999f;
+    const bool hole = std::abs(std::abs(v.x - 0.25f) - 0.09f) < 1e-4f && std::abs(std::abs(v.z - 0.25f) - 0.09f) < 1e-4f;
+    EXPECT_TRUE(outer || hole) << v.x << " " << v.z;
+  }
+  // A fin on the box's top edge: that edge has three triangles, no neighbour, but is no gap.
+  TriangleMesh fin = makeBox(1.0, 1.0, 1.0);
+  const auto top = std::find_if(fin.triangles.begin(), fin.triangles.end(), [&](const auto& t) {
+    return fin.positions[t[0]].y > 0.0f && fin.positions[t[1]].y > 0.0f && fin.positions[t[2]].y > 0.0f;
+  });
+  ASSERT_NE(top, fin.triangles.end());
+  const std::uint32_t a = (*top)[0], b = (*top)[1];
+  fin.positions.push_back(0.5f * (fin.positions[a] + fin.positions[b]) + glm::vec3(0.0f, 1.0f, 0.0f));
+  fin.triangles.push_back({a, b, std::uint32_t(fin.positions.size() - 1)});
+  const std::vector<std::uint32_t> finRims = openRims(fin);
+  EXPECT_EQ(finRims.size(), 2u * 2u);  // the fin's two free edges only
 }
 
 // The quad whose square holds the point (x, z) of the plate (at height 1).

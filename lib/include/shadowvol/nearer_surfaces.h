@@ -49,12 +49,20 @@ struct TriangleSoup {
   std::span<const std::uint32_t> rims;
 };
 
+/// Rims closer than this share of a mesh's bounding-box diagonal to another (a seam of a soup whose
+/// copies of a vertex differ by round-off) are sealed: no light passes there that a sub-grid could see.
+inline constexpr double kRimSealShare = 1e-4;
+
 /// The edges of `mesh` without a neighbour (triangleNeighbours' rule: an open border, an edge of
-/// three or more triangles), as pairs of vertex indices (two entries per edge), in triangle order;
-/// the edges of triangles with two equal corners (no area) are left out. Empty for a closed mesh
-/// (isClosedSurface), without welding when it is closed as stored (closedAsStored: two closed parts
-/// that touch along an edge have no rim there).
-std::vector<std::uint32_t> openRims(const TriangleMesh& mesh);
+/// three or more triangles), as pairs of vertex indices (two entries per edge), in the order of
+/// their welded ends (deterministic); left out: the edges of triangles with two equal corners (no
+/// area), and those sealed by another rim: both ends within kRimSealShare of the mesh's diagonal of
+/// the other's ends (a soup's seam, the copies of a non-manifold edge), or shorter than that. Empty
+/// for a closed mesh (isClosedSurface), without welding when it is closed as stored (closedAsStored:
+/// two closed parts that touch along an edge have no rim there). Not sealed: a seam along a
+/// T-junction, where one rim meets two. Sets `*closed` (when given) to isClosedSurface(mesh),
+/// found on the way.
+std::vector<std::uint32_t> openRims(const TriangleMesh& mesh, bool* closed = nullptr);
 
 /// The soup view of a mesh (no copy; valid while the mesh is); `closed` as isClosedSurface(mesh).
 TriangleSoup soupOf(const TriangleMesh& mesh);

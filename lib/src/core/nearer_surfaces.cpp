@@ -5,8 +5,11 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
@@ -219,11 +222,77 @@ glm::dvec3 viewPoint(const Projection& p, const TriangleSoup& mesh, std::size_t 
   return glm::dvec3(p.view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
 }
 
+// For each vertex v in `ids` (sorted, unique), rep[v] = the smallest of `ids` within `tol` of it
+// (itself at least); other entries of rep are unset. A grid of cells 4 tol wide, its (cell, id)
+// pairs sorted: a point looks in its own cell, and in a neighbour only when it lies within tol of
+// the side between them. Parallel, deterministic.
+std::vector<std::uint32_t> nearestSmallest(const std::vector<glm::vec3>& pos, const std::vector<std::uint32_t>& ids,
+                                           double tol, const glm::dvec3& origin) {
+  const double size = 4.0 * tol;
+  const auto key = [](const glm::i64vec3& c) {
+    return std::uint64_t(c.x & 0x1FFFFF) | std::uint64_t(c.y & 0x1FFFFF) << 21 | std::uint64_t(c.z & 0x1FFFFF) << 42;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    cells[k] = {key(glm::i64vec3(glm::floor((glm::dvec3(pos[ids[k]]) - origin) / size))), ids[k]};
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::uint32_t> rep(pos.size(), 0);
+  // In cell order: the lookups of neighbouring points stay near each other in `cells`.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const std::uint32_t v = cells[k].second;
+      const glm::dvec3 t = (glm::dvec3(pos[v]) - origin) / size, f = t - glm::floor(t);
+      const glm::i64vec3 c(glm::floor(t));
+      const glm::ivec3 from(f.x < 0.25 ? -1 : 0, f.y < 0.25 ? -1 : 0, f.z < 0.25 ? -1 : 0);
+      const glm::ivec3 to(f.x > 0.75 ? 1 : 0, f.y > 0.75 ? 1 : 0, f.z > 0.75 ? 1 : 0);
+      std::uint32_t best = v;
+      for (int dz = from.z; dz <= to.z; ++dz)
+        for (int dy = from.y; dy <= to.y; ++dy)
+          for (int dx = from.x; dx <= to.x; ++dx) {
+            const std::uint64_t kc = key(c + glm::i64vec3(dx, dy, dz));
+            auto it = std::lower_bound(cells.begin(), cells.end(), std::pair<std::uint64_t, std::uint32_t>(kc, 0));
+            for (; it != cells.end() && it->first == kc && it->second < best; ++it)
+              if (glm::length(glm::dvec3(pos[it->second]) - glm::dvec3(pos[v])) <= tol) best = it->second;
+          }
+      rep[v] = best;
+    }
+  });
+  return rep;
+}
+
+// The rims less those that another rim seals (kRimSealShare): each end within the tolerance of
+// the other's, either way round (a soup's seam), or an edge shorter than it.
+std::vector<std::uint32_t> unsealedRims(const TriangleMesh& mesh, const std::vector<std::uint32_t>& rims) {
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+  const double tol = kRimSealShare * glm::length(hi - lo);
+  if (!(tol > 0.0) || !std::isfinite(tol)) return rims;
+  std::vector<std::uint32_t> ids(rims);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  const auto rep = nearestSmallest(mesh.positions, ids, tol, lo);
+  std::vector<std::pair<std::uint64_t, std::size_t>> keys;  // (representatives' edge, rim index)
+  for (std::size_t e = 0; e < rims.size() / 2; ++e) {
+    const auto [a, b] = std::minmax(rep[rims[2 * e]], rep[rims[2 * e + 1]]);
+    if (a != b) keys.push_back({std::uint64_t(a) << 32 | b, e});
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint32_t> open;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const bool alone = (k == 0 || keys[k - 1].first != keys[k].first) &&
+                       (k + 1 == keys.size() || keys[k + 1].first != keys[k].first);
+    if (alone) open.insert(open.end(), {rims[2 * keys[k].second], rims[2 * keys[k].second + 1]});
+  }
+  return open;
+}
+
 }  // namespace
 
-std::vector<std::uint32_t> openRims(const TriangleMesh& mesh) {
+std::vector<std::uint32_t> openRims(const TriangleMesh& mesh, bool* closed) {
+  if (closed) *closed = true;
   if (closedAsStored(mesh)) return {};  // welding can join its parts, never open it
   const std::vector<std::int32_t> neighbours = triangleNeighbours(mesh);
+  if (closed) *closed = closedByNeighbours(mesh, neighbours);
   std::vector<std::uint32_t> rims;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
@@ -232,7 +301,7 @@ std::vector<std::uint32_t> openRims(const TriangleMesh& mesh) {
     for (std::size_t k = 0; k < 3; ++k)
       if (neighbours[3 * t + k] == kNoNeighbour) rims.insert(rims.end(), {tri[k], tri[(k + 1) % 3]});
   }
-  return rims;
+  return rims.empty() ? rims : unsealedRims(mesh, rims);
 }
 
 void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshes, std::span<const float> limit,

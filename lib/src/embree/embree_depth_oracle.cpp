@@ -21,7 +21,7 @@ struct EmbreeDepthOracle::Impl {
   EmbreeScene scene;
   std::vector<TriangleSoup> soups;  // views of the Embree scene's own buffers, geometry by geometry
   // Each soup's rims (TriangleSoup::rims) and whether it is a closed surface (TriangleSoup::closed),
-  // found on the first search (on a copy of its triangles).
+  // found on the first search: at once for a soup closed as stored, else on a welded copy.
   std::once_flag shapeOnce;
   std::vector<std::vector<std::uint32_t>> rims;
   std::vector<TriangleSoup> closedSoups;  // soups with `closed` and `rims` set (entry capture)
@@ -48,10 +48,10 @@ struct EmbreeDepthOracle::Impl {
           closedSoups[g].closed = true;
           continue;
         }
-        const TriangleMesh m = meshOf(soups[g]);
-        rims[g] = openRims(m);
+        bool closed = false;
+        rims[g] = openRims(meshOf(soups[g]), &closed);
         closedSoups[g].rims = openSoups[g].rims = rims[g];
-        closedSoups[g].closed = rims[g].empty() && !m.triangles.empty();  // = isClosedSurface(m)
+        closedSoups[g].closed = closed;  // isClosedSurface (the rims' seal may leave none on an open soup)
       }
     });
     return capture == CaptureMode::Entry ? closedSoups : openSoups;
