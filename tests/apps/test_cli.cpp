@@ -150,7 +150,9 @@ TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
     EXPECT_TRUE(contains(r.out, "--resolution")) << r.out;
     EXPECT_TRUE(contains(r.out, res)) << r.out;
     // Every size below the smallest names the smallest (a probe saw "at least 2" for 0 and 1).
-    if (std::string(res) != "100000") EXPECT_TRUE(contains(r.out, "at least 3")) << r.out;
+    if (std::string(res) != "100000") {
+      EXPECT_TRUE(contains(r.out, "at least 3")) << r.out;
+    }
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir));
   // The largest map the help names is accepted by `depth`, which builds no volume (its memory was
@@ -577,8 +579,9 @@ TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   const CliResult text =
       runCli("build --resolution 64 --refine 6 --refine-grid 2 --scene " + scene("plate.json") + " --out " + out);
   EXPECT_TRUE(contains(text.out, "sub-grid 2x2")) << text.out;
-  EXPECT_TRUE(contains(text.out, "0 quads for a hidden surface")) << text.out;  // the plate hides none
+  EXPECT_TRUE(contains(text.out, "0 quads for a hidden surface (0 for a rim")) << text.out;  // the plate hides none
   EXPECT_EQ(j["hiddenQuads"], 0);
+  EXPECT_EQ(j["rimQuads"], 0);
   const CliResult noSearch = runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --no-hidden-search --scene " +
                                     scene("plate.json") + " --out " + out);
   ASSERT_EQ(noSearch.code, 0) << noSearch.out;

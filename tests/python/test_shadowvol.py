@@ -111,8 +111,9 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
     assert every["subgridBoundaryEdges"] > stats["boundaryEdges"]
     assert_closed_oriented(Va, Fa)
     assert grid["hiddenQuads"] <= grid["subgridQuads"]  # the search for hidden surfaces, on by default
+    assert grid["rimQuads"] <= grid["hiddenQuads"]  # those found by an open mesh's rim alone
     Vn, Fn, none = sv.build_volume(depth, refine=4, refine_grid=4, hidden_search=False, scene=scene)
-    assert none["hiddenQuads"] == 0
+    assert none["hiddenQuads"] == 0 and none["rimQuads"] == 0
     assert_closed_oriented(Vn, Fn)
     with pytest.raises(ValueError, match="refine hidden"):
         sv.build_volume(depth, refine=4, hidden_search=False, scene=scene)  # the sub-grid's search: needs it
