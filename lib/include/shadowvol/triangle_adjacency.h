@@ -37,9 +37,12 @@ bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t
 
 /// Closed as stored: every edge of the vertex indices, in the triangles without a repeated index,
 /// used by exactly two triangles (and at least one such triangle). No welding: one sort of the
-/// edges, cheaper than triangleNeighbours.
-bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles);
-inline bool closedAsStored(const TriangleMesh& mesh) { return closedAsStored(std::span(mesh.triangles)); }
+/// edges, cheaper than triangleNeighbours; memory linear in `vertices`, the number of vertices the
+/// indices address (an index at or above it is a logic error, SV_CHECK).
+bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles, std::size_t vertices);
+inline bool closedAsStored(const TriangleMesh& mesh) {
+  return closedAsStored(std::span(mesh.triangles), mesh.positions.size());
+}
 
 /// Closed as stored (closedAsStored), or after welding equal positions (closedByNeighbours: STL and
 /// soups store every corner apart). The scene's warnings take this one: two closed parts that

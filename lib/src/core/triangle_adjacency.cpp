@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include "shadowvol/check.h"
 #include "shadowvol/error.h"
 
 namespace shadowvol {
@@ -103,12 +104,14 @@ std::vector<std::int32_t> triangleNeighbours(const TriangleMesh& mesh) {
 // per vertex, linear time; a std::map here once took 64 bytes an edge and, under ASan, passed the
 // fuzzer's 500 MB on a legal 118,000 triangle hemisphere), then each vertex's few larger ends
 // sorted and read in pairs.
-bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles) {
+bool closedAsStored(std::span<const std::array<std::uint32_t, 3>> triangles, std::size_t vertices) {
   const auto valid = [](const std::array<std::uint32_t, 3>& t) { return t[0] != t[1] && t[1] != t[2] && t[2] != t[0]; };
-  std::size_t vertices = 0;
-  for (const auto& t : triangles)
-    if (valid(t)) vertices = std::max<std::size_t>(vertices, std::size_t(std::max({t[0], t[1], t[2]})) + 1);
-  if (vertices == 0) return false;
+  bool any = false;
+  for (const auto& t : triangles) {
+    SV_CHECK_LT(std::size_t(std::max({t[0], t[1], t[2]})), vertices);
+    any = any || valid(t);
+  }
+  if (!any) return false;
   const std::vector<std::size_t> start = bucketStarts(vertices, [&](auto add) {
     for (const auto& t : triangles)
       if (valid(t))

@@ -44,7 +44,8 @@ struct EmbreeDepthOracle::Impl {
         const std::span<const std::uint32_t> i = soups[g].indices;
         // Closed as stored (most closed meshes): no rims, and no copy to weld.
         static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t));
-        if (closedAsStored({reinterpret_cast<const std::array<std::uint32_t, 3>*>(i.data()), i.size() / 3})) {
+        if (closedAsStored({reinterpret_cast<const std::array<std::uint32_t, 3>*>(i.data()), i.size() / 3},
+                           soups[g].xyz.size() / 3)) {
           closedSoups[g].closed = true;
           continue;
         }
