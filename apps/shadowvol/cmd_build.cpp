@@ -106,8 +106,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       } else {
         checkResolution("--resolution", o->resolution);
         scene = loadSceneOrDefault(o->scene.scene);
-        const ResolvedCapture capture = resolveCapture(
-            o->capture, scene, options.refineSteps > 0 ? CaptureUse::RefinedVolume : CaptureUse::Volume);
+        const ResolvedCapture capture = resolveCapture(o->capture, scene, volumeUse(options.refineSteps));
         const CaptureMode mode = capture.mode;
         if (!capture.autoReason.empty()) j["captureAuto"] = capture.autoReason;
         checkNotAnInput("--out", o->out, o->out, scene.files);

@@ -81,6 +81,8 @@ TEST(CaptureChoice, TheUseOfAFramesMap) {
   }
   o.method = ShadowMethod::Dpsm;
   EXPECT_EQ(captureUse(o), CaptureUse::OneLayer);
+  EXPECT_EQ(volumeUse(0), CaptureUse::Volume);  // what `build` takes without a frame's options
+  EXPECT_EQ(volumeUse(6), CaptureUse::RefinedVolume);
 }
 
 // The same scene gives the same choice (no state between calls).

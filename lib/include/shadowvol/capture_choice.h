@@ -24,6 +24,11 @@ enum class CaptureUse {
   OneLayer,       ///< read as one layer (the GPU's silhouette walk, dual-paraboloid maps): back capture
 };
 
+/// The use of a hybrid volume's map with `refineSteps` bisection steps: RefinedVolume when > 0.
+inline CaptureUse volumeUse(int refineSteps) {
+  return refineSteps > 0 ? CaptureUse::RefinedVolume : CaptureUse::Volume;
+}
+
 struct CaptureChoice {
   CaptureMode mode = CaptureMode::Back;
   std::vector<std::string> openMeshes;  ///< why front was chosen: openMeshObjects(scene)

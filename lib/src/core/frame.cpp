@@ -38,7 +38,7 @@ bool parseExplicitDepth(const std::string& text, ExplicitDepth& d) { return pars
 CaptureUse captureUse(const RenderOptions& o) {
   if (o.method == ShadowMethod::Hybrid) {
     if (o.refineCrossings == RefineCrossings::GpuWalk) return CaptureUse::OneLayer;
-    return o.volumeOptions.refineSteps > 0 ? CaptureUse::RefinedVolume : CaptureUse::Volume;
+    return volumeUse(o.volumeOptions.refineSteps);
   }
   return o.method == ShadowMethod::Dpsm ? CaptureUse::OneLayer : CaptureUse::ShadowMap;
 }
