@@ -38,7 +38,7 @@ print('%-36s %4s %-10s %-6s %5d %5d %.4f %s' % ('$name', '$res', '$label', d['op
 with_patch() {
   local patch=$1; shift
   git apply "$here/$patch"
-  trap "git apply -R '$here/$patch'" EXIT
+  trap "git apply -R '$here/$patch'; cmake --build build --target shadowvol > /dev/null" EXIT
   cmake --build build --target shadowvol > /dev/null
   "$@"
   git apply -R "$here/$patch"
