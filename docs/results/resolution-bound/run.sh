@@ -3,7 +3,7 @@
 # the working tree, built, compared with and without its environment variable, and reverted. Run
 # from the repository root with a clean tree, after building and fetching what
 # docs/results/sharp-reference/run.sh and docs/results/probe10/run.sh need.
-#   bash docs/results/resolution-bound/run.sh [smooth|cap|corner|grazing|grid8] ...   (default: all; about 40 minutes)
+#   bash docs/results/resolution-bound/run.sh [smooth|cap|corner|grazing|grid8] ...   (default: all; about 15 minutes)
 set -e
 here=docs/results/resolution-bound
 exe=build/apps/shadowvol
