@@ -109,6 +109,39 @@ TEST(NearerSurfaces, AQuadIsFlaggedWhenTheNearestPointInItsSquareIsBelowTheLimit
     }
 }
 
+// The same under a spot light, where the inverse depth is what varies linearly over the image: the
+// nearest point of a quad's square lies on one of its corners' rays (found here by intersecting
+// each with the plane), and the quad is flagged just below that depth, not just above; in every
+// quad the plane's image covers, so that the quads the triangle covers whole (where the search
+// reads the plane over the square instead of clipping) and those along its sides are both checked.
+TEST(NearerSurfaces, UnderASpotLightAQuadIsFlaggedExactlyAtItsNearestCorner) {
+  TriangleMesh slope = makePlane(20.0, 20.0, 1);
+  for (glm::vec3& p : slope.positions) p.y = 1.0f + 0.1f * p.x;
+  const DepthMap map = makeDepthMap(test::refinementSpot(), 16, 16, CaptureMode::Front);
+  const auto planeDepth = [&](double x, double y) {  // the plane's view depth on the ray through (x, y)
+    const glm::dvec3 p1 = map.worldPoint(x, y, 1.0), p2 = map.worldPoint(x, y, 2.0);
+    const double f1 = p1.y - 1.0 - 0.1 * p1.x, f2 = p2.y - 1.0 - 0.1 * p2.x;
+    return 1.0 - f1 / (f2 - f1);
+  };
+  int checked = 0;
+  for (int qj = 0; qj < 15; ++qj)
+    for (int qi = 0; qi < 15; ++qi) {
+      const double nearest =
+          std::min({planeDepth(qi, qj), planeDepth(qi + 1, qj), planeDepth(qi, qj + 1), planeDepth(qi + 1, qj + 1)});
+      if (!(nearest > map.nearPlane && nearest < map.farPlane)) continue;
+      for (double delta : {-1e-4, 1e-4}) {
+        std::vector<float> limit = limits(map, -1.0f);
+        const std::size_t q = std::size_t(qj) * 15 + std::size_t(qi);
+        limit[q] = float(nearest * (1.0 + delta));
+        const std::vector<std::uint8_t> flags = search(map, slope, limit);
+        EXPECT_EQ(flags[q] != 0, delta > 0.0) << qi << " " << qj << " " << delta;
+        EXPECT_EQ(std::count(flags.begin(), flags.end(), std::uint8_t(1)), flags[q]);  // the others: limit -1
+      }
+      ++checked;
+    }
+  EXPECT_EQ(checked, 15 * 15);
+}
+
 // Only the part within [near, far] counts: a box beyond the far plane is never hidden surface,
 // one reaching across the far plane is where it lies before it. A spot light's plane reaching
 // behind its apex is clipped at the near plane (no point at infinity).

@@ -4,6 +4,7 @@
 // crease_quads.h) and the thin quads (back capture, thin_quads.h).
 #pragma once
 
+#include <algorithm>
 #include <limits>
 
 #include "volume/sheet_depths.h"
@@ -22,8 +23,38 @@ inline double chordSample(const SheetDepths& sheet, int x, int y) {
   return u < rule.farPlane ? u : kFar;
 }
 
+/// chordSample of every texel of row j into out[0, width): +inf on the ring, off the map and where
+/// far. A pass over the whole map reads each stored depth once this way (forEachChordInRows),
+/// where chordSample per texel and neighbour reads it nine times.
+inline void chordSampleRow(const SheetDepths& sheet, int j, double* out) {
+  const DepthMap& map = sheet.map();
+  const SheetDepthRule& rule = sheet.rule();
+  constexpr double kFar = std::numeric_limits<double>::infinity();
+  const int w = map.width;
+  if (j <= 0 || j >= map.height - 1) {
+    std::fill(out, out + w, kFar);
+    return;
+  }
+  const float* src = map.depth.data() + map.index(0, j);
+  out[0] = out[w - 1] = kFar;
+  for (int i = 1; i < w - 1; ++i) {
+    const double u = rule.fromStored(src[i]);
+    out[i] = u < rule.farPlane ? u : kFar;
+  }
+}
+
 /// The four directions (di, dj) of the chords: x, y and both diagonals.
 inline constexpr int kChordDi[4] = {1, 0, 1, 1}, kChordDj[4] = {0, 1, 1, -1};
+
+/// The rule of forEachChord for a sample c (finite) and its neighbours a[d] = (i - di, j - dj) and
+/// b[d] = (i + di, j + dj) in each direction d.
+template <class F>
+void forEachChordOf(double c, const double (&a)[4], const double (&b)[4], bool perspective, F f) {
+  for (int d = 0; d < 4; ++d) {
+    if (a[d] == std::numeric_limits<double>::infinity() || b[d] == std::numeric_limits<double>::infinity()) continue;
+    f(d, c - depthAlongEdge(a[d], b[d], 0.5, perspective));
+  }
+}
 
 /// Calls f(d, behind) for each direction d whose two neighbours of texel (i, j) are both sampled,
 /// behind = how far (i, j)'s sample lies behind their chord (negative: in front), the chord taken
@@ -33,12 +64,23 @@ template <class F>
 void forEachChord(const SheetDepths& sheet, int i, int j, bool perspective, F f) {
   const double c = chordSample(sheet, i, j);
   if (c == std::numeric_limits<double>::infinity()) return;
+  double a[4], b[4];
   for (int d = 0; d < 4; ++d) {
-    const double a = chordSample(sheet, i - kChordDi[d], j - kChordDj[d]),
-                 b = chordSample(sheet, i + kChordDi[d], j + kChordDj[d]);
-    if (a == std::numeric_limits<double>::infinity() || b == std::numeric_limits<double>::infinity()) continue;
-    f(d, c - depthAlongEdge(a, b, 0.5, perspective));
+    a[d] = chordSample(sheet, i - kChordDi[d], j - kChordDj[d]);
+    b[d] = chordSample(sheet, i + kChordDi[d], j + kChordDj[d]);
   }
+  forEachChordOf(c, a, b, perspective, f);
+}
+
+/// forEachChord for texel (i, j) from chordSampleRow's rows j - 1 (`up`), j (`row`) and j + 1
+/// (`down`): the same calls, the same values.
+template <class F>
+void forEachChordInRows(const double* up, const double* row, const double* down, int i, bool perspective, F f) {
+  const double c = row[i];
+  if (c == std::numeric_limits<double>::infinity()) return;  // also the ring: i - 1 and i + 1 exist below
+  const double a[4] = {row[i - 1], up[i], up[i - 1], down[i - 1]};
+  const double b[4] = {row[i + 1], down[i], down[i + 1], up[i + 1]};
+  forEachChordOf(c, a, b, perspective, f);
 }
 
 }  // namespace shadowvol::volume

@@ -24,17 +24,17 @@ bool stepOnBoundary(const std::uint8_t* splitBits, int width, int i, int j, int 
 }
 
 // How far texel (i, j)'s sample lies behind the chord of its neighbours, the most over the four
-// directions (0 when it lies on or in front of every chord, or has no neighbour pair that counts).
+// directions (0 when it lies on or in front of every chord, or has no neighbour pair that counts),
+// from chordSampleRow's rows j - 1, j and j + 1.
 // More than 2 B behind is a jump, left to the boundary edges where they have it (a step on either
 // side of the sample is on a boundary edge); where they do not (the discontinuity rule keeps a
 // step continuous next to steep neighbours, as on ground lit at a grazing angle) it counts here.
-double behindChord(const SheetDepths& sheet, const std::uint8_t* splitBits, int i, int j, bool perspective) {
-  const DepthMap& map = sheet.map();
-  const double bias = sheet.rule().bias;
+double behindChord(const double* up, const double* row, const double* down, double bias, const std::uint8_t* splitBits,
+                   int width, int i, int j, bool perspective) {
   double most = 0.0;
-  forEachChord(sheet, i, j, perspective, [&](int d, double behind) {
-    if (behind > 2.0 * bias && (stepOnBoundary(splitBits, map.width, i, j, -kChordDi[d], -kChordDj[d]) ||
-                                stepOnBoundary(splitBits, map.width, i, j, kChordDi[d], kChordDj[d])))
+  forEachChordInRows(up, row, down, i, perspective, [&](int d, double behind) {
+    if (behind > 2.0 * bias && (stepOnBoundary(splitBits, width, i, j, -kChordDi[d], -kChordDj[d]) ||
+                                stepOnBoundary(splitBits, width, i, j, kChordDi[d], kChordDj[d])))
       return;  // a jump the boundary edges have
     most = std::max(most, behind);
   });
@@ -52,9 +52,20 @@ std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivi
   const bool perspective = map.lightProjection[2][3] != 0.0;
   const double threshold = kCreaseChordShare * bias / subdivisions;
   std::vector<std::uint8_t> behind(std::size_t(w) * std::size_t(map.height), 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < w; ++i) behind[std::size_t(j) * w + i] = behindChord(sheet, splitBits, i, j, perspective) > threshold;
+  // Row-parallel (the ring's texels are never sampled), each block rolling three rows of samples.
+  tbb::parallel_for(tbb::blocked_range<int>(1, std::max(1, map.height - 1)), [&](const tbb::blocked_range<int>& rows) {
+    const auto n = static_cast<std::size_t>(w);
+    std::vector<double> up(n), row(n), down(n);
+    chordSampleRow(sheet, rows.begin() - 1, up.data());
+    chordSampleRow(sheet, rows.begin(), row.data());
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      chordSampleRow(sheet, j + 1, down.data());
+      for (int i = 1; i < w - 1; ++i)
+        behind[std::size_t(j) * w + i] =
+            behindChord(up.data(), row.data(), down.data(), bias, splitBits, w, i, j, perspective) > threshold;
+      std::swap(up, row);    // up: row j
+      std::swap(row, down);  // row: row j + 1
+    }
   });
   for (int qj = 0; qj < qh; ++qj) {
     std::uint8_t* lower = splitBits + std::size_t(qj) * w;

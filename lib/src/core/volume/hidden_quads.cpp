@@ -9,6 +9,7 @@
 
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/nearer_surfaces.h"
+#include "volume/chord_offsets.h"
 #include "volume/quad_codes.h"
 
 namespace shadowvol::volume {
@@ -21,18 +22,21 @@ std::vector<std::uint32_t> findHiddenQuads(const SheetDepths& sheet, const Neare
   constexpr float kNone = -std::numeric_limits<float>::infinity();
   const TexelFootprint footprint = TexelFootprint::of(map);
   std::vector<float> limit(std::size_t(qw) * std::size_t(qh), kNone), rimLimit(limit.size(), kNone);
+  // Row-parallel, each block rolling two rows of samples (chordSampleRow: +inf where far or on the
+  // ring) down the map; the captured depth is the sample less the bias.
   tbb::parallel_for(tbb::blocked_range<int>(0, qh), [&](const tbb::blocked_range<int>& rows) {
-    const auto sample = [&](int i, int j) {  // the captured depth, +inf where the sheet is far
-      if (SheetDepthRule::ring(i, j, w, map.height)) return std::numeric_limits<double>::infinity();
-      const double u = rule.fromStored(map.at(i, j));
-      return u < rule.farPlane ? u - rule.bias : std::numeric_limits<double>::infinity();
-    };
+    const auto n = static_cast<std::size_t>(w);
+    std::vector<double> lowerRow(n), upperRow(n);
+    chordSampleRow(sheet, rows.begin(), upperRow.data());
     for (int qj = rows.begin(); qj != rows.end(); ++qj) {
+      std::swap(lowerRow, upperRow);
+      chordSampleRow(sheet, qj + 1, upperRow.data());
       const std::uint8_t* lower = splitBits + std::size_t(qj) * w;
       const std::uint8_t* upper = lower + w;
       for (int qi = 0; qi < qw; ++qi) {
         if ((lower[qi] & 3) | (lower[qi + 1] & 2) | (upper[qi] & 1)) continue;  // refined already
-        const double c[4] = {sample(qi, qj), sample(qi + 1, qj), sample(qi, qj + 1), sample(qi + 1, qj + 1)};
+        const double c[4] = {lowerRow[std::size_t(qi)] - rule.bias, lowerRow[std::size_t(qi) + 1] - rule.bias,
+                             upperRow[std::size_t(qi)] - rule.bias, upperRow[std::size_t(qi) + 1] - rule.bias};
         const double m = std::min({c[0], c[1], c[2], c[3]}), far = std::max({c[0], c[1], c[2], c[3]});
         const std::size_t q = std::size_t(qj) * qw + qi;
         limit[q] = float(std::isinf(m) ? rule.farSnap - rule.bias : m - kJumpFootprints * footprint.at(m) / subdivisions);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <glm/vec2.hpp>
 
 #include "shadowvol/boundary_edges.h"
@@ -13,13 +15,12 @@
 namespace shadowvol::volume {
 namespace {
 
-// How far texel (i, j)'s sample lies off the chord of its neighbours, either way, the most over the
-// four directions (0 without a neighbour pair on the map, off the ring and hit).
-double offChord(const SheetDepths& sheet, int i, int j, bool perspective) {
-  double most = 0.0;
-  forEachChord(sheet, i, j, perspective, [&](int, double behind) { most = std::max(most, std::abs(behind)); });
-  return most;
-}
+// A texel off its neighbours' chords by more than the floor: its column and how far off (either way,
+// the most over the four directions).
+struct OffChord {
+  int i = 0;
+  double off = 0.0;
+};
 
 }  // namespace
 
@@ -30,6 +31,10 @@ std::vector<std::uint32_t> findThinQuads(const SheetDepths& sheet, const DepthOr
   std::vector<std::uint32_t> thin;
   if (map.capture != CaptureMode::Back || rule.bias > 0.0 || !oracle) return thin;
   const int w = map.width, h = map.height, qw = w - 1, qh = h - 1;
+  if (w < 3 || h < 3) {  // every texel on the ring: none sampled
+    if (rays) *rays = 0;
+    return thin;
+  }
   const bool perspective = map.lightProjection[2][3] != 0.0;
   const TexelFootprint footprint = TexelFootprint::of(map);
   // The quads this stage may flag: no boundary side, not flagged yet.
@@ -38,19 +43,37 @@ std::vector<std::uint32_t> findThinQuads(const SheetDepths& sheet, const DepthOr
     const std::uint8_t* lower = splitBits + std::size_t(qj) * w;
     return ((lower[qi] & (3 | kHiddenQuadBit)) | (lower[qi + 1] & 2) | (lower[qi + w] & 1)) == 0;
   };
-  // Their corners off a chord by more than the floor, and the first surface on those corners' rays
-  // (the part's lit face).
+  // Their corners off a chord by more than the floor, row-parallel (the ring's texels are never
+  // sampled), each block rolling three rows of samples down the map.
+  std::vector<std::vector<OffChord>> offRows(static_cast<std::size_t>(h));
+  tbb::parallel_for(tbb::blocked_range<int>(1, h - 1), [&](const tbb::blocked_range<int>& rows) {
+    const auto n = static_cast<std::size_t>(w);
+    std::vector<double> up(n), row(n), down(n);
+    chordSampleRow(sheet, rows.begin() - 1, up.data());
+    chordSampleRow(sheet, rows.begin(), row.data());
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      chordSampleRow(sheet, j + 1, down.data());
+      for (int i = 1; i < w - 1; ++i) {
+        if (row[std::size_t(i)] == std::numeric_limits<double>::infinity()) continue;
+        if (!(eligible(i - 1, j - 1) || eligible(i, j - 1) || eligible(i - 1, j) || eligible(i, j))) continue;
+        double most = 0.0;
+        forEachChordInRows(up.data(), row.data(), down.data(), i, perspective,
+                           [&](int, double behind) { most = std::max(most, std::abs(behind)); });
+        if (most > kThinChordFloor * footprint.at(row[std::size_t(i)])) offRows[std::size_t(j)].push_back({i, most});
+      }
+      std::swap(up, row);    // up: row j
+      std::swap(row, down);  // row: row j + 1
+    }
+  });
+  // The first surface on those corners' rays (the part's lit face), in row-major order.
   std::vector<std::size_t> texel;
   std::vector<double> off;
   std::vector<glm::dvec2> ndc;
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      if (!(eligible(i - 1, j - 1) || eligible(i, j - 1) || eligible(i - 1, j) || eligible(i, j))) continue;
-      const double d = offChord(sheet, i, j, perspective);
-      if (!(d > kThinChordFloor * footprint.at(rule.fromStored(map.at(i, j))))) continue;
-      texel.push_back(std::size_t(j) * std::size_t(w) + std::size_t(i));
-      off.push_back(d);
-      ndc.emplace_back((i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0);
+  for (int j = 1; j < h - 1; ++j)
+    for (const OffChord& c : offRows[std::size_t(j)]) {
+      texel.push_back(std::size_t(j) * std::size_t(w) + std::size_t(c.i));
+      off.push_back(c.off);
+      ndc.emplace_back((c.i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0);
     }
   // The map's description with front capture, without its depths (the oracle reads none).
   DepthMap front;
@@ -61,21 +84,19 @@ std::vector<std::uint32_t> findThinQuads(const SheetDepths& sheet, const DepthOr
   std::vector<float> first(ndc.size());
   if (!ndc.empty()) oracle(front, ndc, first);
   if (rays) *rays = ndc.size();
-  std::vector<std::uint8_t> thinAt(std::size_t(w) * std::size_t(h), 0);
+  // The eligible quads with a thin corner (flagging one changes no other quad's eligibility).
   for (std::size_t k = 0; k < texel.size(); ++k) {
     const double back = rule.fromStored(map.depth[texel[k]]);
-    thinAt[texel[k]] = std::isfinite(first[k]) && back - double(first[k]) < off[k];
+    if (!(std::isfinite(first[k]) && back - double(first[k]) < off[k])) continue;
+    const int i = int(texel[k] % std::size_t(w)), j = int(texel[k] / std::size_t(w));
+    for (int qj = j - 1; qj <= j; ++qj)
+      for (int qi = i - 1; qi <= i; ++qi)
+        if (eligible(qi, qj)) thin.push_back(std::uint32_t(qj) * std::uint32_t(qw) + std::uint32_t(qi));
   }
-  for (int qj = 0; qj < qh; ++qj) {
-    std::uint8_t* lower = splitBits + std::size_t(qj) * w;
-    const std::uint8_t* t0 = thinAt.data() + std::size_t(qj) * w;
-    const std::uint8_t* t1 = t0 + w;
-    for (int qi = 0; qi < qw; ++qi) {
-      if (!eligible(qi, qj) || !(t0[qi] | t0[qi + 1] | t1[qi] | t1[qi + 1])) continue;
-      lower[qi] |= kHiddenQuadBit;
-      thin.push_back(std::uint32_t(qj) * std::uint32_t(qw) + std::uint32_t(qi));
-    }
-  }
+  std::sort(thin.begin(), thin.end());
+  thin.erase(std::unique(thin.begin(), thin.end()), thin.end());
+  for (std::uint32_t q : thin)
+    splitBits[std::size_t(q / std::uint32_t(qw)) * w + q % std::uint32_t(qw)] |= kHiddenQuadBit;
   return thin;
 }
 
