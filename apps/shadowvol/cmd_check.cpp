@@ -31,7 +31,8 @@ std::string failures(const MeshCheckReport& r) {
                                std::to_string(r.overusedEdges) + " over-used edges, " +
                                std::to_string(r.nonManifoldVertices) + " non-manifold vertices, " +
                                std::to_string(r.badIndexTriangles) + " triangles with a repeated index)");
-  add(r.closedManifold() && !r.outward, "not outward (a part's signed volume disagrees with its nesting)");
+  add(r.closedManifold() && r.triangles > 0 && !r.outward,
+      "not outward (a part's signed volume disagrees with its nesting)");
   add(r.nonFiniteVertices > 0, std::to_string(r.nonFiniteVertices) + " non-finite vertices");
   add(r.degenerateTriangles > 0, std::to_string(r.degenerateTriangles) + " zero-area triangles");
   add(r.isolatedVertices > 0, std::to_string(r.isolatedVertices) + " vertices used by no triangle");
@@ -51,13 +52,14 @@ void registerCheckCommand(CLI::App& app, Runner& run) {
       "check",
       "Check a mesh file as shadowvol checks its own volumes (CGAL): a closed 2-manifold (every edge once each "
       "way, every vertex one fan), outward (each part's signed volume as its nesting asks), finite, no zero-area "
-      "triangle and no unused vertex. Exit 0 when it is a valid closed volume, 3 when not, naming what failed; "
+      "triangle and no unused vertex. Exit 0 when it is a valid closed volume (or an empty one, as build writes when "
+      "nothing is in shadow), 3 when not, naming what failed; "
       "shared corners count only where the file shares them (STL's are welded on reading)");
   cmd->add_option("mesh", o->mesh, "The mesh file (.ply, .obj, .off, .stl, or any format Assimp reads)")->required();
   addJsonOption(*cmd, o->json);
   cmd->callback([&run, o] {
     run = [o] {
-      const TriangleMesh m = readTriangleMesh(o->mesh);
+      const TriangleMesh m = readTriangleMesh(o->mesh, EmptyMesh::Allow);  // build writes an empty volume
       const MeshCheckReport r = checkMesh(asVolume(m));
       const std::string failed = failures(r);
       if (o->json) {
@@ -68,8 +70,9 @@ void registerCheckCommand(CLI::App& app, Runner& run) {
         std::cout << j.dump(2) << '\n';
       } else {
         std::printf("%s: %s\n", o->mesh.c_str(), r.summary().c_str());
-        std::printf("%s\n", failed.empty() ? "valid: a closed, outward, finite volume"
-                                           : ("NOT VALID: " + failed).c_str());
+        const char* valid = r.triangles == 0 ? "valid: an empty volume (no triangles: nothing in shadow)"
+                                             : "valid: a closed, outward, finite volume";
+        std::printf("%s\n", failed.empty() ? valid : ("NOT VALID: " + failed).c_str());
       }
       return failed.empty() ? kOk : kValidationFailed;
     };

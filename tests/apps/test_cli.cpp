@@ -727,7 +727,8 @@ TEST(Cli, CheckJudgesAMeshFile) {
   EXPECT_TRUE(contains(stl.out, "write .ply, .obj or .off to keep them apart")) << stl.out;
   EXPECT_EQ(runCli("check " + (dir / "pinch.stl").string()).code, 3);
   // A light whose frustum holds nothing builds an empty volume: said by build (a second probe found
-  // it unsaid for a depth file), refused by check as a file without triangles.
+  // it unsaid for a depth file), and check says it is one (an eleventh probe found check refusing
+  // as bad input the file build had written with exit 0); vertices without triangles are not one.
   test::writeText(dir / "away.json", R"({"objects":[{"type":"box"}],
     "light":{"type":"spot","position":[0,5,0],"direction":[0,1,0],"near":1,"far":10},
     "camera":{"eye":[0,0,5],"target":[0,0,0]}})");
@@ -735,7 +736,13 @@ TEST(Cli, CheckJudgesAMeshFile) {
                                  (dir / "empty.ply").string());
   EXPECT_EQ(empty.code, 0) << empty.out;
   EXPECT_TRUE(contains(empty.out, "the volume is empty")) << empty.out;
-  EXPECT_EQ(runCli("check " + (dir / "empty.ply").string()).code, 1);
+  const CliResult emptyCheck = runCli("check " + (dir / "empty.ply").string());
+  EXPECT_EQ(emptyCheck.code, 0) << emptyCheck.out;
+  EXPECT_TRUE(contains(emptyCheck.out, "valid: an empty volume")) << emptyCheck.out;
+  test::writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+  const CliResult points = runCli("check " + (dir / "points.obj").string());
+  EXPECT_EQ(points.code, 3) << points.out;
+  EXPECT_TRUE(contains(points.out, "NOT VALID: 3 vertices used by no triangle")) << points.out;
   const CliResult folder = runCli("check " + dir.string());  // was "unsupported mesh format"
   EXPECT_EQ(folder.code, 1) << folder.out;
   EXPECT_TRUE(contains(folder.out, "a folder, not a mesh file")) << folder.out;

@@ -27,7 +27,10 @@ namespace shadowvol {
 /// read with Assimp in a child process (60 s, 4 GiB; mesh_readers/assimp_reader.h): every mesh of
 /// the file with its node transforms, triangulated, welded by position; a crash or time-out there
 /// is an InputError naming the file.
-TriangleMesh readTriangleMesh(const std::filesystem::path& path);
+/// EmptyMesh::Allow returns a file without triangles (an empty volume as `build` writes it when
+/// nothing is in shadow) instead of refusing it; every other check stays.
+enum class EmptyMesh { Refuse, Allow };
+TriangleMesh readTriangleMesh(const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse);
 
 /// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):
 /// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", or one of Assimp's,

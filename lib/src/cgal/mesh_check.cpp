@@ -119,8 +119,12 @@ std::string MeshCheckReport::summary() const {
   s << vertices << " vertices, " << triangles << " triangles; non-finite " << nonFiniteVertices << ", bad index "
     << badIndexTriangles << ", degenerate " << degenerateTriangles << ", boundary edges " << boundaryEdges
     << ", overused edges " << overusedEdges << ", non-manifold vertices " << nonManifoldVertices << ", isolated "
-    << isolatedVertices << ", coincident " << coincidentVertices << "; outward " << (outward ? "yes" : "no")
-    << ", volume " << volume << "; self-intersecting pairs ";
+    << isolatedVertices << ", coincident " << coincidentVertices;
+  if (triangles == 0)
+    s << "; empty (no triangles: nothing in shadow, nothing to orient)";  // valid(): an empty volume is one
+  else
+    s << "; outward " << (outward ? "yes" : "no") << ", volume " << volume;
+  s << "; self-intersecting pairs ";
   if (selfIntersectingPairs)
     s << *selfIntersectingPairs << " (allowed touching " << allowedTouchingPairs << ")";
   else

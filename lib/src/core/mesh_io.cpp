@@ -67,13 +67,14 @@ void checkReadableExtension(const std::string& ext, const std::string& source) {
 // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
 // silently dropped or shifted faces). The other formats go to Assimp, in a child process.
 TriangleMesh readChecked(std::string_view bytes, const std::string& ext, const std::string& source,
-                         const std::filesystem::path& path) {
+                         const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse) {
   TriangleMesh mesh = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
                       : ext == ".off" ? mesh_readers::readOff(source, bytes)
                       : ext == ".ply" ? mesh_readers::readPly(source, bytes)
                       : ext == ".stl" ? mesh_readers::readStl(source, bytes)
                                       : mesh_readers::readWithAssimp(source, path, bytes, ext);
-  if (mesh.triangles.empty()) throw InputError(source, "", "", "the mesh has no triangles");
+  if (mesh.triangles.empty() && empty == EmptyMesh::Refuse)
+    throw InputError(source, "", "", "the mesh has no triangles");
   return mesh;
 }
 
@@ -121,15 +122,15 @@ TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, 
   return readChecked(bytes, ext, source, {});
 }
 
-TriangleMesh readTriangleMesh(const std::filesystem::path& path) {
+TriangleMesh readTriangleMesh(const std::filesystem::path& path, EmptyMesh empty) {
   const std::string ext = lowerExtension(path);
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))  // named as such, whatever its extension (a probe's finding)
     throw InputError(path.string(), "", "", "a folder, not a mesh file");
   checkReadableExtension(ext, path.string());  // before touching the file
-  if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path);
+  if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path, empty);
   checkRegularFile(path);
-  return readChecked({}, ext, path.string(), path);  // Assimp opens it (and its .bin, textures)
+  return readChecked({}, ext, path.string(), path, empty);  // Assimp opens it (and its .bin, textures)
 }
 
 namespace {
