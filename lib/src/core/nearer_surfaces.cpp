@@ -103,8 +103,9 @@ bool nearerInQuad(const Projection& p, const ImageCorner* poly, int n, int qi, i
 
 // The plane of a polygon's attribute over the image (the attribute is affine in x and y on a planar
 // polygon), from its corners 0, 1 and 2: a(x, y) = a0 + gx (x - x0) + gy (y - y0). Unset (`valid`
-// false) for fewer than three corners or corners nearly on a line, whose plane rounding would make
-// unreliable.
+// false) for fewer than three corners or corners nearly on a line (the sine of their angle below
+// 1e-4), whose plane rounding would make unreliable. Only a shortcut: where it is unset or says
+// nothing, the polygon is clipped to the square as before.
 struct AttributePlane {
   double x0 = 0.0, y0 = 0.0, a0 = 0.0, gx = 0.0, gy = 0.0;
   bool valid = false;
@@ -114,7 +115,7 @@ struct AttributePlane {
     const double dx1 = c[1].x - c[0].x, dy1 = c[1].y - c[0].y, dx2 = c[2].x - c[0].x, dy2 = c[2].y - c[0].y;
     const double det = dx1 * dy2 - dx2 * dy1;
     const double scale = (std::abs(dx1) + std::abs(dy1)) * (std::abs(dx2) + std::abs(dy2));
-    if (!(std::abs(det) > 1e-6 * scale)) return;
+    if (!(std::abs(det) > 1e-4 * scale)) return;
     const double da1 = c[1].a - c[0].a, da2 = c[2].a - c[0].a;
     x0 = c[0].x, y0 = c[0].y, a0 = c[0].a;
     gx = (da1 * dy2 - da2 * dy1) / det;
@@ -122,15 +123,16 @@ struct AttributePlane {
     valid = std::isfinite(gx) && std::isfinite(gy);
   }
 
-  // Whether the plane lies at or beyond `limit` (light-view depth) over the whole square
-  // [qi, qi + 1] x [qj, qj + 1], with a margin for rounding: then so does every part of the
-  // polygon inside that square (an affine attribute is nearest at one of the square's corners).
+  // Whether the plane lies beyond `limit` (light-view depth) over the whole square [qi, qi + 1] x
+  // [qj, qj + 1] by more than 1e-6 of it (far above the plane's rounding, and below what a float
+  // limit means): then so does every part of the polygon inside that square (an affine attribute
+  // is nearest at one of the square's corners), and clipping would not flag the quad.
   bool beyondOver(const Projection& p, int qi, int qj, double limit) const {
     const double a = a0 + gx * (qi + 0.5 - x0) + gy * (qj + 0.5 - y0);
     const double spread = 0.5 * (std::abs(gx) + std::abs(gy));
     const double nearest = p.perspective ? a + spread : a - spread;  // the nearest attribute over the square
     if (p.perspective && !(nearest > 0.0)) return false;
-    return p.depthOf(nearest) - limit > 1e-9 * std::abs(limit);
+    return p.depthOf(nearest) - limit > 1e-6 * std::abs(limit);
   }
 };
 
