@@ -6,6 +6,11 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "volume/sheet_depths.h"
 
@@ -81,6 +86,29 @@ void forEachChordInRows(const double* up, const double* row, const double* down,
   const double a[4] = {row[i - 1], up[i], up[i - 1], down[i - 1]};
   const double b[4] = {row[i + 1], down[i], down[i + 1], up[i + 1]};
   forEachChordOf(c, a, b, perspective, f);
+}
+
+/// Calls visit(j, up, row, down) for every row j in [1, height - 1) (the ring's rows hold no sample)
+/// with chordSampleRow's rows j - 1, j and j + 1 (width values each), in parallel blocks of rows,
+/// each block rolling the three rows down the map: how the passes over the whole map (thin and
+/// crease quads) read every sample once per row. `visit` must be safe to call concurrently for
+/// different rows.
+template <class Visit>
+void forEachSampledRow(const SheetDepths& sheet, Visit visit) {
+  const int w = sheet.map().width, h = sheet.map().height;
+  tbb::parallel_for(tbb::blocked_range<int>(1, std::max(1, h - 1)), [&](const tbb::blocked_range<int>& rows) {
+    const auto n = static_cast<std::size_t>(w);
+    std::vector<double> up(n), row(n), down(n);
+    chordSampleRow(sheet, rows.begin() - 1, up.data());
+    chordSampleRow(sheet, rows.begin(), row.data());
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      chordSampleRow(sheet, j + 1, down.data());
+      visit(j, static_cast<const double*>(up.data()), static_cast<const double*>(row.data()),
+            static_cast<const double*>(down.data()));
+      std::swap(up, row);    // up: row j
+      std::swap(row, down);  // row: row j + 1
+    }
+  });
 }
 
 }  // namespace shadowvol::volume

@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "volume/chord_offsets.h"
 #include "volume/quad_codes.h"
 
@@ -52,20 +49,9 @@ std::vector<std::uint32_t> findCreaseQuads(const SheetDepths& sheet, int subdivi
   const bool perspective = map.lightProjection[2][3] != 0.0;
   const double threshold = kCreaseChordShare * bias / subdivisions;
   std::vector<std::uint8_t> behind(std::size_t(w) * std::size_t(map.height), 0);
-  // Row-parallel (the ring's texels are never sampled), each block rolling three rows of samples.
-  tbb::parallel_for(tbb::blocked_range<int>(1, std::max(1, map.height - 1)), [&](const tbb::blocked_range<int>& rows) {
-    const auto n = static_cast<std::size_t>(w);
-    std::vector<double> up(n), row(n), down(n);
-    chordSampleRow(sheet, rows.begin() - 1, up.data());
-    chordSampleRow(sheet, rows.begin(), row.data());
-    for (int j = rows.begin(); j != rows.end(); ++j) {
-      chordSampleRow(sheet, j + 1, down.data());
-      for (int i = 1; i < w - 1; ++i)
-        behind[std::size_t(j) * w + i] =
-            behindChord(up.data(), row.data(), down.data(), bias, splitBits, w, i, j, perspective) > threshold;
-      std::swap(up, row);    // up: row j
-      std::swap(row, down);  // row: row j + 1
-    }
+  forEachSampledRow(sheet, [&](int j, const double* up, const double* row, const double* down) {
+    for (int i = 1; i < w - 1; ++i)
+      behind[std::size_t(j) * w + i] = behindChord(up, row, down, bias, splitBits, w, i, j, perspective) > threshold;
   });
   for (int qj = 0; qj < qh; ++qj) {
     std::uint8_t* lower = splitBits + std::size_t(qj) * w;

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <glm/vec2.hpp>
 
 #include "shadowvol/boundary_edges.h"
@@ -43,26 +41,16 @@ std::vector<std::uint32_t> findThinQuads(const SheetDepths& sheet, const DepthOr
     const std::uint8_t* lower = splitBits + std::size_t(qj) * w;
     return ((lower[qi] & (3 | kHiddenQuadBit)) | (lower[qi + 1] & 2) | (lower[qi + w] & 1)) == 0;
   };
-  // Their corners off a chord by more than the floor, row-parallel (the ring's texels are never
-  // sampled), each block rolling three rows of samples down the map.
+  // Their corners off a chord by more than the floor, row by row in parallel (forEachSampledRow).
   std::vector<std::vector<OffChord>> offRows(static_cast<std::size_t>(h));
-  tbb::parallel_for(tbb::blocked_range<int>(1, h - 1), [&](const tbb::blocked_range<int>& rows) {
-    const auto n = static_cast<std::size_t>(w);
-    std::vector<double> up(n), row(n), down(n);
-    chordSampleRow(sheet, rows.begin() - 1, up.data());
-    chordSampleRow(sheet, rows.begin(), row.data());
-    for (int j = rows.begin(); j != rows.end(); ++j) {
-      chordSampleRow(sheet, j + 1, down.data());
-      for (int i = 1; i < w - 1; ++i) {
-        if (row[std::size_t(i)] == std::numeric_limits<double>::infinity()) continue;
-        if (!(eligible(i - 1, j - 1) || eligible(i, j - 1) || eligible(i - 1, j) || eligible(i, j))) continue;
-        double most = 0.0;
-        forEachChordInRows(up.data(), row.data(), down.data(), i, perspective,
-                           [&](int, double behind) { most = std::max(most, std::abs(behind)); });
-        if (most > kThinChordFloor * footprint.at(row[std::size_t(i)])) offRows[std::size_t(j)].push_back({i, most});
-      }
-      std::swap(up, row);    // up: row j
-      std::swap(row, down);  // row: row j + 1
+  forEachSampledRow(sheet, [&](int j, const double* up, const double* row, const double* down) {
+    for (int i = 1; i < w - 1; ++i) {
+      if (row[i] == std::numeric_limits<double>::infinity()) continue;
+      if (!(eligible(i - 1, j - 1) || eligible(i, j - 1) || eligible(i - 1, j) || eligible(i, j))) continue;
+      double most = 0.0;
+      forEachChordInRows(up, row, down, i, perspective,
+                         [&](int, double behind) { most = std::max(most, std::abs(behind)); });
+      if (most > kThinChordFloor * footprint.at(row[i])) offRows[std::size_t(j)].push_back({i, most});
     }
   });
   // The first surface on those corners' rays (the part's lit face), in row-major order.
