@@ -1,7 +1,8 @@
 // How far a texel's sample lies off the chord of its two neighbours, along the x axis, the y axis
 // and both diagonals: the bend of the sampled surface there, which the sheet's straight runs
 // between texel centres do not follow. Read by the crease quads (front capture's bias,
-// crease_quads.h) and the thin quads (back capture, thin_quads.h).
+// crease_quads.h) and the thin quads (back capture, thin_quads.h); the rows of samples
+// (chordSampleRow) also by the hidden-surface search's limits (hidden_quads.h).
 #pragma once
 
 #include <algorithm>
