@@ -1,13 +1,17 @@
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
 #include "shadowvol/depth_map.h"
+#include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/embree/embree_scene.h"
 #include "shadowvol/error.h"
 #include "shadowvol/primitives.h"
 #include "test_util.h"
@@ -206,6 +210,48 @@ TEST(Capture, IsDeterministic) {
   for (CaptureMode m : {CaptureMode::Front, CaptureMode::Back, CaptureMode::Midpoint, CaptureMode::Entry}) {
     const DepthMap a = captureDepthEmbree(s, 64, 64, m), b = captureDepthEmbree(s, 64, 64, m);
     EXPECT_EQ(0, std::memcmp(a.depth.data(), b.depth.data(), a.depth.size() * sizeof(float))) << toString(m);
+  }
+}
+
+// captureRays (packets of eight) records what captureRay records one ray at a time, bit for bit, in
+// every mode and for batches that do and do not fill their last packet: texel centres and points
+// between them over a sphere on the ground with a plate above it and a wedge lit nearly edge-on
+// (where entry capture passes a face over), the rays through the sphere's outline included.
+TEST(Capture, PacketsRecordWhatOneRayAtATimeDoes) {
+  TriangleMesh plate = makePlane(1.2, 1.2, 2);
+  for (auto& v : plate.positions) v += glm::vec3(0.9f, 3.0f, 0.0f);
+  TriangleMesh wedge = test::grazedWedgeScene(0.5 * kEntryGrazingCos, 2.0).objects.front().mesh;
+  for (auto& v : wedge.positions) v += glm::vec3(-2.5f, 0.0f, 1.5f);
+  const Scene s = sceneOf(makeLight(LightType::Spot), {makeIcoSphere(1.5, 4), makePlane(30, 30, 8), plate, wedge});
+  const EmbreeDevice device;
+  const EmbreeScene rt(device, {&s.objects[0].mesh, &s.objects[1].mesh, &s.objects[2].mesh, &s.objects[3].mesh});
+  std::uint32_t seed = 12345;
+  const auto next = [&seed] { return double((seed = seed * 1664525u + 1013904223u) >> 8) / double(1u << 24); };
+  for (CaptureMode m : {CaptureMode::Front, CaptureMode::Back, CaptureMode::Midpoint, CaptureMode::Entry}) {
+    const DepthMap map = makeDepthMap(s.light, 40, 40, m);
+    const TexelUnprojector u(map);
+    std::vector<TexelUnprojector::Ray> rays;
+    for (int j = 0; j < map.height; ++j)
+      for (int i = 0; i < map.width; ++i) {
+        rays.push_back(u.ray(i, j));
+        rays.push_back(u.ray(i + next() - 0.5, j + next() - 0.5));
+      }
+    std::size_t hits = 0;
+    for (std::size_t batch : {std::size_t(1), std::size_t(7), std::size_t(8), std::size_t(61), rays.size()}) {
+      for (std::size_t k0 = 0; k0 < rays.size(); k0 += batch) {
+        const std::size_t n = std::min(batch, rays.size() - k0);
+        std::vector<float> depth(n, -1.0f);
+        captureRays(rt.get(), std::span(rays).subspan(k0, n), float(map.nearPlane), float(map.farPlane), m, depth);
+        for (std::size_t k = 0; k < n; ++k) {
+          const float one = captureRay(rt.get(), rays[k0 + k], float(map.nearPlane), float(map.farPlane), m);
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(depth[k]), std::bit_cast<std::uint32_t>(one))
+              << toString(m) << " " << k0 + k;
+          hits += !DepthMap::isNoHit(one);
+        }
+      }
+    }
+    EXPECT_GT(hits, 5 * rays.size() / 5) << toString(
+        m);  // a fifth of the rays record a surface (the sphere's, at least)
   }
 }
 

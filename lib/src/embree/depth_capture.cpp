@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <span>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/check.h"
 #include "shadowvol/depth_map.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
@@ -27,15 +31,22 @@ struct CaptureContext {
 // vertex reports each adjacent triangle).
 constexpr float kSameSurface = 1e-5f;
 
+// Rays per packet (rtcIntersect8, captureRays).
+constexpr unsigned kPacket = 8;
+
 // Back capture: accept only hits on back faces (geometric normal along the ray). Embree's Ng for a
-// counter-clockwise triangle points to its front side, the same convention as OpenGL.
+// counter-clockwise triangle points to its front side, the same convention as OpenGL. Every filter
+// here reads lane k of a packet of N rays (N = 1 for rtcIntersect1, 8 for rtcIntersect8: Embree
+// hands the query's own packet, lane k being its ray k, with only the lanes to filter valid).
 void backFaceFilter(const RTCFilterFunctionNArguments* args) {
-  if (args->valid[0] == 0) return;
-  const float dx = RTCRayN_dir_x(args->ray, args->N, 0), dy = RTCRayN_dir_y(args->ray, args->N, 0),
-              dz = RTCRayN_dir_z(args->ray, args->N, 0);
-  const float nx = RTCHitN_Ng_x(args->hit, args->N, 0), ny = RTCHitN_Ng_y(args->hit, args->N, 0),
-              nz = RTCHitN_Ng_z(args->hit, args->N, 0);
-  if (!(dx * nx + dy * ny + dz * nz > 0.0f)) args->valid[0] = 0;
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] == 0) continue;
+    const float dx = RTCRayN_dir_x(args->ray, args->N, k), dy = RTCRayN_dir_y(args->ray, args->N, k),
+                dz = RTCRayN_dir_z(args->ray, args->N, k);
+    const float nx = RTCHitN_Ng_x(args->hit, args->N, k), ny = RTCHitN_Ng_y(args->hit, args->N, k),
+                nz = RTCHitN_Ng_z(args->hit, args->N, k);
+    if (!(dx * nx + dy * ny + dz * nz > 0.0f)) args->valid[k] = 0;
+  }
 }
 
 // Entry capture in one traversal: back faces are accepted (Embree then narrows the ray to each,
@@ -45,28 +56,35 @@ void backFaceFilter(const RTCFilterFunctionNArguments* args) {
 // as the ray reaches at least that far.
 struct EntryContext {
   RTCIntersectContext ctx;
-  float t = INFINITY;  // the nearest entering face's distance
-  unsigned geomID = RTC_INVALID_GEOMETRY_ID, primID = RTC_INVALID_GEOMETRY_ID;
+  // Per lane of the packet: the nearest entering face's distance and ids.
+  float t[kPacket] = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
+  unsigned geomID[kPacket], primID[kPacket];
+  EntryContext() {
+    std::fill(std::begin(geomID), std::end(geomID), RTC_INVALID_GEOMETRY_ID);
+    std::fill(std::begin(primID), std::end(primID), RTC_INVALID_GEOMETRY_ID);
+  }
 };
 
 void entryFilter(const RTCFilterFunctionNArguments* args) {
-  if (args->valid[0] == 0) return;
-  const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, 0), RTCRayN_dir_y(args->ray, args->N, 0),
-                     RTCRayN_dir_z(args->ray, args->N, 0));
-  const glm::dvec3 n(RTCHitN_Ng_x(args->hit, args->N, 0), RTCHitN_Ng_y(args->hit, args->N, 0),
-                     RTCHitN_Ng_z(args->hit, args->N, 0));
-  const double along = glm::dot(d, n);
-  if (along > 0.0) return;  // a back face: accepted
-  args->valid[0] = 0;
-  if (-along < kEntryGrazingCos * glm::length(d) * glm::length(n)) return;  // lit nearly edge-on
   auto* c = reinterpret_cast<EntryContext*>(const_cast<RTCIntersectContext*>(args->context));
-  const float t = RTCRayN_tfar(args->ray, args->N, 0);
-  const unsigned g = RTCHitN_geomID(args->hit, args->N, 0), p = RTCHitN_primID(args->hit, args->N, 0);
-  // The nearest; among equally near faces the lowest ids, whatever the traversal's order.
-  if (t < c->t || (t == c->t && (g < c->geomID || (g == c->geomID && p < c->primID)))) {
-    c->t = t;
-    c->geomID = g;
-    c->primID = p;
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] == 0) continue;
+    const glm::dvec3 d(RTCRayN_dir_x(args->ray, args->N, k), RTCRayN_dir_y(args->ray, args->N, k),
+                       RTCRayN_dir_z(args->ray, args->N, k));
+    const glm::dvec3 n(RTCHitN_Ng_x(args->hit, args->N, k), RTCHitN_Ng_y(args->hit, args->N, k),
+                       RTCHitN_Ng_z(args->hit, args->N, k));
+    const double along = glm::dot(d, n);
+    if (along > 0.0) continue;  // a back face: accepted
+    args->valid[k] = 0;
+    if (-along < kEntryGrazingCos * glm::length(d) * glm::length(n)) continue;  // lit nearly edge-on
+    const float t = RTCRayN_tfar(args->ray, args->N, k);
+    const unsigned g = RTCHitN_geomID(args->hit, args->N, k), p = RTCHitN_primID(args->hit, args->N, k);
+    // The nearest; among equally near faces the lowest ids, whatever the traversal's order.
+    if (t < c->t[k] || (t == c->t[k] && (g < c->geomID[k] || (g == c->geomID[k] && p < c->primID[k])))) {
+      c->t[k] = t;
+      c->geomID[k] = g;
+      c->primID[k] = p;
+    }
   }
 }
 
@@ -119,7 +137,7 @@ CapturedHit entryHit(RTCScene scene, const TexelUnprojector::Ray& ray, float tNe
   c.ctx.filter = entryFilter;
   rtcIntersect1(scene, &c.ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  if (c.t <= rh.ray.tfar) return {c.t, c.geomID, c.primID};
+  if (c.t[0] <= rh.ray.tfar) return {c.t[0], c.geomID[0], c.primID[0]};
   return {rh.ray.tfar, rh.hit.geomID, rh.hit.primID};
 }
 
@@ -147,13 +165,67 @@ float captureRay(RTCScene scene, const TexelUnprojector::Ray& ray, float tNear, 
 
 namespace {
 
+// Up to kPacket rays in one rtcIntersect8 for front, back and entry capture, each lane read as
+// firstHit and entryHit read their one ray (the same filters; lanes past `count` are masked off).
+void capturePacket(RTCScene scene, const TexelUnprojector::Ray* rays, std::size_t count, float tNear, float tFar,
+                   CaptureMode mode, float* depth) {
+  alignas(32) int valid[kPacket];
+  RTCRayHit8 rh{};
+  for (std::size_t k = 0; k < kPacket; ++k) {
+    valid[k] = k < count ? -1 : 0;
+    const RTCRayHit one = makeRayHit(rays[k < count ? k : 0].origin, rays[k < count ? k : 0].direction, tNear, tFar);
+    rh.ray.org_x[k] = one.ray.org_x;
+    rh.ray.org_y[k] = one.ray.org_y;
+    rh.ray.org_z[k] = one.ray.org_z;
+    rh.ray.dir_x[k] = one.ray.dir_x;
+    rh.ray.dir_y[k] = one.ray.dir_y;
+    rh.ray.dir_z[k] = one.ray.dir_z;
+    rh.ray.tnear[k] = one.ray.tnear;
+    rh.ray.tfar[k] = one.ray.tfar;
+    rh.ray.mask[k] = one.ray.mask;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  EntryContext c;
+  rtcInitIntersectContext(&c.ctx);
+  if (mode == CaptureMode::Entry) c.ctx.filter = entryFilter;
+  if (mode == CaptureMode::Back) c.ctx.filter = backFaceFilter;
+  rtcIntersect8(valid, scene, &c.ctx, &rh);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID)
+      depth[k] = DepthMap::kNoHit;
+    else if (mode == CaptureMode::Entry && c.t[k] <= rh.ray.tfar[k])
+      depth[k] = c.t[k];
+    else
+      depth[k] = rh.ray.tfar[k];
+  }
+}
+
+}  // namespace
+
+void captureRays(RTCScene scene, std::span<const TexelUnprojector::Ray> rays, float tNear, float tFar, CaptureMode mode,
+                 std::span<float> depth) {
+  SV_CHECK_EQ(rays.size(), depth.size());
+  if (mode == CaptureMode::Midpoint) {
+    for (std::size_t k = 0; k < rays.size(); ++k) depth[k] = captureRay(scene, rays[k], tNear, tFar, mode);
+    return;
+  }
+  for (std::size_t k = 0; k < rays.size(); k += kPacket)
+    capturePacket(scene, rays.data() + k, std::min<std::size_t>(kPacket, rays.size() - k), tNear, tFar, mode,
+                  depth.data() + k);
+}
+
+namespace {
+
 void fillDepthMap(const EmbreeScene& rtScene, DepthMap& map) {
   const TexelUnprojector unproject(map);
   const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
   tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < map.width; ++i)
-        map.depth[map.index(i, j)] = captureRay(rtScene.get(), unproject.ray(i, j), tNear, tFar, map.capture);
+    std::vector<TexelUnprojector::Ray> rays(std::size_t(map.width));
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      for (int i = 0; i < map.width; ++i) rays[std::size_t(i)] = unproject.ray(i, j);
+      captureRays(rtScene.get(), rays, tNear, tFar, map.capture,
+                  std::span<float>(map.depth).subspan(map.index(0, j), std::size_t(map.width)));
+    }
   });
 }
 

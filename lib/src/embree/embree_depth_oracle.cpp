@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <mutex>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -84,13 +85,16 @@ DepthOracle EmbreeDepthOracle::oracle() const {
     SV_CHECK_EQ(ndc.size(), depth.size());
     const TexelUnprojector unproject(map);
     const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
-        const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
-        depth[k] = captureRay(impl->scene.get(), unproject.ray(i, j), tNear, tFar, map.capture);
-      }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+          std::vector<TexelUnprojector::Ray> rays(r.size());
+          for (std::size_t k = r.begin(); k != r.end(); ++k) {
+            // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
+            const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
+            rays[k - r.begin()] = unproject.ray(i, j);
+          }
+          captureRays(impl->scene.get(), rays, tNear, tFar, map.capture, depth.subspan(r.begin(), r.size()));
+        });
     impl->device.throwIfError();
   };
 }
