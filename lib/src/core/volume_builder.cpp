@@ -360,6 +360,26 @@ struct VertexBases {
   std::uint32_t crossing = 0, chord = 0, subgrid = 0;
 };
 
+VertexBases vertexBasesOf(const volume::SheetVertices& vertices, const RefinementFound& found, bool adaptive) {
+  VertexBases base;
+  base.crossing = std::uint32_t(vertices.count());
+  base.chord = std::uint32_t(base.crossing + 2 * found.edges.edges.size());
+  base.subgrid = adaptive ? std::uint32_t(base.chord + 2 * found.chords.segments.size()) : base.crossing;
+  return base;
+}
+
+// Stage 2's counts and those of the quads stage 1r found, into `stats`.
+void recordQuadStats(const volume::QuadCodes& codes, const RefinementFound& found, VolumeBuildStats& stats) {
+  stats.flippedQuads = codes.flipped;
+  stats.droppedQuads = codes.dropped;
+  stats.refinedCells = codes.refined;
+  stats.hiddenQuads = found.hiddenQuads;
+  stats.rimQuads = found.rimQuads;
+  stats.creaseQuads = found.creaseQuads;
+  stats.thinQuads = found.thinQuads;
+  stats.msHidden = found.msHidden;
+}
+
 // Stages 3r and 4r: the refined quads' triangles and walls (plain refinement, the sub-grid, or the
 // adaptive sub-grid's mix of both) and the far edges that bound the cap.
 struct RefinedStage {
@@ -368,6 +388,24 @@ struct RefinedStage {
   volume::RefinedQuads plainQuads;  // the adaptive sub-grid's plain quads
   std::vector<CapEdge> capEdges;
 };
+
+// Stage 5's buffers: the vertices of the sheet and the refined quads (or the pinch copies), the
+// triangles of both, with room for the sub-grid's split centroids and (about) the flattened cap, so
+// that appending them rarely reallocates. perimeter: the map's width + height.
+void sizeMeshBuffers(bool subgrid, const VertexBases& base, const volume::SheetVertices& vertices,
+                     const volume::CapBoundary& boundary, const RefinementFound& found, std::uint64_t sheetTriangles,
+                     const RefinedStage& refined, int perimeter, VolumeMesh& mesh) {
+  using volume::sizeBuffer;
+  const volume::SubgridCells& sub = refined.sub;
+  if (subgrid)
+    sizeBuffer(mesh.positions, base.subgrid + sub.positions.size(),
+               base.subgrid + sub.positions.size() + sub.splits.size() + sub.plainSplits.size());
+  else
+    sizeBuffer(mesh.positions,
+               vertices.count() + boundary.copies + 2 * found.edges.edges.size() + 2 * found.chords.segments.size());
+  const std::uint64_t triangles = sheetTriangles + refined.cells.triangles.size();
+  sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(perimeter) + 64);
+}
 
 RefinedStage buildRefinedCells(const RefinementFound& found, const volume::TexelUse& use,
                                const volume::SheetVertices& vertices, const volume::SheetDepths& sheet,
@@ -525,14 +563,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
                         found.hiddenQuads + found.creaseQuads + found.thinQuads > 0},
       scratch_->code);
   const QuadGrid grid{w - 1, h - 1, scratch_->code.data()};
-  stats.flippedQuads = codes.flipped;
-  stats.droppedQuads = codes.dropped;
-  stats.refinedCells = codes.refined;
-  stats.hiddenQuads = found.hiddenQuads;
-  stats.rimQuads = found.rimQuads;
-  stats.creaseQuads = found.creaseQuads;
-  stats.thinQuads = found.thinQuads;
-  stats.msHidden = found.msHidden;
+  recordQuadStats(codes, found, stats);
   double msSheet = msSince(t0);
 
   // 2r. Refinement: the crossings (the oracle's rays).
@@ -551,11 +582,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   // or the refined quads' triangles and walls, whose far edges bound the cap.
   const TexelUse use(grid, codes);
   const SheetVertices vertices = countSheetVertices(use, !refine);
-  VertexBases base;
-  base.crossing = std::uint32_t(vertices.count());
-  base.chord = std::uint32_t(base.crossing + 2 * found.edges.edges.size());
-  // after the plain crossings and chord points, if any
-  base.subgrid = adaptive ? std::uint32_t(base.chord + 2 * found.chords.segments.size()) : base.crossing;
+  const VertexBases base = vertexBasesOf(vertices, found, adaptive);
   CapBoundary boundary;
   RefinedStage refined;
   double msEdges = 0.0;
@@ -589,14 +616,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   VolumeMesh& mesh = result.mesh;
   const SubgridCells& sub = refined.sub;
   const std::uint64_t sheetTriangles = codes.sheetTriangles();
-  const std::uint64_t triangles = sheetTriangles + refined.cells.triangles.size();
-  if (subgrid)
-    sizeBuffer(mesh.positions, base.subgrid + sub.positions.size(),
-               base.subgrid + sub.positions.size() + sub.splits.size() + sub.plainSplits.size());
-  else
-    sizeBuffer(mesh.positions,
-               vertices.count() + boundary.copies + 2 * found.edges.edges.size() + 2 * found.chords.segments.size());
-  sizeBuffer(mesh.triangles, triangles, triangles + triangles / 4 + 4 * std::size_t(w + h) + 64);
+  sizeMeshBuffers(subgrid, base, vertices, boundary, found, sheetTriangles, refined, w + h, mesh);
   sizeBuffer(scratch_->quadTri, stats.quads);
   try {
     emitSheet(sheet, unproject, use, codes, vertices, mesh, scratch_->quadTri);
