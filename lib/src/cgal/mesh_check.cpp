@@ -122,6 +122,8 @@ std::string MeshCheckReport::summary() const {
     << isolatedVertices << ", coincident " << coincidentVertices;
   if (triangles == 0)
     s << "; empty (no triangles: nothing in shadow, nothing to orient)";  // valid(): an empty volume is one
+  else if (!orientationChecked)
+    s << "; outward and volume not checked (they need a closed 2-manifold without non-finite or degenerate faces)";
   else
     s << "; outward " << (outward ? "yes" : "no") << ", volume " << volume;
   s << "; self-intersecting pairs ";
@@ -273,12 +275,14 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
   checkFans(corners, r);
   r.coincidentVertices = coincidentVertices(mesh);
 
-  if (!r.closedManifold() || r.nonFiniteVertices > 0 || mesh.triangles.empty()) return r;
+  if (!r.closedManifold() || r.nonFiniteVertices > 0 || r.degenerateTriangles > 0 || mesh.triangles.empty())
+    return r;
   Mesh sm;
   if (!buildSurfaceMesh(mesh, sm)) {
     ++r.nonManifoldVertices;  // CGAL refused a face our checks accepted; report it as non-manifold
     return r;
   }
+  r.orientationChecked = true;
   r.outward = isOutward(sm);
   r.volume = CGAL::to_double(PMP::volume(sm));
   if (options.selfIntersections && r.degenerateTriangles == 0) checkSelfIntersections(sm, options, r);
@@ -293,6 +297,11 @@ struct VolumeClassifier::Impl {
 VolumeClassifier::VolumeClassifier(const VolumeMesh& mesh) : impl_(std::make_unique<Impl>()) {
   const bool ok = buildSurfaceMesh(mesh, impl_->mesh);
   SV_CHECK(ok);
+  for (auto f : impl_->mesh.faces()) {  // CGAL's rays would retry without end on a flat face
+    const auto h = impl_->mesh.halfedge(f);
+    SV_CHECK(!CGAL::collinear(impl_->mesh.point(impl_->mesh.source(h)), impl_->mesh.point(impl_->mesh.target(h)),
+                              impl_->mesh.point(impl_->mesh.target(impl_->mesh.next(h)))));
+  }
   impl_->side = std::make_unique<CGAL::Side_of_triangle_mesh<Mesh, K>>(impl_->mesh);
 }
 VolumeClassifier::~VolumeClassifier() = default;

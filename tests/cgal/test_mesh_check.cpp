@@ -1,0 +1,100 @@
+// checkMesh on closed meshes with exactly flat (collinear) faces: reported, never a hang. CGAL's
+// point-in-volume rays (isOutward's nesting test) retry without end on a flat face whose box they
+// cross; an eleventh-probe finding (a volume written with --world-coords 1e5 units from the origin,
+// most of its small faces rounded flat).
+#include <array>
+#include <filesystem>
+#include <cstdint>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "shadowvol/cgal/mesh_check.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/scene.h"
+#include "shadowvol/volume_builder.h"
+#include "shadowvol/volume_mesh.h"
+
+namespace shadowvol {
+namespace {
+
+// A closed parallelepiped at `o` with integer edges e1, e2, e3, wound outward (inward with
+// `inward`). With `flat`, its triangle (0, 2, 3) is instead cut at the midpoint m of the diagonal
+// 0-3 into (0, 2, m) and (m, 2, 3), and the flat triangle (0, m, 3) closes the diagonal.
+void addBox(VolumeMesh& mesh, glm::dvec3 o, glm::dvec3 e1, glm::dvec3 e2, glm::dvec3 e3, bool inward, bool flat) {
+  const auto base = std::uint32_t(mesh.positions.size());
+  for (int k = 0; k < 8; ++k)
+    mesh.positions.push_back(o + double(k & 1) * e1 + double((k >> 1) & 1) * e2 + double((k >> 2) & 1) * e3);
+  // Corners k = x + 2y + 4z; faces counter-clockwise from outside for a right-handed e1, e2, e3.
+  std::vector<std::array<std::uint32_t, 3>> t = {{0, 3, 1}, {4, 5, 7}, {0, 1, 5}, {2, 7, 3},
+                                                  {0, 6, 2}, {1, 3, 7}, {0, 5, 4}, {2, 6, 7},
+                                                  {0, 4, 6}, {1, 7, 5}, {4, 7, 6}};
+  if (flat) {
+    const auto m = std::uint32_t(mesh.positions.size() - base);
+    mesh.positions.push_back(o + 0.5 * (e1 + e2));  // exactly on the diagonal 0-3 (integer inputs)
+    t.push_back({0, 2, m});
+    t.push_back({m, 2, 3});
+    t.push_back({0, m, 3});  // flat: its 3 -> 0 pairs (0, 3, 1)'s 0 -> 3, its other edges the two above
+  } else {
+    t.push_back({0, 2, 3});
+  }
+  for (auto tri : t) {
+    if (inward) std::swap(tri[1], tri[2]);
+    mesh.triangles.push_back({base + tri[0], base + tri[1], base + tri[2]});
+  }
+}
+
+TEST(MeshCheck, AFlatFaceIsReportedAndOrientationLeftUnchecked) {
+  const glm::dvec3 e1(8, 4, 0), e2(-4, 8, 4), e3(0, -4, 8);  // not axis-aligned: the flat face's box has volume
+  VolumeMesh clean, flat;
+  addBox(clean, {0, 0, 0}, e1, e2, e3, false, false);
+  addBox(clean, {1, 1, 1}, 0.25 * e1, 0.25 * e2, 0.25 * e3, true, false);  // a cavity inside
+  addBox(flat, {0, 0, 0}, e1, e2, e3, false, true);
+  addBox(flat, {1, 1, 1}, 0.25 * e1, 0.25 * e2, 0.25 * e3, true, false);
+
+  const MeshCheckReport ok = checkMesh(clean);
+  ASSERT_TRUE(ok.valid()) << ok.summary();
+  EXPECT_TRUE(ok.orientationChecked);
+
+  const MeshCheckReport r = checkMesh(flat);
+  EXPECT_TRUE(r.closedManifold()) << r.summary();
+  EXPECT_EQ(r.degenerateTriangles, 1u) << r.summary();
+  EXPECT_FALSE(r.orientationChecked);
+  EXPECT_FALSE(r.valid());
+  EXPECT_NE(r.summary().find("outward and volume not checked"), std::string::npos) << r.summary();
+}
+
+// The probe's case: millimetre objects 1e5 units from the origin. The volume as built (relative to
+// its local origin) is valid; its world coordinates, as `build --world-coords` writes them and as
+// `check` reads them back (single precision, README), round most of its faces flat, and checking
+// that hung in CGAL's nesting test before flat faces were kept from it.
+TEST(MeshCheck, AVolumeInWorldCoordinatesFarFromTheOriginEnds) {
+  const char* json = R"({"objects": [
+      {"type": "plane", "size": 0.01, "transform": {"translate": [100000, -100000, 30000]}},
+      {"type": "sphere", "radius": 0.001, "transform": {"translate": [100000, -99999.998, 30000]}},
+      {"type": "box", "size": 0.001, "transform": {"translate": [100000.002, -99999.9995, 30000.001], "rotate": [0, 30, 0]}}],
+    "camera": {"eye": [100000, -99999.994, 30000.011], "target": [100000, -99999.999, 30000]},
+    "light": {"type": "spot", "position": [100000.003, -99999.991, 30000.002],
+              "target": [99999.9997, -100000, 29999.9998], "fov": 55}})";
+  const Scene scene = parseScene(json, "far-mm.json", ".").scene;
+  VolumeMesh volume = buildVolume(captureDepthEmbree(scene, 128, 128, CaptureMode::Back), {}).mesh;
+  const MeshCheckReport local = checkMesh(volume);
+  ASSERT_TRUE(local.valid()) << local.summary();
+  // Written in world coordinates and read back as `check` reads it.
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "shadowvol-far-mm-world.obj";
+  writeVolumeMesh(volume, file, true);
+  const TriangleMesh read = readTriangleMesh(file);
+  std::filesystem::remove(file);
+  volume.positions.assign(read.positions.begin(), read.positions.end());
+  volume.triangles.assign(read.triangles.begin(), read.triangles.end());
+  volume.origin = {0, 0, 0};
+  const MeshCheckReport world = checkMesh(volume);
+  EXPECT_TRUE(world.closedManifold()) << world.summary();
+  ASSERT_GT(world.degenerateTriangles, 0u) << world.summary();
+  EXPECT_FALSE(world.orientationChecked);
+  EXPECT_FALSE(world.valid());
+}
+
+}  // namespace
+}  // namespace shadowvol
