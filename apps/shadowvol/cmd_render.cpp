@@ -117,20 +117,34 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         std::sort(v.begin(), v.end());
         return v.empty() ? 0.0 : (v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]));
       };
-      writePng(o->out, result.width, result.height, 4, result.rgba);
-      std::size_t shadowed = 0;
-      if (!o->stencil.empty()) {
-        writePng(o->stencil, result.width, result.height, 3, stencilPicture(result.stencil));
-        writePng(stencilCountsPath(o->stencil), result.width, result.height, 1, result.stencil);
-        // Each further light's stencil beside it (a second probe's finding: only light 0's was written).
-        for (std::size_t k = 0; k < result.otherLights.size(); ++k) {
-          const auto& other = result.otherLights[k];
-          if (other.stencil.empty()) continue;
-          const std::filesystem::path picture = lightStencilPath(o->stencil, k + 1);
-          writePng(picture, other.width, other.height, 3, stencilPicture(other.stencil));
-          writePng(stencilCountsPath(picture), other.width, other.height, 1, other.stencil);
+      // The image, then the stencil files: a write that fails (a full disk, a folder in the way)
+      // takes the files this run wrote before it along, so no half set is left behind.
+      std::vector<std::filesystem::path> written;
+      auto png = [&](const std::filesystem::path& path, int width, int height, int channels,
+                     const std::vector<std::uint8_t>& pixels) {
+        writePng(path, width, height, channels, pixels);
+        written.push_back(path);
+      };
+      try {
+        png(o->out, result.width, result.height, 4, result.rgba);
+        if (!o->stencil.empty()) {
+          png(o->stencil, result.width, result.height, 3, stencilPicture(result.stencil));
+          png(stencilCountsPath(o->stencil), result.width, result.height, 1, result.stencil);
+          // Each further light's stencil beside it (a second probe's finding: only light 0's was written).
+          for (std::size_t k = 0; k < result.otherLights.size(); ++k) {
+            const auto& other = result.otherLights[k];
+            if (other.stencil.empty()) continue;
+            const std::filesystem::path picture = lightStencilPath(o->stencil, k + 1);
+            png(picture, other.width, other.height, 3, stencilPicture(other.stencil));
+            png(stencilCountsPath(picture), other.width, other.height, 1, other.stencil);
+          }
         }
+      } catch (...) {
+        std::error_code ec;
+        for (const auto& path : written) std::filesystem::remove(path, ec);
+        throw;
       }
+      std::size_t shadowed = 0;
       for (auto s : result.stencil) shadowed += s != 0;
 
       const gl::ContextInfo& info = renderer.info();

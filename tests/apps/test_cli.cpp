@@ -653,6 +653,15 @@ TEST(CliGl, RenderWritesImageStencilAndTimes) {
   EXPECT_EQ(runCli("render --method laser --out " + bad).code, 2);
   EXPECT_EQ(runCli("render --method shadowmap --stencil " + st + "2 --out " + bad).code, 1);
   EXPECT_FALSE(std::filesystem::exists(bad));
+  // A write that fails after others (a folder where the counts go: a twelfth probe's finding) takes
+  // the image and the stencil picture written before it along.
+  std::filesystem::create_directories(dir / "u-counts.png");
+  const CliResult half = runCli("render --resolution 64 --size 160x120 --out " + bad + " --stencil " +
+                                (dir / "u.png").string());
+  EXPECT_EQ(half.code, 1) << half.out;
+  EXPECT_TRUE(contains(half.out, "u-counts.png")) << half.out;
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  EXPECT_FALSE(std::filesystem::exists(dir / "u.png"));
 }
 
 TEST(CliGl, ValidateWritesReportAndImages) {
