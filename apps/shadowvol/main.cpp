@@ -1,6 +1,7 @@
 // shadowvol: explicit shadow-volume meshes from light depth maps. One subcommand per job.
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <new>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -13,6 +14,21 @@
 #include "shadowvol/error.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/version.h"
+
+namespace {
+
+// The command's exit code, or bad input when what it printed did not all reach standard output (a
+// full disk behind `> file`, /dev/full): a twelfth probe's finding, where `--json > /dev/full` lost
+// the document and still exited 0.
+int stdoutWritten(int code) {
+  std::cout.flush();
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && !std::cout.bad()) return code;
+  std::fprintf(stderr, "shadowvol: error: standard output: writing failed (a full disk?); what the command printed "
+                       "is incomplete\n");
+  return code == shadowvol::cli::kOk ? shadowvol::cli::kBadInput : code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace shadowvol;
@@ -56,10 +72,11 @@ int main(int argc, char** argv) {
     cli::applyVerbosity(app);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
-    return code == 0 ? cli::kOk : cli::kUsage;
+    return stdoutWritten(code == 0 ? cli::kOk : cli::kUsage);  // --help and --version print
   }
   try {
-    return run();
+    const int code = run();
+    return stdoutWritten(code);
   } catch (const InputError& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", cli::asCommandLineError(e).what());
     return cli::kBadInput;

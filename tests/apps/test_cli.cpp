@@ -471,6 +471,26 @@ TEST(Cli, QuietAndVerbose) {
   EXPECT_TRUE(contains(error.out, "--resolution = 1")) << error.out;  // errors still reach stderr
 }
 
+// What a command prints that does not reach standard output (a full disk behind `> file`) is an
+// error, not exit 0 with the document lost (a twelfth probe's finding).
+TEST(Cli, AFailedWriteToStandardOutputIsAnError) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  for (const char* args : {"scene --json", "scene", "--version"}) {
+    // stderr to the pipe, stdout to /dev/full (runCli would send both to the same place).
+    const std::string cmd = std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1 >/dev/full";
+    FILE* p = popen(cmd.c_str(), "r");
+    ASSERT_NE(p, nullptr);
+    std::string err;
+    std::array<char, 4096> buf;
+    while (std::fgets(buf.data(), buf.size(), p)) err += buf.data();
+    const int status = pclose(p);
+    ASSERT_TRUE(WIFEXITED(status)) << args;
+    EXPECT_EQ(WEXITSTATUS(status), 1) << args << ": " << err;
+    EXPECT_TRUE(contains(err, "standard output: writing failed")) << args << ": " << err;
+  }
+  EXPECT_EQ(runCli("scene --json").code, 0);
+}
+
 TEST(Cli, BuildRefinesAndReportsItsRays) {
   const auto dir = test::tempDir();
   const std::string out = (dir / "r.ply").string();
