@@ -350,6 +350,11 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("crlf.pfm", "CR LF");
   test::writeText(dir / "nan.pfm", "Pf\n1 1\nnan\n" + std::string(4, '\0'));  // once "bad PFM size"
   expectError("nan.pfm", "header scale = nan");
+  // The size is quoted as written (a twelfth probe's finding: 4294967297 1 was quoted as 2147483647x0).
+  test::writeText(dir / "huge.pfm", "Pf\n4294967297 1\n-1.0\n" + std::string(4, '\0'));
+  expectError("huge.pfm", "header = 4294967297 1: bad PFM size");
+  test::writeText(dir / "frac.pfm", "Pf\n2.5 1\n-1.0\n" + std::string(8, '\0'));
+  expectError("frac.pfm", "header = 2.5 1: bad PFM size");
   // A good PFM without its side file.
   Light l;
   l.nearPlane = 1;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -284,16 +285,25 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   requireRegularFile(pfm, "the depth map");
   std::ifstream in(pfm, std::ios::binary);
   if (!in) throw InputError(file, "", "", "cannot open the depth map");
-  std::string magic;
-  int w = 0, h = 0;
+  std::string magic, wText, hText;
   double scale = 0;
   in.width(8);  // header tokens are short: "Pf"
   in >> magic;
+  in.width(24);
+  in >> wText;
+  in.width(24);
+  in >> hText;
   in.width(0);
-  in >> w >> h;
   if (magic != "Pf") throw InputError(file, "header", magic, "not a single-channel PFM (expected \"Pf\")");
-  if (!in || w <= 0 || h <= 0 || w > 65536 || h > 65536)
-    throw InputError(file, "header", std::to_string(w) + "x" + std::to_string(h), "bad PFM size");
+  // The size as written is what the message quotes (a number too large for int is not clamped).
+  auto side = [](const std::string& t) {
+    int v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    return ec == std::errc() && end == t.data() + t.size() && v >= 1 && v <= 65536 ? v : 0;
+  };
+  const int w = side(wText), h = side(hText);
+  if (!in || w == 0 || h == 0)
+    throw InputError(file, "header", wText + " " + hText, "bad PFM size (width and height: whole numbers 1 to 65536)");
   std::string scaleText;
   in.width(32);
   in >> scaleText;
