@@ -2,21 +2,13 @@
 
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 #include <string>
 
 #include "shadowvol/check.h"
 
 namespace shadowvol {
-namespace {
-
-void onEmbreeError(void* user, RTCError code, const char* message) {
-  auto* first = static_cast<std::string*>(user);
-  std::fprintf(stderr, "shadowvol: Embree error %d: %s\n", int(code), message ? message : "");
-  if (first->empty()) first->assign("Embree error " + std::to_string(int(code)) + ": " + (message ? message : ""));
-}
-
-}  // namespace
 
 RTCRayHit makeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, float tnear, float tfar) {
   RTCRayHit rh{};
@@ -33,14 +25,34 @@ RTCRayHit makeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, floa
   return rh;
 }
 
-EmbreeDevice::EmbreeDevice() : firstError_(std::make_shared<std::string>()) {
+struct EmbreeDevice::FirstError {
+  RTCError code = RTC_ERROR_NONE;
+  std::string message;
+};
+
+void EmbreeDevice::onError(void* user, RTCError code, const char* message) {
+  auto* first = static_cast<FirstError*>(user);
+  if (code != RTC_ERROR_OUT_OF_MEMORY)  // that one is said once, plainly, by the caller's std::bad_alloc
+    std::fprintf(stderr, "shadowvol: Embree error %d: %s\n", int(code), message ? message : "");
+  if (first->code == RTC_ERROR_NONE) {
+    first->code = code;
+    first->message = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
+  }
+}
+
+EmbreeDevice::EmbreeDevice() : firstError_(std::make_shared<FirstError>()) {
   device_.reset(rtcNewDevice(nullptr));
-  if (!device_) throw std::runtime_error("cannot create an Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-  rtcSetDeviceErrorFunction(device_.get(), onEmbreeError, firstError_.get());
+  if (!device_) {
+    const RTCError code = rtcGetDeviceError(nullptr);
+    if (code == RTC_ERROR_OUT_OF_MEMORY) throw std::bad_alloc();
+    throw std::runtime_error("cannot create an Embree device (error " + std::to_string(int(code)) + ")");
+  }
+  rtcSetDeviceErrorFunction(device_.get(), onError, firstError_.get());
 }
 
 void EmbreeDevice::throwIfError() const {
-  if (!firstError_->empty()) throw std::runtime_error(*firstError_);
+  if (firstError_->code == RTC_ERROR_OUT_OF_MEMORY) throw std::bad_alloc();
+  if (firstError_->code != RTC_ERROR_NONE) throw std::runtime_error(firstError_->message);
 }
 
 EmbreeScene::EmbreeScene(const EmbreeDevice& device, const std::vector<const TriangleMesh*>& meshes) {

@@ -12,7 +12,8 @@
 namespace shadowvol {
 
 /// An Embree device with an error callback that turns Embree errors into messages on stderr and
-/// remembers the first one; throwIfError() raises it as std::runtime_error.
+/// remembers the first one; throwIfError() raises it as std::runtime_error (std::bad_alloc when
+/// Embree ran out of memory, as the constructor does when no device can be made for that reason).
 class EmbreeDevice {
  public:
   EmbreeDevice();
@@ -24,7 +25,9 @@ class EmbreeDevice {
     void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
   };
   std::unique_ptr<RTCDeviceTy, Deleter> device_;
-  std::shared_ptr<std::string> firstError_;
+  struct FirstError;  // the first error's code and message (embree_scene.cpp)
+  static void onError(void* user, RTCError code, const char* message);
+  std::shared_ptr<FirstError> firstError_;
 };
 
 /// A ray from `origin` along `direction` (not normalised) over [tnear, tfar], every mask bit set,
