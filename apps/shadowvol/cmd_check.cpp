@@ -31,7 +31,7 @@ std::string failures(const MeshCheckReport& r) {
                                std::to_string(r.overusedEdges) + " over-used edges, " +
                                std::to_string(r.nonManifoldVertices) + " non-manifold vertices, " +
                                std::to_string(r.badIndexTriangles) + " triangles with a repeated index)");
-  add(r.orientationChecked && !r.outward,
+  add(r.closedManifold() && r.triangles > 0 && !r.outward,
       "not outward (a part's signed volume disagrees with its nesting)");
   add(r.nonFiniteVertices > 0, std::to_string(r.nonFiniteVertices) + " non-finite vertices");
   add(r.degenerateTriangles > 0, std::to_string(r.degenerateTriangles) + " zero-area triangles");

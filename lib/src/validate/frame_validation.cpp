@@ -56,7 +56,7 @@ CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, 
   const TriangleMesh volumeF = volume.toTriangleMesh();
   const EmbreeScene volumeRt(device, {&volumeF});
   c.counts = countCrossings(volumeRt, camera, hits);
-  if (c.mesh.orientationChecked) {  // a closed 2-manifold with no flat face (VolumeClassifier)
+  if (c.mesh.closedManifold() && volume.triangleCount() > 0) {
     const auto side = VolumeClassifier(volume).classify(camera.eye);
     c.eyeInside = side != VolumeClassifier::Side::Outside;
     if (side != VolumeClassifier::Side::Boundary)
@@ -69,7 +69,6 @@ CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, 
 MeshCheckReport summed(const std::vector<MeshCheckReport>& reports) {
   MeshCheckReport r;
   r.outward = true;
-  r.orientationChecked = true;
   bool selfChecked = true;
   std::size_t selfPairs = 0;
   for (const MeshCheckReport& m : reports) {
@@ -83,10 +82,7 @@ MeshCheckReport summed(const std::vector<MeshCheckReport>& reports) {
     r.nonManifoldVertices += m.nonManifoldVertices;
     r.isolatedVertices += m.isolatedVertices;
     r.coincidentVertices += m.coincidentVertices;
-    if (m.triangles > 0) {  // an empty mesh is valid, not outward
-      r.outward = r.outward && m.outward;
-      r.orientationChecked = r.orientationChecked && m.orientationChecked;
-    }
+    if (m.triangles > 0) r.outward = r.outward && m.outward;  // an empty mesh is valid, not outward
     r.volume += m.volume;
     selfChecked = selfChecked && m.selfIntersectingPairs.has_value();
     selfPairs += m.selfIntersectingPairs.value_or(0);
@@ -94,7 +90,6 @@ MeshCheckReport summed(const std::vector<MeshCheckReport>& reports) {
   }
   if (selfChecked) r.selfIntersectingPairs = selfPairs;
   r.outward = r.outward && r.triangles > 0;
-  r.orientationChecked = r.orientationChecked && r.triangles > 0;
   return r;
 }
 

@@ -34,11 +34,7 @@ struct MeshCheckReport {
   std::size_t nonManifoldVertices = 0;   ///< vertices whose triangles do not form one closed fan
   std::size_t isolatedVertices = 0;      ///< vertices used by no triangle
   std::size_t coincidentVertices = 0;    ///< vertices at the same position as an earlier vertex
-  /// The following need a closed 2-manifold (closedManifold()) without degenerate triangles
-  /// (CGAL's point-in-volume rays retry without end on exactly collinear faces: a volume written in
-  /// world coordinates far from the origin, its small faces rounded flat); otherwise left at their
-  /// defaults, and orientationChecked stays false.
-  bool orientationChecked = false;
+  /// The following need a closed 2-manifold (closedManifold()); otherwise left at their defaults.
   bool outward = false;                  ///< every connected component's volume signed as its nesting
                                          ///< asks (mesh_check.cpp isOutward; PMP::is_outward_oriented
                                          ///< beyond 4096 components)
@@ -60,8 +56,7 @@ struct MeshCheckReport {
 MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options = {});
 
 /// Point-in-volume queries on a closed mesh (CGAL Side_of_triangle_mesh over an AABB tree, built
-/// once). The mesh must satisfy MeshCheckReport::closedManifold() and have no degenerate
-/// triangle (MeshCheckReport::orientationChecked); it is copied.
+/// once). The mesh must satisfy MeshCheckReport::closedManifold(); it is copied.
 class VolumeClassifier {
  public:
   enum class Side { Inside, Boundary, Outside };
