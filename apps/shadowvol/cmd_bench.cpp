@@ -199,6 +199,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       Scene sizeScene;
       RenderCliOptions sizeOnly;
       sizeOnly.size = o->size;
+      sizeOnly.scored = true;  // every cell is scored against exact shadow rays
       toRenderOptions(sizeOnly, sizeScene);  // checks --size
       so.width = sizeScene.camera.width;
       so.height = sizeScene.camera.height;

@@ -166,6 +166,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
     double exactOffsetScale = 0.0;
   };
   auto o = std::make_shared<Options>();
+  o->render.scored = true;  // the frame is scored against exact shadow rays (memory a pixel)
   auto* cmd = app.add_subcommand(
       "validate",
       "Render a frame on the GPU and check it by ray casting: Embree's signed crossing counts of the explicit volume "

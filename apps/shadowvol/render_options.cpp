@@ -5,6 +5,7 @@
 
 #include "shadowvol/cube_map.h"
 #include "shadowvol/error.h"
+#include "shadowvol/memory_budget.h"
 
 namespace shadowvol::cli {
 namespace {
@@ -18,6 +19,22 @@ std::pair<int, int> parseSize(const std::string& text) {
   if (w < 1 || h < 1 || w > 16384 || h > 16384)
     throw InputError("command line", "--size", text, "width and height must be between 1 and 16384");
   return {w, h};
+}
+
+// Peak bytes a pixel of the camera's frame, measured on the default scene (README "Known limits":
+// render 1.83 GB at 8192², validate 1.75 GB at 4096², 2026-12-06), rounded up.
+constexpr std::uint64_t kRenderBytesPerPixel = 28, kScoredBytesPerPixel = 104;
+
+// Refuses a frame too large for the machine before the renderer allocates it: the --size given,
+// else the scene's camera.
+void checkFrameMemory(const RenderCliOptions& o, const Scene& scene) {
+  const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+  const std::uint64_t need = pixels * (o.scored ? kScoredBytesPerPixel : kRenderBytesPerPixel);
+  const std::string size = std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height);
+  if (!o.size.empty())
+    checkFitsMemory(need, "command line", "--size", o.size);
+  else
+    checkFitsMemory(need, scene.source, "/camera/width, /camera/height", size);
 }
 
 }  // namespace
@@ -146,6 +163,7 @@ gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::
     scene.camera.width = w;
     scene.camera.height = h;
   }
+  checkFrameMemory(o, scene);
   return ro;
 }
 

@@ -28,6 +28,7 @@ struct RenderCliOptions {
   int dpsmSubdivide = 1;  ///< --dpsm-subdivide: 1, 2, 4, 8
   std::string platform = "auto";
   std::string shaderDir;
+  bool scored = false;  ///< validate, bench: the frame is also scored by ray casting (more memory a pixel)
 };
 
 /// Adds --scene, --json, --method, --volume, --gpu-draw, --crossings, --depth-from, --count, --resolution,
@@ -36,7 +37,8 @@ struct RenderCliOptions {
 void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 
 /// Checks the values (InputError naming the option) and fills the renderer's options. --size, when
-/// given, replaces the scene camera's width and height. --capture auto is chosen for `scene`
+/// given, replaces the scene camera's width and height; a frame whose buffers would need more than
+/// half of the machine's memory (about 28 bytes a pixel, 104 when `scored`) is refused. --capture auto is chosen for `scene`
 /// (resolveCapture); `captureAutoReason`, when given, receives why (empty when the mode was given).
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason = nullptr);
 

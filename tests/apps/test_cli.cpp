@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,6 +17,7 @@
 #include "cli_errors.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/image_io.h"
+#include "shadowvol/memory_budget.h"
 #include "test_util.h"
 
 namespace shadowvol {
@@ -164,6 +166,7 @@ TEST(Cli, BadResolutionIsRefusedBeforeAnyWork) {
   for (const char* cmd : {"depth", "build"})  // the help names the smallest map accepted
     EXPECT_TRUE(contains(runCli(std::string(cmd) + " --help").out, "3..16384")) << cmd;
 }
+
 
 // Regression (a hostile-input probe): --bias 1e6 wrote an empty volume with exit 0, and
 // --shadow-bias took negative values.
@@ -682,6 +685,21 @@ TEST(CliGl, RenderWritesImageStencilAndTimes) {
   EXPECT_TRUE(contains(half.out, "u-counts.png")) << half.out;
   EXPECT_FALSE(std::filesystem::exists(bad));
   EXPECT_FALSE(std::filesystem::exists(dir / "u.png"));
+}
+
+// A twelfth probe's finding: --size had no such guard; validate at 16384² would need about 28 GB.
+TEST(CliGl, AFrameTooLargeForTheMachineIsRefusedBeforeAnyWork) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const std::uint64_t need = 104ull * 16384 * 16384;  // render_options.cpp, kScoredBytesPerPixel
+  if (physicalMemoryBytes() == 0 || physicalMemoryBytes() / 2 >= need)
+    GTEST_SKIP() << "this machine has the memory for it";
+  const auto dir = test::tempDir();
+  for (const std::string& cmd : {"validate --report " + (dir / "v").string(), "bench --out " + (dir / "b").string()}) {
+    const CliResult r = runCli(cmd + " --size 16384x16384");
+    EXPECT_EQ(r.code, 1) << cmd << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "--size = 16384x16384: needs about")) << cmd << ": " << r.out;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
 TEST(CliGl, ValidateWritesReportAndImages) {

@@ -1,12 +1,11 @@
 #include "shadowvol/depth_map.h"
 
-#include <unistd.h>
-
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
 #include "shadowvol/check.h"
 #include "shadowvol/error.h"
+#include "shadowvol/memory_budget.h"
 
 namespace shadowvol {
 
@@ -106,13 +105,7 @@ void checkDepthMapSize(int width, int height, const std::string& source, const s
   if (width < 2 || height < 2) throw InputError(source, field, value, "the resolution must be at least 2");
   if (width > kMaxDepthMapSide || height > kMaxDepthMapSide)
     throw InputError(source, field, value, "above the limit of " + std::to_string(kMaxDepthMapSide) + " texels a side");
-  const std::uint64_t need = depthMapBytes(width, height, use);
-  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-  const std::uint64_t physical = pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
-  if (physical > 0 && need > physical / 2)
-    throw InputError(source, field, value,
-                     "needs about " + std::to_string(need >> 20) + " MiB, more than half of this machine's " +
-                         std::to_string(physical >> 20) + " MiB");
+  checkFitsMemory(depthMapBytes(width, height, use), source, field, value);
 }
 
 }  // namespace shadowvol
