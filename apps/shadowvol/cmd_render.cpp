@@ -120,6 +120,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       // The image, then the stencil files: a write that fails (a full disk, a folder in the way)
       // takes the files this run wrote before it along, so no half set is left behind.
       std::vector<std::filesystem::path> written;
+      written.reserve(2 + 2 * result.otherLights.size() + 1);  // no allocation between a write and its record
       auto png = [&](const std::filesystem::path& path, int width, int height, int channels,
                      const std::vector<std::uint8_t>& pixels) {
         writePng(path, width, height, channels, pixels);

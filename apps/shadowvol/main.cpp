@@ -1,5 +1,7 @@
 // shadowvol: explicit shadow-volume meshes from light depth maps. One subcommand per job.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
@@ -23,8 +25,8 @@ namespace {
 int stdoutWritten(int code) {
   std::cout.flush();
   if (std::fflush(stdout) == 0 && !std::ferror(stdout) && !std::cout.bad()) return code;
-  std::fprintf(stderr, "shadowvol: error: standard output: writing failed (a full disk?); what the command printed "
-                       "is incomplete\n");
+  std::fprintf(stderr, "shadowvol: error: standard output: writing failed (%s); what the command printed is incomplete\n",
+               std::strerror(errno));
   return code == shadowvol::cli::kOk ? shadowvol::cli::kBadInput : code;
 }
 

@@ -355,6 +355,8 @@ TEST(DepthMapIo, BadFilesAreRefusedWithTheirName) {
   expectError("huge.pfm", "header = 4294967297 1: bad PFM size");
   test::writeText(dir / "frac.pfm", "Pf\n2.5 1\n-1.0\n" + std::string(8, '\0'));
   expectError("frac.pfm", "header = 2.5 1: bad PFM size");
+  test::writeText(dir / "long-size.pfm", "Pf\n1234567890123456789012345 1\n-1.0\n");  // cut at 24, said so
+  expectError("long-size.pfm", "header = 123456789012345678901234... 5: bad PFM size");
   // A good PFM without its side file.
   Light l;
   l.nearPlane = 1;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -289,11 +290,16 @@ DepthMap readDepthMap(const std::filesystem::path& pfm) {
   double scale = 0;
   in.width(8);  // header tokens are short: "Pf"
   in >> magic;
-  in.width(24);
-  in >> wText;
-  in.width(24);
-  in >> hText;
-  in.width(0);
+  // Size tokens of at most 24 characters (a longer one, cut there, is quoted with "..." after it).
+  auto token = [&in](std::string& t) {
+    in.width(24);
+    in >> t;
+    in.width(0);
+    const int next = in ? in.peek() : EOF;
+    if (next != EOF && !std::isspace(next)) t += "...";
+  };
+  token(wText);
+  token(hText);
   if (magic != "Pf") throw InputError(file, "header", magic, "not a single-channel PFM (expected \"Pf\")");
   // The size as written is what the message quotes (a number too large for int is not clamped).
   auto side = [](const std::string& t) {

@@ -32,7 +32,8 @@ struct EmbreeDevice::FirstError {
 
 void EmbreeDevice::onError(void* user, RTCError code, const char* message) {
   auto* first = static_cast<FirstError*>(user);
-  if (code != RTC_ERROR_OUT_OF_MEMORY)  // that one is said once, plainly, by the caller's std::bad_alloc
+  // A first out-of-memory error is said once, plainly, through throwIfError's std::bad_alloc.
+  if (code != RTC_ERROR_OUT_OF_MEMORY || first->code != RTC_ERROR_NONE)
     std::fprintf(stderr, "shadowvol: Embree error %d: %s\n", int(code), message ? message : "");
   if (first->code == RTC_ERROR_NONE) {
     first->code = code;
