@@ -25,11 +25,11 @@ namespace {
 
 struct CliResult {
   int code;
-  std::string out;  // stdout and stderr together
+  std::string out;  // what reached the pipe: for runCli stdout and stderr together
 };
 
-CliResult runCli(const std::string& args) {
-  const std::string cmd = std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1";
+// A shell command line: its exit code (-1 when it did not exit) and what it wrote to the pipe.
+CliResult runShell(const std::string& cmd) {
   FILE* p = popen(cmd.c_str(), "r");
   CliResult r{-1, ""};
   if (!p) return r;
@@ -39,6 +39,8 @@ CliResult runCli(const std::string& args) {
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+CliResult runCli(const std::string& args) { return runShell(std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1"); }
 
 std::string scene(const char* name) { return (test::sourceDir() / "data/scenes" / name).string(); }
 
@@ -238,16 +240,9 @@ TEST(Cli, OutOfMemoryIsSaidPlainlyAndWritesNothing) {
   // A front map of 8192^2 and its volume need more than 700 MB of address space: the run once
   // ended with a bare "std::bad_alloc".
   const auto out = (test::tempDir() / "oom.ply").string();
-  const std::string cmd = "bash -c 'ulimit -v 700000; exec " + std::string(SV_SHADOWVOL_EXE) +
-                          " build --resolution 8192 --capture front --out " + out + "' 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string text;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), p)) text += buf.data();
-  const int status = pclose(p);
-  ASSERT_TRUE(WIFEXITED(status)) << text;
-  EXPECT_EQ(WEXITSTATUS(status), 4) << text;
+  const auto [code, text] = runShell("bash -c 'ulimit -v 700000; exec " + std::string(SV_SHADOWVOL_EXE) +
+                                     " build --resolution 8192 --capture front --out " + out + "' 2>&1");
+  EXPECT_EQ(code, 4) << text;
   EXPECT_TRUE(contains(text, "out of memory")) << text;
   EXPECT_FALSE(contains(text, "bad_alloc")) << text;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -480,15 +475,8 @@ TEST(Cli, AFailedWriteToStandardOutputIsAnError) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
   for (const char* args : {"scene --json", "scene", "--version"}) {
     // stderr to the pipe, stdout to /dev/full (runCli would send both to the same place).
-    const std::string cmd = std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1 >/dev/full";
-    FILE* p = popen(cmd.c_str(), "r");
-    ASSERT_NE(p, nullptr);
-    std::string err;
-    std::array<char, 4096> buf;
-    while (std::fgets(buf.data(), buf.size(), p)) err += buf.data();
-    const int status = pclose(p);
-    ASSERT_TRUE(WIFEXITED(status)) << args;
-    EXPECT_EQ(WEXITSTATUS(status), 1) << args << ": " << err;
+    const auto [code, err] = runShell(std::string(SV_SHADOWVOL_EXE) + " " + args + " 2>&1 >/dev/full");
+    EXPECT_EQ(code, 1) << args << ": " << err;
     EXPECT_TRUE(contains(err, "standard output: writing failed")) << args << ": " << err;
   }
   EXPECT_EQ(runCli("scene --json").code, 0);
