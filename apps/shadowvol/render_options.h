@@ -39,8 +39,8 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o);
 /// Checks the values (InputError naming the option) and fills the renderer's options. --size, when
 /// given, replaces the scene camera's width and height; a frame whose buffers would need more than
 /// half of the machine's memory (about 28 bytes a pixel, 107 when `scored`) is refused. --capture
-/// auto is chosen for `scene`
-/// (resolveCapture); `captureAutoReason`, when given, receives why (empty when the mode was given).
+/// auto is chosen for `scene` (resolveCapture); `captureAutoReason`, when given, receives why
+/// (empty when the mode was given).
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason = nullptr);
 
 gl::RendererOptions toRendererOptions(const RenderCliOptions& o);
