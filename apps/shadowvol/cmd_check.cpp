@@ -59,7 +59,9 @@ void registerCheckCommand(CLI::App& app, Runner& run) {
   addJsonOption(*cmd, o->json);
   cmd->callback([&run, o] {
     run = [o] {
-      const TriangleMesh m = readTriangleMesh(o->mesh, EmptyMesh::Allow);  // build writes an empty volume
+      // Rebased (the verdict does not depend on where the mesh lies), so that a volume written in
+      // world coordinates far from the origin is judged before float rounds it.
+      const TriangleMesh m = readRebasedTriangleMesh(o->mesh, EmptyMesh::Allow).mesh;  // build writes an empty volume
       const MeshCheckReport r = checkMesh(asVolume(m));
       const std::string failed = failures(r);
       if (o->json) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "shadowvol/cgal/mesh_check.h"
@@ -70,9 +71,9 @@ TEST(MeshCheck, AFlatFaceIsCountedAndTheNestingStillJudged) {
 }
 
 // The probe's case: millimetre objects 1e5 units from the origin. The volume as built (relative to
-// its local origin) is valid; its world coordinates, as `build --world-coords` writes them and as
-// `check` reads them back (single precision, README), round most of its faces flat, and checking
-// that hung in CGAL's nesting test before flat faces were kept from it.
+// its local origin) is valid; its world coordinates, as `build --world-coords` writes them, read
+// back in single precision round most of its faces flat, and checking that hung in CGAL's nesting
+// test before flat faces were kept from it. `check` reads the file rebased, and finds it valid.
 TEST(MeshCheck, AVolumeInWorldCoordinatesFarFromTheOriginEnds) {
   const char* json = R"({"objects": [
       {"type": "plane", "size": 0.01, "transform": {"translate": [100000, -100000, 30000]}},
@@ -85,18 +86,28 @@ TEST(MeshCheck, AVolumeInWorldCoordinatesFarFromTheOriginEnds) {
   VolumeMesh volume = buildVolume(captureDepthEmbree(scene, 128, 128, CaptureMode::Back), {}).mesh;
   const MeshCheckReport local = checkMesh(volume);
   ASSERT_TRUE(local.valid()) << local.summary();
-  // Written in world coordinates and read back as `check` reads it.
+  // Written in world coordinates, then read back in float as they are (readTriangleMesh): most
+  // faces round flat, and the check still ends; read as `check` reads it (rebased before the
+  // rounding), the volume is valid as it was built.
   const std::filesystem::path file = std::filesystem::temp_directory_path() / "shadowvol-far-mm-world.obj";
   writeVolumeMesh(volume, file, true);
-  const TriangleMesh read = readTriangleMesh(file);
+  const TriangleMesh rounded = readTriangleMesh(file);
+  const RebasedMesh rebased = readRebasedTriangleMesh(file);
   std::filesystem::remove(file);
-  volume.positions.assign(read.positions.begin(), read.positions.end());
-  volume.triangles.assign(read.triangles.begin(), read.triangles.end());
-  volume.origin = {0, 0, 0};
-  const MeshCheckReport world = checkMesh(volume);
+  auto asVolume = [](const TriangleMesh& m) {
+    VolumeMesh v;
+    v.positions.assign(m.positions.begin(), m.positions.end());
+    v.triangles.assign(m.triangles.begin(), m.triangles.end());
+    return v;
+  };
+  const MeshCheckReport world = checkMesh(asVolume(rounded));
   EXPECT_TRUE(world.closedManifold()) << world.summary();
   ASSERT_GT(world.degenerateTriangles, 0u) << world.summary();
   EXPECT_FALSE(world.valid());
+  EXPECT_GT(glm::length(rebased.origin), 1e5);
+  const MeshCheckReport kept = checkMesh(asVolume(rebased.mesh));
+  EXPECT_TRUE(kept.valid()) << kept.summary();
+  EXPECT_EQ(kept.triangles, local.triangles);
 }
 
 }  // namespace

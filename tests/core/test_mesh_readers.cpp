@@ -2,6 +2,7 @@
 // per hostile file of issue 12 (what OpenMesh 9 did with it is in each test's name), then what
 // must still read.
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "shadowvol/error.h"
@@ -414,6 +416,60 @@ TEST(MeshReaders, StlAsciiIsReadAndItsMistakesNamed) {
           {"line 4 (end of file)", "inside a facet"});
 }
 
+// A mesh 1.4 units across stored 6e6 from its file's origin, where a float step is 0.5: parsed in
+// double and stored from its bounding box's centre, each format keeps its shape to float's
+// precision at the mesh's own size (rounded where it lies, a corner moves by up to 0.25). Binary
+// STL holds float itself, so its corners stay as the file has them, still welded. A mesh near its
+// origin is stored exactly as readTriangleMesh stores it, from origin 0.
+TEST(MeshReaders, MeshFarFromItsFilesOriginIsRebasedBeforeTheRounding) {
+  const glm::dvec3 at(3e6, -2e6, 5e6);
+  const std::vector<glm::dvec3> corners = {at + glm::dvec3(0.1, 0.2, 0.3), at + glm::dvec3(1.1, 0.2, 0.3),
+                                           at + glm::dvec3(0.1, 1.3, 0.3), at + glm::dvec3(0.1, 0.2, 1.4)};
+  const std::vector<Triangle> faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  auto xyz = [](const glm::dvec3& p) { return numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z); };
+  std::string obj, off = "OFF\n4 4 0\n", ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\n"
+                                               "property double y\nproperty double z\nelement face 4\n"
+                                               "property list uchar int vertex_indices\nend_header\n";
+  std::string stl = "solid s\n";
+  for (const auto& c : corners) obj += "v " + xyz(c) + "\n", off += xyz(c) + "\n", ply += xyz(c) + "\n";
+  for (const auto& t : faces) {
+    obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+    off += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+    ply += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+    stl += "facet normal 0 0 1\nouter loop\n";
+    for (auto i : t) stl += "vertex " + xyz(corners[i]) + "\n";
+    stl += "endloop\nendfacet\n";
+  }
+  stl += "endsolid s\n";
+  const auto dir = test::tempDir();
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"far.obj", obj}, {"far.off", off}, {"far.ply", ply}, {"far.stl", stl}}) {
+    SCOPED_TRACE(name);
+    test::writeText(dir / name, text);
+    const RebasedMesh r = readRebasedTriangleMesh(dir / name);
+    ASSERT_EQ(r.mesh.triangleCount(), 4u);
+    ASSERT_EQ(r.mesh.positions.size(), 4u);  // STL's twelve corners welded
+    EXPECT_LT(glm::length(r.origin - at), 2.0);
+    for (std::size_t t = 0; t < 4; ++t)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_LT(glm::length(glm::dvec3(r.mesh.positions[r.mesh.triangles[t][k]]) + r.origin - corners[faces[t][k]]), 1e-6);
+    const TriangleMesh rounded = readTriangleMesh(dir / name);  // as before: rounded where it lies
+    EXPECT_GT(glm::length(glm::dvec3(rounded.positions[rounded.triangles[0][0]]) - corners[0]), 0.01);
+  }
+  std::vector<std::array<glm::vec3, 3>> floatFaces;
+  for (const auto& t : faces) floatFaces.push_back({glm::vec3(corners[t[0]]), glm::vec3(corners[t[1]]), glm::vec3(corners[t[2]])});
+  test::writeText(dir / "far-binary.stl", binaryStl(floatFaces));
+  const RebasedMesh binary = readRebasedTriangleMesh(dir / "far-binary.stl");
+  ASSERT_EQ(binary.mesh.positions.size(), 4u);
+  for (std::size_t t = 0; t < 4; ++t)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(glm::dvec3(binary.mesh.positions[binary.mesh.triangles[t][k]]) + binary.origin, glm::dvec3(floatFaces[t][k]));
+  test::writeText(dir / "near.off", "OFF\n4 4 0\n0.1 0.2 0.3\n1.1 0.2 0.3\n0.1 1.3 0.3\n0.1 0.2 1.4\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  const RebasedMesh near = readRebasedTriangleMesh(dir / "near.off");
+  EXPECT_EQ(near.origin, glm::dvec3(0.0));
+  EXPECT_EQ(near.mesh.positions, readTriangleMesh(dir / "near.off").positions);
+}
+
 // Every prefix of a valid file of each format is read or refused with InputError, never a crash
 // or another exception; the whole file reads.
 // A UTF-8 byte-order mark before the first line (Windows editors write one) is skipped: it once
@@ -476,6 +532,9 @@ TEST(MeshReaders, FuzzCorpusReplaysUnderEveryExtension) {
         const TriangleMesh m = readTriangleMesh(p);
         for (const auto& t : m.triangles)
           for (auto i : t) ASSERT_LT(i, m.positions.size());
+        const RebasedMesh r = readRebasedTriangleMesh(p);
+        EXPECT_EQ(r.mesh.triangles, m.triangles);
+        for (const glm::vec3& q : r.mesh.positions) ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z));
       } catch (const InputError&) {
       }
     }

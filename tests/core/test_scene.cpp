@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"
 #include "shadowvol/primitives.h"
 #include "shadowvol/scene.h"
 #include "test_util.h"
@@ -693,22 +694,28 @@ TEST(Scene, TooFewDoubleStepsAcrossAreWarnedAbout) {
   for (const auto& w : larger.warnings) EXPECT_EQ(w.find("double-precision steps"), std::string::npos) << w;
 }
 
-// A mesh file whose own coordinates sit far from its origin for its size: read as float, its detail
-// below a float step is gone before the transform, so loading warns, naming the object's file; the
-// same mesh stored at its origin and moved there by the transform is not warned about.
-TEST(Scene, MeshFileCoordinatesWithTooFewFloatStepsAreWarnedAbout) {
+// A mesh file whose own coordinates sit far from its origin for its size (a tetrahedron 11 units
+// across, stored 1e7 out, where a float step is 1): OBJ, OFF, PLY and STL are parsed in double and
+// rebased before the rounding, so the scene holds the shape the file gives, as the same mesh stored
+// at its origin, and loading does not warn. Read through Assimp (glTF), which gives float, the
+// detail is gone: loading warns, naming the object's file.
+TEST(Scene, MeshFileCoordinatesFarFromTheirOriginKeepTheirDetail) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "shadowvol_mesh_float_steps";
   std::filesystem::create_directories(dir);
-  auto writeTetrahedron = [&](const char* name, double at) {
+  const double corners[4][3] = {{0, 0, 0}, {10.3, 0, 0}, {0, 10.7, 0.1}, {0.2, 0, 10.9}};
+  const std::uint32_t faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  auto writeOff = [&](const char* name, double at) {
     std::ofstream f(dir / name);
     f << "OFF\n4 4 0\n";
-    const double corners[4][3] = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {0, 0, 10}};
-    for (const auto& v : corners)
-      f << numberText(at + v[0]) << " " << numberText(v[1]) << " " << numberText(v[2]) << "\n";
-    f << "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    for (const auto& v : corners) f << numberText(at + v[0]) << " " << numberText(v[1]) << " " << numberText(v[2]) << "\n";
+    for (const auto& t : faces) f << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
   };
-  writeTetrahedron("far.off", 1e7);  // a float step of 1 there: 17 steps across
-  writeTetrahedron("near.off", 0.0);
+  writeOff("far.off", 1e7);
+  writeOff("near.off", 0.0);
+  TriangleMesh farFloat;  // the far one as float holds it, for glTF
+  for (const auto& v : corners) farFloat.positions.emplace_back(float(1e7 + v[0]), float(v[1]), float(v[2]));
+  for (const auto& t : faces) farFloat.triangles.push_back({t[0], t[1], t[2]});
+  writeTriangleMesh(farFloat, dir / "far.gltf");
   auto sceneWith = [](const char* file, double translate) {
     return std::string(R"({"objects":[{"type":"plane","size":40},{"type":"mesh","file":")") + file +
            R"(","transform":{"translate":[)" + numberText(translate) +
@@ -720,11 +727,23 @@ TEST(Scene, MeshFileCoordinatesWithTooFewFloatStepsAreWarnedAbout) {
       if (s.find("single-precision steps") != std::string::npos) w.push_back(s);
     return w;
   };
-  const std::vector<std::string> far = precisionWarnings(parseScene(sceneWith("far.off", -1e7), "far.json", dir));
-  ASSERT_EQ(far.size(), 1u);
-  EXPECT_NE(far[0].find("far.json: /objects/1/file"), std::string::npos) << far[0];
-  EXPECT_NE(far[0].find("far.off"), std::string::npos) << far[0];
-  EXPECT_TRUE(precisionWarnings(parseScene(sceneWith("near.off", 0.0), "near.json", dir)).empty());
+  auto worldCorners = [](const SceneLoadResult& r) {
+    std::vector<glm::dvec3> w;
+    for (const glm::vec3& p : r.scene.objects.at(1).mesh.positions) w.push_back(glm::dvec3(p) + r.scene.origin);
+    return w;
+  };
+  const SceneLoadResult near = parseScene(sceneWith("near.off", 0.0), "near.json", dir);
+  const SceneLoadResult far = parseScene(sceneWith("far.off", -1e7), "far.json", dir);
+  EXPECT_TRUE(precisionWarnings(near).empty());
+  EXPECT_TRUE(precisionWarnings(far).empty()) << ::testing::PrintToString(far.warnings);
+  const std::vector<glm::dvec3> a = worldCorners(near), b = worldCorners(far);
+  ASSERT_EQ(a.size(), 4u);
+  ASSERT_EQ(b.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_LT(glm::length(a[i] - b[i]), 1e-5) << i;  // a float step at 1e7: 1
+  const std::vector<std::string> gltf = precisionWarnings(parseScene(sceneWith("far.gltf", -1e7), "gltf.json", dir));
+  ASSERT_EQ(gltf.size(), 1u);
+  EXPECT_NE(gltf[0].find("gltf.json: /objects/1/file"), std::string::npos) << gltf[0];
+  EXPECT_NE(gltf[0].find("far.gltf"), std::string::npos) << gltf[0];
   std::filesystem::remove_all(dir);
 }
 

@@ -17,7 +17,8 @@ namespace shadowvol {
 
 /// Reads OBJ, ASCII OFF (OFF, COFF, NOFF...; '#' comments), PLY (ASCII or binary) or STL (binary
 /// or ASCII) by extension, with strict readers bounded by the file's size (lib/src/core/mesh_readers/):
-/// positions in float as stored, polygons fanned from their first corner (exact when convex),
+/// positions rounded to float as stored (readRebasedTriangleMesh keeps the detail of a mesh far
+/// from its file's origin), polygons fanned from their first corner (exact when convex),
 /// every face kept (degenerate and non-manifold ones too; STL corners welded by position).
 /// Throws InputError naming the file, the line (OBJ, OFF, ASCII STL) or element ("face 17", PLY;
 /// "triangle 3", binary STL) and the value when the file is missing or malformed, declares more
@@ -31,6 +32,20 @@ namespace shadowvol {
 /// nothing is in shadow) instead of refusing it; every other check stays.
 enum class EmptyMesh { Refuse, Allow };
 TriangleMesh readTriangleMesh(const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse);
+
+/// A mesh read from a file, its positions stored relative to `origin`: world = stored + origin.
+struct RebasedMesh {
+  TriangleMesh mesh;
+  glm::dvec3 origin{0.0};
+};
+
+/// readTriangleMesh, rebased where float would lose the mesh's detail: OBJ, OFF, PLY and STL are
+/// parsed in double, and a mesh lying further from its file's origin than about 8 times its size
+/// (where float keeps fewer than 2^20 steps across it) is stored relative to its bounding box's
+/// centre, subtracted in double before the rounding. Every other mesh is readTriangleMesh's, bit
+/// for bit, with origin 0; so are formats read through Assimp, in float as Assimp gives them.
+/// Scenes read their mesh files so, and `check`.
+RebasedMesh readRebasedTriangleMesh(const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse);
 
 /// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):
 /// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", or one of Assimp's,

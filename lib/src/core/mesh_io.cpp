@@ -14,6 +14,7 @@
 #include "mesh_readers/obj_reader.h"
 #include "mesh_readers/off_reader.h"
 #include "mesh_readers/own_formats.h"
+#include "mesh_readers/parsed_mesh.h"
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
 #include "mesh_writers/gltf_writer.h"
@@ -66,16 +67,34 @@ void checkReadableExtension(const std::string& ext, const std::string& source) {
 // Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
 // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
 // silently dropped or shifted faces). The other formats go to Assimp, in a child process.
-TriangleMesh readChecked(std::string_view bytes, const std::string& ext, const std::string& source,
-                         const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse) {
-  TriangleMesh mesh = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
-                      : ext == ".off" ? mesh_readers::readOff(source, bytes)
-                      : ext == ".ply" ? mesh_readers::readPly(source, bytes)
-                      : ext == ".stl" ? mesh_readers::readStl(source, bytes)
-                                      : mesh_readers::readWithAssimp(source, path, bytes, ext);
-  if (mesh.triangles.empty() && empty == EmptyMesh::Refuse)
+// `rebase`: store our own readers' meshes from their storageOrigin, else from 0.
+RebasedMesh readChecked(std::string_view bytes, const std::string& ext, const std::string& source,
+                        const std::filesystem::path& path, EmptyMesh empty, bool rebase) {
+  RebasedMesh read;
+  if (mesh_readers::isOwnFormat(ext)) {
+    const mesh_readers::ParsedMesh parsed = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
+                                            : ext == ".off" ? mesh_readers::readOff(source, bytes)
+                                            : ext == ".ply" ? mesh_readers::readPly(source, bytes)
+                                                            : mesh_readers::readStl(source, bytes);
+    if (rebase) read.origin = mesh_readers::storageOrigin(parsed);
+    read.mesh = mesh_readers::storedMesh(parsed, read.origin);
+  } else {
+    read.mesh = mesh_readers::readWithAssimp(source, path, bytes, ext);
+  }
+  if (read.mesh.triangles.empty() && empty == EmptyMesh::Refuse)
     throw InputError(source, "", "", "the mesh has no triangles");
-  return mesh;
+  return read;
+}
+
+RebasedMesh readFile(const std::filesystem::path& path, EmptyMesh empty, bool rebase) {
+  const std::string ext = lowerExtension(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))  // named as such, whatever its extension (a probe's finding)
+    throw InputError(path.string(), "", "", "a folder, not a mesh file");
+  checkReadableExtension(ext, path.string());  // before touching the file
+  if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path, empty, rebase);
+  checkRegularFile(path);
+  return readChecked({}, ext, path.string(), path, empty, rebase);  // Assimp opens it (and its .bin, textures)
 }
 
 }  // namespace
@@ -119,18 +138,15 @@ void createFolders(const std::filesystem::path& dir) {
 TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source) {
   const std::string ext = lowerText(format);
   checkReadableExtension(ext, source);
-  return readChecked(bytes, ext, source, {});
+  return readChecked(bytes, ext, source, {}, EmptyMesh::Refuse, false).mesh;
 }
 
 TriangleMesh readTriangleMesh(const std::filesystem::path& path, EmptyMesh empty) {
-  const std::string ext = lowerExtension(path);
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))  // named as such, whatever its extension (a probe's finding)
-    throw InputError(path.string(), "", "", "a folder, not a mesh file");
-  checkReadableExtension(ext, path.string());  // before touching the file
-  if (mesh_readers::isOwnFormat(ext)) return readChecked(fileBytes(path), ext, path.string(), path, empty);
-  checkRegularFile(path);
-  return readChecked({}, ext, path.string(), path, empty);  // Assimp opens it (and its .bin, textures)
+  return readFile(path, empty, false).mesh;
+}
+
+RebasedMesh readRebasedTriangleMesh(const std::filesystem::path& path, EmptyMesh empty) {
+  return readFile(path, empty, true);
 }
 
 namespace {

@@ -185,12 +185,12 @@ glm::dmat4 readTransform(ObjectReader& parent) {
   return m;
 }
 
-// The mesh's positions under m, in double (not yet rebased); a mirror flips the winding in `mesh`
-// so that faces stay outward.
-std::vector<glm::dvec3> applyTransform(TriangleMesh& mesh, const glm::dmat4& m) {
+// The mesh's positions (stored from `fileOrigin`, RebasedMesh) under m, in double (not yet
+// rebased to the scene's origin); a mirror flips the winding in `mesh` so that faces stay outward.
+std::vector<glm::dvec3> applyTransform(TriangleMesh& mesh, const glm::dmat4& m, const glm::dvec3& fileOrigin) {
   std::vector<glm::dvec3> world;
   world.reserve(mesh.positions.size());
-  for (const auto& p : mesh.positions) world.emplace_back(m * glm::dvec4(glm::dvec3(p), 1.0));
+  for (const auto& p : mesh.positions) world.emplace_back(m * glm::dvec4(glm::dvec3(p) + fileOrigin, 1.0));
   if (glm::determinant(glm::dmat3(m)) < 0.0)
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
   return world;
@@ -219,10 +219,11 @@ struct StepsAcross {
   bool fewerThan(double floor) const { return extent > 0.0 && step > 0.0 && count() < floor; }
 };
 
-// A mesh file whose own coordinates hold fewer than kMinMeshFloatSteps single-precision steps
-// across the mesh at their distance from the file's origin: the readers keep float (TriangleMesh),
-// so the file's detail finer than a step is gone before any transform or rebasing can help (a
-// probe's mesh stored at 1e7, README "Scene files"). The same floor as the scene's double steps.
+// A mesh file whose stored coordinates hold fewer than kMinMeshFloatSteps single-precision steps
+// across the mesh at their distance from the file's origin: a format read through Assimp, which
+// gives float, so the file's detail finer than a step is gone before any transform or rebasing can
+// help (a probe's mesh stored at 1e7, README "Scene files"; OBJ, OFF, PLY and STL are rebased on
+// reading, readRebasedTriangleMesh). The same floor as the scene's double steps.
 constexpr double kMinMeshFloatSteps = 2e3;
 
 // The warning about a mesh object's file, `where` naming it (empty when it has steps enough).
@@ -240,7 +241,9 @@ std::string meshFloatPrecisionNote(const TriangleMesh& mesh, const std::string& 
                 "the mesh is %.3g units across at %.3g from its file's origin, only about %.0f single-precision "
                 "steps: its coordinates are read as float, so its detail finer than %.3g units is lost",
                 s.extent, s.reach, s.count(), s.step);
-  return where + ": " + buf + "; store the mesh nearer its own origin and place it with the object's transform";
+  return where + ": " + buf +
+         "; store it as .obj, .off, .ply or .stl (read in double and rebased), or nearer its own origin and place it "
+         "with the object's transform";
 }
 
 // The warning about what orientOutward changed in object `name` (empty when nothing).
@@ -345,13 +348,16 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
   SceneObject& obj = read.obj;
   obj.type = r.string("type");
   obj.name = r.string("name", obj.type + "#" + std::to_string(index));
+  glm::dvec3 fileOrigin(0.0);  // a mesh file's stored positions are relative to it
   if (obj.type == "mesh") {
     const std::string file = r.string("file");
     std::filesystem::path p(file);
     if (p.is_relative()) p = baseDir / p;
     read.file = p;
     try {
-      obj.mesh = readTriangleMesh(p);
+      RebasedMesh rebased = readRebasedTriangleMesh(p);
+      obj.mesh = std::move(rebased.mesh);
+      fileOrigin = rebased.origin;
     } catch (const InputError& e) {
       throw InputError(source, r.pointer("file"), show(json(file)), e.what());
     }
@@ -364,7 +370,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
            std::to_string(obj.mesh.triangleCount()) + " triangles: more than the " + std::to_string(budget) +
                " the scene may still hold");
   }
-  read.world = applyTransform(obj.mesh, readTransform(r));
+  read.world = applyTransform(obj.mesh, readTransform(r), fileOrigin);
   if (obj.type == "mesh") {
     if (std::string note = meshFloatPrecisionNote(obj.mesh, source + ": " + r.pointer("file") + " (" + read.file.string() + ")"); !note.empty())
       read.notes.push_back(std::move(note));

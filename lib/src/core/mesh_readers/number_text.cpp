@@ -50,14 +50,14 @@ const char* integerProblem(std::string_view token) {
   return digits ? "is out of range" : "is not an integer";
 }
 
-std::optional<glm::vec3> storedPoint(double x, double y, double z) {
+std::optional<glm::dvec3> checkedPoint(double x, double y, double z) {
   constexpr double kMax = std::numeric_limits<float>::max();
   for (const double c : {x, y, z})
     if (!std::isfinite(c) || std::abs(c) > kMax) return std::nullopt;
-  return glm::vec3(float(x), float(y), float(z));
+  return glm::dvec3(x, y, z);
 }
 
-glm::vec3 readPoint(std::string_view& rest, const TextPlace& at) {
+glm::dvec3 readPoint(std::string_view& rest, const TextPlace& at) {
   double c[3];
   for (int k = 0; k < 3; ++k) {
     const std::string_view token = nextToken(rest);
@@ -69,7 +69,7 @@ glm::vec3 readPoint(std::string_view& rest, const TextPlace& at) {
       at.fail("vertex coordinate " + quoted(token) + " is beyond single precision (meshes are stored in float)");
     c[k] = *v;
   }
-  return glm::vec3(float(c[0]), float(c[1]), float(c[2]));
+  return glm::dvec3(c[0], c[1], c[2]);
 }
 
 }  // namespace shadowvol::mesh_readers

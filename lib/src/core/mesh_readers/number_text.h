@@ -23,12 +23,12 @@ std::optional<std::int64_t> parseInteger(std::string_view token);
 /// integer".
 const char* integerProblem(std::string_view token);
 
-/// The single-precision point a mesh stores for (x, y, z), or nullopt when a coordinate is
-/// non-finite or beyond the float range (it would become infinite).
-std::optional<glm::vec3> storedPoint(double x, double y, double z);
+/// (x, y, z), or nullopt when a coordinate is non-finite or beyond the float range (the mesh is
+/// stored in float, where it would become infinite).
+std::optional<glm::dvec3> checkedPoint(double x, double y, double z);
 
-/// The first three tokens of `rest` (removed from it) as a stored point. Fails at `at` naming the
-/// token when there are fewer than three, one is not a number, non-finite, or beyond float.
-glm::vec3 readPoint(std::string_view& rest, const TextPlace& at);
+/// The first three tokens of `rest` (removed from it) as a point, in double. Fails at `at` naming
+/// the token when there are fewer than three, one is not a number, non-finite, or beyond float.
+glm::dvec3 readPoint(std::string_view& rest, const TextPlace& at);
 
 }  // namespace shadowvol::mesh_readers

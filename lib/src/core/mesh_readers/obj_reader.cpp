@@ -59,11 +59,11 @@ std::vector<std::uint32_t> faceCorners(std::string_view rest, std::size_t before
 
 }  // namespace
 
-TriangleMesh readObj(const std::string& source, std::string_view text) {
+ParsedMesh readObj(const std::string& source, std::string_view text) {
   const std::size_t total = countVertices(text);  // at most one per 2 bytes, so reserving is safe
   if (total > std::numeric_limits<std::uint32_t>::max())
     throw InputError(source, "", std::to_string(total), "more vertices than 32-bit indices can address");
-  TriangleMesh mesh;
+  ParsedMesh mesh;
   mesh.positions.reserve(total);
   LineReader lines(text);
   while (const auto line = lines.next()) {

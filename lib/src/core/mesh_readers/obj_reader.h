@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "shadowvol/triangle_mesh.h"
+#include "mesh_readers/parsed_mesh.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -14,6 +14,6 @@ namespace shadowvol::mesh_readers {
 /// '#' starts a comment. May return a mesh without triangles. Throws InputError naming `source`,
 /// the line and its text for a vertex with fewer than three numbers or a non-finite one, and for
 /// a face with fewer than three corners or an index that is not an integer, 0 or out of range.
-TriangleMesh readObj(const std::string& source, std::string_view text);
+ParsedMesh readObj(const std::string& source, std::string_view text);
 
 }  // namespace shadowvol::mesh_readers

@@ -102,10 +102,10 @@ std::vector<std::uint32_t> faceCorners(std::string_view rest, std::uint64_t vert
 
 }  // namespace
 
-TriangleMesh readOff(const std::string& source, std::string_view text) {
+ParsedMesh readOff(const std::string& source, std::string_view text) {
   LineReader lines(text);
   const Counts counts = readHeader(source, lines);
-  TriangleMesh mesh;
+  ParsedMesh mesh;
   mesh.positions.reserve(counts.vertices);
   mesh.triangles.reserve(std::min<std::uint64_t>(counts.faces, lines.bytesLeft() / 8));  // a triangle's line: 8+ bytes
   for (std::uint64_t k = 0; k < counts.vertices; ++k) {

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "shadowvol/triangle_mesh.h"
+#include "mesh_readers/parsed_mesh.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -15,6 +15,6 @@ namespace shadowvol::mesh_readers {
 /// comment, blank lines are skipped. Refuses (InputError naming `source`, the line and its text)
 /// binary OFF, 4OFF / nOFF, counts the file is too short to hold, a bad vertex, a face with fewer
 /// than 3 vertices or an index out of range, a file ending early and data after the last face.
-TriangleMesh readOff(const std::string& source, std::string_view text);
+ParsedMesh readOff(const std::string& source, std::string_view text);
 
 }  // namespace shadowvol::mesh_readers

@@ -61,7 +61,7 @@ Layout findLayout(const std::string& source, const PlyHeader& h) {
 // Reads element e from the cursor: vertices into mesh.positions, faces fanned into
 // mesh.triangles, any other element read past.
 void readElement(const std::string& source, const PlyElement& e, const Layout& l, PlyBodyCursor& body,
-                 TriangleMesh& mesh) {
+                 ParsedMesh& mesh) {
   const bool isVertex = &e == l.vertex, isFace = &e == l.face;
   std::vector<std::uint32_t> corners;
   for (std::uint64_t r = 0; r < e.count; ++r) {
@@ -104,7 +104,7 @@ void readElement(const std::string& source, const PlyElement& e, const Layout& l
       appendFan(corners, mesh.triangles);
     }
     if (!isVertex) continue;
-    const auto point = storedPoint(xyz[0], xyz[1], xyz[2]);
+    const auto point = checkedPoint(xyz[0], xyz[1], xyz[2]);
     if (!point) {
       char buf[96];
       std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g", xyz[0], xyz[1], xyz[2]);
@@ -116,10 +116,10 @@ void readElement(const std::string& source, const PlyElement& e, const Layout& l
 
 }  // namespace
 
-TriangleMesh readPly(const std::string& source, std::string_view bytes) {
+ParsedMesh readPly(const std::string& source, std::string_view bytes) {
   const PlyHeader header = parsePlyHeader(source, bytes);
   const Layout layout = findLayout(source, header);
-  TriangleMesh mesh;
+  ParsedMesh mesh;
   mesh.positions.reserve(layout.vertex->count);  // the header check bounds it by the file size
   PlyBodyCursor body(bytes, header);
   for (const PlyElement& e : header.elements) {

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "shadowvol/triangle_mesh.h"
+#include "mesh_readers/parsed_mesh.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -15,6 +15,6 @@ namespace shadowvol::mesh_readers {
 /// line in ASCII) and the value for a truncated body, a value that is not a number, a non-finite
 /// coordinate, a face with fewer than 3 vertices or an index out of range. May return a mesh
 /// without triangles (a file without a face element).
-TriangleMesh readPly(const std::string& source, std::string_view bytes);
+ParsedMesh readPly(const std::string& source, std::string_view bytes);
 
 }  // namespace shadowvol::mesh_readers

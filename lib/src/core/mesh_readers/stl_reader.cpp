@@ -3,8 +3,8 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
-#include "mesh_readers/corner_welder.h"
 #include "mesh_readers/number_text.h"
 #include "mesh_readers/text_lines.h"
 #include "shadowvol/error.h"
@@ -20,23 +20,32 @@ namespace {
 
 constexpr std::size_t kBinaryHeader = 84, kBinaryTriangle = 50;
 
-TriangleMesh readBinary(const std::string& source, std::string_view bytes, std::uint32_t count) {
+// A triangle's corner: a position of its own, welded when the mesh is stored (ParsedMesh::weldCorners).
+std::uint32_t cornerOf(const glm::dvec3& p, ParsedMesh& mesh, const std::string& source) {
+  if (mesh.positions.size() >= std::numeric_limits<std::uint32_t>::max())
+    throw InputError(source, "", std::to_string(mesh.positions.size() / 3), "more triangles than 32-bit indices can address (three corners each)");
+  mesh.positions.push_back(p);
+  return std::uint32_t(mesh.positions.size() - 1);
+}
+
+ParsedMesh readBinary(const std::string& source, std::string_view bytes, std::uint32_t count) {
   static_assert(std::endian::native == std::endian::little, "the STL reader assumes a little-endian host");
-  TriangleMesh mesh;
-  mesh.triangles.reserve(count);  // the size was checked: 50 bytes per triangle
-  CornerWelder weld(mesh);
+  ParsedMesh mesh;
+  mesh.weldCorners = true;
+  mesh.positions.reserve(3 * std::size_t(count));  // the size was checked: 50 bytes per triangle
+  mesh.triangles.reserve(count);
   for (std::uint32_t t = 0; t < count; ++t) {
     float v[12];  // normal, then three corners
     std::memcpy(v, bytes.data() + kBinaryHeader + kBinaryTriangle * std::size_t(t), sizeof v);
     std::array<std::uint32_t, 3> tri{};
     for (int c = 0; c < 3; ++c) {
-      const auto p = storedPoint(v[3 + 3 * c], v[4 + 3 * c], v[5 + 3 * c]);
+      const auto p = checkedPoint(v[3 + 3 * c], v[4 + 3 * c], v[5 + 3 * c]);
       if (!p)
         throw InputError(
             source, "triangle " + std::to_string(t),
             numberText(v[3 + 3 * c]) + " " + numberText(v[4 + 3 * c]) + " " + numberText(v[5 + 3 * c]),
             "non-finite vertex coordinate");
-      tri[c] = weld.vertex(*p);
+      tri[c] = cornerOf(*p, mesh, source);
     }
     mesh.triangles.push_back(tri);
   }
@@ -44,9 +53,9 @@ TriangleMesh readBinary(const std::string& source, std::string_view bytes, std::
 }
 
 // ASCII STL, one statement per line; `facet` ... `endfacet` must hold one loop of 3 vertices.
-TriangleMesh readAscii(const std::string& source, std::string_view text) {
-  TriangleMesh mesh;
-  CornerWelder weld(mesh);
+ParsedMesh readAscii(const std::string& source, std::string_view text) {
+  ParsedMesh mesh;
+  mesh.weldCorners = true;
   LineReader lines(text);
   std::array<std::uint32_t, 3> tri{};
   int corners = -1;  // -1 outside a loop, else the vertices read in it
@@ -66,7 +75,7 @@ TriangleMesh readAscii(const std::string& source, std::string_view text) {
     } else if (keyword == "vertex") {
       if (corners < 0) at.fail("a vertex outside \"outer loop\"");
       if (corners == 3) at.fail("a facet with more than 3 vertices (STL holds triangles)");
-      tri[corners++] = weld.vertex(readPoint(rest, at));
+      tri[corners++] = cornerOf(readPoint(rest, at), mesh, source);
     } else if (keyword == "endloop") {
       if (corners != 3)
         at.fail("a loop of " + std::to_string(std::max(corners, 0)) + " vertices (STL holds triangles)");
@@ -91,7 +100,7 @@ bool beginsWithSolid(std::string_view bytes) {
 
 }  // namespace
 
-TriangleMesh readStl(const std::string& source, std::string_view bytes) {
+ParsedMesh readStl(const std::string& source, std::string_view bytes) {
   // Binary when the size matches its count exactly (binary files often begin with "solid" too).
   if (bytes.size() >= kBinaryHeader) {
     std::uint32_t count = 0;

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "shadowvol/triangle_mesh.h"
+#include "mesh_readers/parsed_mesh.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -14,6 +14,6 @@ namespace shadowvol::mesh_readers {
 /// positions (0 and -0 alike) become one vertex; every triangle is kept, degenerate ones too.
 /// Throws InputError naming `source` and the triangle (binary) or line (ASCII) for a non-finite
 /// coordinate, a size that matches neither form, or a malformed ASCII statement.
-TriangleMesh readStl(const std::string& source, std::string_view bytes);
+ParsedMesh readStl(const std::string& source, std::string_view bytes);
 
 }  // namespace shadowvol::mesh_readers

@@ -1,0 +1,39 @@
+// What our own readers (OBJ, OFF, PLY, STL) parse, before it is stored in float: positions in
+// double as the file gives them, so that a mesh far from its file's origin can be rebased before
+// the rounding (README "Scene files", "Large coordinates").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "shadowvol/triangle_mesh.h"
+
+namespace shadowvol::mesh_readers {
+
+/// A mesh as parsed: every position finite and within float's range (the readers check it).
+/// `weldCorners` (STL): each triangle has corners of its own, and corners whose stored positions
+/// are bit-identical (0 and -0 alike) become one vertex when stored.
+struct ParsedMesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  bool weldCorners = false;
+};
+
+/// Float keeps at least this many steps across a mesh before its reader rebases it: 2^20, about a
+/// millionth of its size. Fewer when the mesh lies further than 8 times its size from its file's
+/// origin (a survey in map coordinates, a part placed in a large assembly).
+inline constexpr double kMinStoredSteps = 1048576.0;
+
+/// Where `parsed` is stored from (world = stored + origin): 0 while float keeps kMinStoredSteps
+/// across it where it lies (every mesh near its file's origin: stored exactly as before), else the
+/// centre of its bounding box.
+glm::dvec3 storageOrigin(const ParsedMesh& parsed);
+
+/// The mesh stored: each position minus `origin` in double, then rounded to float; corners welded
+/// when `parsed.weldCorners`.
+TriangleMesh storedMesh(const ParsedMesh& parsed, const glm::dvec3& origin);
+
+}  // namespace shadowvol::mesh_readers
