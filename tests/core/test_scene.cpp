@@ -747,5 +747,67 @@ TEST(Scene, MeshFileCoordinatesFarFromTheirOriginKeepTheirDetail) {
   std::filesystem::remove_all(dir);
 }
 
+// A directional light placed far behind its scene (a thirteenth probe's, 1e7 units over a scene 28
+// deep: float depth lost it, and the volume was empty without a word) is moved along its direction
+// to where the fit places a light without a position, with a note; its shadows do not depend on the
+// distance. One 100 units away stays where it is given.
+TEST(Scene, AFarDirectionalLightIsMovedNearTheSceneAlongItsDirection) {
+  auto sceneWith = [](const std::string& position) {
+    return R"({"objects":[{"type":"plane","size":20},{"type":"sphere","radius":1,"transform":{"translate":[0,2,0]}}],
+      "light":{"type":"directional","direction":[0.1,-1,0])" + position + R"(},"camera":{"eye":[0,6,11],"target":[0,1,0]}})";
+  };
+  const SceneLoadResult fitted = parseScene(sceneWith(""), "fitted.json", ".");
+  const SceneLoadResult far = parseScene(sceneWith(R"(,"position":[-1e6,1e7,0])"), "far.json", ".");
+  const SceneLoadResult near = parseScene(sceneWith(R"(,"position":[-10,100,0])"), "near.json", ".");
+  const Light& f = fitted.scene.light;
+  const Light& l = far.scene.light;
+  const double along = glm::dot(l.position - f.position, f.direction);
+  EXPECT_NEAR(along, 0.0, 1e-6);
+  EXPECT_NEAR(l.farPlane - l.nearPlane, f.farPlane - f.nearPlane, 1e-6);
+  bool noted = false;
+  for (const auto& w : far.warnings) noted = noted || w.find("far.json: /light/position: moved") != std::string::npos;
+  EXPECT_TRUE(noted) << ::testing::PrintToString(far.warnings);
+  EXPECT_EQ(near.scene.light.position, glm::dvec3(-10, 100, 0) - near.scene.origin);
+}
+
+// A directional light's extent so small that its window spans fewer than 64 float steps of the
+// scene's coordinates in its view is refused, naming it (1e-200 made Embree abort); a small one
+// that still spans them is taken.
+TEST(Scene, ADirectionalWindowNarrowerThanFloatStepsIsRefused) {
+  auto sceneWith = [](const char* extent) {
+    return std::string(R"({"objects":[{"type":"plane","size":20},{"type":"sphere","radius":1,"transform":{"translate":[0,2,0]}}],
+      "light":{"type":"directional","direction":[0,-1,0],"extent":)") + extent +
+           R"(},"camera":{"eye":[0,6,11],"target":[0,1,0]}})";
+  };
+  for (const char* extent : {"1e-200", "5e-324", "1e-6"}) {
+    try {
+      parseScene(sceneWith(extent), "tiny.json", ".");
+      ADD_FAILURE() << extent << " was taken";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("tiny.json: /light/extent = "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("single-precision steps"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(parseScene(sceneWith("1e-3"), "small.json", "."));
+}
+
+// A scene under 1e-6 units in radius is warned about (scaled by 1e-9, the CPU capture lost most of
+// its shadow); one of radius 1.4e-6 is not.
+TEST(Scene, ASceneTooSmallForSinglePrecisionIsWarnedAbout) {
+  auto scaled = [](double k) {
+    const std::string s = numberText(k);
+    return R"({"objects":[{"type":"plane","size":20,"transform":{"scale":)" + s + R"(}}],
+      "light":{"type":"spot","position":[0,)" + numberText(9 * k) + R"(,0],"target":[0,0,0]},
+      "camera":{"eye":[0,)" + numberText(6 * k) + R"(,)" + numberText(11 * k) + R"(],"target":[0,0,0]}})";
+  };
+  auto warned = [](const SceneLoadResult& r) {
+    for (const auto& w : r.warnings)
+      if (w.find("scale the whole scene up") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(warned(parseScene(scaled(1e-8), "small.json", ".")));
+  EXPECT_FALSE(warned(parseScene(scaled(1e-7), "fine.json", ".")));
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -21,6 +21,11 @@ const char* toString(LightType type);
 /// Parses "spot", "directional" or "point"; returns false for anything else.
 bool parseLightType(const std::string& text, LightType& type);
 
+/// The fewest single-precision steps, at the magnitude of its coordinates, that a light's window
+/// must span: narrower, the map's texels collapse onto each other (a depth side file's far window,
+/// a scene's directional light's extent).
+inline constexpr double kMinWindowFloatSteps = 64.0;
+
 struct Light {
   LightType type = LightType::Spot;
   glm::dvec3 position{0.0, 10.0, 0.0};    ///< world; spot and point: apex. Directional: origin of the view

@@ -76,9 +76,6 @@ void checkDepthValues(const DepthMap& map, const std::string& source) {
 // The narrowest spot light a side file may hold: a scene's (README "Scene files": fields of view in
 // [0.01, 179) degrees).
 constexpr double kMinLightFovDegrees = 0.01;
-// The fewest single-precision steps (at the window's distance from the origin) that the light's
-// far window must span.
-constexpr double kMinWindowFloatSteps = 64.0;
 
 // The side file's light matches what lightView() and lightProjection() produce: a rigid view
 // (orthonormal rotation, bottom row 0 0 0 1), a projection of the light's kind whose near and far

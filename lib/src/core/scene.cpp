@@ -424,6 +424,20 @@ void rebase(Scene& scene, std::vector<std::vector<glm::dvec3>>& world, const std
   scene.camera.target -= scene.origin;
 }
 
+// A scene under kMinSceneRadius: single precision (Embree's rays, the GPU's depth, the float
+// margins of the fit) loses its shadows, whatever its place: a thirteenth probe's default scene
+// scaled by 1e-8 (radius 1.4e-7) failed validate with the map from rays, by 1e-9 it missed most of
+// the shadow, by 1e-10 `build` wrote an empty volume; scaled by 1e-7 it matched the unscaled one.
+constexpr double kMinSceneRadius = 1e-6;
+void warnAboutSmallScene(const Scene& scene, const std::string& source, std::vector<std::string>& warnings) {
+  const double radius = scene.bounds().radius();
+  if (!(radius > 0.0 && radius < kMinSceneRadius)) return;
+  warnings.push_back(source + ": /objects: the scene's radius is " + numberText(radius) + " units, under the " +
+                     numberText(kMinSceneRadius) +
+                     " that single precision (the GPU's depth, Embree's rays) resolves: its shadows can be lost or "
+                     "wrong; scale the whole scene up (its unit is yours to choose)");
+}
+
 // A scene so small for its distance from the world origin that its input coordinates (double)
 // hold fewer than kMinSceneDoubleSteps steps across it: rebasing keeps what the input has, not
 // what it lacks (a sixth probe's lion head scaled by 1e-7 at 1e7, about 370 steps across, failed
@@ -589,6 +603,28 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
     throw InputError(source, pointer + "/far", numberText(given.farPlane), "far lies before the fitted near plane");
 }
 
+// A directional light's window (2 x extent) narrower than kMinWindowFloatSteps float steps of the
+// scene's coordinates in its view is refused: its texels would collapse (a thirteenth probe's
+// extent of 1e-200 made Embree abort on the rays' non-finite origins).
+void checkDirectionalWindow(const Scene& scene, std::size_t k, const std::string& source) {
+  const Light& l = scene.light;
+  if (l.type != LightType::Directional) return;
+  const glm::dmat4 view = lightView(l);
+  const Bounds3 b = scene.bounds();
+  double reach = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
+    const glm::dvec4 v = view * glm::dvec4(p, 1.0);
+    reach = std::max({reach, std::abs(v.x), std::abs(v.y)});
+  }
+  const double least = kMinWindowFloatSteps * std::numeric_limits<float>::epsilon() * reach;
+  if (2.0 * l.halfExtent >= least) return;
+  throw InputError(source, scene.lightPointer(k) + "/extent", numberText(l.halfExtent),
+                   "the light's window, twice the extent, spans fewer than " + numberText(kMinWindowFloatSteps) +
+                       " single-precision steps of the scene's coordinates in its view (" + numberText(reach) +
+                       " units out): its texels would collapse; give an extent of at least " + numberText(least / 2.0));
+}
+
 // A spot or point light's near plane below far x this (the fit's floor is far x 1e-7, where the
 // light touches geometry) is warned about: float depth keeps about 7 digits.
 constexpr double kMinLightNearFraction = 1e-6;
@@ -699,7 +735,11 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   if (scene.triangleCount() == 0) throw InputError(source, "/objects", "", "the scene has no triangles");
   rebase(scene, world, source);
   warnAboutInputPrecision(scene, source, result.warnings);
-  forEachLight(scene, [&](std::size_t k) { fitLoadedLight(scene, k, source, result.warnings); });
+  warnAboutSmallScene(scene, source, result.warnings);
+  forEachLight(scene, [&](std::size_t k) {
+    fitLoadedLight(scene, k, source, result.warnings);
+    checkDirectionalWindow(scene, k, source);
+  });
   bool splitComplete = true;
   forEachLight(scene, [&](std::size_t) { splitComplete = splitSceneAcrossEyePlanes(scene, maxTriangles).complete && splitComplete; });
   if (!splitComplete)

@@ -83,9 +83,35 @@ void noteMovedFar(const char* pointer, double givenFar, double used, std::size_t
   notes.insert(notes.begin() + std::ptrdiff_t(at), std::move(note));
 }
 
-void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius) {
+// A directional light's depth runs from the plane through its position, in float on the GPU and
+// in Embree: a position further than this many radii before the scene's centre leaves fewer than
+// about 2^15 float steps across the scene's depth (a thirteenth probe's light 1e7 units away, over a
+// scene 20 deep: an empty volume, without a word). Its shadows do not depend on that distance.
+constexpr double kMaxDirectionalDistanceRadii = 256.0;
+
+// Moves a given directional light's position along its direction to where the fit would place it
+// (1.1 radii before the bounds' centre) when it lies further back than kMaxDirectionalDistanceRadii;
+// a given near and far move with it, so they cut the same planes. Notes what moved.
+void moveFarDirectionalPosition(Light& l, const Bounds3& b, double radius, std::vector<std::string>& notes) {
+  const double behind = glm::dot(b.center() - l.position, l.direction);
+  if (l.fitPosition || !(behind > kMaxDirectionalDistanceRadii * radius)) return;
+  const double shift = behind - 1.1 * radius;
+  l.position += l.direction * shift;
+  if (l.nearPlane > 0.0) l.nearPlane = std::max(l.nearPlane - shift, 0.0);
+  if (l.farPlane > 0.0) l.farPlane -= shift;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "/light/position: moved %.6g units along the light's direction, to 1.1 radii before the scene's "
+                "centre: a directional light's shadows do not depend on its distance, and float depth cannot "
+                "resolve a scene %.3g deep %.3g away",
+                shift, 2.0 * radius, behind);
+  notes.push_back(buf);
+}
+
+void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
   if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
+  moveFarDirectionalPosition(l, b, radius, notes);
   if (l.halfExtent > 0.0) return;
   const glm::dmat4 v = lightView(l);
   double e = 0.0;
@@ -209,7 +235,7 @@ std::vector<std::string> fitLightAndCamera(Scene& scene) {
   if (b.empty()) return notes;
   const double radius = std::max(b.radius(), 1e-6);
   scene.light.direction = glm::normalize(scene.light.direction);
-  if (scene.light.type == LightType::Directional) fitDirectionalWindow(scene, b, radius);
+  if (scene.light.type == LightType::Directional) fitDirectionalWindow(scene, b, radius, notes);
   if (scene.light.type == LightType::Point) fitPointLightPlanes(scene, b, radius, notes);
   else fitLightPlanes(scene, b, radius, notes);
   fitCameraPlanes(scene, b, radius, notes);
