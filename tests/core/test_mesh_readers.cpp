@@ -470,6 +470,52 @@ TEST(MeshReaders, MeshFarFromItsFilesOriginIsRebasedBeforeTheRounding) {
   EXPECT_EQ(near.mesh.positions, readTriangleMesh(dir / "near.off").positions);
 }
 
+// A non-convex polygon (an L-shaped hexagon, whose fan from its first corner covers its notch) is cut into
+// triangles inside it, in OBJ, OFF and PLY alike: their areas sum to the polygon's and each faces
+// the polygon's way. A convex quad keeps its fan; a bow tie (self-intersecting) and a star of 4,000
+// corners (non-convex) give n - 2 triangles, the star within the readers' second.
+TEST(MeshReaders, NonConvexPolygonsAreCutInsideThemselves) {
+  const std::string corners = "0 0 0\n2 0 0\n2 1 0\n1 1 0\n1 2 0\n0 2 0\n";  // an L of area 3
+  std::string objText;
+  for (std::size_t at = 0, next; (next = corners.find('\n', at)) != std::string::npos; at = next + 1)
+    objText += "v " + corners.substr(at, next - at) + "\n";
+  objText += "f 2 3 4 5 6 1\n";  // from (2, 0): its fan covers the notch
+  const std::string offText = "OFF\n6 1 0\n" + corners + "6 1 2 3 4 5 0\n";
+  const std::string plyText = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+                              "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+                              corners + "6 1 2 3 4 5 0\n";
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"L.obj", objText}, {"L.off", offText}, {"L.ply", plyText}}) {
+    SCOPED_TRACE(name);
+    const TriangleMesh m = readBack(name, text);
+    ASSERT_EQ(m.triangleCount(), 4u);
+    double area = 0.0;
+    for (const auto& t : m.triangles) {
+      const glm::vec3 n = glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
+      EXPECT_GE(n.z, 0.0f);  // counter-clockwise seen from +z, as the polygon
+      area += 0.5 * double(n.z);
+    }
+    EXPECT_DOUBLE_EQ(area, 3.0);
+  }
+  const TriangleMesh quad = readBack("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+  EXPECT_EQ(quad.triangles, (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}}));
+  const TriangleMesh bowTie = readBack("bowtie.off", "OFF\n4 1 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n4 0 1 2 3\n");
+  EXPECT_EQ(bowTie.triangleCount(), 2u);
+  std::string star = "OFF\n4000 1 0\n";
+  for (int k = 0; k < 4000; ++k) {
+    const double a = 2.0 * 3.14159265358979 * k / 4000.0, r = k % 2 ? 1.0 : 2.0;
+    star += numberText(r * std::cos(a)) + " " + numberText(r * std::sin(a)) + " 0\n";
+  }
+  star += "4000";
+  for (int k = 0; k < 4000; ++k) star += " " + std::to_string(k);
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleMesh starMesh = readBack("star.off", star + "\n");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
+  ASSERT_EQ(starMesh.triangleCount(), 3998u);
+  for (const auto& t : starMesh.triangles)
+    for (auto i : t) ASSERT_LT(i, starMesh.positions.size());
+}
+
 // Every prefix of a valid file of each format is read or refused with InputError, never a crash
 // or another exception; the whole file reads.
 // A UTF-8 byte-order mark before the first line (Windows editors write one) is skipped: it once

@@ -18,7 +18,8 @@ namespace shadowvol {
 /// Reads OBJ, ASCII OFF (OFF, COFF, NOFF...; '#' comments), PLY (ASCII or binary) or STL (binary
 /// or ASCII) by extension, with strict readers bounded by the file's size (lib/src/core/mesh_readers/):
 /// positions rounded to float as stored (readRebasedTriangleMesh keeps the detail of a mesh far
-/// from its file's origin), polygons fanned from their first corner (exact when convex),
+/// from its file's origin), polygons fanned from their first corner where convex and ear-clipped
+/// where not (mesh_readers/polygon_triangulation.h),
 /// every face kept (degenerate and non-manifold ones too; STL corners welded by position).
 /// Throws InputError naming the file, the line (OBJ, OFF, ASCII STL) or element ("face 17", PLY;
 /// "triangle 3", binary STL) and the value when the file is missing or malformed, declares more

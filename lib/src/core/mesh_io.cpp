@@ -15,6 +15,7 @@
 #include "mesh_readers/off_reader.h"
 #include "mesh_readers/own_formats.h"
 #include "mesh_readers/parsed_mesh.h"
+#include "mesh_readers/polygon_triangulation.h"
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
 #include "mesh_writers/gltf_writer.h"
@@ -72,10 +73,11 @@ RebasedMesh readChecked(std::string_view bytes, const std::string& ext, const st
                         const std::filesystem::path& path, EmptyMesh empty, bool rebase) {
   RebasedMesh read;
   if (mesh_readers::isOwnFormat(ext)) {
-    const mesh_readers::ParsedMesh parsed = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
+    mesh_readers::ParsedMesh parsed = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
                                             : ext == ".off" ? mesh_readers::readOff(source, bytes)
                                             : ext == ".ply" ? mesh_readers::readPly(source, bytes)
                                                             : mesh_readers::readStl(source, bytes);
+    mesh_readers::triangulateNonConvexPolygons(parsed);
     if (rebase) read.origin = mesh_readers::storageOrigin(parsed);
     read.mesh = mesh_readers::storedMesh(parsed, read.origin);
   } else {

@@ -73,7 +73,7 @@ ParsedMesh readObj(const std::string& source, std::string_view text) {
     if (keyword == "v") {
       mesh.positions.push_back(readPoint(rest, at));
     } else if (keyword == "f") {
-      appendFan(faceCorners(rest, mesh.positions.size(), total, at), mesh.triangles);
+      appendPolygon(faceCorners(rest, mesh.positions.size(), total, at), mesh);
     }
   }
   return mesh;

@@ -124,7 +124,7 @@ ParsedMesh readOff(const std::string& source, std::string_view text) {
                 "the file ends after " + std::to_string(k) + " of the " + std::to_string(counts.faces) +
                     " faces its header declares");
     const TextPlace at{source, lines.number(), *line};
-    appendFan(faceCorners(withoutComment(*line), counts.vertices, at), mesh.triangles);
+    appendPolygon(faceCorners(withoutComment(*line), counts.vertices, at), mesh);
   }
   if (const auto extra = nextDataLine(lines))
     TextPlace{source, lines.number(), *extra}.fail("data after the " + std::to_string(counts.faces) +

@@ -17,8 +17,14 @@ namespace shadowvol::mesh_readers {
 /// `weldCorners` (STL): each triangle has corners of its own, and corners whose stored positions
 /// are bit-identical (0 and -0 alike) become one vertex when stored.
 struct ParsedMesh {
+  /// A polygon of more than 3 corners, fanned into `count` triangles from triangles[first].
+  struct Polygon {
+    std::uint64_t first = 0;
+    std::uint32_t count = 0;
+  };
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<Polygon> polygons;  ///< polygon_fan.h
   bool weldCorners = false;
 };
 

@@ -101,7 +101,7 @@ void readElement(const std::string& source, const PlyElement& e, const Layout& l
                "vertex index out of range (the file declares " + std::to_string(l.vertex->count) + " vertices)");
         corners.push_back(std::uint32_t(index));
       }
-      appendFan(corners, mesh.triangles);
+      appendPolygon(corners, mesh);
     }
     if (!isVertex) continue;
     const auto point = checkedPoint(xyz[0], xyz[1], xyz[2]);
