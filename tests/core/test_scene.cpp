@@ -809,5 +809,25 @@ TEST(Scene, ASceneTooSmallForSinglePrecisionIsWarnedAbout) {
   EXPECT_FALSE(warned(parseScene(scaled(1e-7), "fine.json", ".")));
 }
 
+// A mesh file's vertices that no face uses are left out, with a note naming the file: a stray one
+// 1000 units off once widened the bounds the light is fitted to (a directional light's texel 4
+// units instead of 0.03 over a unit cube).
+TEST(Scene, VerticesNoFaceUsesAreLeftOutOfAMeshFile) {
+  const std::filesystem::path dir = test::tempDir();
+  test::writeText(dir / "stray.obj", "v 0 0 0\nv 1 0 0\nv 1000 0 1000\nv 0 1 0\nv 0 0 1\nf 1 4 2\nf 1 2 5\nf 1 5 4\nf 2 4 5\n");
+  const SceneLoadResult r = parseScene(
+      R"({"objects":[{"type":"plane","size":4},{"type":"mesh","file":"stray.obj","transform":{"translate":[0,1,0]}}],
+          "light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,3,5],"target":[0,0,0]}})",
+      "stray.json", dir);
+  const TriangleMesh& m = r.scene.objects.at(1).mesh;
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.triangles.at(0), (std::array<std::uint32_t, 3>{0, 2, 1}));
+  EXPECT_LT(r.scene.bounds().radius(), 4.0);
+  bool noted = false;
+  for (const auto& w : r.warnings) noted = noted || w.find("stray.json: /objects/1/file") != std::string::npos &&
+                                                        w.find("1 vertex used by no face left out") != std::string::npos;
+  EXPECT_TRUE(noted) << ::testing::PrintToString(r.warnings);
+}
+
 }  // namespace
 }  // namespace shadowvol

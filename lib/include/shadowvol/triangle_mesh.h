@@ -30,6 +30,9 @@ struct TriangleMesh {
   Bounds3 bounds() const;
   /// Appends another mesh (its indices are offset).
   void append(const TriangleMesh& other);
+  /// Removes the positions no triangle uses, keeping the others' order (indices renumbered);
+  /// returns how many were removed.
+  std::size_t removeUnusedVertices();
 };
 
 }  // namespace shadowvol

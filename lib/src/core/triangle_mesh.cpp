@@ -1,5 +1,7 @@
 #include "shadowvol/triangle_mesh.h"
 
+#include <vector>
+
 #include <glm/geometric.hpp>
 
 namespace shadowvol {
@@ -28,6 +30,25 @@ void TriangleMesh::append(const TriangleMesh& other) {
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
   triangles.reserve(triangles.size() + other.triangles.size());
   for (const auto& t : other.triangles) triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
+std::size_t TriangleMesh::removeUnusedVertices() {
+  constexpr std::uint32_t kUnused = ~std::uint32_t(0);
+  std::vector<std::uint32_t> renumber(positions.size(), kUnused);
+  for (const auto& t : triangles)
+    for (const std::uint32_t i : t) renumber[i] = 0;
+  std::uint32_t kept = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (renumber[i] != kUnused) {
+      renumber[i] = kept;
+      positions[kept++] = positions[i];
+    }
+  const std::size_t removed = positions.size() - kept;
+  if (removed == 0) return 0;
+  positions.resize(kept);
+  for (auto& t : triangles)
+    for (std::uint32_t& i : t) i = renumber[i];
+  return removed;
 }
 
 }  // namespace shadowvol
