@@ -695,10 +695,11 @@ TEST(Scene, TooFewDoubleStepsAcrossAreWarnedAbout) {
 }
 
 // A mesh file whose own coordinates sit far from its origin for its size (a tetrahedron 11 units
-// across, stored 1e7 out, where a float step is 1): OBJ, OFF, PLY and STL are parsed in double and
-// rebased before the rounding, so the scene holds the shape the file gives, as the same mesh stored
-// at its origin, and loading does not warn. Read through Assimp (glTF), which gives float, the
-// detail is gone: loading warns, naming the object's file.
+// across, stored 1e7 out, where a float step is 1): text is parsed in double and rebased before
+// the rounding, so the scene holds the shape the file gives, as the same mesh stored at its
+// origin, and loading does not warn; so does a glTF that stores the mesh at its origin and places
+// it 1e7 out by its node (placed in double). A glTF that stores the float coordinates out there
+// has lost the detail in the file: loading warns, naming the object's file.
 TEST(Scene, MeshFileCoordinatesFarFromTheirOriginKeepTheirDetail) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "shadowvol_mesh_float_steps";
   std::filesystem::create_directories(dir);
@@ -716,6 +717,10 @@ TEST(Scene, MeshFileCoordinatesFarFromTheirOriginKeepTheirDetail) {
   for (const auto& v : corners) farFloat.positions.emplace_back(float(1e7 + v[0]), float(v[1]), float(v[2]));
   for (const auto& t : faces) farFloat.triangles.push_back({t[0], t[1], t[2]});
   writeTriangleMesh(farFloat, dir / "far.gltf");
+  TriangleMesh nearFloat;  // stored at its origin, placed 1e7 out by the glTF node's translation
+  for (const auto& v : corners) nearFloat.positions.emplace_back(float(v[0]), float(v[1]), float(v[2]));
+  nearFloat.triangles = farFloat.triangles;
+  writeTriangleMesh(nearFloat, dir / "node.gltf", MeshFrame{glm::dvec3(1e7, 0, 0), false});
   auto sceneWith = [](const char* file, double translate) {
     return std::string(R"({"objects":[{"type":"plane","size":40},{"type":"mesh","file":")") + file +
            R"(","transform":{"translate":[)" + numberText(translate) +
@@ -740,6 +745,15 @@ TEST(Scene, MeshFileCoordinatesFarFromTheirOriginKeepTheirDetail) {
   ASSERT_EQ(a.size(), 4u);
   ASSERT_EQ(b.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_LT(glm::length(a[i] - b[i]), 1e-5) << i;  // a float step at 1e7: 1
+  const SceneLoadResult node = parseScene(sceneWith("node.gltf", -1e7), "node.json", dir);
+  EXPECT_TRUE(precisionWarnings(node).empty()) << ::testing::PrintToString(node.warnings);
+  const std::vector<glm::dvec3> c = worldCorners(node);
+  ASSERT_EQ(c.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {  // placed in double (Assimp may number the corners otherwise)
+    double nearest = 1e300;
+    for (const glm::dvec3& q : c) nearest = std::min(nearest, glm::length(a[i] - q));
+    EXPECT_LT(nearest, 1e-5) << i;
+  }
   const std::vector<std::string> gltf = precisionWarnings(parseScene(sceneWith("far.gltf", -1e7), "gltf.json", dir));
   ASSERT_EQ(gltf.size(), 1u);
   EXPECT_NE(gltf[0].find("gltf.json: /objects/1/file"), std::string::npos) << gltf[0];

@@ -38,14 +38,19 @@ TriangleMesh readTriangleMesh(const std::filesystem::path& path, EmptyMesh empty
 struct RebasedMesh {
   TriangleMesh mesh;
   glm::dvec3 origin{0.0};
+  /// Where the file itself stores float coordinates (binary STL, binary PLY with float x, y, z, a
+  /// format read through Assimp, each of its meshes before its node places it): the extent of its
+  /// worst-placed part and the largest magnitude of that part's coordinates, as stored (0 and 0
+  /// elsewhere). Detail finer than a float step there was lost in the file.
+  double floatExtent = 0.0, floatReach = 0.0;
 };
 
-/// readTriangleMesh, rebased where float would lose the mesh's detail: OBJ, OFF, PLY and STL are
-/// parsed in double, and a mesh lying further from its file's origin than about 8 times its size
-/// (where float keeps fewer than 2^20 steps across it) is stored relative to its bounding box's
-/// centre, subtracted in double before the rounding. Every other mesh is readTriangleMesh's, bit
-/// for bit, with origin 0; so are formats read through Assimp, in float as Assimp gives them.
-/// Scenes read their mesh files so, and `check`.
+/// readTriangleMesh, rebased where float would lose the mesh's detail: positions are parsed (and
+/// placed by an Assimp file's nodes) in double, and a mesh lying further from its file's origin
+/// than about 8 times its size (where float keeps fewer than 2^20 steps across it) is stored
+/// relative to its bounding box's centre, subtracted in double before the rounding. Every other
+/// mesh is readTriangleMesh's, bit for bit, with origin 0. Scenes read their mesh files so, and
+/// `check`.
 RebasedMesh readRebasedTriangleMesh(const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse);
 
 /// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):

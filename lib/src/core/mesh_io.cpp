@@ -68,21 +68,20 @@ void checkReadableExtension(const std::string& ext, const std::string& source) {
 // Our own strict readers (mesh_readers/), not OpenMesh's: see the comment atop each reader for
 // what OpenMesh 9 did with the same hostile file (crashes, endless loops, unbounded allocation,
 // silently dropped or shifted faces). The other formats go to Assimp, in a child process.
-// `rebase`: store our own readers' meshes from their storageOrigin, else from 0.
+// `rebase`: store the mesh from its storageOrigin, else from 0.
 RebasedMesh readChecked(std::string_view bytes, const std::string& ext, const std::string& source,
                         const std::filesystem::path& path, EmptyMesh empty, bool rebase) {
+  mesh_readers::ParsedMesh parsed = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
+                                    : ext == ".off" ? mesh_readers::readOff(source, bytes)
+                                    : ext == ".ply" ? mesh_readers::readPly(source, bytes)
+                                    : ext == ".stl" ? mesh_readers::readStl(source, bytes)
+                                                    : mesh_readers::readWithAssimp(source, path, bytes, ext);
+  mesh_readers::triangulateNonConvexPolygons(parsed);
   RebasedMesh read;
-  if (mesh_readers::isOwnFormat(ext)) {
-    mesh_readers::ParsedMesh parsed = ext == ".obj"   ? mesh_readers::readObj(source, bytes)
-                                            : ext == ".off" ? mesh_readers::readOff(source, bytes)
-                                            : ext == ".ply" ? mesh_readers::readPly(source, bytes)
-                                                            : mesh_readers::readStl(source, bytes);
-    mesh_readers::triangulateNonConvexPolygons(parsed);
-    if (rebase) read.origin = mesh_readers::storageOrigin(parsed);
-    read.mesh = mesh_readers::storedMesh(parsed, read.origin);
-  } else {
-    read.mesh = mesh_readers::readWithAssimp(source, path, bytes, ext);
-  }
+  if (rebase) read.origin = mesh_readers::storageOrigin(parsed);
+  read.mesh = mesh_readers::storedMesh(parsed, read.origin);
+  read.floatExtent = parsed.floatPlacement.extent;
+  read.floatReach = parsed.floatPlacement.reach;
   if (read.mesh.triangles.empty() && empty == EmptyMesh::Refuse)
     throw InputError(source, "", "", "the mesh has no triangles");
   return read;

@@ -219,31 +219,25 @@ struct StepsAcross {
   bool fewerThan(double floor) const { return extent > 0.0 && step > 0.0 && count() < floor; }
 };
 
-// A mesh file whose stored coordinates hold fewer than kMinMeshFloatSteps single-precision steps
-// across the mesh at their distance from the file's origin: a format read through Assimp, which
-// gives float, so the file's detail finer than a step is gone before any transform or rebasing can
-// help (a probe's mesh stored at 1e7, README "Scene files"; OBJ, OFF, PLY and STL are rebased on
-// reading, readRebasedTriangleMesh). The same floor as the scene's double steps.
+// A mesh file that stores float coordinates (RebasedMesh::floatExtent) with fewer than
+// kMinMeshFloatSteps single-precision steps across a part at its distance from the file's origin:
+// the file's detail finer than a step is gone before any transform or rebasing can help (a
+// probe's mesh stored at 1e7, README "Scene files"; a text format's digits are read in double and
+// rebased, readRebasedTriangleMesh). The same floor as the scene's double steps.
 constexpr double kMinMeshFloatSteps = 2e3;
 
 // The warning about a mesh object's file, `where` naming it (empty when it has steps enough).
-std::string meshFloatPrecisionNote(const TriangleMesh& mesh, const std::string& where) {
-  if (mesh.positions.empty()) return {};
-  glm::dvec3 lo(mesh.positions[0]), hi = lo;
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, glm::dvec3(p));
-    hi = glm::max(hi, glm::dvec3(p));
-  }
-  const StepsAcross s(lo, hi, 23);
-  if (!s.fewerThan(kMinMeshFloatSteps)) return {};
+std::string meshFloatPrecisionNote(const RebasedMesh& read, const std::string& where) {
+  const double step = read.floatReach * std::ldexp(1.0, -23);
+  if (!(read.floatExtent > 0.0 && step > 0.0 && read.floatExtent / step < kMinMeshFloatSteps)) return {};
   char buf[240];
   std::snprintf(buf, sizeof buf,
                 "the mesh is %.3g units across at %.3g from its file's origin, only about %.0f single-precision "
-                "steps: its coordinates are read as float, so its detail finer than %.3g units is lost",
-                s.extent, s.reach, s.count(), s.step);
+                "steps: the file stores its coordinates as float, so its detail finer than %.3g units is lost",
+                read.floatExtent, read.floatReach, read.floatExtent / step, step);
   return where + ": " + buf +
-         "; store it as .obj, .off, .ply or .stl (read in double and rebased), or nearer its own origin and place it "
-         "with the object's transform";
+         "; store it nearer its own origin (a glTF node or the object's transform can place it), or as text "
+         "(.obj, .off, ASCII .ply or .stl: read in double and rebased)";
 }
 
 // The warning about what orientOutward changed in object `name` (empty when nothing).
@@ -349,6 +343,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
   obj.type = r.string("type");
   obj.name = r.string("name", obj.type + "#" + std::to_string(index));
   glm::dvec3 fileOrigin(0.0);  // a mesh file's stored positions are relative to it
+  std::string precisionNote;
   if (obj.type == "mesh") {
     const std::string file = r.string("file");
     std::filesystem::path p(file);
@@ -358,6 +353,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
       RebasedMesh rebased = readRebasedTriangleMesh(p);
       obj.mesh = std::move(rebased.mesh);
       fileOrigin = rebased.origin;
+      precisionNote = meshFloatPrecisionNote(rebased, source + ": " + r.pointer("file") + " (" + p.string() + ")");
       // Vertices no face uses would widen the bounds the light and camera are fitted to (a
       // thirteenth probe's stray vertex 1000 units off made a directional light's texel 4 units).
       if (const std::size_t unused = obj.mesh.removeUnusedVertices(); unused > 0)
@@ -379,8 +375,7 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
   }
   read.world = applyTransform(obj.mesh, readTransform(r), fileOrigin);
   if (obj.type == "mesh") {
-    if (std::string note = meshFloatPrecisionNote(obj.mesh, source + ": " + r.pointer("file") + " (" + read.file.string() + ")"); !note.empty())
-      read.notes.push_back(std::move(note));
+    if (!precisionNote.empty()) read.notes.push_back(std::move(precisionNote));
     if (std::string note = orientMesh(r, read, source); !note.empty()) read.notes.push_back(std::move(note));
   }
   r.finish();

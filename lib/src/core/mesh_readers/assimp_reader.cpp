@@ -13,6 +13,7 @@
 
 #include "mesh_readers/corner_welder.h"
 #include "mesh_readers/isolated_call.h"
+#include "mesh_readers/number_text.h"
 #include "mesh_readers/own_formats.h"
 #include "shadowvol/error.h"
 
@@ -60,22 +61,24 @@ void checkNodes(const aiNode& node, const glm::dmat4& parent, const std::string&
   for (unsigned k = 0; k < node.mNumChildren; ++k) checkNodes(*node.mChildren[k], m, here, source);
 }
 
-// Mesh m's triangles, its positions placed by `place`, into `mesh` (welded by `weld`). A mirroring
-// placement (negative determinant) reverses the winding, as glTF asks and as the scene file's own
-// mirrors do, so that faces keep facing the side they faced in the mesh.
-void collectMesh(const aiMesh& am, unsigned m, const glm::dmat4& place, const std::string& source, CornerWelder& weld,
-                 TriangleMesh& mesh) {
-  std::vector<glm::vec3> placed(am.mNumVertices);
+// Mesh m's triangles, its positions placed by `place` in double, into `mesh` (welded by their
+// bits, in corner order, by `weld`; ParsedMesh::weldCorners welds them again once stored in float).
+// A mirroring placement (negative determinant) reverses the winding, as glTF asks and as the scene
+// file's own mirrors do, so that faces keep facing the side they faced in the mesh.
+void collectMesh(const aiMesh& am, unsigned m, const glm::dmat4& place, const std::string& source,
+                 CornerWelder<glm::dvec3>& weld, ParsedMesh& mesh) {
+  std::vector<glm::dvec3> stored(am.mNumVertices), placed(am.mNumVertices);
   for (unsigned v = 0; v < am.mNumVertices; ++v) {
     const aiVector3D& p = am.mVertices[v];
-    const glm::dvec3 w(place * glm::dvec4(p.x, p.y, p.z, 1.0));
-    placed[v] = glm::vec3(w);
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !std::isfinite(placed[v].x) ||
-        !std::isfinite(placed[v].y) || !std::isfinite(placed[v].z))
+    stored[v] = glm::dvec3(p.x, p.y, p.z);
+    placed[v] = glm::dvec3(place * glm::dvec4(stored[v], 1.0));
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) ||
+        !checkedPoint(placed[v].x, placed[v].y, placed[v].z))
       throw InputError(source, "mesh " + std::to_string(m) + " vertex " + std::to_string(v),
                        numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z),
                        "position is not finite (as stored, or as its node places it)");
   }
+  mesh.floatPlacement = FloatPlacement::worse(mesh.floatPlacement, FloatPlacement::of(stored));
   const bool mirrored = glm::determinant(glm::dmat3(place)) < 0.0;
   for (unsigned f = 0; f < am.mNumFaces; ++f) {
     const aiFace& face = am.mFaces[f];
@@ -95,7 +98,7 @@ void collectMesh(const aiMesh& am, unsigned m, const glm::dmat4& place, const st
 
 // Every mesh of `node` and its children, placed by their transformations accumulated in double.
 void collectNode(const aiScene& scene, const aiNode& node, const glm::dmat4& parent, const std::string& source,
-                 CornerWelder& weld, TriangleMesh& mesh) {
+                 CornerWelder<glm::dvec3>& weld, ParsedMesh& mesh) {
   const glm::dmat4 place = parent * toDouble(node.mTransformation);
   for (unsigned k = 0; k < node.mNumMeshes; ++k) {
     const unsigned m = node.mMeshes[k];
@@ -104,11 +107,12 @@ void collectNode(const aiScene& scene, const aiNode& node, const glm::dmat4& par
   for (unsigned k = 0; k < node.mNumChildren; ++k) collectNode(scene, *node.mChildren[k], place, source, weld, mesh);
 }
 
-// The scene's triangles, welded (CornerWelder), in world units as the file's nodes place them
-// (every mesh as stored when the file has no nodes).
-TriangleMesh collect(const aiScene& scene, const std::string& source) {
-  TriangleMesh mesh;
-  CornerWelder weld(mesh);
+// The scene's triangles, in world units as the file's nodes place them, in double (every mesh as
+// stored when the file has no nodes): rebased and welded when stored (readChecked, storedMesh).
+ParsedMesh collect(const aiScene& scene, const std::string& source) {
+  ParsedMesh mesh;
+  mesh.weldCorners = true;
+  CornerWelder<glm::dvec3> weld(mesh.positions);
   if (scene.mRootNode) {
     collectNode(scene, *scene.mRootNode, glm::dmat4(1.0), source, weld, mesh);
   } else {
@@ -117,37 +121,48 @@ TriangleMesh collect(const aiScene& scene, const std::string& source) {
   return mesh;
 }
 
-// The mesh as bytes for the pipe: counts, then the positions and triangles as stored.
-std::string serialize(const TriangleMesh& mesh) {
+// The mesh as bytes for the pipe: its float placement, counts, then the positions and triangles.
+std::string serialize(const ParsedMesh& mesh) {
   const std::uint64_t counts[2] = {mesh.positions.size(), mesh.triangles.size()};
-  std::string out(sizeof counts + counts[0] * sizeof(glm::vec3) + counts[1] * 3 * sizeof(std::uint32_t), '\0');
+  const double placement[2] = {mesh.floatPlacement.extent, mesh.floatPlacement.reach};
+  std::string out(sizeof placement + sizeof counts + counts[0] * sizeof(glm::dvec3) + counts[1] * 3 * sizeof(std::uint32_t), '\0');
   char* p = out.data();
+  std::memcpy(p, placement, sizeof placement);
+  p += sizeof placement;
   std::memcpy(p, counts, sizeof counts);
   p += sizeof counts;
-  std::memcpy(p, mesh.positions.data(), counts[0] * sizeof(glm::vec3));
-  p += counts[0] * sizeof(glm::vec3);
+  std::memcpy(p, mesh.positions.data(), counts[0] * sizeof(glm::dvec3));
+  p += counts[0] * sizeof(glm::dvec3);
   std::memcpy(p, mesh.triangles.data(), counts[1] * 3 * sizeof(std::uint32_t));
   return out;
 }
 
 // The child's bytes back into a mesh, checked as if they came from a file.
-TriangleMesh deserialize(const std::string& bytes, const std::string& source) {
+ParsedMesh deserialize(const std::string& bytes, const std::string& source) {
+  double placement[2];
   std::uint64_t counts[2];
   const auto bad = [&] { return InputError(source, "", "", "the Assimp reader handed back a malformed mesh"); };
-  if (bytes.size() < sizeof counts) throw bad();
-  std::memcpy(counts, bytes.data(), sizeof counts);
-  if (counts[0] > bytes.size() / sizeof(glm::vec3) || counts[1] > bytes.size() / 12 ||
-      bytes.size() != sizeof counts + counts[0] * sizeof(glm::vec3) + counts[1] * 12)
+  if (bytes.size() < sizeof placement + sizeof counts) throw bad();
+  std::memcpy(placement, bytes.data(), sizeof placement);
+  std::memcpy(counts, bytes.data() + sizeof placement, sizeof counts);
+  if (counts[0] > bytes.size() / sizeof(glm::dvec3) || counts[1] > bytes.size() / 12 ||
+      bytes.size() != sizeof placement + sizeof counts + counts[0] * sizeof(glm::dvec3) + counts[1] * 12)
     throw bad();
-  TriangleMesh mesh;
+  if (!(placement[0] >= 0.0 && placement[1] >= 0.0 && std::isfinite(placement[0]) && std::isfinite(placement[1])))
+    throw bad();
+  ParsedMesh mesh;
+  mesh.weldCorners = true;
+  mesh.floatPlacement = {placement[0], placement[1]};
   mesh.positions.resize(counts[0]);
   mesh.triangles.resize(counts[1]);
-  const char* p = bytes.data() + sizeof counts;
-  std::memcpy(mesh.positions.data(), p, counts[0] * sizeof(glm::vec3));
-  std::memcpy(mesh.triangles.data(), p + counts[0] * sizeof(glm::vec3), counts[1] * 12);
+  const char* p = bytes.data() + sizeof placement + sizeof counts;
+  std::memcpy(mesh.positions.data(), p, counts[0] * sizeof(glm::dvec3));
+  std::memcpy(mesh.triangles.data(), p + counts[0] * sizeof(glm::dvec3), counts[1] * 12);
   for (const auto& t : mesh.triangles)
     for (std::uint32_t k : t)
       if (k >= counts[0]) throw bad();
+  for (const glm::dvec3& q : mesh.positions)
+    if (!checkedPoint(q.x, q.y, q.z)) throw bad();
   return mesh;
 }
 
@@ -174,7 +189,7 @@ std::string assimpFormatList() {
   return out;
 }
 
-TriangleMesh readWithAssimp(const std::string& source, const std::filesystem::path& path, std::string_view bytes,
+ParsedMesh readWithAssimp(const std::string& source, const std::filesystem::path& path, std::string_view bytes,
                             const std::string& lowerExtension) {
   const IsolatedResult r = runIsolated([&] {
     Assimp::Importer importer;

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "shadowvol/triangle_mesh.h"
+#include "mesh_readers/parsed_mesh.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -20,11 +20,11 @@ std::string assimpFormatList();
 
 /// Reads every mesh of the file (a path, so that a .gltf finds its .bin and textures; or, with
 /// an empty path, `bytes` with `lowerExtension` as the format hint), node transforms applied,
-/// polygons triangulated, points and lines dropped, corners at bit-identical positions welded
-/// across all meshes (as the STL reader does). Throws InputError naming `source` when Assimp
+/// in double, polygons triangulated, points and lines dropped, corners at bit-identical positions
+/// welded across all meshes (as the STL reader does, again when stored in float: weldCorners). Throws InputError naming `source` when Assimp
 /// refuses the file, crashes, runs past 60 s or 4 GiB, or when a position is not finite (the
 /// mesh and vertex named).
-TriangleMesh readWithAssimp(const std::string& source, const std::filesystem::path& path, std::string_view bytes,
+ParsedMesh readWithAssimp(const std::string& source, const std::filesystem::path& path, std::string_view bytes,
                             const std::string& lowerExtension);
 
 }  // namespace shadowvol::mesh_readers

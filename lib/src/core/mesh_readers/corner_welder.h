@@ -5,29 +5,32 @@
 #include <cstdint>
 #include <cstring>
 #include <unordered_map>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
-#include "shadowvol/triangle_mesh.h"
-
 namespace shadowvol::mesh_readers {
 
-// Welds corners at identical positions into one vertex, keyed by their bits (-0 counts as 0).
+/// Welds corners at identical positions into one vertex of `positions`, keyed by their bits (-0
+/// counts as 0), numbered in the order they first come. Vec: glm::vec3 (stored positions) or
+/// glm::dvec3 (the Assimp reader's placed ones, before the storing).
+template <class Vec>
 class CornerWelder {
  public:
-  explicit CornerWelder(TriangleMesh& mesh) : mesh_(mesh) {}
-  std::uint32_t vertex(const glm::vec3& p) {
-    const glm::vec3 q = p + glm::vec3(0.0f);  // -0 + 0 = +0
+  explicit CornerWelder(std::vector<Vec>& positions) : positions_(positions) {}
+  std::uint32_t vertex(const Vec& p) {
+    const Vec q = p + Vec(0);  // -0 + 0 = +0
     Key key;
     std::memcpy(key.bits, &q, sizeof key.bits);
-    const auto [it, added] = index_.try_emplace(key, std::uint32_t(mesh_.positions.size()));
-    if (added) mesh_.positions.push_back(q);
+    const auto [it, added] = index_.try_emplace(key, std::uint32_t(positions_.size()));
+    if (added) positions_.push_back(q);
     return it->second;
   }
 
  private:
+  using Word = std::conditional_t<sizeof(typename Vec::value_type) == 8, std::uint64_t, std::uint32_t>;
   struct Key {
-    std::uint32_t bits[3];
+    Word bits[3];
     bool operator==(const Key& o) const { return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2]; }
   };
   struct Hash {
@@ -38,7 +41,7 @@ class CornerWelder {
       return std::size_t(h ^ (h >> 29));
     }
   };
-  TriangleMesh& mesh_;
+  std::vector<Vec>& positions_;
   std::unordered_map<Key, std::uint32_t, Hash> index_;
 };
 

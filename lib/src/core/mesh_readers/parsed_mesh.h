@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -13,9 +14,22 @@
 
 namespace shadowvol::mesh_readers {
 
+/// How finely a file's float coordinates place (a part of) a mesh: its extent and the largest
+/// magnitude of its coordinates, as the file stores them. Detail finer than a float step there is
+/// gone before any rebasing can help.
+struct FloatPlacement {
+  double extent = 0.0, reach = 0.0;
+  /// Float steps across the part at its distance from the file's origin; infinite for none.
+  double steps() const;
+  /// The placement of `points` (the bounding box of float values).
+  static FloatPlacement of(std::span<const glm::dvec3> points);
+  /// The one of `a` and `b` with fewer steps.
+  static FloatPlacement worse(const FloatPlacement& a, const FloatPlacement& b);
+};
+
 /// A mesh as parsed: every position finite and within float's range (the readers check it).
-/// `weldCorners` (STL): each triangle has corners of its own, and corners whose stored positions
-/// are bit-identical (0 and -0 alike) become one vertex when stored.
+/// `weldCorners` (STL, Assimp): positions whose stored (float) values are bit-identical (0 and -0
+/// alike) become one vertex when stored, numbered in the order of the positions.
 struct ParsedMesh {
   /// A polygon of more than 3 corners, fanned into `count` triangles from triangles[first].
   struct Polygon {
@@ -26,6 +40,9 @@ struct ParsedMesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<Polygon> polygons;  ///< polygon_fan.h
   bool weldCorners = false;
+  /// Where the file stores float coordinates (binary STL, binary PLY with float x, y, z, a format
+  /// read through Assimp, per mesh as stored before its node places it): the worst part's.
+  FloatPlacement floatPlacement;
 };
 
 /// Float keeps at least this many steps across a mesh before its reader rebases it: 2^20, about a

@@ -126,6 +126,9 @@ ParsedMesh readPly(const std::string& source, std::string_view bytes) {
     if (e.properties.empty()) continue;  // rows without data: nothing to read, however many
     readElement(source, e, layout, body, mesh);
   }
+  bool floatXyz = false;
+  for (const int k : layout.xyz) floatXyz = floatXyz || layout.vertex->properties[k].type == PlyType::Float32;
+  if (header.format != PlyFormat::Ascii && floatXyz) mesh.floatPlacement = FloatPlacement::of(mesh.positions);
   const std::string left = body.dataLeft();
   if (!left.empty())
     throw InputError(source, "after the last element" + body.where(), left,

@@ -49,6 +49,7 @@ ParsedMesh readBinary(const std::string& source, std::string_view bytes, std::ui
     }
     mesh.triangles.push_back(tri);
   }
+  mesh.floatPlacement = FloatPlacement::of(mesh.positions);
   return mesh;
 }
 
