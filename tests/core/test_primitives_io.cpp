@@ -8,6 +8,9 @@
 #include <map>
 #include <sstream>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -194,6 +197,34 @@ TEST(MeshIo, FailedWritesThrowAndLeaveNothing) {
   ASSERT_EQ(waitpid(child, &status, 0), child);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
   EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// What lies at the output path already: a pipe or device is refused, not replaced by a file (a
+// probe's `--out` onto a FIFO; as root onto a device node); a symbolic link is written through; a
+// read-only file is refused; a replaced file keeps its mode.
+TEST(MeshIo, WritesRefuseDevicesAndReadOnlyFilesAndFollowLinks) {
+  const auto dir = test::tempDir();
+  const TriangleMesh box = makeBox(1, 1, 1);
+  ASSERT_EQ(mkfifo((dir / "fifo.ply").c_str(), 0644), 0);
+  EXPECT_THROW(writeTriangleMesh(box, dir / "fifo.ply"), InputError);
+  EXPECT_EQ(std::filesystem::status(dir / "fifo.ply").type(), std::filesystem::file_type::fifo);
+  test::writeText(dir / "real.ply", "old");
+  std::filesystem::create_symlink("real.ply", dir / "link.ply");
+  writeTriangleMesh(box, dir / "link.ply");
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.ply"));
+  EXPECT_EQ(readTriangleMesh(dir / "real.ply").triangleCount(), 12u);
+  std::filesystem::create_symlink("missing.ply", dir / "dangling.ply");
+  EXPECT_THROW(writeTriangleMesh(box, dir / "dangling.ply"), InputError);
+  test::writeText(dir / "private.ply", "old");
+  std::filesystem::permissions(dir / "private.ply", std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  writeTriangleMesh(box, dir / "private.ply");
+  EXPECT_EQ(std::filesystem::status(dir / "private.ply").permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  if (geteuid() != 0) {  // root may write a read-only file
+    test::writeText(dir / "ro.ply", "old");
+    std::filesystem::permissions(dir / "ro.ply", std::filesystem::perms::owner_read);
+    EXPECT_THROW(writeTriangleMesh(box, dir / "ro.ply"), InputError);
+  }
 }
 
 TEST(MeshIo, UnknownExtensionWritesNothing) {

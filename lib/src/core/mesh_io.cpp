@@ -100,11 +100,35 @@ RebasedMesh readFile(const std::filesystem::path& path, EmptyMesh empty, bool re
 
 }  // namespace
 
-void writeAtomically(const std::filesystem::path& path,
-                     const std::function<void(const std::filesystem::path&)>& write) {
-  std::error_code isDir;
-  if (std::filesystem::is_directory(path, isDir))  // (renaming onto it failed with "Success")
+namespace {
+
+// Where writeAtomically writes `path`: the path itself, or the file a symbolic link names (written
+// through, as open() would). Refuses a folder, a device, pipe or socket (renaming onto it would
+// replace it: a probe's `--out` onto a FIFO or a device node, as root onto any device), a link to
+// nothing, and a file its owner made read-only (the rename would not ask, as cp does).
+std::filesystem::path writeTarget(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto link = std::filesystem::symlink_status(path, ec);
+  std::filesystem::path target = path;
+  if (link.type() == std::filesystem::file_type::symlink) {
+    target = std::filesystem::canonical(path, ec);
+    if (ec) throw InputError(path.string(), "", "", "is a symbolic link to a file that does not exist: " + ec.message());
+  }
+  const auto st = std::filesystem::status(target, ec);
+  if (st.type() == std::filesystem::file_type::directory)  // (renaming onto it failed with "Success")
     throw InputError(path.string(), "", "", "is a folder: a file cannot be written in its place");
+  if (st.type() != std::filesystem::file_type::not_found && st.type() != std::filesystem::file_type::regular)
+    throw InputError(path.string(), "", "", "is not a regular file (a device, pipe or socket): it would be replaced");
+  if (st.type() == std::filesystem::file_type::regular && ::access(target.c_str(), W_OK) != 0)
+    throw InputError(path.string(), "", "", "is read-only: it is not replaced");
+  return target;
+}
+
+}  // namespace
+
+void writeAtomically(const std::filesystem::path& requested,
+                     const std::function<void(const std::filesystem::path&)>& write) {
+  const std::filesystem::path path = writeTarget(requested);
   // Keep the real extension last: OpenMesh picks the writer by it.
   std::filesystem::path tmp = path;
   std::string name = ".";  // built with += (GCC 12 warns falsely on "." + std::string)
@@ -122,6 +146,8 @@ void writeAtomically(const std::filesystem::path& path,
     throw;
   }
   std::error_code ec;
+  if (const auto st = std::filesystem::status(path, ec); st.type() == std::filesystem::file_type::regular)
+    std::filesystem::permissions(tmp, st.permissions(), ec);  // a replaced file keeps its mode
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);
