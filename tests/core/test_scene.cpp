@@ -843,5 +843,15 @@ TEST(Scene, VerticesNoFaceUsesAreLeftOutOfAMeshFile) {
   EXPECT_TRUE(noted) << ::testing::PrintToString(r.warnings);
 }
 
+// A NUL in a string field is refused by name: in a mesh file's name it once cut the path short, so
+// another file was loaded (a thirteenth probe's "cube.obj\u0000.x"); a whole number past 64 bits
+// (which JSON hands over as a float) is out of range, not "not a whole number".
+TEST(Scene, NulCharactersAndWholeNumbersPastSixtyFourBitsAreRefusedClearly) {
+  expectError(withObject(R"({"type":"mesh","file":"cube.obj\u0000.x"})"), "/objects/0/file", "a NUL character");
+  expectError(withObject(R"({"type":"box","name":"gro\u0000und"})"), "/objects/0/name", "a NUL character");
+  expectError(withObject(R"({"type":"sphere","detail":99999999999999999999999999})"), "/objects/0/detail",
+              "must be between");
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -87,6 +87,9 @@ class ObjectReader {
   int integer(const std::string& key, int fallback, int lo, int hi) {
     if (!has(key)) return fallback;
     const json& v = raw(key);
+    // A whole number past 64 bits arrives as a float (99999999999999999999999999): out of range.
+    if (v.is_number_float() && std::abs(v.get<double>()) >= 9.2e18 && std::isfinite(v.get<double>()))
+      fail(key, v, "must be between " + std::to_string(lo) + " and " + std::to_string(hi));
     if (!v.is_number_integer()) fail(key, v, "expected a whole number");
     const auto i = v.get<long long>();
     if (i < lo || i > hi)
@@ -101,6 +104,8 @@ class ObjectReader {
     }
     const json& v = raw(key);
     if (!v.is_string()) fail(key, v, "expected a string");
+    if (v.get_ref<const std::string&>().find('\0') != std::string::npos)  // a file name would end there
+      fail(key, v, "a NUL character (\\u0000) is not allowed in a string");
     return v.get<std::string>();
   }
 
