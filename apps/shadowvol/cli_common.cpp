@@ -192,11 +192,7 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   v.blur = o.blur;
   v.blurOffset = o.blurOffset;
   v.bias = o.bias;
-  try {
-    checkUserVolumeOptions(v);  // the rules the Python module applies too, named by flag here
-  } catch (const InputError& e) {
-    throw asCommandLineError(e);
-  }
+  checkUserVolumeOptions(v);  // the rules the Python module applies too, named by flag in main
   return v;
 }
 

@@ -86,7 +86,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       VolumeBuildOptions options = toVolumeBuildOptions(o->volume);
       options.flattenCap = !o->noFlatten;
       if (options.refineSubdivisions > 1 && !options.flattenCap)
-        throw InputError("command line", "--no-flatten", "",
+        throw OptionConflict("command line", "--no-flatten", "",
                          "not with --refine-grid: the sub-grid needs the flattened cap");
 
       nlohmann::json j;

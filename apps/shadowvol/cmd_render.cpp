@@ -71,7 +71,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         checkOutputPath("--stencil", o->stencil);
         checkPngPath("--stencil", o->stencil);
         if (o->render.method != "hybrid" && o->render.method != "silhouette")
-          throw InputError("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
+          throw OptionConflict("command line", "--stencil", o->stencil, "only hybrid and silhouette use the stencil");
       }
       Scene scene = loadSceneOrDefault(o->render.scene.scene);
       checkNotAnInput("--out", o->out, o->out, scene.files);

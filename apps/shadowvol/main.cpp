@@ -79,6 +79,10 @@ int main(int argc, char** argv) {
   try {
     const int code = run();
     return stdoutWritten(code);
+  } catch (const OptionConflict& e) {  // options that contradict each other: a usage error
+    std::fprintf(stderr, "shadowvol: error: %s\nRun with --help for more information.\n",
+                 cli::asCommandLineError(e).what());
+    return cli::kUsage;
   } catch (const InputError& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", cli::asCommandLineError(e).what());
     return cli::kBadInput;

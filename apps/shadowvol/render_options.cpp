@@ -229,6 +229,9 @@ void checkIneffectiveOptions(const RenderCliOptions& o) {
   if (o.method == "hybrid" && o.volume == "explicit" && o.gpuDraw != "auto")
     throw CLI::ValidationError(
         "--gpu-draw", "chooses how the GPU volume is drawn; --volume explicit draws the mesh built on the CPU");
+  if (o.method == "hybrid" && v.cap == "quad" && o.gpuDraw != "auto")  // the quad cap draws every quad
+    throw CLI::ValidationError("--gpu-draw", "chooses how the exact cap's GPU volume skips far quads; --cap quad "
+                                             "draws all of them: leave one out");
   if (o.method == "hybrid" && o.crossings == "rays" && v.refine == 0)
     throw CLI::ValidationError("--crossings", "chooses where refinement finds its crossings: add --refine K");
 }

@@ -304,8 +304,8 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_EQ(runCli("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
   EXPECT_EQ(runCli("build --depth " + pfm + " --capture front --out " + a).code, 2);
   EXPECT_EQ(runCli("build --depth " + pfm + " --capture auto --out " + a).code, 0);
-  // --blur-offset without --blur is bad input.
-  EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 1);
+  // --blur-offset without --blur changes nothing: a usage error.
+  EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
@@ -510,18 +510,18 @@ TEST(Cli, BuildRefinesAndReportsItsRays) {
   EXPECT_EQ(js["snappedCrossings"], 64);
   EXPECT_GE(js["raysCast"].get<int>(), 3 * 64 + 64);
   EXPECT_LE(js["raysCast"].get<int>(), 3 * 64 + 2 * 64);
-  EXPECT_EQ(runCli("build --resolution 8 --no-snap --out " + out).code, 1);  // needs --refine
-  EXPECT_EQ(runCli("build --resolution 8 --chord-points --out " + out).code, 1);  // needs --refine
+  EXPECT_EQ(runCli("build --resolution 8 --no-snap --out " + out).code, 2);  // needs --refine: usage
+  EXPECT_EQ(runCli("build --resolution 8 --chord-points --out " + out).code, 2);  // needs --refine: usage
   EXPECT_EQ(j["splitVertices"], 0);
   EXPECT_TRUE(j["ms"].contains("refine"));
   EXPECT_TRUE(std::filesystem::exists(out));
   const CliResult text = runCli("build --resolution 64 --refine 3 --scene " + scene("plate.json") + " --out " + out);
   EXPECT_TRUE(contains(text.out, "64 boundary edges")) << text.out;
-  // Refused: out of range (usage), with --depth (no scene for the rays: usage), with the quad cap.
+  // Refused: out of range (usage), with --depth (no scene for the rays: usage), with the quad cap (usage).
   EXPECT_EQ(runCli("build --refine 17 --out " + (dir / "a.ply").string()).code, 2);
   EXPECT_EQ(runCli("build --refine 2 --depth x.pfm --out " + (dir / "a.ply").string()).code, 2);
   const CliResult quad = runCli("build --resolution 16 --refine 2 --cap quad --out " + (dir / "a.ply").string());
-  EXPECT_EQ(quad.code, 1) << quad.out;
+  EXPECT_EQ(quad.code, 2) << quad.out;
   EXPECT_TRUE(contains(quad.out, "--refine")) << quad.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "a.ply"));
 }
@@ -601,7 +601,7 @@ TEST(Cli, BuildRefinesOnTheSubGridAndRefusesWhatItCannotDo) {
   for (const char* args : {"--refine-grid 4", "--refine 3 --refine-grid 4 --chord-points", "--refine 3 --refine-grid 4 --no-flatten",
                            "--refine 3 --refine-grid-everywhere", "--refine 3 --no-hidden-search"}) {
     const CliResult e = runCli(std::string("build --resolution 16 ") + args + " --out " + bad);
-    EXPECT_EQ(e.code, 1) << args << ": " << e.out;
+    EXPECT_EQ(e.code, 2) << args << ": " << e.out;  // options that contradict each other: usage
     EXPECT_TRUE(contains(e.out, "--refine-grid") || contains(e.out, "--no-flatten")) << e.out;
   }
   EXPECT_EQ(runCli("build --resolution 16 --refine 3 --refine-grid 3 --out " + bad).code, 2);  // not 1, 2, 4, 8
@@ -657,12 +657,15 @@ TEST(CliGl, RenderWritesImageStencilAndTimes) {
   EXPECT_EQ(bright, ones);
   // Bad values: named, nothing written.
   const std::string bad = (dir / "bad.png").string();
-  for (const char* args : {"--size 0x5", "--size big", "--resolution 1", "--blur-offset 0.1"}) {
+  for (const char* args : {"--size 0x5", "--size big", "--resolution 1"}) {
     const CliResult b = runCli(std::string("render ") + args + " --out " + bad);
     EXPECT_EQ(b.code, 1) << args << ": " << b.out;
   }
+  EXPECT_EQ(runCli("render --blur-offset 0.1 --out " + bad).code, 2);  // changes nothing without --blur
   EXPECT_EQ(runCli("render --method laser --out " + bad).code, 2);
-  EXPECT_EQ(runCli("render --method shadowmap --stencil " + st + "2 --out " + bad).code, 1);
+  EXPECT_EQ(runCli("render --method shadowmap --stencil " + st + "2 --out " + bad).code, 1);  // not a .png name
+  EXPECT_EQ(runCli("render --method shadowmap --stencil " + (dir / "s2.png").string() + " --out " + bad).code, 2);
+  EXPECT_EQ(runCli("render --volume gpu --cap quad --gpu-draw indexed --size 64x48 --resolution 32 --out " + bad).code, 2);
   EXPECT_FALSE(std::filesystem::exists(bad));
   // A write that fails after others (a folder where the counts go: a twelfth probe's finding) takes
   // the image and the stencil picture written before it along.
@@ -948,7 +951,7 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_TRUE(jg["passed"].get<bool>()) << refinedGpu.out;
   const CliResult midGpu = runCli("render --refine 4 --capture midpoint --scene " + room + " --out " +
                                   (dir / "rg.png").string());
-  EXPECT_EQ(midGpu.code, 1);
+  EXPECT_EQ(midGpu.code, 2);  // options that contradict each other
   EXPECT_TRUE(contains(midGpu.out, "--refine")) << midGpu.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "rg.png"));
   const CliResult refinedExplicit = runCli("validate --refine 4 --volume explicit --resolution 32 --scene " + room +
@@ -1223,10 +1226,10 @@ TEST(CliGl, EntryCaptureWhereOneLayerIsRead) {
   const auto dir = test::tempDir();
   const std::string png = " --size 64x48 --resolution 32 --out " + (dir / "x.png").string();
   const CliResult walk = runCli("render --volume explicit --refine 2 --crossings gpu-walk --capture entry" + png);
-  EXPECT_EQ(walk.code, 1) << walk.out;
+  EXPECT_EQ(walk.code, 2) << walk.out;  // options that contradict each other: usage
   EXPECT_TRUE(contains(walk.out, "entry capture reads two")) << walk.out;
   const CliResult gpuWalk = runCli("render --volume gpu --refine 2 --crossings gpu-walk --capture entry" + png);
-  EXPECT_EQ(gpuWalk.code, 1) << gpuWalk.out;
+  EXPECT_EQ(gpuWalk.code, 2) << gpuWalk.out;
   EXPECT_TRUE(contains(gpuWalk.out, "entry capture reads two")) << gpuWalk.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
   const CliResult gpu = runCli("render --volume gpu --refine 2 --capture entry" + png);

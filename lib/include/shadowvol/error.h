@@ -53,4 +53,12 @@ class InputError : public std::runtime_error {
   std::string source_, field_, value_, problem_;
 };
 
+/// An option that contradicts another, or changes nothing without another (refinement's options
+/// without refinement, blur's offset without blur): a usage error, exit 2 on the command line,
+/// where an InputError about one option's value is bad input, exit 1.
+class OptionConflict : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace shadowvol

@@ -86,17 +86,22 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
 }
 
 void checkUserVolumeOptions(const VolumeBuildOptions& o) {
-  auto refuse = [](const char* field, const std::string& value, const std::string& why) {
+  auto refuseValue = [](const char* field, const std::string& value, const std::string& why) {
     throw InputError("volume options", field, value, why);
   };
+  auto refuse = [](const char* field, const std::string& value, const std::string& why) {  // a combination
+    throw OptionConflict("volume options", field, value, why);
+  };
   if (!std::isfinite(o.blurOffset) || o.blurOffset < 0.0)
-    refuse("blur offset", numberText(o.blurOffset),
-           "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit surfaces it "
-           "was captured from)");
+    refuseValue("blur offset", numberText(o.blurOffset),
+                "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit surfaces "
+                "it was captured from)");
   if (o.blurOffset != 0.0 && !o.blur) refuse("blur offset", numberText(o.blurOffset), "needs blur (--blur)");
-  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0)) refuse("bias", numberText(*o.bias), "must be finite and >= 0");
+  if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
+    refuseValue("bias", numberText(*o.bias), "must be finite and >= 0");
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
-    refuse("refine steps", std::to_string(o.refineSteps), "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+    refuseValue("refine steps", std::to_string(o.refineSteps),
+                "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
   if (o.refineSteps > 0 && o.cap != FarCap::Exact)
     refuse("refine steps", std::to_string(o.refineSteps),
            "needs the exact cap (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
@@ -134,7 +139,7 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
   if (options.crossingSource && (options.refineChords || options.refineSubdivisions > 1) && !options.depthOracle)
-    throw InputError("volume options", options.refineChords ? "refine chords" : "refine subdivisions",
+    throw OptionConflict("volume options", options.refineChords ? "refine chords" : "refine subdivisions",
                      options.refineChords ? "true" : std::to_string(options.refineSubdivisions),
                      "chord points and the sub-grid sample points that only a depth oracle answers; the crossing "
                      "source gives the boundary edges' crossings alone");
@@ -142,19 +147,19 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
     throw InputError("volume options", "refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
   if (s > 1 && options.refineSteps == 0)
-    throw InputError("volume options", "refine subdivisions", std::to_string(s),
+    throw OptionConflict("volume options", "refine subdivisions", std::to_string(s),
                      "the sub-grid is part of refinement: it needs refine steps of at least 1");
   if (s > 1 && options.refineChords)
-    throw InputError("volume options", "refine chords", "true",
+    throw OptionConflict("volume options", "refine chords", "true",
                      "chord points and the sub-grid are alternatives: the sub-grid bends the wall at every sub-cell");
   if (s == 1 && options.refineGridEverywhere)
-    throw InputError("volume options", "refine grid everywhere", "true",
+    throw OptionConflict("volume options", "refine grid everywhere", "true",
                      "it chooses where the sub-grid goes: it needs refine subdivisions of 2, 4 or 8");
   if (s > 1 && !options.flattenCap)
-    throw InputError("volume options", "flatten cap", "false",
+    throw OptionConflict("volume options", "flatten cap", "false",
                      "the sub-grid needs the flattened cap (the mirrored cap does not follow its sub-cells)");
   if (options.refineSteps > 0 && options.cap != FarCap::Exact)
-    throw InputError("volume options", "cap", toString(options.cap),
+    throw OptionConflict("volume options", "cap", toString(options.cap),
                      "refinement needs the exact cap: the quad cap keeps the far-plane sheet whose quads "
                      "refinement replaces by walls");
 }

@@ -104,11 +104,14 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
         "RenderOptions", "method", "dpsm",
         std::string("dual-paraboloid maps are a point light's; this scene's light is ") + toString(light.type));
   if (refinedGpuVolume(o)) {
-    auto refuse = [&](const std::string& why) {
-      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                       "the refined GPU volume " + why);
+    auto refuse = [&](const std::string& why) {  // a combination of options
+      throw OptionConflict("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                           "the refined GPU volume " + why);
     };
-    if (!hasCompute) refuse("needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
+    if (!hasCompute)
+      throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
+                       "the refined GPU volume needs OpenGL 4.3 (compute shaders); this context has " +
+                           context.info().glVersion);
     if (o.capture == CaptureMode::Midpoint)
       refuse("finds its crossings by one surface's rule (its rays or its walk); midpoint capture records the mean "
              "of two: use back, front or entry capture, or the explicit volume with rays");
@@ -133,21 +136,22 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
                                         std::to_string(2048 - 2 * kCubeGuardTexels) + " texels per face"
                                   : std::string()));
     if (o.gpuVolumeDraw != GpuVolumeDraw::Auto)
-      throw InputError("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
-                       "the refined GPU volume lists its triangles its own way: leave it at auto");
+      throw OptionConflict("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
+                           "the refined GPU volume lists its triangles its own way: leave it at auto");
   }
   if (o.gpuVolumeDraw == GpuVolumeDraw::Refined)
     throw InputError("RenderOptions", "gpuVolumeDraw", "refined",
                      "is what a refined GPU volume (volumeOptions.refineSteps > 0) reports, not a choice");
   if (o.refineCrossings == RefineCrossings::GpuWalk) {
-    auto refuse = [](const std::string& value, const std::string& why) {
-      throw InputError("RenderOptions", "refineCrossings", value, why);
+    auto refuse = [](const std::string& value, const std::string& why) {  // a combination of options
+      throw OptionConflict("RenderOptions", "refineCrossings", value, why);
     };
     if (o.method != ShadowMethod::Hybrid || o.volumeOptions.refineSteps == 0)
       refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0");
     if (!hasCompute)
-      refuse("gpu-walk",
-             "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " + context.info().glVersion);
+      throw InputError("RenderOptions", "refineCrossings", "gpu-walk",
+                       "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
+                           context.info().glVersion);
     if (usesTwoLayers(o.capture))
       refuse("gpu-walk", std::string("the silhouette walk follows one layer; ") + toString(o.capture) +
                              " capture reads two: use rays (RefineCrossings::Rays) or back or front capture");
@@ -157,14 +161,16 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
              "edges' crossings alone");
   }
   if (o.refineCrossings == RefineCrossings::GpuRays && !refinedGpuVolume(o))
-    throw InputError("RenderOptions", "refineCrossings", "gpu-rays",
+    throw OptionConflict("RenderOptions", "refineCrossings", "gpu-rays",
                      "the GPU's rays refine the GPU volume: it needs method hybrid, volume gpu and refineSteps > 0 "
                      "(the explicit volume casts Embree's rays: RefineCrossings::Rays)");
   if (o.explicitDepth == ExplicitDepth::Rays) {
-    auto refuse = [](const std::string& why) { throw InputError("RenderOptions", "explicitDepth", "rays", why); };
+    auto refuse = [](const std::string& why) { throw OptionConflict("RenderOptions", "explicitDepth", "rays", why); };
     if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit)
       refuse("casts the explicit volume's depth map: it needs method hybrid and volume explicit");
-    if (!o.volumeOptions.depthOracle) refuse("needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
+    if (!o.volumeOptions.depthOracle)
+      throw InputError("RenderOptions", "explicitDepth", "rays",
+                       "needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
     if (o.refineCrossings == RefineCrossings::GpuWalk)
       refuse(
           "has no light pass, whose triangle record the silhouette walk follows: use the light pass "
