@@ -11,6 +11,7 @@
 
 #include "cli_common.h"
 #include "cli_errors.h"
+#include "cli_integers.h"
 #include "cli_suggest.h"
 #include "cli_verbosity.h"
 #include "shadowvol/error.h"
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
   cli::registerValidateCommand(app, run);
   cli::registerBenchCommand(app, run);
 #endif
+  cli::requireDecimalIntegers(app);
   if (const auto misspelt = cli::misspeltName(app, argc, argv)) {
     std::fprintf(stderr, "shadowvol: error: %s\nRun with --help for more information.\n", misspelt->c_str());
     return cli::kUsage;

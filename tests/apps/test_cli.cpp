@@ -471,6 +471,19 @@ TEST(Cli, QuietAndVerbose) {
 
 // What a command prints that does not reach standard output (a full disk behind `> file`) is an
 // error, not exit 0 with the document lost (a twelfth probe's finding).
+// Whole numbers are decimal: CLI11 read "010" as octal 8 and "0x20" as 32 (a thirteenth probe's
+// `--resolution 010` built an 8 x 8 map); such a value is a usage error naming the option.
+TEST(Cli, WholeNumbersWithALeadingZeroOrABasePrefixAreRefused) {
+  const std::string out = (test::tempDir() / "z.ply").string();
+  for (const char* value : {"010", "0x20", "-0b1", "0o7"}) {
+    const CliResult r = runCli(std::string("build --resolution ") + value + " --out " + out);
+    EXPECT_EQ(r.code, 2) << value << ": " << r.out;
+    EXPECT_TRUE(contains(r.out, "--resolution") && contains(r.out, "decimal")) << r.out;
+  }
+  EXPECT_EQ(runCli("build --resolution 16 --out " + out).code, 0);
+  EXPECT_EQ(runCli("build --resolution 0 --out " + out).code, 1);  // decimal, out of range
+}
+
 TEST(Cli, AFailedWriteToStandardOutputIsAnError) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
   for (const char* args : {"scene --json", "scene", "--version"}) {
