@@ -301,7 +301,7 @@ TEST(MeshReaders, PlyNanVertexIsRefusedNamingIt) {
 }
 
 TEST(MeshReaders, PlyHeaderMistakesAreRefusedNamingTheLine) {
-  refusal("magic.ply", "plx\n", {"line 1 = \"plx\"", "must begin with \"ply\""});
+  refusal("magic.ply", "plx\n", {"line 1 = \"plx\"", "first line must be \"ply\""});
   refusal("format.ply", "ply\nformat binary_middle_endian 1.0\n" + kPlyXyz + "end_header\n",
           {"line 2", "unknown format \"binary_middle_endian\""});
   refusal("type.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty quad y\n",
@@ -514,6 +514,30 @@ TEST(MeshReaders, NonConvexPolygonsAreCutInsideThemselves) {
   ASSERT_EQ(starMesh.triangleCount(), 3998u);
   for (const auto& t : starMesh.triangles)
     for (auto i : t) ASSERT_LT(i, starMesh.positions.size());
+}
+
+// A thirteenth probe's files in forms other writers use: ASCII STL in upper case, a binary STL
+// padded after its last triangle, an OBJ statement continued with a backslash, "ply " with a blank
+// after it: read. UTF-16 text and text with no OBJ statement at all (it read as a valid empty
+// mesh) are refused by name.
+TEST(MeshReaders, OtherWritersFormsAreReadAndTextThatIsNotTheFormatIsRefused) {
+  const TriangleMesh upper = readBack("upper.stl", "SOLID s\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\n"
+                                                   "VERTEX 0 1 0\nENDLOOP\nENDFACET\nENDSOLID s\n");
+  EXPECT_EQ(upper.triangleCount(), 1u);
+  std::string padded = binaryStl({{glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}});
+  padded.append(4, '\0');
+  EXPECT_EQ(readBack("padded.stl", padded).triangleCount(), 1u);
+  const TriangleMesh continued = readBack("cont.obj", "v 0 0 0\nv 1 0 \\\n 0\nv 0 1 0\nf 1 \\\n 2 3\n");
+  ASSERT_EQ(continued.triangleCount(), 1u);
+  EXPECT_EQ(continued.positions[1], glm::vec3(1, 0, 0));
+  EXPECT_EQ(readBack("blank.ply", "ply \nformat ascii 1.0\n" + kPlyXyz + kPlyFace + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+                .triangleCount(),
+            1u);
+  const std::string utf16le = std::string("\xFF\xFE", 2) + std::string("v\0 \0""0\0", 6);
+  refusal("utf16.obj", utf16le, {"UTF-16"});
+  refusal("utf16.off", std::string("\xFE\xFF", 2) + std::string("\0O\0F\0F", 6), {"UTF-16"});
+  refusal("hello.obj", "hello world\n", {"line 1 = \"hello world\"", "not an OBJ file"});
+  EXPECT_EQ(readBack("comments.obj", "# only a comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvendor_thing 1\nf 1 2 3\n").triangleCount(), 1u);
 }
 
 // Every prefix of a valid file of each format is read or refused with InputError, never a crash

@@ -1,6 +1,12 @@
 #include "mesh_readers/obj_reader.h"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -57,25 +63,67 @@ std::vector<std::uint32_t> faceCorners(std::string_view rest, std::size_t before
   return corners;
 }
 
+// The statements of the OBJ format (Wavefront's specification, version 3.0): any other first
+// token on every line means the file is not OBJ.
+bool isObjKeyword(std::string_view k) {
+  static const std::array<std::string_view, 37> kKeywords = {
+      "v", "vt", "vn", "vp", "cstype", "deg", "bmat", "step", "f", "l", "p", "curv", "curv2", "surf", "parm",
+      "trim", "hole", "scrv", "sp", "end", "con", "g", "s", "mg", "o", "bevel", "c_interp", "d_interp", "lod",
+      "usemtl", "mtllib", "shadow_obj", "trace_obj", "ctech", "stech", "maplib", "usemap"};
+  return std::find(kKeywords.begin(), kKeywords.end(), k) != kKeywords.end() || k == "call" || k == "csh";
+}
+
+// A statement continued on the next line: its last non-blank character is a backslash.
+bool endsWithContinuation(std::string_view s) {
+  const std::size_t end = s.find_last_not_of(" \t\r\v\f");
+  return end != std::string_view::npos && s[end] == '\\';
+}
+
+// `first` and the lines that continue it, each backslash replaced by a blank, in `joined`.
+std::string_view joinContinuedLines(std::string_view first, LineReader& lines, std::string& joined) {
+  joined.assign(first);
+  while (endsWithContinuation(joined)) {
+    joined[joined.find_last_not_of(" \t\r\v\f")] = ' ';
+    const auto next = lines.next();
+    if (!next) break;
+    joined += ' ';
+    joined += withoutComment(*next);
+  }
+  return joined;
+}
+
 }  // namespace
 
 ParsedMesh readObj(const std::string& source, std::string_view text) {
+  refuseUtf16(text, source);
   const std::size_t total = countVertices(text);  // at most one per 2 bytes, so reserving is safe
   if (total > std::numeric_limits<std::uint32_t>::max())
     throw InputError(source, "", std::to_string(total), "more vertices than 32-bit indices can address");
   ParsedMesh mesh;
   mesh.positions.reserve(total);
   LineReader lines(text);
+  bool objStatement = false;                                    // any statement of the OBJ format at all
+  std::optional<std::pair<std::size_t, std::string>> firstUnknown;  // the first line that is none
+  std::string joined;
   while (const auto line = lines.next()) {
-    const TextPlace at{source, lines.number(), *line};
-    std::string_view rest = withoutComment(*line);
+    std::string_view statement = withoutComment(*line);
+    const std::size_t number = lines.number();
+    const bool continued = endsWithContinuation(statement);
+    if (continued) statement = joinContinuedLines(statement, lines, joined);
+    const TextPlace at{source, number, continued ? statement : *line};
+    std::string_view rest = statement;
     const std::string_view keyword = nextToken(rest);
     if (keyword == "v") {
       mesh.positions.push_back(readPoint(rest, at));
     } else if (keyword == "f") {
       appendPolygon(faceCorners(rest, mesh.positions.size(), total, at), mesh);
     }
+    if (isObjKeyword(keyword)) objStatement = true;
+    else if (!keyword.empty() && !firstUnknown) firstUnknown.emplace(number, std::string(at.text));
   }
+  if (!objStatement && firstUnknown)  // text that is not OBJ at all (it read as an empty mesh)
+    TextPlace{source, firstUnknown->first, firstUnknown->second}.fail(
+        "not an OBJ statement, and the file has none: it is not an OBJ file");
   return mesh;
 }
 

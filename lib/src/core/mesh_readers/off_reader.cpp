@@ -103,6 +103,7 @@ std::vector<std::uint32_t> faceCorners(std::string_view rest, std::uint64_t vert
 }  // namespace
 
 ParsedMesh readOff(const std::string& source, std::string_view text) {
+  refuseUtf16(text, source);
   LineReader lines(text);
   const Counts counts = readHeader(source, lines);
   ParsedMesh mesh;

@@ -95,12 +95,13 @@ bool plyTypeIsInteger(PlyType t) {
 }
 
 PlyHeader parsePlyHeader(const std::string& source, std::string_view bytes) {
+  refuseUtf16(bytes, source);
   LineReader lines(bytes);
   PlyHeader h;
   const auto magic = lines.next();
-  if (!magic || *magic != "ply")
+  if (!magic || magic->substr(0, 3) != "ply" || !isBlank(magic->substr(3)))
     throw InputError(source, "line 1", quoted(magic.value_or("")),
-                     "cannot read the file as PLY: it must begin with \"ply\"");
+                     "cannot read the file as PLY: its first line must be \"ply\" (blanks after it allowed)");
   bool haveFormat = false;
   while (const auto line = lines.next()) {
     if (lines.offset() > kMaxHeaderBytes)

@@ -1,6 +1,8 @@
 #include "mesh_readers/stl_reader.h"
 
 #include <bit>
+#include <cctype>
+#include <string>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -19,6 +21,12 @@ namespace shadowvol::mesh_readers {
 namespace {
 
 constexpr std::size_t kBinaryHeader = 84, kBinaryTriangle = 50;
+
+std::string lowerCase(std::string_view token) {
+  std::string s(token);
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
 
 // A triangle's corner: a position of its own, welded when the mesh is stored (ParsedMesh::weldCorners).
 std::uint32_t cornerOf(const glm::dvec3& p, ParsedMesh& mesh, const std::string& source) {
@@ -64,7 +72,7 @@ ParsedMesh readAscii(const std::string& source, std::string_view text) {
   while (const auto line = lines.next()) {
     const TextPlace at{source, lines.number(), *line};
     std::string_view rest = *line;
-    const std::string_view keyword = nextToken(rest);
+    const std::string keyword = lowerCase(nextToken(rest));  // SOLID, FACET... as some exporters write them
     if (keyword.empty() || keyword == "solid" || keyword == "endsolid") {
       if (inFacet && !keyword.empty()) at.fail("a solid ends inside a facet");
     } else if (keyword == "facet") {
@@ -96,7 +104,7 @@ ParsedMesh readAscii(const std::string& source, std::string_view text) {
 
 bool beginsWithSolid(std::string_view bytes) {
   std::string_view rest = withoutBom(bytes).substr(0, 512);
-  return nextToken(rest) == "solid";
+  return lowerCase(nextToken(rest)) == "solid";
 }
 
 }  // namespace
@@ -110,6 +118,10 @@ ParsedMesh readStl(const std::string& source, std::string_view bytes) {
     if (bytes.size() == expected) return readBinary(source, bytes, count);
     // ASCII STL holds no NUL byte; a binary file whose header begins with "solid" usually does.
     const bool binaryLooking = bytes.substr(0, 1024).find('\0') != std::string_view::npos;
+    // Some exporters pad a binary file: fewer bytes than a triangle after the last are passed over.
+    if (bytes.size() > expected && bytes.size() - expected < kBinaryTriangle && (binaryLooking || !beginsWithSolid(bytes)))
+      return readBinary(source, bytes, count);
+    refuseUtf16(bytes, source);
     if (!beginsWithSolid(bytes) || binaryLooking)
       throw InputError(source, "triangle count", std::to_string(count),
                        "cannot read the file as STL: binary STL of that many triangles has " +

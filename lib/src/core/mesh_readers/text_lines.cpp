@@ -5,6 +5,12 @@
 #include "shadowvol/error.h"
 
 namespace shadowvol::mesh_readers {
+
+void refuseUtf16(std::string_view bytes, const std::string& source) {
+  if (bytes.size() >= 2 && ((bytes[0] == '\xFF' && bytes[1] == '\xFE') || (bytes[0] == '\xFE' && bytes[1] == '\xFF')))
+    throw InputError(source, "", "", "the file is UTF-16 text (it begins with a UTF-16 byte-order mark): save it as "
+                                     "UTF-8 or ASCII");
+}
 namespace {
 
 bool isSpace(char c) {

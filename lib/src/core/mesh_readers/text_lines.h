@@ -18,6 +18,11 @@ inline std::string_view withoutBom(std::string_view bytes) {
   return bytes.substr(0, kUtf8Bom.size()) == kUtf8Bom ? bytes.substr(kUtf8Bom.size()) : bytes;
 }
 
+/// Refuses (InputError naming `source`) text that begins with a UTF-16 byte-order mark: its
+/// every other byte is 0, so no line would read (a probe's UTF-16 OBJ checked as a valid empty
+/// mesh). Save it as UTF-8 or ASCII.
+void refuseUtf16(std::string_view bytes, const std::string& source);
+
 /// Walks the lines of `text` from byte `offset`. A line ends at "\n", "\r\n" or a lone "\r"; the
 /// terminator is not part of the line. The last line may lack one. From offset 0, a UTF-8
 /// byte-order mark is skipped (offsets stay those of `text`).
