@@ -279,6 +279,16 @@ TEST(MeshReaders, PlyTruncatedBodyIsRefusedNotReadAsEmpty) {
           {"vertex 1 (line 11) = \"zero\"", "not a number"});
 }
 
+// ASCII PLY holds one element a line: a vertex line short of a value (the next line's first value
+// once filled it, silently) or one with a value too many is refused, naming that vertex and line
+// (a thirteenth probe's: the error named face 0, or a distorted mesh was read).
+TEST(MeshReaders, PlyAsciiElementsKeepToTheirLines) {
+  const std::string head = "ply\nformat ascii 1.0\n" + kPlyXyz + kPlyFace + "end_header\n";
+  refusal("short.ply", head + "0 0 0\n1 0\n0 1 0 5\n3 0 1 2\n", {"vertex 1 (line 11)", "its line ends before its values do"});
+  refusal("long.ply", head + "0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n", {"vertex 0 (line 10) = \"7\"", "more values on its line"});
+  EXPECT_EQ(readBack("blanks.ply", head + "0 0 0\n\n1 0 0\n0 1 0\n3 0 1 2\n").triangleCount(), 1u);
+}
+
 // As OFF refuses data after its declared faces (found by a hostile-input probe: PLY read it).
 TEST(MeshReaders, PlyDataAfterTheDeclaredElementsIsRefused) {
   const std::string ascii = "ply\nformat ascii 1.0\n" + kPlyXyz + kPlyFace + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";

@@ -55,16 +55,29 @@ PlyBodyCursor::PlyBodyCursor(std::string_view bytes, const PlyHeader& header)
 }
 
 std::string_view PlyBodyCursor::nextToken() {
+  lineEnded_ = false;
   for (;;) {
     token_ = mesh_readers::nextToken(rest_);
     if (!token_.empty()) return token_;
+    if (rowOpen_) {  // a row's values stay on its line (at the file's end: truncated, ended())
+      lineEnded_ = lines_.bytesLeft() > 0;
+      return {};
+    }
     const auto line = lines_.next();
     if (!line) return {};
     rest_ = *line;
   }
 }
 
+std::string PlyBodyCursor::rowLeftover() {
+  if (!ascii_) return {};
+  std::string_view rest = rest_;
+  const std::string_view token = mesh_readers::nextToken(rest);
+  return token.empty() ? std::string() : quoted(token);
+}
+
 std::string PlyBodyCursor::dataLeft() {
+  rowOpen_ = false;
   if (ascii_) {
     const std::string_view token = nextToken();
     return token.empty() ? std::string() : quoted(token);
@@ -79,8 +92,9 @@ std::string PlyBodyCursor::dataLeft() {
 std::optional<double> PlyBodyCursor::read(PlyType t) {
   if (ascii_) {
     const std::string_view token = nextToken();
-    ended_ = token.empty();
-    if (ended_) return std::nullopt;
+    ended_ = token.empty() && !lineEnded_;
+    if (token.empty()) return std::nullopt;
+    rowOpen_ = true;
     std::optional<double> v;
     if (plyTypeIsInteger(t)) {
       if (const auto i = parseInteger(token)) v = double(*i);

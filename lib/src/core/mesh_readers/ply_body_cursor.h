@@ -33,6 +33,14 @@ class PlyBodyCursor {
   /// True when the last failed read found the end of the body (rather than a malformed token).
   bool ended() const { return ended_; }
 
+  /// ASCII PLY holds one element a line: beginRow() lets the next read start a new line; the reads
+  /// after it stay on that line, and one past its end fails with lineEnded() true. Binary: no-ops.
+  void beginRow() { rowOpen_ = false; }
+  /// True when the last failed read found its row's line ended (ASCII).
+  bool lineEnded() const { return lineEnded_; }
+  /// After a row's last value: what is left on its line (quoted), empty when nothing (ASCII).
+  std::string rowLeftover();
+
   /// Where the cursor is, for messages: " (line N)" in ASCII, empty in binary.
   std::string where() const;
   /// The last ASCII token read (quoted), or the last binary value; for messages.
@@ -50,6 +58,8 @@ class PlyBodyCursor {
   std::size_t firstLine_;
   double last_ = 0;
   bool ended_ = false;
+  bool rowOpen_ = false;    // ASCII: a value of the current row was read; stay on its line
+  bool lineEnded_ = false;
 };
 
 }  // namespace shadowvol::mesh_readers

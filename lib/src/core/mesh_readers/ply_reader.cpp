@@ -71,9 +71,13 @@ void readElement(const std::string& source, const PlyElement& e, const Layout& l
     const auto value = [&](PlyType t) {
       const auto v = body.read(t);
       if (!v && body.ended()) fail("", "the file ends inside this element (truncated)");
+      if (!v && body.lineEnded())
+        fail("", "its line ends before its values do (ASCII PLY holds one element a line, with a value for "
+                 "each property the header declares)");
       if (!v) fail(body.lastValue(), plyTypeIsInteger(t) ? "not an integer" : "not a number");
       return *v;
     };
+    body.beginRow();
     double xyz[3] = {0, 0, 0};
     for (int k = 0; k < int(e.properties.size()); ++k) {
       const PlyProperty& p = e.properties[k];
@@ -103,6 +107,8 @@ void readElement(const std::string& source, const PlyElement& e, const Layout& l
       }
       appendPolygon(corners, mesh);
     }
+    if (const std::string left = body.rowLeftover(); !left.empty())
+      fail(left, "more values on its line than the header declares properties (ASCII PLY holds one element a line)");
     if (!isVertex) continue;
     const auto point = checkedPoint(xyz[0], xyz[1], xyz[2]);
     if (!point) {
