@@ -548,6 +548,17 @@ TEST(MeshReaders, OtherWritersFormsAreReadAndTextThatIsNotTheFormatIsRefused) {
   refusal("utf16.off", std::string("\xFE\xFF", 2) + std::string("\0O\0F\0F", 6), {"UTF-16"});
   refusal("hello.obj", "hello world\n", {"line 1 = \"hello world\"", "not an OBJ file"});
   EXPECT_EQ(readBack("comments.obj", "# only a comment\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvendor_thing 1\nf 1 2 3\n").triangleCount(), 1u);
+  refusal("strips.ply", "ply\nformat ascii 1.0\n" + kPlyXyz + "element tristrips 1\nproperty list int int vertex_indices\n"
+                        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", {"element tristrips 1", "triangle strips are not read"});
+  const auto dir = test::tempDir();
+  std::filesystem::create_symlink("loop-b.obj", dir / "loop-a.obj");
+  std::filesystem::create_symlink("loop-a.obj", dir / "loop-b.obj");
+  try {
+    readTriangleMesh(dir / "loop-a.obj");
+    ADD_FAILURE() << "a link loop was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot be reached"), std::string::npos) << e.what();
+  }
 }
 
 // Every prefix of a valid file of each format is read or refused with InputError, never a crash

@@ -27,7 +27,8 @@ namespace {
 
 void checkRegularFile(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path.string(), "", "", "mesh file not found");
+  if (!std::filesystem::exists(path, ec))
+    throw InputError(path.string(), "", "", ec ? "mesh file cannot be reached: " + ec.message() : "mesh file not found");
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(path.string(), "", "", "not a regular file (a folder, device or pipe)");
 }

@@ -199,7 +199,12 @@ ParsedMesh readWithAssimp(const std::string& source, const std::filesystem::path
     const aiScene* scene = path.empty()
                                ? importer.ReadFileFromMemory(bytes.data(), bytes.size(), kSteps, hint.c_str())
                                : importer.ReadFile(path.string(), kSteps);
-    if (!scene) throw InputError(source, "", "", std::string("Assimp cannot read it: ") + importer.GetErrorString());
+    if (!scene) {
+      const std::string why = importer.GetErrorString();
+      if (why.find("No meshes remaining") != std::string::npos)  // SortByPType dropped every point and line
+        throw InputError(source, "", "", "the mesh has no triangles (points and lines are dropped)");
+      throw InputError(source, "", "", "Assimp cannot read it: " + why);
+    }
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
       throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
     if (scene->mRootNode) checkNodes(*scene->mRootNode, glm::dmat4(1.0), "", source);

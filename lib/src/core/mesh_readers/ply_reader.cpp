@@ -47,7 +47,12 @@ Layout findLayout(const std::string& source, const PlyHeader& h) {
   }
   if (l.xyz[0] < 0 || l.xyz[1] < 0 || l.xyz[2] < 0)
     vertexLine.fail("the vertex element needs scalar properties x, y and z");
-  if (!l.face) return l;
+  if (!l.face) {
+    for (const PlyElement& e : h.elements)  // faces as strips: not read, said rather than an empty mesh
+      if (e.name == "tristrips" && e.count > 0)
+        TextPlace{source, e.line, e.text}.fail("triangle strips are not read: store the triangles as a face element");
+    return l;
+  }
   for (int k = 0; k < int(l.face->properties.size()); ++k) {
     const PlyProperty& p = l.face->properties[k];
     if (p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) l.indices = k;
