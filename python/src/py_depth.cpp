@@ -130,7 +130,8 @@ void registerDepth(py::module_& m) {
         "The light's depth map of a scene: device='cpu' casts one Embree ray per texel centre, 'gpu' renders the "
         "light pass through EGL + OpenGL and reads it back (same texels hit, depths within 1e-4 relative). "
         "capture: auto (back when every mesh object is closed, else front: `--capture auto`), back (first surface "
-        "facing away from the light), front, or midpoint.");
+        "facing away from the light), front, midpoint or entry (front capture's surface where a back face lies "
+        "behind it).");
   m.def(
       "load_depth",
       [](const std::filesystem::path& path) {
