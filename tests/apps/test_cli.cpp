@@ -469,8 +469,6 @@ TEST(Cli, QuietAndVerbose) {
   EXPECT_TRUE(contains(error.out, "--resolution = 1")) << error.out;  // errors still reach stderr
 }
 
-// What a command prints that does not reach standard output (a full disk behind `> file`) is an
-// error, not exit 0 with the document lost (a twelfth probe's finding).
 // Whole numbers are decimal: CLI11 read "010" as octal 8 and "0x20" as 32 (a thirteenth probe's
 // `--resolution 010` built an 8 x 8 map); such a value is a usage error naming the option.
 TEST(Cli, WholeNumbersWithALeadingZeroOrABasePrefixAreRefused) {
@@ -484,6 +482,8 @@ TEST(Cli, WholeNumbersWithALeadingZeroOrABasePrefixAreRefused) {
   EXPECT_EQ(runCli("build --resolution 0 --out " + out).code, 1);  // decimal, out of range
 }
 
+// What a command prints that does not reach standard output (a full disk behind `> file`) is an
+// error, not exit 0 with the document lost (a twelfth probe's finding).
 TEST(Cli, AFailedWriteToStandardOutputIsAnError) {
   if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
   for (const char* args : {"scene --json", "scene", "--version"}) {
@@ -1227,6 +1227,20 @@ TEST(CliGl, RefinementOnTheGpuAndExplicitVolumes) {
 
 namespace shadowvol {
 namespace {
+
+// Options that contradict each other are a usage error with several lights too (the light's
+// number was added to the message, and the error once lost its kind there: exit 1).
+TEST(CliGl, ContradictingOptionsExitTwoWithSeveralLights) {
+  if (!contains(runCli("--help").out, "render")) GTEST_SKIP() << "built without the GL renderer";
+  const auto dir = test::tempDir();
+  test::writeText(dir / "two.json", R"({"objects":[{"type":"plane","size":10},{"type":"box","transform":{"translate":[0,1,0]}}],
+      "lights":[{"type":"spot","position":[2,6,1],"target":[0,0,0]},{"type":"spot","position":[-2,6,1],"target":[0,0,0]}],
+      "camera":{"eye":[0,4,8],"target":[0,0,0]}})");
+  const CliResult r = runCli("render --refine 4 --capture midpoint --size 64x48 --resolution 32 --scene " +
+                             (dir / "two.json").string() + " --out " + (dir / "x.png").string());
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(contains(r.out, "for light 0 of the scene's 2")) << r.out;
+}
 
 // depth/build --device gpu: the light pass through EGL, read back, written or built like a CPU
 // capture. On the shipped scenes the two captures agree texel for texel: the same texels hit, and

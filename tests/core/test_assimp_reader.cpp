@@ -105,6 +105,28 @@ TEST(AssimpReader, GltfAndGlbReadBackAsWritten) {
 }
 
 // Regression (a hostile-input probe): a glTF node matrix of zeros collapsed the mesh to a point.
+// A glTF whose only primitive is points holds no triangle: said so, not in Assimp's words
+// ("No meshes remaining").
+TEST(AssimpReader, AFileOfOnlyPointsHasNoTriangles) {
+  const auto dir = test::tempDir();
+  const auto written = dir / "box.gltf";
+  writeTriangleMesh(makeBox(1, 1, 1), written);
+  std::ifstream in(written);
+  nlohmann::json g = nlohmann::json::parse(in);
+  for (auto& mesh : g.at("meshes"))
+    for (auto& primitive : mesh.at("primitives")) {
+      primitive["mode"] = 0;  // POINTS
+      primitive.erase("indices");
+    }
+  test::writeText(dir / "points.gltf", g.dump());
+  try {
+    readTriangleMesh(dir / "points.gltf");
+    ADD_FAILURE() << "a file of points was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no triangles (points and lines are dropped)"), std::string::npos) << e.what();
+  }
+}
+
 // A singular or non-finite node transformation is refused, naming the node; a sound one still
 // places the mesh.
 TEST(AssimpReader, SingularNodeTransformationsAreRefused) {

@@ -782,6 +782,9 @@ TEST(Scene, AFarDirectionalLightIsMovedNearTheSceneAlongItsDirection) {
   for (const auto& w : far.warnings) noted = noted || w.find("far.json: /light/position: moved") != std::string::npos;
   EXPECT_TRUE(noted) << ::testing::PrintToString(far.warnings);
   EXPECT_EQ(near.scene.light.position, glm::dvec3(-10, 100, 0) - near.scene.origin);
+  // Given planes are distances from the position as given: the light stays, and a far plane that
+  // ends before the scene is refused as before (a second reader's finding: it was fitted anew).
+  EXPECT_THROW(parseScene(sceneWith(R"(,"position":[-1e6,1e7,0],"far":100)"), "far.json", "."), InputError);
 }
 
 // A directional light's extent so small that its window spans fewer than 64 float steps of the

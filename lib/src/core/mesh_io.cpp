@@ -77,6 +77,12 @@ RebasedMesh readChecked(std::string_view bytes, const std::string& ext, const st
                                     : ext == ".ply" ? mesh_readers::readPly(source, bytes)
                                     : ext == ".stl" ? mesh_readers::readStl(source, bytes)
                                                     : mesh_readers::readWithAssimp(source, path, bytes, ext);
+  for (const auto& t : parsed.triangles)  // every reader checks its indices; this keeps a slip from memory
+    for (const std::uint32_t i : t)
+      if (i >= parsed.positions.size())
+        throw InputError(source, "", std::to_string(i + 1),
+                         "a face names a vertex the file does not have (it has " +
+                             std::to_string(parsed.positions.size()) + ")");
   mesh_readers::triangulateNonConvexPolygons(parsed);
   RebasedMesh read;
   if (rebase) read.origin = mesh_readers::storageOrigin(parsed);

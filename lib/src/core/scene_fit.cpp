@@ -90,15 +90,15 @@ void noteMovedFar(const char* pointer, double givenFar, double used, std::size_t
 constexpr double kMaxDirectionalDistanceRadii = 256.0;
 
 // Moves a given directional light's position along its direction to where the fit would place it
-// (1.1 radii before the bounds' centre) when it lies further back than kMaxDirectionalDistanceRadii;
-// a given near and far move with it, so they cut the same planes. Notes what moved.
+// (1.1 radii before the bounds' centre) when it lies further back than kMaxDirectionalDistanceRadii
+// and its near and far planes are left to the fit (given ones are distances from the position as
+// given, and stay the user's). Notes what moved.
 void moveFarDirectionalPosition(Light& l, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   const double behind = glm::dot(b.center() - l.position, l.direction);
-  if (l.fitPosition || !(behind > kMaxDirectionalDistanceRadii * radius)) return;
+  if (l.fitPosition || l.nearPlane > 0.0 || l.farPlane > 0.0 || !(behind > kMaxDirectionalDistanceRadii * radius))
+    return;
   const double shift = behind - 1.1 * radius;
   l.position += l.direction * shift;
-  if (l.nearPlane > 0.0) l.nearPlane = std::max(l.nearPlane - shift, 0.0);
-  if (l.farPlane > 0.0) l.farPlane -= shift;
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "/light/position: moved %.6g units along the light's direction, to 1.1 radii before the scene's "

@@ -60,12 +60,13 @@ RenderResult Renderer::Impl::render(const RenderOptions& o, const VolumeMesh* gi
 
 void Renderer::Impl::validateForLight(const RenderOptions& o, const CameraSetup& cam, std::size_t k) const {
   if (lights.size() == 1) return validate(o, cam);
+  const auto which = [&] { return " (for light " + std::to_string(k) + " of the scene's " + std::to_string(lights.size()) + ")"; };
   try {
     validate(o, cam);
+  } catch (const OptionConflict& e) {  // stays a usage error
+    throw OptionConflict(e.source(), e.field(), e.value(), e.problem() + which());
   } catch (const InputError& e) {
-    throw InputError(
-        e.source(), e.field(), e.value(),
-        e.problem() + " (for light " + std::to_string(k) + " of the scene's " + std::to_string(lights.size()) + ")");
+    throw InputError(e.source(), e.field(), e.value(), e.problem() + which());
   }
 }
 

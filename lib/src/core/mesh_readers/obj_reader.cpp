@@ -22,14 +22,51 @@
 namespace shadowvol::mesh_readers {
 namespace {
 
-// First pass: how many `v` statements the file has. A positive index may name a vertex defined
-// after its face (as other OBJ readers allow), so indices are checked against this count.
+// The statements of the OBJ format (Wavefront's specification, version 3.0): any other first
+// token on every line means the file is not OBJ.
+bool isObjKeyword(std::string_view k) {
+  static const std::array<std::string_view, 37> kKeywords = {
+      "v", "vt", "vn", "vp", "cstype", "deg", "bmat", "step", "f", "l", "p", "curv", "curv2", "surf", "parm",
+      "trim", "hole", "scrv", "sp", "end", "con", "g", "s", "mg", "o", "bevel", "c_interp", "d_interp", "lod",
+      "usemtl", "mtllib", "shadow_obj", "trace_obj", "ctech", "stech", "maplib", "usemap"};
+  return std::find(kKeywords.begin(), kKeywords.end(), k) != kKeywords.end() || k == "call" || k == "csh";
+}
+
+// A statement continued on the next line: its last non-blank character is a backslash.
+bool endsWithContinuation(std::string_view s) {
+  const std::size_t end = s.find_last_not_of(" \t\r\v\f");
+  return end != std::string_view::npos && s[end] == '\\';
+}
+
+// `first` and the lines that continue it, each backslash replaced by a blank, in `joined`.
+std::string_view joinContinuedLines(std::string_view first, LineReader& lines, std::string& joined) {
+  joined.assign(first);
+  while (endsWithContinuation(joined)) {
+    joined[joined.find_last_not_of(" \t\r\v\f")] = ' ';
+    const auto next = lines.next();
+    if (!next) break;
+    joined += ' ';
+    joined += withoutComment(*next);
+  }
+  return joined;
+}
+
+// First pass: how many `v` statements the file has, statements continued over several lines
+// counted once by their first (as the second pass reads them: joinContinuedLines). A positive
+// index may name a vertex defined after its face (as other OBJ readers allow), so indices are
+// checked against this count.
 std::size_t countVertices(std::string_view text) {
   LineReader lines(text);
   std::size_t n = 0;
   while (const auto line = lines.next()) {
     std::string_view rest = withoutComment(*line);
+    bool continued = endsWithContinuation(rest);
     if (nextToken(rest) == "v") ++n;
+    while (continued) {
+      const auto next = lines.next();
+      if (!next) break;
+      continued = endsWithContinuation(withoutComment(*next));
+    }
   }
   return n;
 }
@@ -61,35 +98,6 @@ std::vector<std::uint32_t> faceCorners(std::string_view rest, std::size_t before
     corners.push_back(cornerVertex(token, before, total, at));
   if (corners.size() < 3) at.fail("a face needs at least 3 vertices, this one has " + std::to_string(corners.size()));
   return corners;
-}
-
-// The statements of the OBJ format (Wavefront's specification, version 3.0): any other first
-// token on every line means the file is not OBJ.
-bool isObjKeyword(std::string_view k) {
-  static const std::array<std::string_view, 37> kKeywords = {
-      "v", "vt", "vn", "vp", "cstype", "deg", "bmat", "step", "f", "l", "p", "curv", "curv2", "surf", "parm",
-      "trim", "hole", "scrv", "sp", "end", "con", "g", "s", "mg", "o", "bevel", "c_interp", "d_interp", "lod",
-      "usemtl", "mtllib", "shadow_obj", "trace_obj", "ctech", "stech", "maplib", "usemap"};
-  return std::find(kKeywords.begin(), kKeywords.end(), k) != kKeywords.end() || k == "call" || k == "csh";
-}
-
-// A statement continued on the next line: its last non-blank character is a backslash.
-bool endsWithContinuation(std::string_view s) {
-  const std::size_t end = s.find_last_not_of(" \t\r\v\f");
-  return end != std::string_view::npos && s[end] == '\\';
-}
-
-// `first` and the lines that continue it, each backslash replaced by a blank, in `joined`.
-std::string_view joinContinuedLines(std::string_view first, LineReader& lines, std::string& joined) {
-  joined.assign(first);
-  while (endsWithContinuation(joined)) {
-    joined[joined.find_last_not_of(" \t\r\v\f")] = ' ';
-    const auto next = lines.next();
-    if (!next) break;
-    joined += ' ';
-    joined += withoutComment(*next);
-  }
-  return joined;
 }
 
 }  // namespace

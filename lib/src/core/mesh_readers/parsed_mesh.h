@@ -1,6 +1,6 @@
-// What our own readers (OBJ, OFF, PLY, STL) parse, before it is stored in float: positions in
-// double as the file gives them, so that a mesh far from its file's origin can be rebased before
-// the rounding (README "Scene files", "Large coordinates").
+// What the readers parse (OBJ, OFF, PLY, STL, and the Assimp reader's meshes placed by their
+// nodes), before it is stored in float: positions in double, so that a mesh far from its file's
+// origin can be rebased before the rounding (README "Scene files").
 #pragma once
 
 #include <array>
@@ -51,8 +51,8 @@ struct ParsedMesh {
 inline constexpr double kMinStoredSteps = 1048576.0;
 
 /// Where `parsed` is stored from (world = stored + origin): 0 while float keeps kMinStoredSteps
-/// across it where it lies (every mesh near its file's origin: stored exactly as before), else the
-/// centre of its bounding box.
+/// across the vertices its faces use where they lie (every mesh near its file's origin: stored
+/// exactly as before), else the centre of their bounding box. The indices must be in range.
 glm::dvec3 storageOrigin(const ParsedMesh& parsed);
 
 /// The mesh stored: each position minus `origin` in double, then rounded to float; corners welded

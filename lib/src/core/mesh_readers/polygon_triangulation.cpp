@@ -74,7 +74,7 @@ void clipEars(const std::vector<glm::dvec2>& q, const std::vector<std::uint32_t>
   std::size_t j = 0;
   while (left.size() > 3 && work > 0) {
     bool clipped = false;
-    for (std::size_t tries = 0; tries < left.size() && !clipped; ++tries, j = (j + 1) % left.size()) {
+    for (std::size_t tries = 0; tries < left.size() && !clipped && work > 0; ++tries, j = (j + 1) % left.size()) {
       const std::size_t m = left.size();
       const std::size_t a = left[(j + m - 1) % m], b = left[j], e = left[(j + 1) % m];
       work -= std::int64_t(m);
@@ -99,8 +99,9 @@ void clipEars(const std::vector<glm::dvec2>& q, const std::vector<std::uint32_t>
 }  // namespace
 
 std::size_t triangulateNonConvexPolygons(ParsedMesh& mesh) {
-  // At most about 64 steps a triangle plus 2^24 in all: a file of ordinary non-convex polygons
-  // stays far below, a hostile one of huge ones stops within a second or so.
+  // At most about 64 steps a triangle plus 2^24 in all (each step a corner visited): a file of
+  // ordinary non-convex polygons stays far below; a hostile one (a polygon with no ear, circling
+  // twice) stops there, the rest fanned, within about a second here.
   std::int64_t work = 64 * std::int64_t(mesh.triangles.size()) + (std::int64_t(1) << 24);
   std::size_t recut = 0;
   std::vector<Triangle> cut;

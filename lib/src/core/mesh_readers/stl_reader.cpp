@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "mesh_readers/corner_welder.h"
 #include "mesh_readers/number_text.h"
 #include "mesh_readers/text_lines.h"
 #include "shadowvol/error.h"
@@ -28,20 +29,21 @@ std::string lowerCase(std::string_view token) {
   return s;
 }
 
-// A triangle's corner: a position of its own, welded when the mesh is stored (ParsedMesh::weldCorners).
-std::uint32_t cornerOf(const glm::dvec3& p, ParsedMesh& mesh, const std::string& source) {
+// A triangle's corner, welded with the corners before it at bit-identical double positions (and
+// again once stored in float: ParsedMesh::weldCorners), so a soup of corners is never held.
+std::uint32_t cornerOf(const glm::dvec3& p, CornerWelder<glm::dvec3>& weld, const ParsedMesh& mesh,
+                       const std::string& source) {
   if (mesh.positions.size() >= std::numeric_limits<std::uint32_t>::max())
-    throw InputError(source, "", std::to_string(mesh.positions.size() / 3), "more triangles than 32-bit indices can address (three corners each)");
-  mesh.positions.push_back(p);
-  return std::uint32_t(mesh.positions.size() - 1);
+    throw InputError(source, "", std::to_string(mesh.positions.size()), "more vertices than 32-bit indices can address");
+  return weld.vertex(p);
 }
 
 ParsedMesh readBinary(const std::string& source, std::string_view bytes, std::uint32_t count) {
   static_assert(std::endian::native == std::endian::little, "the STL reader assumes a little-endian host");
   ParsedMesh mesh;
   mesh.weldCorners = true;
-  mesh.positions.reserve(3 * std::size_t(count));  // the size was checked: 50 bytes per triangle
-  mesh.triangles.reserve(count);
+  CornerWelder<glm::dvec3> weld(mesh.positions);
+  mesh.triangles.reserve(count);  // the size was checked: 50 bytes per triangle
   for (std::uint32_t t = 0; t < count; ++t) {
     float v[12];  // normal, then three corners
     std::memcpy(v, bytes.data() + kBinaryHeader + kBinaryTriangle * std::size_t(t), sizeof v);
@@ -53,7 +55,7 @@ ParsedMesh readBinary(const std::string& source, std::string_view bytes, std::ui
             source, "triangle " + std::to_string(t),
             numberText(v[3 + 3 * c]) + " " + numberText(v[4 + 3 * c]) + " " + numberText(v[5 + 3 * c]),
             "non-finite vertex coordinate");
-      tri[c] = cornerOf(*p, mesh, source);
+      tri[c] = cornerOf(*p, weld, mesh, source);
     }
     mesh.triangles.push_back(tri);
   }
@@ -65,6 +67,7 @@ ParsedMesh readBinary(const std::string& source, std::string_view bytes, std::ui
 ParsedMesh readAscii(const std::string& source, std::string_view text) {
   ParsedMesh mesh;
   mesh.weldCorners = true;
+  CornerWelder<glm::dvec3> weld(mesh.positions);
   LineReader lines(text);
   std::array<std::uint32_t, 3> tri{};
   int corners = -1;  // -1 outside a loop, else the vertices read in it
@@ -72,7 +75,8 @@ ParsedMesh readAscii(const std::string& source, std::string_view text) {
   while (const auto line = lines.next()) {
     const TextPlace at{source, lines.number(), *line};
     std::string_view rest = *line;
-    const std::string keyword = lowerCase(nextToken(rest));  // SOLID, FACET... as some exporters write them
+    const std::string_view token = nextToken(rest);
+    const std::string keyword = lowerCase(token);  // SOLID, FACET... as some exporters write them
     if (keyword.empty() || keyword == "solid" || keyword == "endsolid") {
       if (inFacet && !keyword.empty()) at.fail("a solid ends inside a facet");
     } else if (keyword == "facet") {
@@ -84,7 +88,7 @@ ParsedMesh readAscii(const std::string& source, std::string_view text) {
     } else if (keyword == "vertex") {
       if (corners < 0) at.fail("a vertex outside \"outer loop\"");
       if (corners == 3) at.fail("a facet with more than 3 vertices (STL holds triangles)");
-      tri[corners++] = cornerOf(readPoint(rest, at), mesh, source);
+      tri[corners++] = cornerOf(readPoint(rest, at), weld, mesh, source);
     } else if (keyword == "endloop") {
       if (corners != 3)
         at.fail("a loop of " + std::to_string(std::max(corners, 0)) + " vertices (STL holds triangles)");
@@ -94,7 +98,7 @@ ParsedMesh readAscii(const std::string& source, std::string_view text) {
       if (!inFacet || corners >= 0) at.fail("\"endfacet\" outside a facet or inside a loop");
       inFacet = false;
     } else {
-      at.fail("unknown ASCII STL statement " + quoted(keyword));
+      at.fail("unknown ASCII STL statement " + quoted(token));
     }
   }
   if (inFacet)
