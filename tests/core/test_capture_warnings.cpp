@@ -117,6 +117,18 @@ TEST(CaptureWarnings, APointLightsFaceAndTrianglesWithoutAreaAreJudgedToo) {
   EXPECT_NE(f[0].find("no area in the light's view"), std::string::npos) << f[0];
 }
 
+// Area is judged by the image's shape, not its size in texels: a ball far smaller than a texel of
+// a directional window of 1e12 is seen squarely and covers no texel centre (a probe's finding: it
+// was said to have no area, as if seen edge-on).
+TEST(CaptureWarnings, ATinyImageHasAreaAndCoversNoTexelCentre) {
+  Scene s = sceneWith({SceneObject{"ball", "sphere", makeIcoSphere(1.0, 2)}});
+  s.light.halfExtent = 1e12;
+  const auto w = captureWarnings(s, 32, 32, CaptureMode::Back);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("covers no texel centre"), std::string::npos) << w[0];
+  EXPECT_EQ(w[0].find("no area"), std::string::npos) << w[0];
+}
+
 // Vertices nearer to the light than its near plane are clipped: said by object, with how many. The
 // light looks down from y = 5 with near 0.5; a box at y = 4.6 reaches into that slab, one at y = 2
 // does not. A spot light with a near plane pushed out (as an outlier vertex far away pushes a

@@ -342,6 +342,12 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   expectRefused("format", "\"shadowvol depth map 2\"", "/format");
   expectRefused("depthChecksum", "12", "/depthChecksum");
   expectRefused("depthChecksum", "\"sha256:abcd\"", "/depthChecksum");
+  // A thirteenth probe's: a width given as a string was called a mismatch, 4.0 for a whole number was
+  // taken (the scene files refuse it), and a quantity of another kind passed without a word.
+  expectRefused("width", "\"4\"", "/width");
+  expectRefused("width", "4.0", "/width");
+  expectRefused("writer", "5", "/writer");
+  expectRefused("quantity", "\"NDC z\"", "/quantity");
   {
     std::string twice = good;
     twice.insert(twice.find('{') + 1, "\"near\": 1.0, ");

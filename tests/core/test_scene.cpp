@@ -288,6 +288,12 @@ TEST(SceneParser, BadObjects) {
   expectError(withObject(R"({"type":"box","size":[1,0,1]})"), "/objects/0/size");
   expectError(withObject(R"({"type":"box","transform":{"matrix":[0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]}})"),
               "/objects/0/transform/matrix");
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,0, 0,1,0,0, 1,1,1e-13,0, 0,0,0,1]}})"),
+              "/objects/0/transform/matrix", "singular");
+  // Singular is judged against the matrix's own scale: a uniform 1e-5 is sound, as with "scale".
+  const auto small = parse(withObject(R"({"type":"box","transform":{"matrix":[1e-5,0,0,0, 0,1e-5,0,0, 0,0,1e-5,0, 0,0,0,1]}})"));
+  const auto scaled = parse(withObject(R"({"type":"box","transform":{"scale":1e-5}})"));
+  EXPECT_EQ(small.scene.objects.at(0).mesh.positions, scaled.scene.objects.at(0).mesh.positions);
   // Projective and w-less matrices: the bottom row must be 0 0 0 1 (it was once ignored).
   expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,0]}})"),
               "/objects/0/transform/matrix", "bottom row must be 0 0 0 1");
@@ -824,6 +830,27 @@ TEST(Scene, ASceneTooSmallForSinglePrecisionIsWarnedAbout) {
   };
   EXPECT_TRUE(warned(parseScene(scaled(1e-8), "small.json", ".")));
   EXPECT_FALSE(warned(parseScene(scaled(1e-7), "fine.json", ".")));
+}
+
+// Whether a target and a position (or eye) coincide is judged against their magnitude, not in
+// absolute units: at a scale of 1e-30 distinct points were refused as "target equals position"
+// (a probe's finding), while points 1e-16 of their distance from the origin apart give none.
+TEST(SceneParser, CoincidentTargetsAreJudgedAgainstTheirMagnitude) {
+  const std::string tiny = R"({"objects":[{"type":"plane","size":20,"transform":{"scale":1e-30}}],
+      "light":{"type":"spot","position":[0,9e-30,0],"target":[0,0,0]},
+      "camera":{"eye":[0,6e-30,11e-30],"target":[0,0,0]}})";
+  const SceneLoadResult r = parse(tiny);
+  EXPECT_NEAR(r.scene.light.direction.y, -1.0, 1e-15);
+  EXPECT_TRUE(std::isfinite(r.scene.camera.eye.y));
+  expectError(withLight(R"({"type":"spot","position":[1e6,5,0],"target":[1000000.0000000001,5,0]})"),
+              "/light/target", "give no direction");
+  expectError(withLight(R"({"type":"spot","position":[0,1e-160,0],"target":[0,0,0]})"), "/light/target",
+              "1e-150");
+  expectError(withLight(R"({"type":"directional","direction":[0,-1e-200,0]})"), "/light/direction",
+              "shorter than 1e-150");
+  expectError(withCamera(R"({"eye":[0,0,3e5],"target":[0,0,300000.00000000001]})"), "/camera/target",
+              "give no view direction");
+  EXPECT_NO_THROW(parse(withLight(R"({"type":"directional","direction":[0,-1e-13,0]})")));
 }
 
 // A mesh file's vertices that no face uses are left out, with a note naming the file: a stray one

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 #include "shadowvol/capture_choice.h"
@@ -38,15 +39,17 @@ std::size_t nearClipped(const DepthMap& probe, const glm::dmat4& toClip, const T
 }
 
 // Whether some triangle of `mesh` has area in the map's texel plane (its image is not a segment or
-// a point): a mesh seen exactly edge-on, or one of zero-area triangles only, covers nothing.
-bool hasAreaInView(const DepthMap& probe, const TriangleMesh& mesh, double span) {
-  const double tiny = 1e-12 * std::max(1.0, span * span);
+// a point): a mesh seen exactly edge-on, or one of zero-area triangles only, covers nothing. Judged
+// by the sine of the image's angle at a corner (over 1e-9), not by its area in texels, which a
+// triangle far smaller than a texel lacks however squarely it is seen (a probe's finding: a
+// sphere under a directional window of 1e12 was said to have no area).
+bool hasAreaInView(const DepthMap& probe, const TriangleMesh& mesh) {
   for (const auto& t : mesh.triangles) {
     const glm::dvec2 a = probe.texelOf(glm::dvec3(mesh.positions[t[0]])),
                      b = probe.texelOf(glm::dvec3(mesh.positions[t[1]])),
                      c = probe.texelOf(glm::dvec3(mesh.positions[t[2]]));
     const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    if (std::abs(cross) > tiny) return true;
+    if (std::abs(cross) > 1e-9 * glm::length(b - a) * glm::length(c - a)) return true;
   }
   return false;
 }
@@ -73,7 +76,7 @@ std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hid
   // on both axes, and a triangle with area to hold it?
   const double s = std::max(1, hiddenSearchGrid);
   const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
-  const bool area = hasAreaInView(probe, o.mesh, std::max(hi.x - lo.x, hi.y - lo.y));
+  const bool area = hasAreaInView(probe, o.mesh);
   if (coversX && coversY && area) return "";
   if (!area)
     return "object \"" + o.name + "\" has no area in the light's view (its triangles are seen exactly edge-on, or " +

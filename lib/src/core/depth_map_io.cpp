@@ -160,14 +160,23 @@ std::filesystem::path depthSidecarPath(const std::filesystem::path& pfm) {
   return std::filesystem::path(pfm.string() + ".json");
 }
 
+namespace {
+
+// What a side file names itself and its depths (writeDepthMap writes them, readSideFile holds a
+// file to them).
+constexpr const char* kSideFileFormat = "shadowvol depth map 1";
+constexpr const char* kSideFileQuantity = "light-view depth (-z in light view space), world units; +inf = no hit";
+
+}  // namespace
+
 void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
   static_assert(std::endian::native == std::endian::little, "PFM writer assumes a little-endian host");
   json side = {
-      {"format", "shadowvol depth map 1"},
+      {"format", kSideFileFormat},
       {"writer", "shadowvol " SHADOWVOL_VERSION},
       {"width", map.width},
       {"height", map.height},
-      {"quantity", "light-view depth (-z in light view space), world units; +inf = no hit"},
+      {"quantity", kSideFileQuantity},
       {"light", toString(map.lightType)},
       {"capture", toString(map.capture)},
       {"near", map.nearPlane},
@@ -219,7 +228,26 @@ void checkSideFileChecksum(const json& given, const std::string& sfile, const st
 // The keys a side file may hold (writeDepthMap's); any other is refused, as a scene file's are.
 const char* const kSideFileKeys[] = {"format", "writer", "width", "height", "quantity", "light", "capture", "near",
                                      "far", "lightView", "lightProjection", "origin", "depthChecksum"};
-constexpr const char* kSideFileFormat = "shadowvol depth map 1";
+
+// The side file's width or height: a whole number equal to the PFM's (`given`).
+void checkSideFileSize(const json& side, const char* key, int given, const std::string& sfile) {
+  const std::string field = std::string("/") + key;
+  if (!side.contains(key)) throw InputError(sfile, field, "", "required field is missing");
+  const json& v = side[key];
+  if (!v.is_number_integer()) throw InputError(sfile, field, v.dump().substr(0, 40), "expected a whole number");
+  if (v != given)
+    throw InputError(sfile, field, v.dump(), std::string("does not match the PFM's ") + key + ", " + std::to_string(given));
+}
+
+// The side file's optional descriptive fields: "writer" a string, "quantity" the one this
+// shadowvol writes (depths of another quantity, say NDC z, would be read as light-view depths).
+void checkSideFileLabels(const json& side, const std::string& sfile) {
+  if (side.contains("writer") && !side["writer"].is_string())
+    throw InputError(sfile, "/writer", side["writer"].dump().substr(0, 40), "expected a string");
+  if (side.contains("quantity") && side["quantity"] != kSideFileQuantity)
+    throw InputError(sfile, "/quantity", side["quantity"].dump().substr(0, 80),
+                     std::string("an unknown quantity: this shadowvol reads \"") + kSideFileQuantity + "\"");
+}
 
 // Fills map's light, capture, planes, matrices and origin from the side file of the PFM `file`,
 // whose W x H depths map already holds: the JSON rules of every input (json_text.h), the format
@@ -244,11 +272,9 @@ void readSideFile(const std::filesystem::path& sidecar, const std::string& file,
     if (!side.contains(key)) throw InputError(sfile, std::string("/") + key, "", "required field is missing");
     return side[key];
   };
-  if (need("width") != map.width)
-    throw InputError(sfile, "/width", side["width"].dump(), "does not match the PFM's width, " + std::to_string(map.width));
-  if (need("height") != map.height)
-    throw InputError(sfile, "/height", side["height"].dump(),
-                     "does not match the PFM's height, " + std::to_string(map.height));
+  checkSideFileLabels(side, sfile);
+  checkSideFileSize(side, "width", map.width, sfile);
+  checkSideFileSize(side, "height", map.height, sfile);
   const std::string light = need("light").is_string() ? need("light").get<std::string>() : "";
   if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
     throw InputError(sfile, "/light", need("light").dump(), "expected \"spot\" or \"directional\"");

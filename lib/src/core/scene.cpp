@@ -175,7 +175,13 @@ glm::dmat4 readTransform(ObjectReader& parent) {
     // (and a zero w row makes every point infinite).
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
       r.fail("matrix", v, "the bottom row must be 0 0 0 1 (an affine transform; elements 13-16 of the row-major list)");
-    if (std::abs(glm::determinant(glm::dmat3(m))) < 1e-12) r.fail("matrix", v, "the matrix is singular");
+    // Singular: its determinant under 1e-12 of the cube of its longest column (the determinant of
+    // that uniform scale), judged against the matrix's own scale so that a uniform 1e-5 is as sound
+    // here as in "scale" (an absolute 1e-12 once refused it).
+    const glm::dmat3 linear(m);
+    const double longest = std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+    if (!(std::abs(glm::determinant(linear)) > 1e-12 * longest * longest * longest))
+      r.fail("matrix", v, "the matrix is singular (its determinant is under 1e-12 of its longest column's cube)");
   } else {
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0));
     const glm::dvec3 rot = r.vec3("rotate", glm::dvec3(0.0));
@@ -487,6 +493,16 @@ void readIntensity(ObjectReader& r, Light& light) {
     r.fail("intensity", json(light.intensity), "a light's intensity (its diffuse factor) must be in [0, 1000]");
 }
 
+// Whether `d` is too short to take a direction from: zero; for the difference of two points whose
+// magnitude reaches `scale` (0 for a direction given as such), under 1e-14 of it (about 45 double
+// steps: fewer leave the direction mostly rounding; a scene that coarse in double is warned about,
+// warnAboutInputPrecision); or under 1e-150, where its square
+// underflows in double and normalizing it gives NaN. Scale-free but for that floor.
+bool tooShortForADirection(const glm::dvec3& d, double scale) {
+  const double length = glm::length(d);
+  return !(length > 1e-14 * scale) || !(length > 1e-150);
+}
+
 Light readLight(const json& v, const std::string& pointer, const std::string& source) {
   ObjectReader r(v, pointer, source);
   Light light;
@@ -511,17 +527,21 @@ Light readLight(const json& v, const std::string& pointer, const std::string& so
   if (r.has("target")) {
     if (light.type == LightType::Directional && !r.has("position"))
       r.fail("target", r.raw("target"), "a directional light with a target needs a position too");
-    light.direction = r.vec3("target") - light.position;
-    if (glm::length(light.direction) < 1e-12)
-      r.fail("target", json::array({light.position.x, light.position.y, light.position.z}),
-             "target equals position: the direction is zero");
+    const glm::dvec3 target = r.vec3("target");
+    light.direction = target - light.position;
+    if (tooShortForADirection(light.direction, std::max(glm::length(target), glm::length(light.position))))
+      r.fail("target", r.raw("target"),
+             "target and position coincide (closer than 1e-14 of their distance from the origin, or than "
+             "1e-150): they give no direction");
   } else {
     light.direction = r.vec3("direction");
-    if (glm::length(light.direction) < 1e-12) r.fail("direction", r.raw("direction"), "the direction is zero");
+    if (tooShortForADirection(light.direction, 0.0))
+      r.fail("direction", r.raw("direction"), "the direction is zero (or shorter than 1e-150)");
   }
   light.direction = glm::normalize(light.direction);
   light.up = r.vec3("up", glm::dvec3(0.0));  // 0 = chosen from the direction (lightUp)
-  if (r.has("up") && glm::length(light.up) < 1e-12) r.fail("up", r.raw("up"), "the up vector is zero");
+  if (r.has("up") && tooShortForADirection(light.up, 0.0))
+    r.fail("up", r.raw("up"), "the up vector is zero (or shorter than 1e-150)");
   if (glm::length(light.up) > 0.0 && glm::length(glm::cross(glm::normalize(light.up), light.direction)) < 1e-6)
     r.fail("up", json::array({light.up.x, light.up.y, light.up.z}), "up is parallel to the light direction");
 
@@ -545,9 +565,12 @@ Camera readCamera(const json& v, const std::string& source) {
   c.target = r.vec3("target");
   c.up = r.vec3("up", glm::dvec3(0.0, 1.0, 0.0));
   const glm::dvec3 view = c.target - c.eye;
-  if (glm::length(view) < 1e-12) r.fail("target", r.raw("target"), "target equals eye: the view direction is zero");
+  if (tooShortForADirection(view, std::max(glm::length(c.target), glm::length(c.eye))))
+    r.fail("target", r.raw("target"),
+           "target and eye coincide (closer than 1e-14 of their distance from the origin, or than 1e-150): they "
+           "give no view direction");
   const json upValue = json::array({c.up.x, c.up.y, c.up.z});
-  if (glm::length(c.up) < 1e-12) r.fail("up", upValue, "the up vector is zero");
+  if (tooShortForADirection(c.up, 0.0)) r.fail("up", upValue, "the up vector is zero (or shorter than 1e-150)");
   if (glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) < 1e-6)
     r.fail("up", upValue, "up is parallel to the view direction (target - eye)");
   c.fovYDegrees = r.number("fov", 45.0);
