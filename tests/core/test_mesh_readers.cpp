@@ -222,6 +222,13 @@ TEST(MeshReaders, OffEndingEarlyOrWithExtraDataIsRefused) {
   refusal("long.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n",
           {"line 7 = \"3 0 1 2\"", "data after the 1 faces the header declares"});
   refusal("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", {"line 4 = \"1 nan 0\"", "non-finite"});
+  // A vertex count off by one either way is named as such (a probe: one too many took the first
+  // face line for a vertex and blamed the end of the file; one too few took a vertex for a face).
+  refusal("more.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n",
+          {"ends after 1 of the 2 faces", "line 6, read as vertex 3, reads as a face \"3 0 1 2\"",
+           "more vertices than the file holds"});
+  refusal("fewer.off", "OFF\n2 1 0\n0 0 0\n1 0 0\n0.5 1 0\n3 0 1 2\n",
+          {"line 5 = \"0.5 1 0\"", "is this line a vertex? The header declares 2 vertices"});
 }
 
 TEST(MeshReaders, OffCommentsBlankLinesAndVariantsAreRead) {

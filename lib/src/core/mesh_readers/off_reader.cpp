@@ -81,9 +81,26 @@ Counts readHeader(const std::string& source, LineReader& lines) {
   return {std::uint64_t(*v), std::uint64_t(*f)};
 }
 
-std::vector<std::uint32_t> faceCorners(std::string_view rest, std::uint64_t vertexCount, const TextPlace& at) {
+// Whether a vertex line reads as a face, "n i1 ... in" of whole numbers, n >= 3 (a vertex line
+// holds reals, and any colour after them): the sign of a header that declares more vertices than
+// the file holds.
+bool looksLikeFace(std::string_view rest) {
+  const auto n = parseInteger(nextToken(rest));
+  std::int64_t listed = 0;
+  for (std::string_view token = nextToken(rest); !token.empty(); token = nextToken(rest), ++listed)
+    if (!parseInteger(token)) return false;
+  return n && *n >= 3 && listed == *n;
+}
+
+// Face `k`'s corners. A first face whose count is a real is likely a vertex line: the header then
+// declares fewer vertices than the file holds, which the message says.
+std::vector<std::uint32_t> faceCorners(std::string_view rest, std::uint64_t k, std::uint64_t vertexCount,
+                                       const TextPlace& at) {
   const std::string_view first = nextToken(rest);
   const auto n = parseInteger(first);
+  if (!n && k == 0 && parseReal(first))
+    at.fail("the vertex count " + quoted(first) + " of face 0 is not an integer: is this line a vertex? The header " +
+            "declares " + std::to_string(vertexCount) + " vertices");
   if (!n) at.fail("the vertex count " + quoted(first) + " of the face " + integerProblem(first));
   if (*n < 3) at.fail("a face needs at least 3 vertices, this one has " + std::to_string(*n));
   std::vector<std::uint32_t> corners;
@@ -109,6 +126,7 @@ ParsedMesh readOff(const std::string& source, std::string_view text) {
   ParsedMesh mesh;
   mesh.positions.reserve(counts.vertices);
   mesh.triangles.reserve(std::min<std::uint64_t>(counts.faces, lines.bytesLeft() / 8));  // a triangle's line: 8+ bytes
+  std::string faceAsVertex;  // the first vertex line that reads as a face, named if the faces run short
   for (std::uint64_t k = 0; k < counts.vertices; ++k) {
     const auto line = nextDataLine(lines);
     if (!line)
@@ -116,6 +134,9 @@ ParsedMesh readOff(const std::string& source, std::string_view text) {
                 "the file ends after " + std::to_string(k) + " of the " + std::to_string(counts.vertices) +
                     " vertices its header declares");
     std::string_view rest = withoutComment(*line);
+    if (faceAsVertex.empty() && looksLikeFace(rest))
+      faceAsVertex = "; line " + std::to_string(lines.number()) + ", read as vertex " + std::to_string(k) + ", reads as a face " +
+                     quoted(rest.substr(0, 40)) + ": does the header declare more vertices than the file holds?";
     mesh.positions.push_back(readPoint(rest, TextPlace{source, lines.number(), *line}));
   }
   for (std::uint64_t k = 0; k < counts.faces; ++k) {
@@ -123,9 +144,9 @@ ParsedMesh readOff(const std::string& source, std::string_view text) {
     if (!line)
       failAtEnd(source, lines,
                 "the file ends after " + std::to_string(k) + " of the " + std::to_string(counts.faces) +
-                    " faces its header declares");
+                    " faces its header declares" + faceAsVertex);
     const TextPlace at{source, lines.number(), *line};
-    appendPolygon(faceCorners(withoutComment(*line), counts.vertices, at), mesh);
+    appendPolygon(faceCorners(withoutComment(*line), k, counts.vertices, at), mesh);
   }
   if (const auto extra = nextDataLine(lines))
     TextPlace{source, lines.number(), *extra}.fail("data after the " + std::to_string(counts.faces) +
