@@ -18,6 +18,7 @@
 #include "mesh_readers/polygon_triangulation.h"
 #include "mesh_readers/ply_reader.h"
 #include "mesh_readers/stl_reader.h"
+#include "mesh_readers/text_lines.h"
 #include "mesh_writers/gltf_writer.h"
 #include "shadowvol/error.h"
 #include "shadowvol/temporary_files.h"
@@ -51,13 +52,7 @@ std::string fileBytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-std::string lowerText(std::string_view text) {
-  std::string e(text);
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
-std::string lowerExtension(const std::filesystem::path& p) { return lowerText(p.extension().string()); }
+std::string lowerExtension(const std::filesystem::path& p) { return mesh_readers::lowerCase(p.extension().string()); }
 
 void checkReadableExtension(const std::string& ext, const std::string& source) {
   if (!mesh_readers::isOwnFormat(ext) && !mesh_readers::isAssimpFormat(ext))
@@ -104,10 +99,6 @@ RebasedMesh readFile(const std::filesystem::path& path, EmptyMesh empty, bool re
   checkRegularFile(path);
   return readChecked({}, ext, path.string(), path, empty, rebase);  // Assimp opens it (and its .bin, textures)
 }
-
-}  // namespace
-
-namespace {
 
 // Where writeAtomically writes `path`: the path itself, or the file a symbolic link names (written
 // through, as open() would). Refuses a folder, a device, pipe or socket (renaming onto it would
@@ -170,7 +161,7 @@ void createFolders(const std::filesystem::path& dir) {
 }
 
 TriangleMesh parseTriangleMesh(std::string_view bytes, std::string_view format, const std::string& source) {
-  const std::string ext = lowerText(format);
+  const std::string ext = mesh_readers::lowerCase(format);
   checkReadableExtension(ext, source);
   return readChecked(bytes, ext, source, {}, EmptyMesh::Refuse, false).mesh;
 }

@@ -639,14 +639,7 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
 void checkDirectionalWindow(const Scene& scene, std::size_t k, const std::string& source) {
   const Light& l = scene.light;
   if (l.type != LightType::Directional) return;
-  const glm::dmat4 view = lightView(l);
-  const Bounds3 b = scene.bounds();
-  double reach = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const glm::dvec3 p((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y, (c & 4) ? b.max.z : b.min.z);
-    const glm::dvec4 v = view * glm::dvec4(p, 1.0);
-    reach = std::max({reach, std::abs(v.x), std::abs(v.y)});
-  }
+  const double reach = detail::viewReach(scene.bounds(), lightView(l));
   const double least = kMinWindowFloatSteps * std::numeric_limits<float>::epsilon() * reach;
   if (2.0 * l.halfExtent >= least) return;
   throw InputError(source, scene.lightPointer(k) + "/extent", numberText(l.halfExtent),

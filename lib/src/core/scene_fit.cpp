@@ -113,14 +113,7 @@ void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius, std::ve
   if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
   moveFarDirectionalPosition(l, b, radius, notes);
   if (l.halfExtent > 0.0) return;
-  const glm::dmat4 v = lightView(l);
-  double e = 0.0;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 c((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
-    const glm::dvec4 p = v * glm::dvec4(c, 1.0);
-    e = std::max({e, std::abs(p.x), std::abs(p.y)});
-  }
-  l.halfExtent = e * 1.02;  // 2% margin so the far-plane border ring stays off the geometry
+  l.halfExtent = detail::viewReach(b, lightView(l)) * 1.02;  // 2% margin: the far-plane border ring stays off the geometry
 }
 
 // The light planes are fitted to the frustum of a square map (every map the CLI makes). A map

@@ -23,12 +23,6 @@ namespace {
 
 constexpr std::size_t kBinaryHeader = 84, kBinaryTriangle = 50;
 
-std::string lowerCase(std::string_view token) {
-  std::string s(token);
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // A triangle's corner, welded with the corners before it at bit-identical double positions (and
 // again once stored in float: ParsedMesh::weldCorners), so a soup of corners is never held.
 std::uint32_t cornerOf(const glm::dvec3& p, CornerWelder<glm::dvec3>& weld, const ParsedMesh& mesh,

@@ -1,5 +1,6 @@
 #include "mesh_readers/text_lines.h"
 
+#include <cctype>
 #include <cstdio>
 
 #include "shadowvol/error.h"
@@ -58,6 +59,12 @@ std::string lineField(std::size_t lineNumber) {
 
 void TextPlace::fail(const std::string& problem) const {
   throw InputError(std::string(source), lineField(line), quoted(text), problem);
+}
+
+std::string lowerCase(std::string_view text) {
+  std::string s(text);
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
 }
 
 std::string quoted(std::string_view text) {

@@ -68,6 +68,9 @@ struct TextPlace {
   [[noreturn]] void fail(const std::string& problem) const;
 };
 
+/// `text` with its ASCII letters in lower case (keywords such as STL's SOLID, file extensions).
+std::string lowerCase(std::string_view text);
+
 /// The text in double quotes for an error message: at most 80 characters (then "..."), control
 /// characters and bytes >= 0x80 written as \xNN, so a hostile line cannot flood the terminal.
 std::string quoted(std::string_view text);
