@@ -21,6 +21,9 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height");
+  // As the command line's --platform: an EGL platform names how the GPU is reached.
+  if (device == "cpu" && platform != "auto")
+    throw InputError("python", "platform", platform, "picks the GPU's EGL platform: only with device='gpu'");
   py::gil_scoped_release release;
   if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
   if (device != "gpu") throw InputError("python", "device", device, "expected cpu or gpu");

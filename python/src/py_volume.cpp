@@ -1,7 +1,9 @@
 // Python: build_volume(depth, ...) -> (V, F, stats) and export(V, F, path).
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -14,9 +16,6 @@
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol::python {
-namespace {
-
-}  // namespace
 
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                  std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
@@ -40,6 +39,37 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
 
 namespace {
 
+// Refuses a map that `scene`'s geometry does not give back: the refinement casts its rays into the
+// scene along the map's own light rays, so a map captured from another scene (a probe passed one
+// without a word) would be refined against surfaces it does not show. Up to 16 x 16 texel centres
+// are asked of the oracle; among those where the map or the rays hit something, at least 90 % must
+// agree (both hit, within 1e-3 of the map's near-far range: a GPU capture and the rays differ at a
+// few silhouette texels and by about 1e-4 in depth, README's `depth` command).
+void checkMapFromScene(const DepthMap& depth, const DepthOracle& oracle) {
+  std::vector<glm::dvec2> ndc;
+  std::vector<float> stored;
+  const int stepI = std::max(1, depth.width / 16), stepJ = std::max(1, depth.height / 16);
+  for (int j = stepJ / 2; j < depth.height; j += stepJ)
+    for (int i = stepI / 2; i < depth.width; i += stepI) {
+      ndc.push_back(depth.texelNdc(double(i), double(j)));
+      stored.push_back(depth.at(i, j));
+    }
+  std::vector<float> traced(ndc.size());
+  oracle(depth, ndc, traced);
+  const double tolerance = 1e-3 * (depth.farPlane - depth.nearPlane);
+  std::size_t judged = 0, agree = 0;
+  for (std::size_t k = 0; k < ndc.size(); ++k) {
+    const bool mapHit = stored[k] != DepthMap::kNoHit, rayHit = traced[k] != DepthMap::kNoHit;
+    if (!mapHit && !rayHit) continue;
+    ++judged;
+    if (mapHit && rayHit && std::abs(double(stored[k]) - double(traced[k])) <= tolerance) ++agree;
+  }
+  if (judged > 0 && double(agree) < 0.9 * double(judged))
+    throw InputError("python", "scene", std::to_string(agree) + " of " + std::to_string(judged) + " texels sampled",
+                     "the scene's surfaces do not give back the depth map (at least 90 % of the sampled texels "
+                     "that hit must agree): refine needs the scene the map was captured from");
+}
+
 py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
                             std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
                             const PyScene* scene, bool chordPoints, int refineGrid, bool refineGridEverywhere,
@@ -49,6 +79,8 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
   if (refine > 0 && !scene)
     throw InputError("python", "refine", std::to_string(refine),
                      "needs scene=: the refinement casts rays into the scene the depth map was captured from");
+  if (refine == 0 && scene)  // as the command line refuses an option that changes nothing
+    throw InputError("python", "scene", "given", "is read only by the refinement: give refine=K too, or leave out scene=");
   if (depth.width < kMinVolumeMapSide || depth.height < kMinVolumeMapSide)  // as `build --depth` refuses it
     throw InputError("python", "depth", std::to_string(depth.width) + "x" + std::to_string(depth.height),
                      "a volume needs a map of at least " + std::to_string(kMinVolumeMapSide) + " x " +
@@ -62,6 +94,7 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
       o.depthOracle = oracle->oracle();
       o.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line (crossing_snap.h)
       o.nearerSurfaces = oracle->nearerSurfaces();  // the sub-grid's search for hidden surfaces
+      checkMapFromScene(depth, o.depthOracle);
     }
     r = buildVolume(depth, o);
   }
@@ -144,7 +177,8 @@ void registerVolume(py::module_& m) {
       py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision") = false,
       "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "
       "atomically (a failure leaves no file). Coordinates are written as float32 unless double_precision=True "
-      "(PLY doubles, OBJ/OFF 17 digits; STL and glTF are float only).");
+      "(PLY doubles, OBJ/OFF 17 digits; glTF keeps float positions and the volume's origin as its node's "
+      "translation, as with double_precision=False; STL stores float only and refuses it).");
 }
 
 }  // namespace shadowvol::python

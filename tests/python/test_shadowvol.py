@@ -119,6 +119,18 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
         sv.build_volume(depth, refine=4, hidden_search=False, scene=scene)  # the sub-grid's search: needs it
 
 
+def test_refinement_needs_the_scene_the_map_shows(scene, depth):
+    """A thirteenth probe's findings: scene= without refine was taken without a word, and a map from
+    another scene was refined against surfaces it does not show."""
+    with pytest.raises(sv.InputError, match=r"scene = given: is read only by the refinement"):
+        sv.build_volume(depth, scene=scene)
+    other = sv.load_scene(str(SCENES / "plate.json"))
+    with pytest.raises(sv.InputError, match=r"do not give back the depth map"):
+        sv.build_volume(depth, refine=4, scene=other)
+    with pytest.raises(sv.InputError, match=r"platform = device: picks the GPU"):
+        sv.capture_depth(scene, 8, 8, device="cpu", platform="device")
+
+
 def test_export_round_trips_through_obj(tmp_path, depth):
     V, F, _ = sv.build_volume(depth)
     out = tmp_path / "v.obj"
