@@ -216,6 +216,25 @@ TEST(PointLight, RefinedGpuCubeVolumeFollowsTheCameraTargets) {
   EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
 }
 
+// A fourteenth probe's crash: reading the refined GPU volume's records set a pack alignment of 4
+// and left it, so the next one-byte read-back (the stencil) padded its rows past a buffer of
+// width x height at widths not a multiple of 4 (heap corruption at 322 x 240). Two frames at an
+// odd width, the refined GPU cube volume in each, read their stencil whole.
+TEST(PointLight, RefinedGpuCubeVolumeAtAnOddImageWidthReadsItsStencilTight) {
+  gl::RenderOptions ro;
+  ro.volume = gl::VolumeSource::Gpu;
+  ro.depthWidth = ro.depthHeight = 24;
+  ro.volumeOptions.refineSteps = 4;
+  Scene odd = room();
+  odd.camera.width = 161;
+  odd.camera.height = 37;
+  for (int frame = 0; frame < 2; ++frame) {
+    const FrameValidation v = renderAndValidate(odd, ro);
+    EXPECT_GE(v.stencilVsCount.fraction(), kRequiredAgreement) << "frame " << frame;
+    EXPECT_TRUE(v.consistent) << (v.failures.empty() ? "" : v.failures.front());
+  }
+}
+
 // A probe's scene (2026-12-05): an axis-aligned box under a point light, whose corners fall on
 // texel centres of the guarded faces. The snap walked a bracket on past its probes until it shrank
 // onto the far end: the GPU put the crossing on the texel (degenerate walls in its own mesh) and

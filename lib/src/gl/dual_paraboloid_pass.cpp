@@ -72,7 +72,6 @@ std::array<std::vector<float>, 2> DualParaboloidPass::readDistances(const DualPa
   const std::size_t w = 2 * std::size_t(side_), n = std::size_t(side_);
   std::vector<float> stored(w * n);
   SV_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id()));
-  SV_GL(glPixelStorei(GL_PACK_ALIGNMENT, 4));
   SV_GL(glReadPixels(0, 0, GLsizei(w), GLsizei(n), GL_DEPTH_COMPONENT, GL_FLOAT, stored.data()));
   SV_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, 0));
   std::array<std::vector<float>, 2> out;

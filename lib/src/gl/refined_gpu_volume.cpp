@@ -235,7 +235,6 @@ std::vector<glm::vec4> RefinedGpuVolume::readRecords() const {
   std::vector<glm::vec4> out(std::size_t(w_) * std::size_t(h_) * 3);
   SV_GL(glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT));
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, records_.id()));
-  SV_GL(glPixelStorei(GL_PACK_ALIGNMENT, 4));
   SV_GL(glGetTexImage(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA, GL_FLOAT, out.data()));
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
   return out;

@@ -97,6 +97,8 @@ Renderer::Impl::Impl(const RendererOptions& options)
   SV_GL(glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize));
   SV_GL(glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbufferSize));
   SV_GL(glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport));
+  // Every read-back and upload takes rows tight, for every pass: none changes these (a pack
+  // alignment of 4 pads a row of one-byte pixels to a multiple of 4; readShadowImages checks it).
   SV_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
   SV_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
 }

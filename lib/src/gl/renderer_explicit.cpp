@@ -45,6 +45,12 @@ void Renderer::Impl::readShadowImages(const CameraSetup& cam, bool stencil, Visi
   const int w = cam.w, h = cam.h;
   r.width = w;
   r.height = h;
+  // Rows of one-byte pixels are read tight into w x h buffers: the renderer sets a pack alignment
+  // of 1 once (renderer.cpp) and no pass may change it (one that set 4 made these reads overflow
+  // at widths not a multiple of 4: a fourteenth probe's heap corruption).
+  GLint alignment = 0;
+  SV_GL(glGetIntegerv(GL_PACK_ALIGNMENT, &alignment));
+  SV_CHECK_EQ(alignment, 1);
   SV_GL(glBindFramebuffer(GL_FRAMEBUFFER, cameraFbo.id()));
   const std::size_t pixels = std::size_t(w) * std::size_t(h);
   if (stencil || visibility == VisibilitySource::FromStencil) {
