@@ -853,6 +853,32 @@ TEST(SceneParser, CoincidentTargetsAreJudgedAgainstTheirMagnitude) {
   EXPECT_NO_THROW(parse(withLight(R"({"type":"directional","direction":[0,-1e-13,0]})")));
 }
 
+// An inside-out box with one flat triangle on a closed edge (a fourteenth probe's pinion): the
+// triangle is left out with a note, and the box, closed again, is turned outward.
+TEST(Scene, AStrayFlatTriangleDoesNotKeepAMeshFromBeingOriented) {
+  const std::filesystem::path dir = test::tempDir();
+  std::string obj;
+  const TriangleMesh box = makeBox(1, 1, 1);
+  for (const auto& p : box.positions) obj += "v " + numberText(p.x) + " " + numberText(p.y) + " " + numberText(p.z) + "\n";
+  const auto& a = box.positions[box.triangles[0][0]];
+  const auto& b = box.positions[box.triangles[0][1]];
+  obj += "v " + numberText(0.5 * (a.x + b.x)) + " " + numberText(0.5 * (a.y + b.y)) + " " + numberText(0.5 * (a.z + b.z)) + "\n";
+  for (const auto& t : box.triangles)  // reversed: inside out
+    obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[2] + 1) + " " + std::to_string(t[1] + 1) + "\n";
+  obj += "f " + std::to_string(box.triangles[0][0] + 1) + " " + std::to_string(box.triangles[0][1] + 1) + " " +
+         std::to_string(box.positions.size() + 1) + "\n";
+  test::writeText(dir / "sliver.obj", obj);
+  const SceneLoadResult r = parseScene(
+      R"({"objects":[{"type":"plane","size":4},{"type":"mesh","name":"box","file":"sliver.obj"}],
+          "light":{"type":"directional","direction":[0,-1,0]},"camera":{"eye":[0,3,5],"target":[0,0,0]}})",
+      "sliver.json", dir);
+  EXPECT_EQ(r.scene.objects.at(1).mesh.triangleCount(), box.triangleCount());
+  std::string notes;
+  for (const auto& w : r.warnings) notes += w + "\n";
+  EXPECT_NE(notes.find("1 flat triangle (corners on a line)"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("the closed mesh \"box\" was inside out"), std::string::npos) << notes;
+}
+
 // A mesh file's vertices that no face uses are left out, with a note naming the file: a stray one
 // 1000 units off once widened the bounds the light is fitted to (a directional light's texel 4
 // units instead of 0.03 over a unit cube).

@@ -2,6 +2,8 @@
 // and inconsistently oriented meshes.
 #include <gtest/gtest.h>
 
+#include <glm/vec3.hpp>
+
 #include "shadowvol/primitives.h"
 #include "shadowvol/triangle_adjacency.h"
 
@@ -102,6 +104,57 @@ TEST(TriangleAdjacency, ClosedAsStoredOrOnceWelded) {
   open.triangles.pop_back();
   EXPECT_FALSE(isClosedSurface(open));
   EXPECT_FALSE(isClosedSurface(TriangleMesh{}));
+}
+
+// A closed tetrahedron with corners that float cannot hold exactly, and the midpoint of its edge
+// 0-1 (rounded to float: a hair off the line) as vertex 4.
+TriangleMesh awkwardTetrahedron() {
+  TriangleMesh m;
+  m.positions = {{0.1f, 0.7f, 0.3f}, {1.3f, -0.2f, 2.9f}, {-1.1f, 0.4f, 1.7f}, {0.3f, 2.3f, 1.1f}};
+  m.triangles = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  const glm::dvec3 mid = 0.5 * (glm::dvec3(m.positions[0]) + glm::dvec3(m.positions[1]));
+  m.positions.push_back(glm::vec3(mid));
+  return m;
+}
+
+// A fourteenth probe's inside-out mesh with one flat triangle (a, b, midpoint) on a closed edge,
+// or every face twice, was called open and left inside out: such triangles are left out. A flat
+// triangle that zips a T-junction, a repeat wound the other way (a two-sided sheet) and a lone
+// triangle with area stay.
+TEST(TriangleAdjacency, ExtraTrianglesThatOnlyKeepAMeshOpenAreLeftOut) {
+  TriangleMesh stray = awkwardTetrahedron();
+  stray.triangles.push_back({0, 1, 4});  // on the closed edge 0-1: three uses there
+  EXPECT_FALSE(isClosedSurface(stray));
+  const ExtraTriangles e = removeExtraTriangles(stray);
+  EXPECT_EQ(e.flat, 1u);
+  EXPECT_EQ(e.duplicates, 0u);
+  EXPECT_EQ(stray.triangles, awkwardTetrahedron().triangles);
+
+  TriangleMesh zipped = awkwardTetrahedron();  // face 0 split at the midpoint, the split zipped shut
+  zipped.triangles[0] = {0, 4, 2};
+  zipped.triangles.push_back({4, 1, 2});
+  zipped.triangles.push_back({0, 1, 4});  // the flat triangle pairs 0-1, 0-4 and 4-1
+  EXPECT_TRUE(isClosedSurface(zipped));
+  EXPECT_EQ(removeExtraTriangles(zipped).total(), 0u);
+  EXPECT_EQ(zipped.triangles.size(), 6u);
+
+  TriangleMesh twice = awkwardTetrahedron();
+  twice.triangles.push_back({1, 2, 0});  // triangle 0 again, rotated
+  twice.triangles.push_back({2, 3, 0});  // triangle 3 again
+  EXPECT_FALSE(isClosedSurface(twice));
+  EXPECT_EQ(removeExtraTriangles(twice).duplicates, 2u);
+  EXPECT_EQ(twice.triangles, awkwardTetrahedron().triangles);
+  EXPECT_TRUE(isClosedSurface(twice));
+
+  TriangleMesh sheet = awkwardTetrahedron();
+  sheet.triangles = {{0, 1, 2}, {0, 2, 1}};  // two-sided
+  EXPECT_EQ(removeExtraTriangles(sheet).total(), 0u);
+  TriangleMesh lone = awkwardTetrahedron();
+  lone.triangles = {{0, 1, 2}};
+  EXPECT_EQ(removeExtraTriangles(lone).total(), 0u);
+  TriangleMesh flatAlone = awkwardTetrahedron();
+  flatAlone.triangles = {{0, 1, 4}};  // flat, its edges used by nothing else: bounds nothing
+  EXPECT_EQ(removeExtraTriangles(flatAlone).flat, 1u);
 }
 
 }  // namespace

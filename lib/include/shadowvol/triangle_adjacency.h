@@ -49,4 +49,25 @@ inline bool closedAsStored(const TriangleMesh& mesh) {
 /// touch along a face are closed as stored, though not once welded.
 bool isClosedSurface(const TriangleMesh& mesh);
 
+/// What removeExtraTriangles left out.
+struct ExtraTriangles {
+  std::size_t flat = 0;        ///< flat triangles that only made their edges odd
+  std::size_t duplicates = 0;  ///< repeats of another triangle's welded corners, wound the same way
+  std::size_t total() const { return flat + duplicates; }
+};
+
+/// Leaves out, in place (the others keep their order), the triangles that bound nothing and only
+/// keep a mesh from being closed (a fourteenth probe's inside-out mesh stayed inside out, called
+/// open, for one such triangle), welded by exact position as above:
+///   - a repeat of an earlier triangle's welded corners in the same cyclic order (it covers the
+///     same points, facing the same way; one wound the other way is kept: with it, the pair is a
+///     two-sided sheet);
+///   - a flat triangle (its corners on a line: the distance of the farthest from the line through
+///     the other two under 1e-6 of its longest side, or under 4 float steps at its corners'
+///     magnitude, so a corner rounded to float still counts) each of whose three edges the other
+///     triangles use an even number of times: without it every one of them is paired or unused.
+///     A flat triangle that zips a T-junction pairs its edges and is kept.
+/// Triangles with a repeated welded vertex stay (they have no neighbours already).
+ExtraTriangles removeExtraTriangles(TriangleMesh& mesh);
+
 }  // namespace shadowvol

@@ -251,6 +251,20 @@ std::string meshFloatPrecisionNote(const RebasedMesh& read, const std::string& w
          "(.obj, .off, ASCII .ply or .stl: read in double and rebased)";
 }
 
+// The note about what removeExtraTriangles left out of a mesh file.
+std::string extraTrianglesText(const ExtraTriangles& e) {
+  std::vector<std::string> parts;
+  if (e.duplicates > 0)
+    parts.push_back(std::to_string(e.duplicates) + (e.duplicates == 1 ? " triangle" : " triangles") +
+                    " repeating another's corners in the same order");
+  if (e.flat > 0)
+    parts.push_back(std::to_string(e.flat) + (e.flat == 1 ? " flat triangle" : " flat triangles") +
+                    " (corners on a line) on edges that are closed without it");
+  std::string text;
+  for (std::size_t k = 0; k < parts.size(); ++k) text += (k ? " and " : "") + parts[k];
+  return text + " left out: they add no surface and would keep the mesh from being closed";
+}
+
 // The warning about what orientOutward changed in object `name` (empty when nothing).
 std::string orientationNote(const OrientationResult& o, const std::string& name, std::size_t triangles) {
   std::vector<std::string> what;
@@ -365,6 +379,10 @@ ReadObject readObject(const json& v, std::size_t index, const std::string& sourc
       obj.mesh = std::move(rebased.mesh);
       fileOrigin = rebased.origin;
       precisionNote = meshFloatPrecisionNote(rebased, source + ": " + r.pointer("file") + " (" + p.string() + ")");
+      // Triangles that bound nothing and only keep the mesh from being closed (an inside-out mesh
+      // with one stray flat triangle was neither turned outward nor captured as closed).
+      if (const ExtraTriangles extra = removeExtraTriangles(obj.mesh); extra.total() > 0)
+        read.notes.push_back(source + ": " + r.pointer("file") + " (" + p.string() + "): " + extraTrianglesText(extra));
       // Vertices no face uses would widen the bounds the light and camera are fitted to (a
       // thirteenth probe's stray vertex 1000 units off made a directional light's texel 4 units).
       if (const std::size_t unused = obj.mesh.removeUnusedVertices(); unused > 0)

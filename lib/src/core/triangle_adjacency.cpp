@@ -11,6 +11,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include <glm/geometric.hpp>
+
 #include "shadowvol/check.h"
 #include "shadowvol/error.h"
 
@@ -154,6 +156,82 @@ bool closedByNeighbours(const TriangleMesh& mesh, const std::vector<std::int32_t
       if (neighbours[3 * t + std::size_t(k)] == kNoNeighbour) return false;
   }
   return true;
+}
+
+namespace {
+
+// Whether the triangle a, b, c lies on a line (removeExtraTriangles' rule).
+bool flatTriangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const double longest = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+  const double height = glm::length(glm::cross(b - a, c - a)) / longest;  // twice the area over the base
+  const double magnitude = std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z), std::abs(b.x), std::abs(b.y),
+                                     std::abs(b.z), std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+  return height <= std::max(1e-6 * longest, 4.0 * std::ldexp(magnitude, -24));
+}
+
+std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+  return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+}  // namespace
+
+ExtraTriangles removeExtraTriangles(TriangleMesh& mesh) {
+  const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions);
+  const std::size_t n = mesh.triangles.size();
+  std::vector<std::array<std::uint32_t, 3>> welded(n);
+  std::vector<bool> valid(n), drop(n, false);
+  for (std::size_t t = 0; t < n; ++t) {
+    const auto& tri = mesh.triangles[t];
+    welded[t] = {weld[tri[0]], weld[tri[1]], weld[tri[2]]};
+    const auto& w = welded[t];
+    valid[t] = w[0] != w[1] && w[1] != w[2] && w[2] != w[0];
+  }
+  ExtraTriangles removed;
+  // Repeats: the welded corners rotated to start at the smallest, sorted with the triangle's index,
+  // so that the first of equal ones is kept (deterministic).
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> cycles;
+  for (std::size_t t = 0; t < n; ++t) {
+    if (!valid[t]) continue;
+    auto w = welded[t];
+    std::rotate(w.begin(), std::min_element(w.begin(), w.end()), w.end());
+    cycles.push_back({w, std::uint32_t(t)});
+  }
+  std::sort(cycles.begin(), cycles.end());
+  for (std::size_t k = 1; k < cycles.size(); ++k)
+    if (cycles[k].first == cycles[k - 1].first) {
+      drop[cycles[k].second] = true;
+      ++removed.duplicates;
+    }
+  std::vector<std::uint64_t> edges;  // of the triangles kept so far, one entry per use
+  edges.reserve(3 * n);
+  for (std::size_t t = 0; t < n; ++t)
+    if (valid[t] && !drop[t])
+      for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(welded[t][k], welded[t][(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  const auto uses = [&](std::uint64_t key) {
+    const auto [lo, hi] = std::equal_range(edges.begin(), edges.end(), key);
+    return std::size_t(hi - lo);
+  };
+  for (std::size_t t = 0; t < n; ++t) {
+    if (!valid[t] || drop[t]) continue;
+    const auto& tri = mesh.triangles[t];
+    if (!flatTriangle(glm::dvec3(mesh.positions[tri[0]]), glm::dvec3(mesh.positions[tri[1]]),
+                      glm::dvec3(mesh.positions[tri[2]])))
+      continue;
+    const auto& w = welded[t];
+    bool oddEverywhere = true;  // itself and an even number of others on each edge
+    for (int k = 0; k < 3; ++k) oddEverywhere = oddEverywhere && uses(edgeKey(w[k], w[(k + 1) % 3])) % 2 == 1;
+    if (oddEverywhere) {
+      drop[t] = true;
+      ++removed.flat;
+    }
+  }
+  if (removed.total() == 0) return removed;
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < n; ++t)
+    if (!drop[t]) mesh.triangles[kept++] = mesh.triangles[t];
+  mesh.triangles.resize(kept);
+  return removed;
 }
 
 }  // namespace shadowvol
