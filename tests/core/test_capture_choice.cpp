@@ -33,6 +33,26 @@ TEST(CaptureChoice, ClosedMeshesGiveEntryForARefinedVolumeAndBackOtherwise) {
   }
 }
 
+// A refined volume under a spot light whose far plane lies more than 8 times as far as its near
+// plane takes back capture: entry's bias, a texel at the far plane, would span more than 8 texels at
+// the nearest casters (a fourteenth probe's 160-degree spot). A directional light's texel is one
+// size at every depth.
+TEST(CaptureChoice, ADeepSpotLightGivesBackForARefinedVolume) {
+  Scene s = sceneWith({SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)}});
+  s.light.type = LightType::Spot;
+  s.light.fovYDegrees = 60.0;
+  s.light.nearPlane = 1.0;
+  s.light.farPlane = 7.9;
+  EXPECT_EQ(chooseCapture(s, CaptureUse::RefinedVolume).mode, CaptureMode::Entry);
+  s.light.farPlane = 8.1;
+  const CaptureChoice deep = chooseCapture(s, CaptureUse::RefinedVolume);
+  EXPECT_EQ(deep.mode, CaptureMode::Back);
+  EXPECT_NE(deep.reason.find("far plane lies 8.1 times as far as its near plane"), std::string::npos) << deep.reason;
+  EXPECT_EQ(chooseCapture(s, CaptureUse::Volume).reason, "back capture: no mesh object is open");
+  s.light.type = LightType::Directional;
+  EXPECT_EQ(chooseCapture(s, CaptureUse::RefinedVolume).mode, CaptureMode::Entry);
+}
+
 TEST(CaptureChoice, AnOpenMeshGivesFrontAndIsNamed) {
   const Scene s = sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)},
                              SceneObject{"ball", "mesh", makeIcoSphere(1.0, 2)},

@@ -48,6 +48,16 @@ struct CaptureChoice {
 /// sphere, box, cylinder, hemisphere, tree) do not decide: their shapes are known, a plane is a
 /// receiver. Midpoint capture, which also records open meshes, is never chosen: it costs a second
 /// depth layer. Deterministic: the same scene gives the same choice.
+///
+/// A refined volume under a spot light whose far plane lies more than kMaxEntryFarOverNear times
+/// as far as its near plane (fitted to the nearest geometry, or given) takes back capture too:
+/// entry's bias, a texel's footprint at the far plane (defaultBias), spans more than that many
+/// texels at the nearest casters and hides the shadows they cast close to themselves (a fourteenth
+/// probe's 160-degree spot: 273 wrong pixels at 256² against back capture's 46; measured in README
+/// "Capture modes", where the ratio sits between 7.1, entry as good, and 9.1, entry worse).
 CaptureChoice chooseCapture(const Scene& scene, CaptureUse use);
+
+/// The far / near ratio of a spot light above which a refined volume takes back capture.
+inline constexpr double kMaxEntryFarOverNear = 8.0;
 
 }  // namespace shadowvol

@@ -1,5 +1,7 @@
 #include "shadowvol/capture_choice.h"
 
+#include <cstdio>
+
 #include "shadowvol/triangle_adjacency.h"
 
 namespace shadowvol {
@@ -15,10 +17,21 @@ CaptureChoice chooseCapture(const Scene& scene, CaptureUse use) {
   CaptureChoice c;
   c.openMeshes = openMeshObjects(scene);
   if (c.openMeshes.empty()) {
-    const bool entry = use == CaptureUse::RefinedVolume;
+    const Light& l = scene.light;
+    const bool deep = l.type == LightType::Spot && l.farPlane > kMaxEntryFarOverNear * l.nearPlane;
+    const bool entry = use == CaptureUse::RefinedVolume && !deep;
     c.mode = entry ? CaptureMode::Entry : CaptureMode::Back;
-    c.reason = entry ? "entry capture: no mesh object is open, and the map is a refined volume's"
-                     : "back capture: no mesh object is open";
+    if (entry)
+      c.reason = "entry capture: no mesh object is open, and the map is a refined volume's";
+    else if (use == CaptureUse::RefinedVolume) {
+      char ratio[32];
+      std::snprintf(ratio, sizeof ratio, "%.3g", l.farPlane / l.nearPlane);
+      c.reason = std::string("back capture: no mesh object is open, and the spot light's far plane lies ") + ratio +
+                 " times as far as its near plane: entry capture's bias, a texel at the far plane, would hide the "
+                 "shadows the nearest casters cast close to themselves";
+    } else {
+      c.reason = "back capture: no mesh object is open";
+    }
     return c;
   }
   c.mode = CaptureMode::Front;
