@@ -137,7 +137,9 @@ constexpr const char* kReportFiles[] = {"report.json", "frame.png",   "exact.png
                                         "count.png",   "overlay.png", "overlay.svg"};
 
 // Removes what an earlier run (or this one, failing) wrote in `dir`: the files of kReportFiles
-// there and in its light-K folders, and a light-K folder left empty. Nothing else is touched.
+// there and in its light-K folders, and a light-K folder left empty. Nothing else is touched: a
+// light-K that is a symbolic link is not followed (a fourteenth probe's link to another folder
+// had its files deleted).
 void removeReportFiles(const std::filesystem::path& dir) {
   std::error_code ec;
   auto removeIn = [&](const std::filesystem::path& d) {
@@ -146,7 +148,7 @@ void removeReportFiles(const std::filesystem::path& dir) {
   removeIn(dir);
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (!e.is_directory(ec) || name.rfind("light-", 0) != 0 || name.size() == 6 ||
+    if (e.is_symlink(ec) || !e.is_directory(ec) || name.rfind("light-", 0) != 0 || name.size() == 6 ||
         name.find_first_not_of("0123456789", 6) != std::string::npos)
       continue;
     removeIn(e.path());
@@ -297,6 +299,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
           writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
           for (std::size_t k = 0; k < checks.size(); ++k) {
             const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
+            std::error_code ec;
+            if (std::filesystem::is_symlink(sub, ec))  // would write this light's images elsewhere
+              throw InputError(sub.string(), "", "", "is a symbolic link: validate writes each light's images in a "
+                                                     "folder of its own inside the report folder; remove the link");
             createFolders(sub);
             writeValidationImages(sub, checks[k].validation, checks[k].frame);
           }

@@ -921,6 +921,28 @@ TEST(CliGl, ValidateReportFolderHoldsOneRun) {
     EXPECT_TRUE(std::filesystem::exists(dir / "rep" / kept)) << kept;
 }
 
+// A light-K in the report folder that is a symbolic link is not followed: a fourteenth probe's
+// link to another folder had its frame.png, exact.png and report.json deleted, and a second light's
+// images written there. The cleanup leaves it; a run that would write through it is refused.
+TEST(CliGl, ValidateFollowsNoLinkOutOfItsReportFolder) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  std::filesystem::create_directories(dir / "rep");
+  std::filesystem::create_directories(dir / "decoy");
+  for (const char* f : {"frame.png", "exact.png", "report.json"}) test::writeText(dir / "decoy" / f, "precious");
+  std::filesystem::create_directory_symlink("../decoy", dir / "rep" / "light-1");
+  const std::string rep = (dir / "rep").string();
+  ASSERT_EQ(runCli("validate --resolution 32 --size 80x60 --report " + rep).code, 0);
+  for (const char* f : {"frame.png", "exact.png", "report.json"})
+    EXPECT_EQ(test::readText(dir / "decoy" / f), "precious") << f;
+  const std::string two = (test::sourceDir() / "data/scenes/lights/spot-and-point.json").string();
+  const CliResult r = runCli("validate --resolution 32 --size 80x60 --scene " + two + " --report " + rep);
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("light-1: is a symbolic link"), std::string::npos) << r.out;
+  for (const char* f : {"frame.png", "exact.png", "report.json"})
+    EXPECT_EQ(test::readText(dir / "decoy" / f), "precious") << f;
+}
+
 // A point light (README "Point lights"): build writes its closed cube volume, validate passes
 // with the explicit cube volume chosen by --volume auto, what it cannot do is refused plainly.
 TEST(CliGl, PointLightBuildsAndValidates) {
