@@ -135,6 +135,21 @@ enum class DepthMapUse { Volume, MapOnly };
 /// before allocating. Limits of the command line: see maxResolution in README.
 std::uint64_t depthMapBytes(int width, int height, DepthMapUse use = DepthMapUse::Volume);
 
+/// Bytes a volume built from `map` may need, from its content (the map exists: its depths are
+/// read, nothing of the size of a volume is allocated): depthMapBytes(Volume) plus 4 KiB per island
+/// of hit texels (8-connected: the quads join diagonal neighbours) and 64 B per hit texel beside a
+/// texel without a hit or the map's edge. Each island is a loop of walls and a hole in the exact
+/// cap's triangulation: a map of isolated one-texel hits needed about 475 B a texel, nine times
+/// what depthMapBytes assumes (a fourteenth probe's grating; measured on 1000² maps of isolated
+/// texels, 2 x 2 and 3 x 3 blocks, stripes and a checkerboard, each below this bound: README,
+/// the resolution limits, and docs/results/probe14/memory.sh).
+std::uint64_t volumeBuildBytes(const DepthMap& map);
+
+/// Refuses to build a volume from `map` when volumeBuildBytes needs more than half of this
+/// machine's memory: InputError naming the map's size and what it needs. The map is read only when
+/// its worst case (every other texel an island) could pass that, above about 3,000² on 24 GiB.
+void checkVolumeFitsMemory(const DepthMap& map);
+
 /// Largest side of a depth map (texels).
 inline constexpr int kMaxDepthMapSide = 16384;
 

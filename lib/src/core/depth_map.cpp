@@ -1,5 +1,9 @@
 #include "shadowvol/depth_map.h"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include <glm/matrix.hpp>
 #include <glm/vec4.hpp>
 
@@ -97,6 +101,49 @@ std::uint64_t depthMapBytes(int width, int height, DepthMapUse use) {
   // alone: its depths, the read-back copy and a file's row buffers (12 B; `shadowvol depth` at
   // 15000^2 peaked at 0.9 GB, 4 B a texel, 2026-12-05)
   return texels * (use == DepthMapUse::Volume ? 4 + 24 + 24 : 12);
+}
+
+std::uint64_t volumeBuildBytes(const DepthMap& map) {
+  const int w = map.width, h = map.height;
+  const std::size_t texels = std::size_t(std::max(w, 0)) * std::size_t(std::max(h, 0));
+  if (texels == 0 || map.depth.size() != texels) return depthMapBytes(std::max(w, 0), std::max(h, 0));
+  const auto hit = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < w && j < h && map.depth[std::size_t(j) * w + i] != DepthMap::kNoHit;
+  };
+  // Islands by union-find over the hit texels (path halving; 4 B a texel, freed before the build).
+  std::vector<std::uint32_t> parent(texels);
+  const auto find = [&](std::uint32_t k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::uint64_t islands = 0, border = 0;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      if (!hit(i, j)) continue;
+      const auto k = std::uint32_t(std::size_t(j) * w + i);
+      parent[k] = k;
+      ++islands;
+      border += !hit(i - 1, j) || !hit(i + 1, j) || !hit(i, j - 1) || !hit(i, j + 1);
+      for (const auto [di, dj] : {std::pair{-1, 0}, std::pair{-1, -1}, std::pair{0, -1}, std::pair{1, -1}})
+        if (hit(i + di, j + dj)) {
+          const std::uint32_t a = find(k), b = find(std::uint32_t(std::size_t(j + dj) * w + (i + di)));
+          if (a != b) {
+            parent[std::max(a, b)] = std::min(a, b);
+            --islands;
+          }
+        }
+    }
+  return depthMapBytes(w, h) + islands * 4096 + border * 64;
+}
+
+void checkVolumeFitsMemory(const DepthMap& map) {
+  const std::uint64_t texels = std::uint64_t(std::max(map.width, 0)) * std::uint64_t(std::max(map.height, 0));
+  const std::uint64_t worst = depthMapBytes(map.width, map.height) + texels / 4 * 4096 + texels * 64;
+  const std::uint64_t physical = physicalMemoryBytes();
+  if (physical == 0 || worst <= physical / 2) return;
+  checkFitsMemory(volumeBuildBytes(map), "depth map", "texels",
+                  std::to_string(map.width) + "x" + std::to_string(map.height) +
+                      " (a volume's walls and cap loops for each island of hit texels)");
 }
 
 void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,

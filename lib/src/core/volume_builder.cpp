@@ -524,6 +524,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
   using namespace volume;
   const auto tStart = Clock::now();
   validateMapAndOptions(map, options);
+  checkVolumeFitsMemory(map);  // a map of many small islands needs nine times a plain one's memory
   VolumeBuildStats& stats = result.stats;
   const double bias = options.bias.value_or(defaultBias(map));
   stats.biasUsed = bias;
