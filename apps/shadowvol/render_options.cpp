@@ -21,15 +21,10 @@ std::pair<int, int> parseSize(const std::string& text) {
   return {w, h};
 }
 
-// Peak bytes a pixel of the camera's frame, measured on the default scene (README "Known limits":
-// render 1,833,976 KiB at 8192², 27.98 a pixel; validate 1,747,732 KiB at 4096², 106.7), rounded up.
-constexpr std::uint64_t kRenderBytesPerPixel = 28, kScoredBytesPerPixel = 107;
-
 // Refuses a frame too large for the machine before the renderer allocates it: the --size given,
 // else the scene's camera.
 void checkFrameMemory(const RenderCliOptions& o, const Scene& scene) {
-  const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
-  const std::uint64_t need = pixels * (o.scored ? kScoredBytesPerPixel : kRenderBytesPerPixel);
+  const std::uint64_t need = frameBytes(scene.camera.width, scene.camera.height, o.scored);
   const std::string size = std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height);
   if (!o.size.empty())
     checkFitsMemory(need, "command line", "--size", o.size);

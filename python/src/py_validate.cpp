@@ -5,6 +5,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "py_common.h"
+#include "shadowvol/memory_budget.h"
 #include "shadowvol/capture_choice.h"
 #include "shadowvol/capture_warnings.h"
 #include "shadowvol/error.h"
@@ -32,7 +33,7 @@ struct FrameArgs {
   std::optional<std::pair<int, int>> size;
 };
 
-gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
+gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
   gl::RenderOptions ro;
   if (!gl::parseShadowMethod(a.method, ro.method))
     throw InputError("python", "method", a.method, "expected " + choicesText(namesIn(kShadowMethodNames)));
@@ -66,6 +67,10 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene) {
     scene.camera.width = w;
     scene.camera.height = h;
   }
+  // As the command line: a frame too large for the machine is refused before it is allocated (a
+  // probe's 16384 x 16384 ran 50 s into std::bad_alloc).
+  checkFitsMemory(frameBytes(scene.camera.width, scene.camera.height, scored), "python", a.size ? "size" : "scene camera",
+                  std::to_string(scene.camera.width) + " x " + std::to_string(scene.camera.height));
   return ro;
 }
 
@@ -110,7 +115,7 @@ py::array_t<std::uint8_t> imageArray(const std::vector<std::uint8_t>& bytes, int
 
 py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   Scene scene = s.scene;
-  gl::RenderOptions ro = renderOptions(a, scene);
+  gl::RenderOptions ro = renderOptions(a, scene, false);
   gl::RenderResult result;
   std::string device;
   {
@@ -146,7 +151,7 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
 py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError, double maxMissed,
                            bool selfIntersections, const std::optional<std::filesystem::path>& reportDir) {
   Scene scene = s.scene;
-  gl::RenderOptions ro = validationRenderOptions(renderOptions(a, scene));
+  gl::RenderOptions ro = validationRenderOptions(renderOptions(a, scene, true));
   ValidationOptions vo;
   vo.selfIntersections = selfIntersections;
   if (!(maxError >= 0.0 && maxError <= 1.0)) throw InputError("python", "max_error", std::to_string(maxError), "must be in [0, 1]");

@@ -268,6 +268,18 @@ def test_validate_returns_the_report(tmp_path, scene):
 
 
 @needs_gl
+def test_a_frame_too_large_for_the_machine_is_refused_at_once(scene):
+    """A fourteenth probe's finding: validate(size=(16384, 16384)) ran 50 s into std::bad_alloc; the
+    command line refuses such a frame before allocating it. 16384 x 16384 scored needs about 27 GiB."""
+    import os
+    memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    if 16384 * 16384 * 107 <= memory // 2:
+        pytest.skip("this machine holds such a frame")
+    with pytest.raises(sv.InputError, match=r"size = 16384 x 16384: needs about"):
+        sv.validate(scene, resolution=16, size=(16384, 16384))
+
+
+@needs_gl
 def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path, scene):
     report = sv.validate(scene, resolution=16, size=(16, 12))
     assert report["options"]["capture"] == "back" and report["options"]["captureAuto"].startswith("back capture")

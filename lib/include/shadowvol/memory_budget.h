@@ -16,4 +16,12 @@ std::uint64_t physicalMemoryBytes();
 void checkFitsMemory(std::uint64_t need, const std::string& source, const std::string& field,
                      const std::string& value);
 
+/// Peak bytes of a W x H camera frame: rendered (28 a pixel), or also scored by ray casting, as
+/// validate and bench do (107 a pixel). Measured on the default scene (README "Known limits":
+/// render 1,833,976 KiB at 8192², 27.98 a pixel; validate 1,747,732 KiB at 4096², 106.7), rounded up.
+inline std::uint64_t frameBytes(int width, int height, bool scored) {
+  const std::uint64_t pixels = std::uint64_t(width > 0 ? width : 0) * std::uint64_t(height > 0 ? height : 0);
+  return pixels * (scored ? 107 : 28);
+}
+
 }  // namespace shadowvol
