@@ -196,11 +196,12 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   return v;
 }
 
-Scene loadSceneOrDefault(const std::string& path) {
+Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings) {
   SceneLoadResult r;
   if (path.empty()) r.scene = defaultScene();
   else r = loadScene(path);
   for (const auto& w : r.warnings) std::fprintf(stderr, "shadowvol: warning: %s\n", w.c_str());
+  if (warnings) warnings->insert(warnings->end(), r.warnings.begin(), r.warnings.end());
   const Scene& s = r.scene;
   verboseNote("scene %s: %zu objects, %zu triangles; light near %.6g far %.6g; camera %dx%d near %.6g far %.6g",
               s.source.c_str(), s.objects.size(), s.triangleCount(), s.light.nearPlane, s.light.farPlane,

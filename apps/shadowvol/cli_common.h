@@ -78,8 +78,9 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o);
 void addJsonOption(CLI::App& cmd, bool& json);
 
-/// Loads the scene (or the default one), printing its warnings to stderr.
-Scene loadSceneOrDefault(const std::string& path);
+/// Loads the scene (or the default one), printing its warnings to stderr (and appending them to
+/// `warnings` when given: validate's report keeps them).
+Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings = nullptr);
 
 /// Adds --capture (auto, back, front, midpoint, entry; default auto), one help text for every command.
 CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture);

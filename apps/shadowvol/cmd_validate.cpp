@@ -202,7 +202,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
     run = [o] {
       const std::filesystem::path dir(o->reportDir);
       checkOutputFolder("--report", o->reportDir);
-      Scene scene = loadSceneOrDefault(o->render.scene.scene);
+      std::vector<std::string> sceneWarnings;  // what loading noticed, kept in the report
+      Scene scene = loadSceneOrDefault(o->render.scene.scene, &sceneWarnings);
       for (const char* name : kReportFiles)
         checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
       std::string captureAuto;
@@ -283,6 +284,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                               : "at least one light's frame failed: see lights[k].verdict";
       }
       j["warnings"] = warnings;
+      j["sceneWarnings"] = sceneWarnings;
       j["lightFit"] = lightFit;
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       j["images"] = checks.size() == 1 ? images : std::vector<std::string>{"frame.png"};

@@ -921,6 +921,26 @@ TEST(CliGl, ValidateReportFolderHoldsOneRun) {
     EXPECT_TRUE(std::filesystem::exists(dir / "rep" / kept)) << kept;
 }
 
+// What loading the scene warned about is in the report too (`sceneWarnings`): a fourteenth probe
+// found the light inside a closed room said only on the terminal.
+TEST(CliGl, ValidateReportsTheScenesWarnings) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  test::writeText(dir / "room.json", R"({"objects":[{"type":"plane","size":10},
+      {"type":"box","name":"room","size":[12,6,12],"transform":{"translate":[0,2.9,0]}},
+      {"type":"sphere","radius":0.5,"transform":{"translate":[0,1,0]}}],
+    "light":{"type":"spot","position":[0.5,4,0.3],"target":[0,0,0],"fov":90},
+    "camera":{"eye":[0,3,4],"target":[0,0,0]}})");
+  const CliResult r = runCli("validate --resolution 32 --size 80x60 --scene " + (dir / "room.json").string() +
+                             " --report " + (dir / "rep").string());
+  EXPECT_TRUE(r.code == 0 || r.code == 3) << r.out;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "rep" / "report.json"));
+  ASSERT_TRUE(j.contains("sceneWarnings")) << j.dump(2);
+  std::string all;
+  for (const auto& w : j["sceneWarnings"]) all += w.get<std::string>() + "\n";
+  EXPECT_NE(all.find("inside the closed mesh \"room\""), std::string::npos) << all;
+}
+
 // A light-K in the report folder that is a symbolic link is not followed: a fourteenth probe's
 // link to another folder had its frame.png, exact.png and report.json deleted, and a second light's
 // images written there. The cleanup leaves it; a run that would write through it is refused.

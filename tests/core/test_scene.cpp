@@ -411,6 +411,9 @@ TEST(SceneParser, LightInsideAClosedMeshWarns) {
     "camera":{"eye":[0,0,9],"target":[0,0,0]}})");
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find("shell"), std::string::npos);
+  // What it lights inside is lit (a fourteenth probe's room: "everything it lights will be in
+  // shadow" was said of a lit floor).
+  EXPECT_NE(r.warnings[0].find("it lights only what the mesh encloses"), std::string::npos) << r.warnings[0];
   EXPECT_TRUE(parse(kGood).warnings.empty());
 }
 

@@ -678,7 +678,9 @@ void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::si
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (const SceneObject& o = scene.objects[i]; closed[i] && insideClosedMesh(o.mesh, scene.light.position))
       warnings.push_back(source + ": " + pointer + "/position: the " + toString(scene.light.type) +
-                         " light is inside the closed mesh \"" + o.name + "\": everything it lights will be in shadow");
+                         " light is inside the closed mesh \"" + o.name +
+                         "\": it lights only what the mesh encloses (its inner side and the objects inside); "
+                         "everything outside it is in shadow");
   // A probe's finding: a point light on a wall had its near plane fitted down to far x 1e-7, and
   // its refined GPU volume disagreed with its crossing counts along every shadow edge.
   const Light& l = scene.light;
