@@ -91,7 +91,8 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr,
                  "shadowvol: error: out of memory: this command needs more memory than the process may use (the "
-                 "machine's memory or a ulimit); a smaller --resolution or --size needs less. No output was written.\n");
+                 "machine's memory or a ulimit); what it needs grows with the depth map's resolution, the image's size "
+                 "and the triangles of the scene or mesh file, whichever it takes. No output was written.\n");
     return cli::kRuntimeFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "shadowvol: error: %s\n", e.what());
