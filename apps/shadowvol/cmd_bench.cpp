@@ -76,6 +76,26 @@ nlohmann::json rowJson(const SweepRow& r) {
           {"distMax", optional(r.distMax)}};
 }
 
+// What bench prints: with --json one document (the cells of results.csv, the notes and the files
+// written), else a "wrote" line a file.
+void printBenchOutput(bool json, const std::string& out, const SweepReportInfo& info, bool interrupted,
+                      const std::vector<std::string>& notes, const std::vector<std::filesystem::path>& written,
+                      const std::vector<SweepRow>& rows) {
+  if (!json) {
+    for (const auto& p : written) std::printf("wrote %s\n", p.string().c_str());
+    return;
+  }
+  nlohmann::json cells = nlohmann::json::array();
+  for (const auto& r : rows) cells.push_back(rowJson(r));
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& p : written) files.push_back(p.string());
+  const nlohmann::json j = {{"shadowvolVersion", SHADOWVOL_VERSION}, {"out", out},
+                            {"machine", info.machine},                 {"glRenderer", info.glRenderer},
+                            {"interrupted", interrupted},              {"notes", notes},
+                            {"files", files},                          {"cells", cells}};
+  std::cout << j.dump(2) << '\n';
+}
+
 
 // --report-only --methods: the report and plots of these methods only (each must be in the results).
 std::vector<SweepRow> onlyMethods(std::vector<SweepRow> rows, const std::vector<std::string>& methods) {
@@ -142,7 +162,13 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
     if (!o->listMethods && o->out.empty()) throw CLI::RequiredError("--out (the output folder)");
     run = [o] {
       if (o->listMethods) {
-        for (const auto& m : sweepMethods()) std::printf("%-26s %s\n", m.key.c_str(), m.description.c_str());
+        if (o->json) {
+          nlohmann::json methods = nlohmann::json::array();
+          for (const auto& m : sweepMethods()) methods.push_back({{"key", m.key}, {"description", m.description}});
+          std::cout << methods.dump(2) << '\n';
+        } else {
+          for (const auto& m : sweepMethods()) std::printf("%-26s %s\n", m.key.c_str(), m.description.c_str());
+        }
         return kOk;
       }
       checkOutputFolder("--out", o->out);
@@ -163,7 +189,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
         if (!o->methods.empty()) rows = onlyMethods(std::move(rows), o->methods);
         info.timing = rows.empty() ? "" : rows.front().timing;
         info.glRenderer = "see results";
-        for (const auto& p : writeSweepReport(rows, info, dir)) std::printf("wrote %s\n", p.string().c_str());
+        printBenchOutput(o->json, o->out, info, false, {}, writeSweepReport(rows, info, dir), rows);
         return kOk;
       }
       SweepOptions so;
@@ -232,20 +258,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       std::signal(SIGINT, SIG_DFL);
       for (const auto& n : notes) std::fprintf(stderr, "shadowvol: note: %s\n", n.c_str());
       info.timing = rows.empty() ? "" : rows.back().timing;
-      const auto written = writeSweepReport(rows, info, dir);
-      if (o->json) {
-        nlohmann::json cells = nlohmann::json::array();
-        for (const auto& r : rows) cells.push_back(rowJson(r));
-        nlohmann::json files = nlohmann::json::array();
-        for (const auto& p : written) files.push_back(p.string());
-        const nlohmann::json j = {{"shadowvolVersion", SHADOWVOL_VERSION}, {"out", o->out},
-                                  {"machine", info.machine},                 {"glRenderer", info.glRenderer},
-                                  {"interrupted", bool(gStop)},              {"notes", notes},
-                                  {"files", files},                          {"cells", cells}};
-        std::cout << j.dump(2) << '\n';
-      } else {
-        for (const auto& p : written) std::printf("wrote %s\n", p.string().c_str());
-      }
+      printBenchOutput(o->json, o->out, info, bool(gStop), notes, writeSweepReport(rows, info, dir), rows);
       if (gStop) {
         std::fprintf(stderr, "interrupted: %zu cells in %s; run the same command to resume\n", rows.size(),
                      (dir / "results.csv").string().c_str());

@@ -1136,6 +1136,18 @@ TEST(CliGl, BenchListsTakeCommas) {
   EXPECT_EQ(u.code, 2) << u.out;
   EXPECT_TRUE(contains(u.out, "--out")) << u.out;
   EXPECT_EQ(runCli("bench --list-methods").code, 0);
+  // A fourteenth probe's: --json was ignored by --report-only and --list-methods.
+  const CliResult onlyJson = runCli("bench -q --report-only --json --out " + (dir / "b").string());
+  ASSERT_EQ(onlyJson.code, 0) << onlyJson.out;
+  const auto oj = nlohmann::json::parse(onlyJson.out.substr(onlyJson.out.find('{')));
+  EXPECT_EQ(oj["cells"].size(), 4u);
+  EXPECT_FALSE(oj["files"].empty());
+  EXPECT_FALSE(contains(onlyJson.out, "wrote ")) << onlyJson.out;
+  const CliResult list = runCli("bench --list-methods --json");
+  ASSERT_EQ(list.code, 0) << list.out;
+  const auto lj = nlohmann::json::parse(list.out.substr(list.out.find('[')));
+  ASSERT_FALSE(lj.empty());
+  EXPECT_TRUE(lj[0].contains("key") && lj[0].contains("description")) << lj[0].dump();
   // A probe's finding: a stray comma made an empty key and took the next option as a method.
   const CliResult comma = runCli("bench --scenes default --methods , --repeat 1 --out " + (dir / "c").string());
   EXPECT_EQ(comma.code, 1) << comma.out;
