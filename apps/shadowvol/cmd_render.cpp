@@ -14,6 +14,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/temporary_files.h"
 
 namespace shadowvol::cli {
 
@@ -119,6 +120,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       };
       // The image, then the stencil files: a write that fails (a full disk, a folder in the way)
       // takes the files this run wrote before it along, so no half set is left behind.
+      // A signal that ends the command half-way takes them along too (OutputSetGuard).
+      const OutputSetGuard set;
       std::vector<std::filesystem::path> written;
       written.reserve(2 + 2 * result.otherLights.size() + 1);  // no allocation between a write and its record
       auto png = [&](const std::filesystem::path& path, int width, int height, int channels,

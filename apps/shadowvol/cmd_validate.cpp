@@ -13,6 +13,7 @@
 #include "shadowvol/image_io.h"
 #include "shadowvol/mesh_io.h"
 #include "shadowvol/report_json.h"
+#include "shadowvol/temporary_files.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "shadowvol/validate/gl_frame.h"
 #include "shadowvol/validate/validation_report.h"
@@ -294,6 +295,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       // fails takes this run's files with it.
       createFolders(dir);
       removeReportFiles(dir);
+      const OutputSetGuard set;  // a signal that ends the run half-way removes this run's files too
       try {
         if (checks.size() == 1) {
           writeValidationImages(dir, checks[0].validation, checks[0].frame);

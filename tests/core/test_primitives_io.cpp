@@ -166,6 +166,42 @@ TEST(MeshIo, KilledWhileWritingLeavesNothing) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
+// A fourteenth probe's finding: a command killed half-way through a several-file result (validate's
+// report folder, render's image and stencil) left the files it had placed. Under an OutputSetGuard
+// they go too; a file in place before the guard, and one written after it ends, stay.
+TEST(MeshIo, KilledHalfWayThroughASetOfFilesLeavesNoneOfThem) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "older.txt", "kept");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    removeTemporaryFilesOnSignal();
+    auto write = [&](const char* name) {
+      writeAtomically(dir / name, [](const std::filesystem::path& tmp) { std::ofstream(tmp) << "whole"; });
+    };
+    {
+      const OutputSetGuard done;
+      write("finished.txt");
+    }
+    write("after.txt");
+    const OutputSetGuard set;
+    write("first.png");
+    {
+      const OutputSetGuard inner;  // nested (writeDepthMap's inside a command's): the outer set holds
+      write("second.png");
+    }
+    std::raise(SIGTERM);
+    std::_Exit(0);  // not reached
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_FALSE(std::filesystem::exists(dir / "first.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "second.png"));
+  for (const char* kept : {"older.txt", "finished.txt", "after.txt"})
+    EXPECT_TRUE(std::filesystem::exists(dir / kept)) << kept;
+}
+
 // Regression (a full disk left a truncated PNG in place and `render` exited 0: stbi_write_png does
 // not report failed writes): with the file size limited (as a full disk would), every writer
 // throws and leaves nothing. In a child process, with SIGXFSZ ignored so that writes fail EFBIG.

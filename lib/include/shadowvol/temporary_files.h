@@ -1,6 +1,6 @@
 // The temporary files of writeAtomically (mesh_io.h), removed when a signal ends the process:
 // a command killed while writing (Ctrl-C, SIGTERM, SIGHUP) leaves neither the target nor the
-// temporary beside it. The registry is a fixed table of paths that a signal handler can walk
+// temporary beside it; and the files of a several-file result already in place (OutputSetGuard). The registry is a fixed table of paths that a signal handler can walk
 // with async-signal-safe calls only (unlink, signal, raise).
 #pragma once
 
@@ -25,5 +25,23 @@ class TemporaryFileGuard {
  private:
   int slot_ = -1;
 };
+
+/// While it lives, the files writeAtomically puts in place are noted (noteOutputPlaced), and a
+/// signal that ends the process as above removes them too: a command that writes several files as
+/// one result (validate's report folder, render's image and its stencil images) leaves none of
+/// them when it is killed half-way, as it leaves none when a write fails (a fourteenth probe's
+/// Ctrl-C left a report folder of images without its report.json). Files in place before it began
+/// are not touched. Guards nest (the set is the outermost's); at most 128 files are noted (more
+/// are not removed).
+class OutputSetGuard {
+ public:
+  OutputSetGuard();
+  ~OutputSetGuard();  ///< forgets the noted files: they stay
+  OutputSetGuard(const OutputSetGuard&) = delete;
+  OutputSetGuard& operator=(const OutputSetGuard&) = delete;
+};
+
+/// Notes `path`, just renamed into place by writeAtomically, while an OutputSetGuard lives.
+void noteOutputPlaced(const std::filesystem::path& path);
 
 }  // namespace shadowvol

@@ -21,9 +21,11 @@
 
 #include "shadowvol/error.h"
 #include "shadowvol/scene.h"
+#include "shadowvol/temporary_files.h"
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 #include "json_text.h"
+#include "shadowvol/temporary_files.h"
 
 namespace shadowvol {
 namespace {
@@ -187,6 +189,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"depthChecksum", "fnv1a64:" + depthChecksum(map.depth)},
   };
   const auto sidecar = depthSidecarPath(pfm);
+  const OutputSetGuard set;  // a signal between the two renames takes the side file along
   writeAtomically(pfm, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError(pfm.string(), "", "", "cannot create the file");

@@ -151,6 +151,7 @@ void writeAtomically(const std::filesystem::path& requested,
     std::filesystem::remove(tmp, ec);
     throw InputError(path.string(), "", "", "cannot write the file: " + ec.message());
   }
+  noteOutputPlaced(path);  // part of a several-file result: removed if a signal ends the command
 }
 
 void createFolders(const std::filesystem::path& dir) {

@@ -20,9 +20,18 @@ struct Slot {
 };
 std::array<Slot, kSlots> slots;
 
+// The files an OutputSetGuard has seen placed (appended by one thread: the command's).
+constexpr int kPlacedSlots = 128;
+std::array<Slot, kPlacedSlots> placed;
+std::atomic<int> outputSetDepth{0};  // guards alive (they nest: writeDepthMap's inside a command's)
+std::atomic<int> placedCount{0};
+
 extern "C" void onFatalSignal(int sig) {
   for (Slot& s : slots)
     if (s.ready.load()) ::unlink(s.path);
+  if (outputSetDepth.load() > 0)
+    for (Slot& s : placed)
+      if (s.ready.load()) ::unlink(s.path);
   std::signal(sig, SIG_DFL);
   std::raise(sig);
 }
@@ -45,6 +54,24 @@ TemporaryFileGuard::TemporaryFileGuard(const std::filesystem::path& path) {
       return;
     }
   }
+}
+
+OutputSetGuard::OutputSetGuard() { outputSetDepth.fetch_add(1); }
+
+OutputSetGuard::~OutputSetGuard() {
+  if (outputSetDepth.fetch_sub(1) != 1) return;  // an outer guard keeps the set
+  for (Slot& s : placed) s.ready.store(false);
+  placedCount.store(0);
+}
+
+void noteOutputPlaced(const std::filesystem::path& path) {
+  if (outputSetDepth.load() == 0) return;
+  const std::string p = path.string();
+  const int k = placedCount.load();
+  if (p.size() >= kMaxPath || k >= kPlacedSlots) return;
+  std::memcpy(placed[k].path, p.c_str(), p.size() + 1);
+  placed[k].ready.store(true);
+  placedCount.store(k + 1);
 }
 
 TemporaryFileGuard::~TemporaryFileGuard() {
