@@ -260,6 +260,23 @@ void checkResolution(const std::string& option, int resolution, DepthMapUse use)
   checkDepthMapSize(resolution, resolution, "command line", option, use);
 }
 
+namespace {
+
+// Whether something can be made in the folder `existing` (a read-only or virtual file system, an
+// immutable folder, no write permission), found before the work rather than after it: by making
+// an empty folder there and removing it. InputError naming `option` and the reason.
+void probeWritableFolder(const std::filesystem::path& existing, const std::string& option, const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path probe = existing / (".shadowvol-probe-" + std::to_string(::getpid()));
+  const bool made = std::filesystem::create_directory(probe, ec);  // false, no error: left by a crash
+  if (ec)
+    throw InputError("command line", option, path,
+                     "cannot create anything in " + existing.string() + ": " + ec.message());
+  if (made) std::filesystem::remove(probe, ec);
+}
+
+}  // namespace
+
 void checkOutputPath(const std::string& option, const std::string& path) {
   if (path.empty()) throw InputError("command line", option, "\"\"", "an output path is required");
   const std::filesystem::path p(path);
@@ -270,6 +287,7 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                      std::filesystem::exists(dir, ec) ? dir.string() + " is not a folder"
                                                       : "the folder " + dir.string() + " does not exist");
   if (std::filesystem::is_directory(p, ec)) throw InputError("command line", option, path, "is a folder, not a file");
+  probeWritableFolder(dir, option, path);  // a probe found it only after minutes of work
 }
 
 void checkNotAnInput(const std::string& option, const std::string& value, const std::filesystem::path& output,
@@ -308,14 +326,7 @@ void checkOutputFolder(const std::string& option, const std::string& path) {
     existing = existing.parent_path();
   if (!std::filesystem::is_directory(existing, ec))
     throw InputError("command line", option, path, existing.string() + " is not a folder");
-  // Whether a folder can be made there (a read-only or virtual file system), found now rather than
-  // after the work: by making an empty one and removing it.
-  const std::filesystem::path probe = existing / (".shadowvol-probe-" + std::to_string(::getpid()));
-  const bool made = std::filesystem::create_directory(probe, ec);  // false, no error: left by a crash
-  if (ec)
-    throw InputError("command line", option, path,
-                     "cannot create a folder in " + existing.string() + ": " + ec.message());
-  if (made) std::filesystem::remove(probe, ec);
+  probeWritableFolder(existing, option, path);
 }
 
 void addPlatformOption(CLI::App& cmd, std::string& platform, const std::string& when) {

@@ -91,7 +91,12 @@ TEST(Cli, HelpAndUsage) {
   // cannot be made is refused before any work, exit 1.
   const CliResult proc = runCli("validate --resolution 16 --size 40x30 --report /proc/x-report");
   EXPECT_EQ(proc.code, 1) << proc.out;
-  EXPECT_TRUE(contains(proc.out, "--report = /proc/x-report: cannot create a folder in /proc")) << proc.out;
+  EXPECT_TRUE(contains(proc.out, "--report = /proc/x-report: cannot create anything in /proc")) << proc.out;
+  // So is an --out whose folder takes no file (a fourteenth probe's read-only file system: found
+  // after minutes of work, "cannot create the file" without a reason).
+  const CliResult procOut = runCli("build --resolution 16 --out /proc/x.ply");
+  EXPECT_EQ(procOut.code, 1) << procOut.out;
+  EXPECT_TRUE(contains(procOut.out, "--out = /proc/x.ply: cannot create anything in /proc: ")) << procOut.out;
   // Regression: a point light's cube map past its limit was refused in the cube map's words
   // ("six faces of N x N texels = 4096x24576"), naming neither the option nor the limit on N.
   const CliResult cube = runCli("build --scene " + std::string(SV_SOURCE_DIR) +
