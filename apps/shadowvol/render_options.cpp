@@ -131,7 +131,7 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
 }  // namespace
 
 gl::RenderOptions toRenderOptions(const RenderCliOptions& o, Scene& scene, std::string* captureAutoReason) {
-  checkResolution("--resolution", o.resolution);
+  checkResolution("--resolution", o.resolution, o.method == "hybrid" ? DepthMapUse::Volume : DepthMapUse::ShadowMap);
   if (o.shadowBias && (!std::isfinite(*o.shadowBias) || *o.shadowBias < 0.0))
     throw InputError("command line", "--shadow-bias", numberText(*o.shadowBias), "must be finite and >= 0");
   if (!std::isfinite(o.shadowSlope) || o.shadowSlope < 0.0)

@@ -20,7 +20,7 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
   const CaptureMode mode = captureModeArg(capture, &s.scene, CaptureUse::Volume);
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
-  checkDepthMapSize(width, height, "python", "width, height");
+  checkDepthMapSize(width, height, "python", "width, height", DepthMapUse::MapOnly);  // as `shadowvol depth`
   // As the command line's --platform: an EGL platform names how the GPU is reached.
   if (device == "cpu" && platform != "auto")
     throw InputError("python", "platform", platform, "picks the GPU's EGL platform: only with device='gpu'");

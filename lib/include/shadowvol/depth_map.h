@@ -128,8 +128,9 @@ class TexelUnprojector {
 DepthMap makeDepthMap(const Light& light, int width, int height, CaptureMode capture);
 
 /// What a map is made for, for the memory it needs: a shadow volume built from it (its vertices
-/// and triangles too), or the map alone (a depth file, a shadow map).
-enum class DepthMapUse { Volume, MapOnly };
+/// and triangles too), the map alone (a depth file, Python's capture_depth), or a shadow map in a
+/// rendered frame (its GL texture and read-back too).
+enum class DepthMapUse { Volume, MapOnly, ShadowMap };
 
 /// Bytes a W x H depth map and its derived buffers would need, to refuse absurd resolutions
 /// before allocating. Limits of the command line: see maxResolution in README.

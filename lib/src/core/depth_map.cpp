@@ -99,8 +99,15 @@ std::uint64_t depthMapBytes(int width, int height, DepthMapUse use) {
   const std::uint64_t texels = std::uint64_t(width) * std::uint64_t(height);
   // depths (4 B) + volume vertices (3 doubles) + ~2 triangles per texel (2 x 3 x 4 B); the map
   // alone: its depths, the read-back copy and a file's row buffers (12 B; `shadowvol depth` at
-  // 15000^2 peaked at 0.9 GB, 4 B a texel, 2026-12-05)
-  return texels * (use == DepthMapUse::Volume ? 4 + 24 + 24 : 12);
+  // 15000^2 peaked at 0.9 GB, 4 B a texel, 2026-12-05); a shadow map's frame: 24 B (`render
+  // --method shadowmap --resolution 14000` peaked at 3,966,700 KB, 20.7 B a texel: a fourteenth
+  // probe's, where the volume's 52 refused a 16384² map that fits)
+  switch (use) {
+    case DepthMapUse::Volume: return texels * (4 + 24 + 24);
+    case DepthMapUse::MapOnly: return texels * 12;
+    case DepthMapUse::ShadowMap: return texels * 24;
+  }
+  return texels * (4 + 24 + 24);
 }
 
 std::uint64_t volumeBuildBytes(const DepthMap& map) {
