@@ -137,6 +137,13 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
+      if (options.cap == FarCap::Quad && !r.mesh.triangles.empty()) {  // a fourteenth probe: said nowhere at build
+        const std::string note = "the quad cap (--cap quad, the thesis's far rectangle) lies over the sheet's far "
+                                 "triangles: the volume is closed but has coincident faces, which `check` reports as "
+                                 "not outward; it is kept for comparison (README \"Volume mesh\")";
+        std::fprintf(stderr, "shadowvol: note: %s: %s\n", o->out.c_str(), note.c_str());
+        j["warnings"].push_back(o->out + ": " + note);
+      }
       if (r.mesh.triangles.empty()) {  // a second probe's finding: a depth file's empty volume went unsaid
         const std::string note = "the volume is empty: the depth map holds no surface in front of its far plane, "
                                  "so nothing is in shadow (the file holds no triangles)";
