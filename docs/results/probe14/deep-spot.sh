@@ -11,7 +11,7 @@ mkdir -p /tmp/probe14/B && cp docs/results/probe14/B/*.py /tmp/probe14/B/
 for s in data/scenes/bunny-wide-ground.json /tmp/probe14/B/scenes/wide2_fov90.json \
          /tmp/probe14/B/scenes/wide2_fov160.json data/scenes/tree.json \
          data/scenes/unseen/triceratops-spot-low.json data/scenes/unseen/turbine-spot.json \
-         /tmp/probe14/B/scenes/wide_id.json; do
+         docs/results/probe10/scenes/helmet-spotlow.json /tmp/probe14/B/scenes/wide_id.json; do
   ratio=$("$SV" scene --scene "$s" --json 2>/dev/null |
           python3 -c "import json,sys; l=json.load(sys.stdin)['light']; print('%.3g' % (l['far']/l['near']))")
   for r in 128 256; do for c in entry back; do
