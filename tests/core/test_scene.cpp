@@ -288,8 +288,11 @@ TEST(SceneParser, BadObjects) {
   expectError(withObject(R"({"type":"box","size":[1,0,1]})"), "/objects/0/size");
   expectError(withObject(R"({"type":"box","transform":{"matrix":[0,0,0,0, 0,0,0,0, 0,0,0,0, 0,0,0,1]}})"),
               "/objects/0/transform/matrix");
-  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,0,0, 0,1,0,0, 1,1,1e-13,0, 0,0,0,1]}})"),
+  // Columns (1,0,0), (0,1,0), (1,1,1e-13): nearly in one plane.
+  expectError(withObject(R"({"type":"box","transform":{"matrix":[1,0,1,0, 0,1,1,0, 0,0,1e-13,0, 0,0,0,1]}})"),
               "/objects/0/transform/matrix", "singular");
+  // A stretch along one axis is not singular, as "scale" takes it (a second reader's finding).
+  EXPECT_NO_THROW(parse(withObject(R"({"type":"box","transform":{"matrix":[1e6,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})")));
   // Singular is judged against the matrix's own scale: a uniform 1e-5 is sound, as with "scale".
   const auto small = parse(withObject(R"({"type":"box","transform":{"matrix":[1e-5,0,0,0, 0,1e-5,0,0, 0,0,1e-5,0, 0,0,0,1]}})"));
   const auto scaled = parse(withObject(R"({"type":"box","transform":{"scale":1e-5}})"));
@@ -851,7 +854,8 @@ TEST(SceneParser, CoincidentTargetsAreJudgedAgainstTheirMagnitude) {
               "1e-150");
   expectError(withLight(R"({"type":"directional","direction":[0,-1e-200,0]})"), "/light/direction",
               "shorter than 1e-150");
-  expectError(withCamera(R"({"eye":[0,0,3e5],"target":[0,0,300000.00000000001]})"), "/camera/target",
+  // Two float steps apart at 3e5 (1.2e-10): the old absolute 1e-12 took them.
+  expectError(withCamera(R"({"eye":[0,0,3e5],"target":[0,0,300000.00000000012]})"), "/camera/target",
               "give no view direction");
   EXPECT_NO_THROW(parse(withLight(R"({"type":"directional","direction":[0,-1e-13,0]})")));
 }

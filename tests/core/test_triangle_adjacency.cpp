@@ -152,9 +152,37 @@ TEST(TriangleAdjacency, ExtraTrianglesThatOnlyKeepAMeshOpenAreLeftOut) {
   TriangleMesh lone = awkwardTetrahedron();
   lone.triangles = {{0, 1, 2}};
   EXPECT_EQ(removeExtraTriangles(lone).total(), 0u);
+  TriangleMesh flatBeside = awkwardTetrahedron();
+  flatBeside.triangles = {{0, 1, 2}, {0, 3, 4}};  // a flat one beside a lone triangle, sharing no edge
+  EXPECT_EQ(removeExtraTriangles(flatBeside).flat, 0u);  // 0-3-4 is not flat: 3 lies off the line
+  flatBeside.triangles = {{0, 1, 2}, {0, 1, 4}};  // flat, on the lone triangle's open edge: it pairs
+  EXPECT_EQ(removeExtraTriangles(flatBeside).flat, 1u);  // that one and opens two, adding no surface
   TriangleMesh flatAlone = awkwardTetrahedron();
-  flatAlone.triangles = {{0, 1, 4}};  // flat, its edges used by nothing else: bounds nothing
-  EXPECT_EQ(removeExtraTriangles(flatAlone).flat, 1u);
+  flatAlone.triangles = {{0, 1, 4}};  // nothing else: left whole (emptied, it would lose its warnings)
+  EXPECT_EQ(removeExtraTriangles(flatAlone).total(), 0u);
+  EXPECT_EQ(flatAlone.triangles.size(), 1u);
+
+  // Judged one by one (a second reader's findings): of a flat zip and its reverse, one goes and the
+  // mesh closes; two stray flat triangles on one closed edge both go.
+  TriangleMesh zippedTwice = zipped;
+  zippedTwice.triangles.push_back({0, 4, 1});
+  EXPECT_EQ(removeExtraTriangles(zippedTwice).flat, 1u);
+  EXPECT_TRUE(isClosedSurface(zippedTwice));
+  TriangleMesh twoStray = awkwardTetrahedron();
+  const glm::dvec3 a(twoStray.positions[0]), b(twoStray.positions[1]);
+  twoStray.positions.push_back(glm::vec3(a + 0.25 * (b - a)));  // vertex 5, a quarter along 0-1
+  twoStray.triangles.push_back({0, 1, 4});
+  twoStray.triangles.push_back({1, 0, 5});
+  EXPECT_EQ(removeExtraTriangles(twoStray).flat, 2u);
+  EXPECT_EQ(twoStray.triangles, awkwardTetrahedron().triangles);
+  // Closed already: nothing to lose, even a face repeated once welded (two boxes stored apart that
+  // touch, one inside out).
+  TriangleMesh touching = makeBox(1.0, 1.0, 1.0), second = makeBox(1.0, 1.0, 1.0);
+  for (auto& p : second.positions) p.x += 1.0f;
+  for (auto& t : second.triangles) std::swap(t[1], t[2]);
+  touching.append(second);
+  ASSERT_TRUE(isClosedSurface(touching));
+  EXPECT_EQ(removeExtraTriangles(touching).total(), 0u);
 }
 
 }  // namespace

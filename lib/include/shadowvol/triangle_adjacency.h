@@ -62,12 +62,14 @@ struct ExtraTriangles {
 ///   - a repeat of an earlier triangle's welded corners in the same cyclic order (it covers the
 ///     same points, facing the same way; one wound the other way is kept: with it, the pair is a
 ///     two-sided sheet);
-///   - a flat triangle (its corners on a line: the distance of the farthest from the line through
-///     the other two under 1e-6 of its longest side, or under 4 float steps at its corners'
-///     magnitude, so a corner rounded to float still counts) each of whose three edges the other
-///     triangles use an even number of times: without it every one of them is paired or unused.
-///     A flat triangle that zips a T-junction pairs its edges and is kept.
-/// Triangles with a repeated welded vertex stay (they have no neighbours already).
+///   - a flat triangle (its corners on a line: its height over its longest side under 1e-6 of that
+///     side, or under 4 steps of 2^-24 of its corners' magnitude, so that a corner rounded to float
+///     still counts) at least two of whose edges are used an odd number of times, itself included:
+///     leaving it out evens more of its edges than it unevens. Judged in index order, each without
+///     the flat triangles left out before it. A flat triangle that zips a T-junction pairs its edges
+///     and is kept; of a zip and its reverse, one goes.
+/// A mesh that is closed already (isClosedSurface) loses nothing, nor does one that would lose every
+/// triangle. Triangles with a repeated welded vertex stay (they have no neighbours already).
 ExtraTriangles removeExtraTriangles(TriangleMesh& mesh);
 
 }  // namespace shadowvol

@@ -175,13 +175,15 @@ glm::dmat4 readTransform(ObjectReader& parent) {
     // (and a zero w row makes every point infinite).
     if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
       r.fail("matrix", v, "the bottom row must be 0 0 0 1 (an affine transform; elements 13-16 of the row-major list)");
-    // Singular: its determinant under 1e-12 of the cube of its longest column (the determinant of
-    // that uniform scale), judged against the matrix's own scale so that a uniform 1e-5 is as sound
-    // here as in "scale" (an absolute 1e-12 once refused it).
+    // Singular: its determinant under 1e-12 of its columns' lengths' product (Hadamard's bound: the
+    // determinant when the columns are orthogonal), so that neither a uniform scale of 1e-5 (an
+    // absolute 1e-12 once refused it) nor a stretch of 1e6 along one axis is refused, as "scale"
+    // takes both; columns that nearly share a plane are.
     const glm::dmat3 linear(m);
-    const double longest = std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
-    if (!(std::abs(glm::determinant(linear)) > 1e-12 * longest * longest * longest))
-      r.fail("matrix", v, "the matrix is singular (its determinant is under 1e-12 of its longest column's cube)");
+    const double bound = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
+    if (!(std::abs(glm::determinant(linear)) > 1e-12 * bound))
+      r.fail("matrix", v,
+             "the matrix is singular (its determinant is under 1e-12 of its columns' lengths' product)");
   } else {
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0));
     const glm::dvec3 rot = r.vec3("rotate", glm::dvec3(0.0));

@@ -176,6 +176,9 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
 }  // namespace
 
 ExtraTriangles removeExtraTriangles(TriangleMesh& mesh) {
+  // A closed mesh has none to lose (two boxes stored apart that touch along a face, one inside
+  // out, repeat a face once welded, and are closed as stored).
+  if (isClosedSurface(mesh)) return {};
   const std::vector<std::uint32_t> weld = weldByPosition(mesh.positions);
   const std::size_t n = mesh.triangles.size();
   std::vector<std::array<std::uint32_t, 3>> welded(n);
@@ -207,10 +210,17 @@ ExtraTriangles removeExtraTriangles(TriangleMesh& mesh) {
   for (std::size_t t = 0; t < n; ++t)
     if (valid[t] && !drop[t])
       for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(welded[t][k], welded[t][(k + 1) % 3]));
+  // Uses of each edge, counted down as flat triangles go (in index order: deterministic), so that
+  // each is judged without those before it.
   std::sort(edges.begin(), edges.end());
-  const auto uses = [&](std::uint64_t key) {
-    const auto [lo, hi] = std::equal_range(edges.begin(), edges.end(), key);
-    return std::size_t(hi - lo);
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint32_t> uses;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (keys.empty() || keys.back() != edges[k]) keys.push_back(edges[k]), uses.push_back(0);
+    ++uses.back();
+  }
+  const auto useOf = [&](std::uint64_t key) -> std::uint32_t& {
+    return uses[std::size_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin())];
   };
   for (std::size_t t = 0; t < n; ++t) {
     if (!valid[t] || drop[t]) continue;
@@ -219,14 +229,16 @@ ExtraTriangles removeExtraTriangles(TriangleMesh& mesh) {
                       glm::dvec3(mesh.positions[tri[2]])))
       continue;
     const auto& w = welded[t];
-    bool oddEverywhere = true;  // itself and an even number of others on each edge
-    for (int k = 0; k < 3; ++k) oddEverywhere = oddEverywhere && uses(edgeKey(w[k], w[(k + 1) % 3])) % 2 == 1;
-    if (oddEverywhere) {
+    int odd = 0;  // its edges used an odd number of times, itself included: leaving it out evens them
+    for (int k = 0; k < 3; ++k) odd += useOf(edgeKey(w[k], w[(k + 1) % 3])) % 2;
+    if (odd >= 2) {
       drop[t] = true;
       ++removed.flat;
+      for (int k = 0; k < 3; ++k) --useOf(edgeKey(w[k], w[(k + 1) % 3]));
     }
   }
-  if (removed.total() == 0) return removed;
+  // A mesh of nothing else is left whole: emptied, it would lose the warnings about it.
+  if (removed.total() == 0 || removed.total() == n) return {};
   std::size_t kept = 0;
   for (std::size_t t = 0; t < n; ++t)
     if (!drop[t]) mesh.triangles[kept++] = mesh.triangles[t];
