@@ -237,7 +237,7 @@ ResolvedCapture resolveCapture(const std::string& capture, const Scene& scene, C
   const CaptureChoice c = chooseCapture(scene, use);
   r.mode = c.mode;
   r.autoReason = c.reason;
-  if (!c.openMeshes.empty())
+  if (!c.openMeshes.empty() || c.deepSpot)  // what differs from the rule of thumb is said
     std::fprintf(stderr, "shadowvol: note: %s: --capture auto chose %s\n",
                  scene.source.c_str(), c.reason.c_str());
   return r;

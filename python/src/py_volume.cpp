@@ -43,7 +43,8 @@ namespace {
 // scene along the map's own light rays, so a map captured from another scene (a probe passed one
 // without a word) would be refined against surfaces it does not show. Up to 16 x 16 texel centres
 // are asked of the oracle; among those where the map or the rays hit something, at least 90 % must
-// agree (both hit, within 1e-3 of the map's near-far range: a GPU capture and the rays differ at a
+// agree, or fewer than 4 disagree (a small object gives few samples; a wrong scene between them
+// passes unseen: this is a guard against a mix-up, not a proof) (both hit, within 1e-3 of the map's near-far range: a GPU capture and the rays differ at a
 // few silhouette texels and by about 1e-4 in depth, README's `depth` command).
 void checkMapFromScene(const DepthMap& depth, const DepthOracle& oracle) {
   std::vector<glm::dvec2> ndc;
@@ -64,7 +65,8 @@ void checkMapFromScene(const DepthMap& depth, const DepthOracle& oracle) {
     ++judged;
     if (mapHit && rayHit && std::abs(double(stored[k]) - double(traced[k])) <= tolerance) ++agree;
   }
-  if (judged > 0 && double(agree) < 0.9 * double(judged))
+  // A few silhouette texels may differ (GPU against rays): refused only when several disagree.
+  if (judged - agree >= 4 && double(agree) < 0.9 * double(judged))
     throw InputError("python", "scene", std::to_string(agree) + " of " + std::to_string(judged) + " texels sampled",
                      "the scene's surfaces do not give back the depth map (at least 90 % of the sampled texels "
                      "that hit must agree): refine needs the scene the map was captured from");

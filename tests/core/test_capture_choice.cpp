@@ -49,7 +49,16 @@ TEST(CaptureChoice, ADeepSpotLightGivesBackForARefinedVolume) {
   EXPECT_EQ(deep.mode, CaptureMode::Back);
   EXPECT_NE(deep.reason.find("far plane lies 8.1 times as far as its near plane"), std::string::npos) << deep.reason;
   EXPECT_EQ(chooseCapture(s, CaptureUse::Volume).reason, "back capture: no mesh object is open");
+  EXPECT_TRUE(deep.deepSpot);
+  // The capture is every light's: a deep spot light second decides too (a second reader's finding).
+  Light spot = s.light;
   s.light.type = LightType::Directional;
+  EXPECT_EQ(chooseCapture(s, CaptureUse::RefinedVolume).mode, CaptureMode::Entry);
+  s.otherLights = {spot};
+  const CaptureChoice second = chooseCapture(s, CaptureUse::RefinedVolume);
+  EXPECT_EQ(second.mode, CaptureMode::Back);
+  EXPECT_NE(second.reason.find("spot light 1's far plane"), std::string::npos) << second.reason;
+  s.otherLights[0].nearPlane = 0.0;  // unfitted: says nothing
   EXPECT_EQ(chooseCapture(s, CaptureUse::RefinedVolume).mode, CaptureMode::Entry);
 }
 

@@ -32,6 +32,7 @@ inline CaptureUse volumeUse(int refineSteps) {
 struct CaptureChoice {
   CaptureMode mode = CaptureMode::Back;
   std::vector<std::string> openMeshes;  ///< why front was chosen: openMeshObjects(scene)
+  bool deepSpot = false;                ///< back rather than entry for a refined volume: a deep spot light
   /// One sentence: what was chosen and why, naming the open objects (at most three, then a count).
   std::string reason;
 };
@@ -49,12 +50,15 @@ struct CaptureChoice {
 /// receiver. Midpoint capture, which also records open meshes, is never chosen: it costs a second
 /// depth layer. Deterministic: the same scene gives the same choice.
 ///
-/// A refined volume under a spot light whose far plane lies more than kMaxEntryFarOverNear times
-/// as far as its near plane (fitted to the nearest geometry, or given) takes back capture too:
+/// A refined volume under a spot light (any of the scene's: the capture is every light's) whose far
+/// plane lies more than kMaxEntryFarOverNear times as far as its near plane (fitted to the nearest
+/// geometry, or given; a near of 0, unfitted, does not count) takes back capture too:
 /// entry's bias, a texel's footprint at the far plane (defaultBias), spans more than that many
 /// texels at the nearest casters and hides the shadows they cast close to themselves (a fourteenth
 /// probe's 160-degree spot: 273 wrong pixels at 256² against back capture's 46; measured in README
-/// "Capture modes", where the ratio sits between 7.1, entry as good, and 9.1, entry worse).
+/// "`--capture auto`", where the ratio sits between 7.1, entry as good, and 9.1, entry worse). Point
+/// lights keep entry capture: their near plane is a thousandth of far, not the nearest geometry,
+/// and the room scene is as accurate either way.
 CaptureChoice chooseCapture(const Scene& scene, CaptureUse use);
 
 /// The far / near ratio of a spot light above which a refined volume takes back capture.
