@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <limits>
 #include <string>
 #include <vector>
@@ -148,8 +149,12 @@ std::uint64_t volumeBuildBytes(const DepthMap& map);
 
 /// Refuses to build a volume from `map` when volumeBuildBytes needs more than half of this
 /// machine's memory: InputError naming the map's size and what it needs. The map is read only when
-/// its worst case (every other texel an island) could pass that, above about 3,000² on 24 GiB.
+/// its worst case (every other texel of every other row an island) could pass that, above about
+/// 3,000² on 24 GiB; the check runs before the build's clock starts.
 void checkVolumeFitsMemory(const DepthMap& map);
+
+/// The same for the maps of one volume together (a point light's six cube faces).
+void checkVolumeFitsMemory(std::span<const DepthMap> maps);
 
 /// Largest side of a depth map (texels).
 inline constexpr int kMaxDepthMapSide = 16384;

@@ -143,15 +143,24 @@ std::uint64_t volumeBuildBytes(const DepthMap& map) {
   return depthMapBytes(w, h) + islands * 4096 + border * 64;
 }
 
-void checkVolumeFitsMemory(const DepthMap& map) {
-  const std::uint64_t texels = std::uint64_t(std::max(map.width, 0)) * std::uint64_t(std::max(map.height, 0));
-  const std::uint64_t worst = depthMapBytes(map.width, map.height) + texels / 4 * 4096 + texels * 64;
+void checkVolumeFitsMemory(std::span<const DepthMap> maps) {
+  std::uint64_t worst = 0;  // every other texel of every other row an island of its own
+  for (const DepthMap& m : maps) {
+    const std::uint64_t w = std::uint64_t(std::max(m.width, 0)), h = std::uint64_t(std::max(m.height, 0));
+    worst += depthMapBytes(m.width, m.height) + (w + 1) / 2 * ((h + 1) / 2) * 4096 + w * h * 64;
+  }
   const std::uint64_t physical = physicalMemoryBytes();
-  if (physical == 0 || worst <= physical / 2) return;
-  checkFitsMemory(volumeBuildBytes(map), "depth map", "texels",
-                  std::to_string(map.width) + "x" + std::to_string(map.height) +
+  if (maps.empty() || physical == 0 || worst <= physical / 2) return;
+  std::uint64_t need = 0;
+  for (const DepthMap& m : maps) need += volumeBuildBytes(m);
+  const DepthMap& first = maps.front();
+  checkFitsMemory(need, "depth map", "texels",
+                  (maps.size() > 1 ? std::to_string(maps.size()) + " maps of " : std::string()) +
+                      std::to_string(first.width) + "x" + std::to_string(first.height) +
                       " (a volume's walls and cap loops for each island of hit texels)");
 }
+
+void checkVolumeFitsMemory(const DepthMap& map) { checkVolumeFitsMemory(std::span<const DepthMap>(&map, 1)); }
 
 void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
                        DepthMapUse use) {

@@ -562,6 +562,7 @@ cube::CubeRefinement refine(const CubeDepthMap& cube, const cube::Grid& cells, c
 }  // namespace
 
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options) {
+  checkVolumeFitsMemory(cube.faces);  // before the clock, as buildVolume's
   const auto t0 = Clock::now();
   validate(cube, options);
   const int n = cube.size();
