@@ -1,12 +1,15 @@
 #include "cli_common.h"
 #include "cli_errors.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include "shadowvol/volume_builder.h"
@@ -262,17 +265,24 @@ void checkResolution(const std::string& option, int resolution, DepthMapUse use)
 
 namespace {
 
-// Whether something can be made in the folder `existing` (a read-only or virtual file system, an
-// immutable folder, no write permission), found before the work rather than after it: by making
-// an empty folder there and removing it. InputError naming `option` and the reason.
+// Whether a file can be made in the folder `existing` (a read-only or virtual file system, an
+// immutable folder, no write permission), found before the work rather than after it: by creating
+// an empty file of a name no one holds (O_EXCL) and removing it. InputError naming `option` and
+// the reason.
 void probeWritableFolder(const std::filesystem::path& existing, const std::string& option, const std::string& path) {
-  std::error_code ec;
-  const std::filesystem::path probe = existing / (".shadowvol-probe-" + std::to_string(::getpid()));
-  const bool made = std::filesystem::create_directory(probe, ec);  // false, no error: left by a crash
-  if (ec)
-    throw InputError("command line", option, path,
-                     "cannot create anything in " + existing.string() + ": " + ec.message());
-  if (made) std::filesystem::remove(probe, ec);
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const std::filesystem::path probe =
+        existing / (".shadowvol-probe-" + std::to_string(::getpid()) + "-" + std::to_string(attempt));
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd >= 0) {
+      ::close(fd);
+      ::unlink(probe.c_str());
+      return;
+    }
+    if (errno != EEXIST)
+      throw InputError("command line", option, path,
+                       "cannot create anything in " + existing.string() + ": " + std::strerror(errno));
+  }
 }
 
 }  // namespace
@@ -287,7 +297,10 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                      std::filesystem::exists(dir, ec) ? dir.string() + " is not a folder"
                                                       : "the folder " + dir.string() + " does not exist");
   if (std::filesystem::is_directory(p, ec)) throw InputError("command line", option, path, "is a folder, not a file");
-  probeWritableFolder(dir, option, path);  // a probe found it only after minutes of work
+  // Where the file will be written: beside the file a link names, as writeAtomically writes through.
+  const auto target = std::filesystem::is_symlink(p, ec) ? std::filesystem::weakly_canonical(p, ec) : p;
+  probeWritableFolder(!ec && target.has_parent_path() ? target.parent_path() : dir, option, path);  // a probe
+  // found an unwritable folder only after minutes of work
 }
 
 void checkNotAnInput(const std::string& option, const std::string& value, const std::filesystem::path& output,

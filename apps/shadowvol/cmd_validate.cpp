@@ -157,6 +157,17 @@ void removeReportFiles(const std::filesystem::path& dir) {
   }
 }
 
+// Light k's image folder in `dir`, refused when it is a symbolic link: the images would go where
+// it points (a fourteenth probe's link to another folder).
+std::filesystem::path refuseLinkedLightFolder(const std::filesystem::path& dir, std::size_t k) {
+  const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
+  std::error_code ec;
+  if (std::filesystem::is_symlink(sub, ec))
+    throw InputError(sub.string(), "", "", "is a symbolic link: validate writes each light's images in a "
+                                           "folder of its own inside the report folder; remove the link");
+  return sub;
+}
+
 }  // namespace
 
 void registerValidateCommand(CLI::App& app, Runner& run) {
@@ -207,6 +218,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       Scene scene = loadSceneOrDefault(o->render.scene.scene, &sceneWarnings);
       for (const char* name : kReportFiles)
         checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
+      if (scene.lightCount() > 1)  // before the work (a second reader's finding)
+        for (std::size_t k = 0; k < scene.lightCount(); ++k) refuseLinkedLightFolder(dir, k);
       std::string captureAuto;
       gl::RenderOptions ro = toRenderOptions(o->render, scene, &captureAuto);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
@@ -302,11 +315,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         } else {
           writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
           for (std::size_t k = 0; k < checks.size(); ++k) {
-            const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
-            std::error_code ec;
-            if (std::filesystem::is_symlink(sub, ec))  // would write this light's images elsewhere
-              throw InputError(sub.string(), "", "", "is a symbolic link: validate writes each light's images in a "
-                                                     "folder of its own inside the report folder; remove the link");
+            const std::filesystem::path sub = refuseLinkedLightFolder(dir, k);
             createFolders(sub);
             writeValidationImages(sub, checks[k].validation, checks[k].frame);
           }

@@ -30,9 +30,10 @@ class TemporaryFileGuard {
 /// signal that ends the process as above removes them too: a command that writes several files as
 /// one result (validate's report folder, render's image and its stencil images) leaves none of
 /// them when it is killed half-way, as it leaves none when a write fails (a fourteenth probe's
-/// Ctrl-C left a report folder of images without its report.json). Files in place before it began
-/// are not touched. Guards nest (the set is the outermost's); at most 128 files are noted (more
-/// are not removed).
+/// Ctrl-C left a report folder of images without its report.json). Files it did not replace are
+/// not touched; one it replaced is gone either way (the new file is removed, the old one was
+/// replaced by it). A signal between a rename and its note leaves that file. Guards nest (the set
+/// is the outermost's); at most 128 files are noted (more are not removed).
 class OutputSetGuard {
  public:
   OutputSetGuard();

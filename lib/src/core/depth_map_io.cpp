@@ -25,7 +25,6 @@
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 #include "json_text.h"
-#include "shadowvol/temporary_files.h"
 
 namespace shadowvol {
 namespace {

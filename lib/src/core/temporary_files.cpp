@@ -20,7 +20,7 @@ struct Slot {
 };
 std::array<Slot, kSlots> slots;
 
-// The files an OutputSetGuard has seen placed (appended by one thread: the command's).
+// The files an OutputSetGuard has seen placed (each caller takes the next slot).
 constexpr int kPlacedSlots = 128;
 std::array<Slot, kPlacedSlots> placed;
 std::atomic<int> outputSetDepth{0};  // guards alive (they nest: writeDepthMap's inside a command's)
@@ -67,11 +67,11 @@ OutputSetGuard::~OutputSetGuard() {
 void noteOutputPlaced(const std::filesystem::path& path) {
   if (outputSetDepth.load() == 0) return;
   const std::string p = path.string();
-  const int k = placedCount.load();
-  if (p.size() >= kMaxPath || k >= kPlacedSlots) return;
+  if (p.size() >= kMaxPath) return;
+  const int k = placedCount.fetch_add(1);  // a slot of its own for each caller, whatever the thread
+  if (k >= kPlacedSlots) return;
   std::memcpy(placed[k].path, p.c_str(), p.size() + 1);
   placed[k].ready.store(true);
-  placedCount.store(k + 1);
 }
 
 TemporaryFileGuard::~TemporaryFileGuard() {
