@@ -24,6 +24,14 @@ namespace {
 using mesh_readers::IsolationLimits;
 using mesh_readers::runIsolated;
 
+// `mesh` written as glTF in `dir` (box.gltf), read back as JSON for a test to alter.
+nlohmann::json writtenGltf(const std::filesystem::path& dir, const TriangleMesh& mesh) {
+  const auto written = dir / "box.gltf";
+  writeTriangleMesh(mesh, written);
+  std::ifstream in(written);
+  return nlohmann::json::parse(in);
+}
+
 TEST(IsolatedCall, HandsBackTheBytesOrTheExceptionMessage) {
   const auto ok = runIsolated([] { return std::string("abc\0def", 7); });
   EXPECT_TRUE(ok.ok);
@@ -109,10 +117,7 @@ TEST(AssimpReader, GltfAndGlbReadBackAsWritten) {
 // ("No meshes remaining").
 TEST(AssimpReader, AFileOfOnlyPointsHasNoTriangles) {
   const auto dir = test::tempDir();
-  const auto written = dir / "box.gltf";
-  writeTriangleMesh(makeBox(1, 1, 1), written);
-  std::ifstream in(written);
-  nlohmann::json g = nlohmann::json::parse(in);
+  nlohmann::json g = writtenGltf(dir, makeBox(1, 1, 1));
   for (auto& mesh : g.at("meshes"))
     for (auto& primitive : mesh.at("primitives")) {
       primitive["mode"] = 0;  // POINTS
@@ -131,10 +136,7 @@ TEST(AssimpReader, AFileOfOnlyPointsHasNoTriangles) {
 // places the mesh.
 TEST(AssimpReader, SingularNodeTransformationsAreRefused) {
   const auto dir = test::tempDir();
-  const auto written = dir / "box.gltf";
-  writeTriangleMesh(makeBox(1, 1, 1), written);
-  std::ifstream in(written);
-  const nlohmann::json gltf = nlohmann::json::parse(in);
+  const nlohmann::json gltf = writtenGltf(dir, makeBox(1, 1, 1));
   ASSERT_EQ(gltf.at("nodes").size(), 1u);
   auto withNode = [&](const char* name, const nlohmann::json& node) {
     nlohmann::json g = gltf;
@@ -176,10 +178,7 @@ TEST(AssimpReader, SingularNodeTransformationsAreRefused) {
 // reads outward (a probe found it inside out), as the scene file's own mirrors keep faces outward.
 TEST(AssimpReader, MirroringNodeKeepsFacesOutward) {
   const auto dir = test::tempDir();
-  const auto written = dir / "box.gltf";
-  writeTriangleMesh(makeBox(1, 2, 3), written);
-  std::ifstream in(written);
-  nlohmann::json gltf = nlohmann::json::parse(in);
+  nlohmann::json gltf = writtenGltf(dir, makeBox(1, 2, 3));
   ASSERT_EQ(gltf.at("nodes").size(), 1u);
   for (const auto& scale : {std::vector<double>{-1.0, 1.0, 1.0}, std::vector<double>{-1.0, -1.0, -2.0},
                             std::vector<double>{1.0, -1.0, -1.0}}) {
