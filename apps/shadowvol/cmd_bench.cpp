@@ -182,14 +182,16 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
       info.command = commandLine();
       if (o->reportOnly) {
         auto rows = readSweepCsv(dir / "results.csv");
-        if (endsMidLine(dir / "results.csv"))  // a second probe's finding: the resume said so, this did not
-          std::fprintf(stderr, "shadowvol: note: the last line of %s is incomplete (an interrupted run?) and is "
-                               "left out of the report\n",
-                       (dir / "results.csv").string().c_str());
+        std::vector<std::string> notes;
+        if (endsMidLine(dir / "results.csv")) {  // a second probe's finding: the resume said so, this did not
+          notes.push_back("the last line of " + (dir / "results.csv").string() +
+                          " is incomplete (an interrupted run?) and is left out of the report");
+          std::fprintf(stderr, "shadowvol: note: %s\n", notes.back().c_str());
+        }
         if (!o->methods.empty()) rows = onlyMethods(std::move(rows), o->methods);
         info.timing = rows.empty() ? "" : rows.front().timing;
         info.glRenderer = "see results";
-        printBenchOutput(o->json, o->out, info, false, {}, writeSweepReport(rows, info, dir), rows);
+        printBenchOutput(o->json, o->out, info, false, notes, writeSweepReport(rows, info, dir), rows);
         return kOk;
       }
       SweepOptions so;

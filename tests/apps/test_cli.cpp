@@ -1148,6 +1148,15 @@ TEST(CliGl, BenchListsTakeCommas) {
   EXPECT_EQ(oj["cells"].size(), 4u);
   EXPECT_FALSE(oj["files"].empty());
   EXPECT_FALSE(contains(onlyJson.out, "wrote ")) << onlyJson.out;
+  EXPECT_TRUE(oj["notes"].empty()) << oj["notes"].dump();
+  // An interrupted last line: left out, and said in the document's notes as on stderr (they were empty).
+  std::ofstream(dir / "b" / "results.csv", std::ios::app) << "default,shadowmap";
+  const CliResult cut = runCli("bench -q --report-only --json --out " + (dir / "b").string());
+  ASSERT_EQ(cut.code, 0) << cut.out;
+  const auto cj = nlohmann::json::parse(cut.out.substr(cut.out.find('{')));
+  EXPECT_EQ(cj["cells"].size(), 4u);
+  ASSERT_EQ(cj["notes"].size(), 1u) << cut.out;
+  EXPECT_TRUE(contains(cj["notes"][0].get<std::string>(), "incomplete")) << cut.out;
   const CliResult list = runCli("bench --list-methods --json");
   ASSERT_EQ(list.code, 0) << list.out;
   const auto lj = nlohmann::json::parse(list.out.substr(list.out.find('[')));
