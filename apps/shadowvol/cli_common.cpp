@@ -1,6 +1,7 @@
 #include "cli_common.h"
 #include "cli_errors.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -199,10 +200,14 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o) {
   return v;
 }
 
-Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings) {
+Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings, SceneUse use) {
   SceneLoadResult r;
   if (path.empty()) r.scene = defaultScene();
   else r = loadScene(path);
+  if (use == SceneUse::LightsOnly)  // a probe's finding: build printed the camera's moved planes
+    std::erase_if(r.warnings, [&](const std::string& w) {
+      return std::find(r.cameraWarnings.begin(), r.cameraWarnings.end(), w) != r.cameraWarnings.end();
+    });
   for (const auto& w : r.warnings) std::fprintf(stderr, "shadowvol: warning: %s\n", w.c_str());
   if (warnings) warnings->insert(warnings->end(), r.warnings.begin(), r.warnings.end());
   const Scene& s = r.scene;

@@ -78,9 +78,14 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);
 VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o);
 void addJsonOption(CLI::App& cmd, bool& json);
 
+/// What a command uses of a scene: commands that render no image (build, depth) are not warned
+/// about the camera.
+enum class SceneUse { WithCamera, LightsOnly };
+
 /// Loads the scene (or the default one), printing its warnings to stderr (and appending them to
-/// `warnings` when given: validate's report keeps them).
-Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings = nullptr);
+/// `warnings` when given: validate's report keeps them); the camera's only for SceneUse::WithCamera.
+Scene loadSceneOrDefault(const std::string& path, std::vector<std::string>* warnings = nullptr,
+                         SceneUse use = SceneUse::WithCamera);
 
 /// Adds --capture (auto, back, front, midpoint, entry; default auto), one help text for every command.
 CLI::Option* addCaptureOption(CLI::App& cmd, std::string& capture);

@@ -314,6 +314,26 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
 }
 
+// build and depth render no image: a camera looking away (its far plane moved, its view empty) is
+// said by scene, not by them (a probe's finding: build printed the camera's warnings).
+TEST(Cli, CommandsWithoutAnImageAreNotWarnedAboutTheCamera) {
+  const auto dir = test::tempDir();
+  test::writeText(dir / "s.json", R"({"objects": [{"type": "sphere", "radius": 1}],
+    "light": {"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0]},
+    "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "near": 100, "far": 200}})");
+  const std::string s = (dir / "s.json").string();
+  const CliResult described = runCli("scene --scene " + s);
+  ASSERT_EQ(described.code, 0) << described.out;
+  EXPECT_TRUE(contains(described.out, "/camera/far")) << described.out;
+  EXPECT_TRUE(contains(described.out, "/camera: no object")) << described.out;
+  const CliResult built = runCli("build --resolution 16 --scene " + s + " --out " + (dir / "v.ply").string());
+  ASSERT_EQ(built.code, 0) << built.out;
+  EXPECT_FALSE(contains(built.out, "/camera")) << built.out;
+  const CliResult depth = runCli("depth --resolution 16 --scene " + s + " --out " + (dir / "d.pfm").string());
+  ASSERT_EQ(depth.code, 0) << depth.out;
+  EXPECT_FALSE(contains(depth.out, "/camera")) << depth.out;
+}
+
 // An open square sheet (two triangles) floating over a plane under a spot light: back capture
 // lets the light through it, so --capture auto picks front.
 std::filesystem::path writeOpenSheetScene(const std::filesystem::path& dir) {

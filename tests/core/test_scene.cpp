@@ -185,6 +185,9 @@ TEST(SceneParser, GivenNearFarCuttingTheSceneAreKeptPlanesBeyondItTightened) {
   EXPECT_NE(past.warnings[1].find("/camera: no object lies in the camera's view (between its near plane at 100"),
             std::string::npos)
       << past.warnings[1];
+  // Both concern the camera alone (build and depth leave them out); the light's planes do not.
+  EXPECT_EQ(past.cameraWarnings, past.warnings);
+  EXPECT_TRUE(tight.cameraWarnings.empty());
 }
 
 // A spot light close to a small object over a huge ground: the bounds start behind the light, so
@@ -901,8 +904,8 @@ TEST(Scene, VerticesNoFaceUsesAreLeftOutOfAMeshFile) {
   EXPECT_EQ(m.triangles.at(0), (std::array<std::uint32_t, 3>{0, 2, 1}));
   EXPECT_LT(r.scene.bounds().radius(), 4.0);
   bool noted = false;
-  for (const auto& w : r.warnings) noted = noted || w.find("stray.json: /objects/1/file") != std::string::npos &&
-                                                        w.find("1 vertex used by no face left out") != std::string::npos;
+  for (const auto& w : r.warnings) noted = noted || (w.find("stray.json: /objects/1/file") != std::string::npos &&
+                                                         w.find("1 vertex used by no face left out") != std::string::npos);
   EXPECT_TRUE(noted) << ::testing::PrintToString(r.warnings);
 }
 

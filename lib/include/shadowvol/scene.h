@@ -100,6 +100,9 @@ void forEachLight(Scene& scene, F&& f) {
 struct SceneLoadResult {
   Scene scene;
   std::vector<std::string> warnings;
+  /// Those of `warnings` that concern the camera alone (its planes moved, its view empty, its eye
+  /// inside a closed mesh): commands that render no image (build, depth) leave them out.
+  std::vector<std::string> cameraWarnings;
 };
 
 /// Reads a JSON scene file. Relative mesh paths are resolved against the scene file's folder.

@@ -640,13 +640,16 @@ void readLights(ObjectReader& top, Scene& scene, const std::string& source) {
 }
 
 // Light k (as scene.light, forEachLight) fitted to the loaded scene: the fit's notes as warnings,
-// their "/light/" pointers made the light's own.
-void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings) {
+// their "/light/" pointers made the light's own; the camera's (its planes are fitted with the
+// first light's) in `cameraWarnings` too.
+void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std::vector<std::string>& warnings,
+                    std::vector<std::string>& cameraWarnings) {
   const Light given = scene.light;
   const std::string pointer = scene.lightPointer(k);
-  for (auto& note : fitLightAndCamera(scene)) {  // "<source>: /light/far: ..."
+  for (auto& note : fitLightAndCamera(scene)) {  // "<source>: /light/far: ..." or "<source>: /camera/far: ..."
     const std::string prefix = source + ": /light/";
     if (note.rfind(prefix, 0) == 0) note = source + ": " + pointer + "/" + note.substr(prefix.size());
+    else if (note.rfind(source + ": /camera/", 0) == 0) cameraWarnings.push_back(note);
     warnings.push_back(std::move(note));
   }
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
@@ -782,7 +785,7 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
   warnAboutInputPrecision(scene, source, result.warnings);
   warnAboutSmallScene(scene, source, result.warnings);
   forEachLight(scene, [&](std::size_t k) {
-    fitLoadedLight(scene, k, source, result.warnings);
+    fitLoadedLight(scene, k, source, result.warnings, result.cameraWarnings);
     checkDirectionalWindow(scene, k, source);
   });
   bool splitComplete = true;
@@ -793,10 +796,13 @@ SceneLoadResult parseScene(const std::string& text, const std::string& source,
                               " near planes long, and splitting them all would pass the triangle budget: the GPU "
                               "clips them in single precision, so expect shadow edges off by a pixel; subdivide "
                               "or shrink the largest objects (README \"Known limits\")");
+  const std::size_t cameraPlaneNotes = result.cameraWarnings.size();  // already in warnings
   std::vector<bool> closed;
   for (const auto& o : scene.objects) closed.push_back(isClosedSurface(o.mesh));
   forEachLight(scene, [&](std::size_t k) { warnAboutLight(scene, closed, k, source, result.warnings); });
-  warnAboutCamera(scene, closed, source, result.warnings);
+  warnAboutCamera(scene, closed, source, result.cameraWarnings);
+  result.warnings.insert(result.warnings.end(), result.cameraWarnings.begin() + std::ptrdiff_t(cameraPlaneNotes),
+                         result.cameraWarnings.end());
   return result;
 }
 
