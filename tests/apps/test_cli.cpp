@@ -815,6 +815,13 @@ TEST(Cli, CheckJudgesAMeshFile) {
   const CliResult emptyCheck = runCli("check " + (dir / "empty.ply").string());
   EXPECT_EQ(emptyCheck.code, 0) << emptyCheck.out;
   EXPECT_TRUE(contains(emptyCheck.out, "valid: an empty volume")) << emptyCheck.out;
+  for (const char* name : {"empty.glb", "empty.gltf"}) {  // a fifteenth probe's: called unreadable (exit 1)
+    const std::string path = (dir / name).string();
+    ASSERT_EQ(runCli("build --scene " + (dir / "away.json").string() + " --resolution 16 --out " + path).code, 0);
+    const CliResult gltf = runCli("check " + path);
+    EXPECT_EQ(gltf.code, 0) << gltf.out;
+    EXPECT_TRUE(contains(gltf.out, "valid: an empty volume")) << gltf.out;
+  }
   test::writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   const CliResult points = runCli("check " + (dir / "points.obj").string());
   EXPECT_EQ(points.code, 3) << points.out;

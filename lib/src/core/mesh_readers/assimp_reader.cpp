@@ -205,6 +205,10 @@ ParsedMesh readWithAssimp(const std::string& source, const std::filesystem::path
         throw InputError(source, "", "", "the mesh has no triangles (points and lines are dropped)");
       throw InputError(source, "", "", "Assimp cannot read it: " + why);
     }
+    // Assimp flags every scene without a mesh as incomplete: such a file holds no triangles (as the
+    // glTF of an empty volume that build writes), which the caller accepts or refuses (EmptyMesh).
+    // A probe's finding: `check` called that file unreadable.
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE && scene->mNumMeshes == 0) return serialize(ParsedMesh{});
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
       throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
     if (scene->mRootNode) checkNodes(*scene->mRootNode, glm::dmat4(1.0), "", source);
