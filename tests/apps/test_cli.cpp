@@ -822,6 +822,18 @@ TEST(Cli, CheckJudgesAMeshFile) {
     EXPECT_EQ(gltf.code, 0) << gltf.out;
     EXPECT_TRUE(contains(gltf.out, "valid: an empty volume")) << gltf.out;
   }
+  // A tetrahedron whose triangles do not share corners: the verdict names that (a fifteenth probe's).
+  std::string soup;
+  const int tet[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  const char* corner[4] = {"0 0 0", "1 0 0", "0 1 0", "0 0 1"};
+  for (const auto& t : tet)
+    for (int c : t) soup += std::string("v ") + corner[c] + "\n";
+  soup += "f 1 2 3\nf 4 5 6\nf 7 8 9\nf 10 11 12\n";
+  test::writeText(dir / "soup.obj", soup);
+  const CliResult unshared = runCli("check " + (dir / "soup.obj").string());
+  EXPECT_EQ(unshared.code, 3) << unshared.out;
+  EXPECT_TRUE(contains(unshared.out, "12 boundary edges, 0 over-used edges, 0 non-manifold vertices")) << unshared.out;
+  EXPECT_TRUE(contains(unshared.out, "8 vertices lie on another vertex: corners the file does not share")) << unshared.out;
   test::writeText(dir / "points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
   const CliResult points = runCli("check " + (dir / "points.obj").string());
   EXPECT_EQ(points.code, 3) << points.out;

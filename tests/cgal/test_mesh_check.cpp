@@ -110,5 +110,48 @@ TEST(MeshCheck, AVolumeInWorldCoordinatesFarFromTheOriginEnds) {
   EXPECT_EQ(kept.triangles, local.triangles);
 }
 
+// A vertex is non-manifold when its triangles are not one fan: a boundary vertex's open fan is one
+// (its missing edges are the boundary edges), two fans meeting at a vertex are not (a fifteenth
+// probe's finding: every corner of an open square was called non-manifold, and so was every
+// vertex of a triangle soup).
+TEST(MeshCheck, ABoundaryVertexIsNotNonManifoldTwoFansAtAVertexAre) {
+  VolumeMesh square;
+  square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const MeshCheckReport open = checkMesh(square);
+  EXPECT_EQ(open.boundaryEdges, 4u) << open.summary();
+  EXPECT_EQ(open.nonManifoldVertices, 0u) << open.summary();
+  EXPECT_FALSE(open.closedManifold());
+  // A bow tie: two triangles meeting at vertex 0 only.
+  VolumeMesh bowTie;
+  bowTie.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  bowTie.triangles = {{0, 1, 2}, {0, 3, 4}};
+  EXPECT_EQ(checkMesh(bowTie).nonManifoldVertices, 1u) << checkMesh(bowTie).summary();
+  // Two closed boxes sharing a corner: closed fans, two of them at the shared vertex.
+  VolumeMesh pinched;
+  addBox(pinched, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, false, false);
+  addBox(pinched, {1, 1, 1}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, false, false);
+  for (auto& t : pinched.triangles)
+    for (auto& i : t)
+      if (i == 8) i = 7;  // the second box's corner 0 is the first's corner 7
+  const MeshCheckReport pinch = checkMesh(pinched);
+  EXPECT_EQ(pinch.boundaryEdges, 0u) << pinch.summary();
+  EXPECT_EQ(pinch.nonManifoldVertices, 1u) << pinch.summary();
+  EXPECT_FALSE(pinch.closedManifold());
+  // The box as a soup (three corners of its own per triangle): boundary edges and coincident
+  // vertices, no non-manifold vertex.
+  VolumeMesh box, soup;
+  addBox(box, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, false, false);
+  for (const auto& t : box.triangles) {
+    const auto base = std::uint32_t(soup.positions.size());
+    for (std::uint32_t i : t) soup.positions.push_back(box.positions[i]);
+    soup.triangles.push_back({base, base + 1, base + 2});
+  }
+  const MeshCheckReport s = checkMesh(soup);
+  EXPECT_EQ(s.boundaryEdges, 36u) << s.summary();
+  EXPECT_EQ(s.nonManifoldVertices, 0u) << s.summary();
+  EXPECT_EQ(s.coincidentVertices, 36u - 8u) << s.summary();
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -213,30 +213,49 @@ void checkEdges(std::vector<std::uint64_t>& directed, MeshCheckReport& r) {
   }
 }
 
-// Whether the link edges a -> b of one vertex's corners [s, e) (sorted by a) form exactly one cycle.
-bool oneFan(const std::vector<Corner>& corners, std::size_t s, std::size_t e) {
+// Whether the link edges a -> b of one vertex's corners [s, e) (sorted by a) form one fan: one
+// cycle, or at a boundary one open path (its missing edges are counted as boundary edges already,
+// so a manifold surface with a boundary has no non-manifold vertex; with no boundary edge only a
+// cycle is possible). Two fans meeting at the vertex, or an edge used twice, are not one.
+// `ends` is scratch space.
+bool oneFan(const std::vector<Corner>& corners, std::size_t s, std::size_t e, std::vector<std::uint32_t>& ends) {
   for (std::size_t k = s + 1; k < e; ++k)
     if (corners[k].a == corners[k - 1].a) return false;  // one edge out of each a
+  auto from = [&](std::uint32_t a) {
+    auto it = std::lower_bound(corners.begin() + std::ptrdiff_t(s), corners.begin() + std::ptrdiff_t(e), a,
+                               [](const Corner& c, std::uint32_t x) { return c.a < x; });
+    return (it != corners.begin() + std::ptrdiff_t(e) && it->a == a) ? &*it : nullptr;
+  };
+  ends.clear();  // the b's: an a that is none of them starts an open path
+  for (std::size_t k = s; k < e; ++k) ends.push_back(corners[k].b);
+  std::sort(ends.begin(), ends.end());
+  if (std::adjacent_find(ends.begin(), ends.end()) != ends.end()) return false;  // one edge into each b
+  std::optional<std::uint32_t> start;
+  for (std::size_t k = s; k < e; ++k)
+    if (!std::binary_search(ends.begin(), ends.end(), corners[k].a)) {
+      if (start) return false;  // two open paths
+      start = corners[k].a;
+    }
+  const std::uint32_t first = start ? *start : corners[s].a;
   std::size_t steps = 0;
-  std::uint32_t at = corners[s].a;
-  do {
-    auto it = std::lower_bound(corners.begin() + std::ptrdiff_t(s), corners.begin() + std::ptrdiff_t(e), at,
-                               [](const Corner& c, std::uint32_t a) { return c.a < a; });
-    if (it == corners.begin() + std::ptrdiff_t(e) || it->a != at) return false;
-    at = it->b;
+  std::uint32_t at = first;
+  for (const Corner* c = from(at); c && steps <= e - s; c = from(at)) {
+    at = c->b;
     ++steps;
-  } while (at != corners[s].a && steps <= e - s);
-  return at == corners[s].a && steps == e - s;
+    if (at == first) break;
+  }
+  return steps == e - s;  // the walk from `first` met every link edge: one path or one cycle
 }
 
-// Vertex fans: the vertices whose link is not one cycle.
+// Vertex fans: the vertices whose link is not one fan (oneFan).
 void checkFans(std::vector<Corner>& corners, MeshCheckReport& r) {
   std::sort(corners.begin(), corners.end(),
             [](const Corner& x, const Corner& y) { return x.v != y.v ? x.v < y.v : x.a < y.a; });
+  std::vector<std::uint32_t> ends;
   for (std::size_t s = 0; s < corners.size();) {
     std::size_t e = s;
     while (e < corners.size() && corners[e].v == corners[s].v) ++e;
-    if (!oneFan(corners, s, e)) ++r.nonManifoldVertices;
+    if (!oneFan(corners, s, e, ends)) ++r.nonManifoldVertices;
     s = e;
   }
 }

@@ -31,7 +31,8 @@ struct MeshCheckReport {
   std::size_t degenerateTriangles = 0;   ///< exactly collinear corners (zero area)
   std::size_t boundaryEdges = 0;         ///< directed edges whose opposite edge is missing
   std::size_t overusedEdges = 0;         ///< directed edges used by more than one triangle
-  std::size_t nonManifoldVertices = 0;   ///< vertices whose triangles do not form one closed fan
+  std::size_t nonManifoldVertices = 0;   ///< vertices whose triangles do not form one fan (closed, or
+                                         ///< open at a boundary, whose edges boundaryEdges counts)
   std::size_t isolatedVertices = 0;      ///< vertices used by no triangle
   std::size_t coincidentVertices = 0;    ///< vertices at the same position as an earlier vertex
   /// The following need a closed 2-manifold (closedManifold()); otherwise left at their defaults.
