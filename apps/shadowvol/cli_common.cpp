@@ -149,13 +149,14 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
   cmd.add_flag("--chord-points", o.chordPoints,
                "With --refine: bend the wall of each quad with two boundary edges at one more crossing inside it (K "
                "more rays per such quad), so it follows curved outlines: less error on real meshes, more rays, cap "
-               "vertices and wall triangles (README 'Silhouette refinement')");
+               "vertices and wall triangles; not with --refine-grid above 1, which bends walls its own way (README "
+               "'Silhouette refinement')");
   cmd.add_option("--refine-grid", o.refineGrid,
                  "With --refine: sample the depth at the corners of S x S sub-cells (S = 2, 4 or 8; 1 = off) in each "
                  "quad with a boundary edge, and where those samples or one more crossing show that the quad's "
                  "straight wall misses the outline, cut the quad into the sub-cells and refine each, so the wall "
                  "follows an outline that bends inside a texel; about S^2 more rays in each such quad, S^2 more "
-                 "triangles in the cut ones (docs/volume.md 'Sub-grid')")
+                 "triangles in the cut ones; not with --chord-points, nor for a point light (docs/volume.md 'Sub-grid')")
       ->check(CLI::IsMember({1, 2, 4, 8}))
       ->capture_default_str();
   cmd.add_flag("--refine-grid-everywhere", o.refineGridEverywhere,
