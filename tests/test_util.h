@@ -4,12 +4,18 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -49,6 +55,45 @@ inline double signedVolume(const TriangleMesh& m) {
          6.0;
   return v;
 }
+
+/// Another process holding an exclusive flock on `folder` (as another shadowvol run's OutputLock
+/// does) from construction, once it has it, until destruction. Deterministic: pipes, no sleeps.
+class FolderHeldElsewhere {
+ public:
+  explicit FolderHeldElsewhere(const std::filesystem::path& folder) {
+    int held[2], release[2];
+    if (::pipe(held) != 0 || ::pipe(release) != 0) return;
+    child_ = ::fork();
+    if (child_ == 0) {
+      ::close(held[0]);
+      ::close(release[1]);  // or the parent's close would never end the read below
+      const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY);
+      const char ok = (fd >= 0 && ::flock(fd, LOCK_EX) == 0) ? 'y' : 'n';
+      [[maybe_unused]] const auto w = ::write(held[1], &ok, 1);
+      char c;
+      [[maybe_unused]] const auto r = ::read(release[0], &c, 1);  // until the parent writes or closes
+      std::_Exit(0);
+    }
+    ::close(held[1]);
+    ::close(release[0]);
+    releaseFd_ = release[1];
+    char ok = 'n';
+    holding_ = child_ > 0 && ::read(held[0], &ok, 1) == 1 && ok == 'y';
+    ::close(held[0]);
+  }
+  ~FolderHeldElsewhere() {
+    if (releaseFd_ >= 0) ::close(releaseFd_);
+    if (child_ > 0) ::waitpid(child_, nullptr, 0);
+  }
+  FolderHeldElsewhere(const FolderHeldElsewhere&) = delete;
+  FolderHeldElsewhere& operator=(const FolderHeldElsewhere&) = delete;
+  bool holding() const { return holding_; }
+
+ private:
+  pid_t child_ = -1;
+  int releaseFd_ = -1;
+  bool holding_ = false;
+};
 
 inline std::filesystem::path sourceDir() { return SV_SOURCE_DIR; }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "cli_verbosity.h"
 #include "render_options.h"
@@ -14,6 +15,7 @@
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/output_lock.h"
 #include "shadowvol/temporary_files.h"
 
 namespace shadowvol::cli {
@@ -120,7 +122,13 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       };
       // The image, then the stencil files: a write that fails (a full disk, a folder in the way)
       // takes the files this run wrote before it along, so no half set is left behind.
-      // A signal that ends the command half-way takes them along too (OutputSetGuard).
+      // A signal that ends the command half-way takes them along too (OutputSetGuard). Another run
+      // writing the same set waits for this one, or this one for it (OutputLock).
+      std::optional<OutputLock> imageLock, stencilLock;
+      if (!o->stencil.empty()) {
+        imageLock.emplace(folderOf(o->out));
+        stencilLock.emplace(folderOf(o->stencil));  // a no-op when it is the same folder
+      }
       const OutputSetGuard set;
       std::vector<std::filesystem::path> written;
       written.reserve(2 + 2 * result.otherLights.size() + 1);  // no allocation between a write and its record

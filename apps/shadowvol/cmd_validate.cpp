@@ -12,10 +12,12 @@
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
 #include "shadowvol/mesh_io.h"
+#include "shadowvol/output_lock.h"
 #include "shadowvol/report_json.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/validate/frame_validation.h"
 #include "shadowvol/validate/gl_frame.h"
+#include "shadowvol/validate/report_folder.h"
 #include "shadowvol/validate/validation_report.h"
 #include "shadowvol/version.h"
 
@@ -132,42 +134,6 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   for (const auto& f : v.failures) std::printf("  failed: %s\n", f.c_str());
 }
 
-// The files validate writes in its report folder (and in each light-K folder of several lights),
-// the report first: removeReportFiles takes it before the images it describes.
-constexpr const char* kReportFiles[] = {"report.json", "frame.png",   "exact.png",  "stencil.png",
-                                        "count.png",   "overlay.png", "overlay.svg"};
-
-// Removes what an earlier run (or this one, failing) wrote in `dir`: the files of kReportFiles
-// there and in its light-K folders, and a light-K folder left empty. Nothing else is touched: a
-// light-K that is a symbolic link is not followed (a fourteenth probe's link to another folder
-// had its files deleted).
-void removeReportFiles(const std::filesystem::path& dir) {
-  std::error_code ec;
-  auto removeIn = [&](const std::filesystem::path& d) {
-    for (const char* name : kReportFiles) std::filesystem::remove(d / name, ec);
-  };
-  removeIn(dir);
-  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    if (e.is_symlink(ec) || !e.is_directory(ec) || name.rfind("light-", 0) != 0 || name.size() == 6 ||
-        name.find_first_not_of("0123456789", 6) != std::string::npos)
-      continue;
-    removeIn(e.path());
-    if (std::filesystem::is_empty(e.path(), ec)) std::filesystem::remove(e.path(), ec);
-  }
-}
-
-// Light k's image folder in `dir`, refused when it is a symbolic link: the images would go where
-// it points (a fourteenth probe's link to another folder).
-std::filesystem::path refuseLinkedLightFolder(const std::filesystem::path& dir, std::size_t k) {
-  const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
-  std::error_code ec;
-  if (std::filesystem::is_symlink(sub, ec))
-    throw InputError(sub.string(), "", "", "is a symbolic link: validate writes each light's images in a "
-                                           "folder of its own inside the report folder; remove the link");
-  return sub;
-}
-
 }  // namespace
 
 void registerValidateCommand(CLI::App& app, Runner& run) {
@@ -216,10 +182,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       checkOutputFolder("--report", o->reportDir);
       std::vector<std::string> sceneWarnings;  // what loading noticed, kept in the report
       Scene scene = loadSceneOrDefault(o->render.scene.scene, &sceneWarnings);
-      for (const char* name : kReportFiles)
+      for (const char* name : reportFileNames())
         checkNotAnInput("--report", o->reportDir, dir / name, scene.files, "its file");
       if (scene.lightCount() > 1)  // before the work (a second reader's finding)
-        for (std::size_t k = 0; k < scene.lightCount(); ++k) refuseLinkedLightFolder(dir, k);
+        for (std::size_t k = 0; k < scene.lightCount(); ++k) lightReportFolder(dir, k);
       std::string captureAuto;
       gl::RenderOptions ro = toRenderOptions(o->render, scene, &captureAuto);
       const nlohmann::json lightFit = applyLightFit(scene, o->render.scene, o->render.resolution);
@@ -229,7 +195,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       ro = validationRenderOptions(ro);
       // An earlier run's report goes before the work (a probe's finding: a crash left the last
       // run's PASSED in place for a script to read); the inputs are checked by now.
-      if (std::filesystem::is_directory(dir)) removeReportFiles(dir);
+      if (std::filesystem::is_directory(dir)) {
+        const OutputLock lock(dir);  // not while another run writes its set here
+        removeReportFiles(dir);
+      }
       gl::Renderer renderer(toRendererOptions(o->render));
       verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
                   renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
@@ -307,6 +276,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       // its images), then the images, the report last (its presence means done); a write that
       // fails takes this run's files with it.
       createFolders(dir);
+      const OutputLock lock(dir);  // another run's set is written before or after this one, not amid it
       removeReportFiles(dir);
       const OutputSetGuard set;  // a signal that ends the run half-way removes this run's files too
       try {
@@ -315,7 +285,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         } else {
           writePng(dir / "frame.png", result.width, result.height, 4, result.rgba);
           for (std::size_t k = 0; k < checks.size(); ++k) {
-            const std::filesystem::path sub = refuseLinkedLightFolder(dir, k);
+            const std::filesystem::path sub = lightReportFolder(dir, k);
             createFolders(sub);
             writeValidationImages(sub, checks[k].validation, checks[k].frame);
           }

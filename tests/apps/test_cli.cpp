@@ -1201,6 +1201,17 @@ TEST(CliGl, BenchListsTakeCommas) {
   const auto lj = nlohmann::json::parse(list.out.substr(list.out.find('[')));
   ASSERT_FALSE(lj.empty());
   EXPECT_TRUE(lj[0].contains("key") && lj[0].contains("description")) << lj[0].dump();
+  // A second sweep into a folder a run holds (OutputLock) is refused at once, and appends nothing.
+  {
+    const std::string before = test::readText(dir / "b" / "results.csv");
+    const test::FolderHeldElsewhere other(dir / "b");
+    ASSERT_TRUE(other.holding());
+    const CliResult held = runCli("bench --scenes default --methods shadowmap --resolutions 64 --size 32x24 "
+                                  "--repeat 1 --warmup 0 --out " + (dir / "b").string());
+    EXPECT_EQ(held.code, 1) << held.out;
+    EXPECT_TRUE(contains(held.out, "another run holds this folder")) << held.out;
+    EXPECT_EQ(test::readText(dir / "b" / "results.csv"), before);
+  }
   // A probe's finding: a stray comma made an empty key and took the next option as a method.
   const CliResult comma = runCli("bench --scenes default --methods , --repeat 1 --out " + (dir / "c").string());
   EXPECT_EQ(comma.code, 1) << comma.out;

@@ -14,6 +14,7 @@
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"  // writeAtomically, createFolders
+#include "shadowvol/output_lock.h"
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
@@ -433,6 +434,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   }
   // The results file: resume what is there.
   createFolders(o.out);
+  // One sweep at a time appends to a folder's results (a second one refused at once, not after
+  // a wait: a sweep holds its folder for as long as it runs).
+  const OutputLock lock(o.out, std::chrono::milliseconds(0));
   const auto csv = o.out / "results.csv";
   std::vector<SweepRow> rows;
   std::set<std::string> done;

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/error.h"
+#include "shadowvol/output_lock.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/version.h"
@@ -188,6 +189,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"depthChecksum", "fnv1a64:" + depthChecksum(map.depth)},
   };
   const auto sidecar = depthSidecarPath(pfm);
+  const OutputLock lock(folderOf(pfm));  // another run's map and side file of this name wait or are refused
   const OutputSetGuard set;  // a signal between the two renames takes the side file along
   writeAtomically(pfm, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
