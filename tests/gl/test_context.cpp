@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "gl_test_support.h"
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
@@ -38,6 +41,33 @@ void expectInputError(F&& f, const std::string& source, const std::string& field
     EXPECT_EQ(e.field(), field) << e.what();
     EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
+}
+
+// A fifteenth probe's finding: a process forked after its parent used GL (Python multiprocessing's
+// fork start method) drew nothing on its first frame and a validation FAILED a right method. Such
+// a child is refused GL with the reason and the way out; the parent goes on.
+TEST(GlContext, AChildForkedAfterGlUseIsRefusedGl) {
+  gltest::sharedRenderer();  // this process has used GL
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    int code = 1;
+    try {
+      gl::Renderer r{gl::RendererOptions{}};
+    } catch (const gl::GlError& e) {
+      const std::string what = e.what();
+      code = what.find("forked") != std::string::npos && what.find("'spawn'") != std::string::npos ? 0 : 2;
+    } catch (...) {
+      code = 3;
+    }
+    std::_Exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << status;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: GL was given to the child; 2: another message; 3: another error";
+  gl::Renderer again{gl::RendererOptions{}};  // the parent itself still may
+  EXPECT_FALSE(again.info().glRenderer.empty());
 }
 
 TEST(GlContext, UnknownPlatformIsAnInputError) {

@@ -3,9 +3,13 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "shadowvol/error.h"
 #include "shadowvol/gl/gl_error.h"
@@ -32,6 +36,21 @@ void releaseDisplay(EGLDisplay display) {
     eglTerminate(display);
     refs.erase(it);
   }
+}
+
+// The process that first initialised an EGL display in this image, 0 before that. A child forked
+// after it inherits Mesa's displays and screens without the driver's threads: a fifteenth probe's
+// forked Python workers got a frame with nothing drawn (a FAILED verdict on a right method) or "out
+// of memory" on their first GL call. Such a child is refused GL (refuseForkedChild).
+std::atomic<pid_t> eglUser{0};
+
+void refuseForkedChild() {
+  const pid_t first = eglUser.load();
+  if (first != 0 && first != ::getpid())
+    throw GlError("EGL and OpenGL were used in the parent of this forked process (pid " + std::to_string(first) +
+                  "), whose driver state a fork does not carry over whole: no GL here (its first frame can be "
+                  "wrong); use GL only in processes started afresh (Python multiprocessing's 'spawn' or "
+                  "'forkserver' start method), or use it in the parent only after forking its workers");
 }
 
 std::string eglErrorName(EGLint e) {
@@ -219,6 +238,9 @@ EglContext EglContext::create(const ContextOptions& options) {
   const std::string& p = options.platform;
   if (p != "auto" && p != "device" && p != "surfaceless" && p != "default")
     throw InputError("ContextOptions", "platform", p, "expected auto, device, surfaceless or default");
+  refuseForkedChild();
+  pid_t none = 0;
+  eglUser.compare_exchange_strong(none, ::getpid());  // before any EGL call: a fork during it is as late
   std::vector<std::string> attempts;
   State* state = nullptr;
   // eglGetPlatformDisplayEXT exists only with EGL_EXT_platform_base (epoxy would abort otherwise).
