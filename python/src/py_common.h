@@ -13,6 +13,7 @@
 
 #include "shadowvol/capture_choice.h"
 #include "shadowvol/depth_map.h"
+#include "shadowvol/error.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/volume_builder.h"
 
@@ -46,6 +47,10 @@ void checkResolutionArg(int resolution, const std::string& what);
 
 /// The builder's options from the keyword arguments of build_volume and validate (names as there);
 /// InputError names the argument.
+/// A volume option's refusal (checkUserVolumeOptions: source "volume options") named by this
+/// module's keyword and in its terms (refine_grid=S for --refine-grid S); other errors as they are.
+InputError asPythonArgumentError(const InputError& e);
+
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                     std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
                                     bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false,

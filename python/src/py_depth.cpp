@@ -1,5 +1,8 @@
 // Python: DepthMap (depths as a numpy array, light matrices), capture_depth(), load_depth(),
 // DepthMap.from_array() and DepthMap.save().
+#include <cmath>
+#include <limits>
+
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -15,9 +18,11 @@ namespace shadowvol::python {
 namespace {
 
 DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
-                      const std::string& platform) {
-  // An unrefined volume's map, as build_volume reads it.
-  const CaptureMode mode = captureModeArg(capture, &s.scene, CaptureUse::Volume);
+                      const std::string& platform, int refine) {
+  // The map of a volume with `refine` steps, as build_volume reads it: capture='auto' chooses as
+  // `shadowvol build --refine K` does (a fifteenth probe's finding: it chose for an unrefined volume).
+  if (refine < 0) throw InputError("python", "refine", std::to_string(refine), "must be >= 0 (0: unrefined)");
+  const CaptureMode mode = captureModeArg(capture, &s.scene, volumeUse(refine));
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height", DepthMapUse::MapOnly);  // as `shadowvol depth`
@@ -38,6 +43,18 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
 #endif
 }
 
+// A finite depth beyond single precision would become +inf, "no hit", without a word (a fifteenth
+// probe's 1e39 emptied a volume): refused, naming the texel (column, row) and the value.
+void refuseBeyondFloat(const py::array_t<double, py::array::forcecast>& depth) {
+  const auto r = depth.unchecked<2>();
+  for (py::ssize_t j = 0; j < r.shape(0); ++j)
+    for (py::ssize_t i = 0; i < r.shape(1); ++i)
+      if (std::isfinite(r(j, i)) && std::abs(r(j, i)) > double(std::numeric_limits<float>::max()))
+        throw InputError("DepthMap.from_array", "texel " + std::to_string(i) + "," + std::to_string(j),
+                         numberText(r(j, i)),
+                         "beyond single precision (depths are stored as float32): give +inf for no hit");
+}
+
 DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::object& lightProjection,
                    double nearPlane, double farPlane, const std::string& light, const std::string& capture,
                    const std::array<double, 3>& origin) {
@@ -46,13 +63,18 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
   if (kind != 'f' && kind != 'i' && kind != 'u')
     throw InputError("DepthMap.from_array", "depth", std::string(py::str(raw.dtype())),
                      "expected an array of real numbers (float or integer depths)");
-  const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
-  if (depth.ndim() != 2)
-    throw InputError("DepthMap.from_array", "depth", std::to_string(depth.ndim()) + "-dimensional array",
+  if (raw.ndim() != 2)
+    throw InputError("DepthMap.from_array", "depth", std::to_string(raw.ndim()) + "-dimensional array",
                      "expected a 2-dimensional array (rows x columns, row 0 at the bottom)");
+  if (raw.shape(0) > kMaxDepthMapSide || raw.shape(1) > kMaxDepthMapSide)  // named as given, not clamped
+    throw InputError("DepthMap.from_array", "depth",
+                     std::to_string(raw.shape(0)) + " rows x " + std::to_string(raw.shape(1)) + " columns",
+                     "a side is larger than " + std::to_string(kMaxDepthMapSide) + " texels");
+  if (kind == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw.cast<py::array_t<double, py::array::forcecast>>());
+  const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
   DepthMap map;
-  map.height = int(std::min<py::ssize_t>(depth.shape(0), 1 << 20));
-  map.width = int(std::min<py::ssize_t>(depth.shape(1), 1 << 20));
+  map.height = int(depth.shape(0));
+  map.width = int(depth.shape(1));
   checkDepthMapSize(map.width, map.height, "DepthMap.from_array", "depth");
   if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
     throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");
@@ -129,12 +151,14 @@ void registerDepth(py::module_& m) {
       });
 
   m.def("capture_depth", &captureDepth, py::arg("scene"), py::arg("width") = 256, py::arg("height") = 256,
-        py::arg("capture") = "auto", py::arg("device") = "cpu", py::arg("platform") = "auto",
+        py::arg("capture") = "auto", py::arg("device") = "cpu", py::arg("platform") = "auto", py::arg("refine") = 0,
         "The light's depth map of a scene: device='cpu' casts one Embree ray per texel centre, 'gpu' renders the "
         "light pass through EGL + OpenGL and reads it back (same texels hit, depths within 1e-4 relative). "
         "capture: auto (back when every mesh object is closed, else front: `--capture auto`), back (first surface "
         "facing away from the light), front, midpoint or entry (front capture's surface where a back face lies "
-        "behind it).");
+        "behind it). refine: the bisection steps of the volume the map is for (build_volume's refine): capture='auto' "
+        "chooses for it as `shadowvol build --refine K` does (entry capture for a refined volume on closed meshes); "
+        "0, the default, an unrefined volume's choice.");
   m.def(
       "load_depth",
       [](const std::filesystem::path& path) {

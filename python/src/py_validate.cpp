@@ -1,6 +1,8 @@
 // Python: render() and validate(): a frame through EGL + OpenGL, and its check by ray casting
 // (the same checks and report fields as `shadowvol validate`). GL builds only; without GL both
 // raise InputError.
+#include <fstream>
+
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -12,9 +14,13 @@
 #ifdef SHADOWVOL_WITH_GL
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/mesh_io.h"
+#include "shadowvol/output_lock.h"
+#include "shadowvol/temporary_files.h"
 #include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 #include "shadowvol/validate/gl_frame.h"
+#include "shadowvol/validate/report_folder.h"
 #include "shadowvol/validate/validation_report.h"
 #endif
 
@@ -149,6 +155,40 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   return d;
 }
 
+// The report folder as `shadowvol validate --report` leaves it: an earlier report's files removed
+// (a link among them replaced, not written through: a fifteenth probe's finding), each light's
+// images, then report.json last; under the folder's lock, and none of this run's files left when
+// a write fails or a signal ends the process half-way.
+void writeReportFolder(const std::filesystem::path& dir, const std::vector<LightValidation>& lights,
+                       const nlohmann::json& report) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError("python", "report_dir", dir.string(), "cannot create the folder" + (ec ? ": " + ec.message() : ""));
+  const OutputLock lock(dir);
+  removeReportFiles(dir);
+  const OutputSetGuard set;
+  try {
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+      const std::filesystem::path sub = lights.size() == 1 ? dir : lightReportFolder(dir, k);
+      std::filesystem::create_directories(sub, ec);
+      if (ec || !std::filesystem::is_directory(sub))
+        throw InputError("python", "report_dir", dir.string(),
+                         "cannot create the folder " + sub.string() + (ec ? ": " + ec.message() : ""));
+      writeValidationImages(sub, lights[k].validation, lights[k].frame);
+    }
+    writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
+      std::ofstream out(tmp);
+      out << report.dump(2) << '\n';
+      out.flush();
+      if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
+    });
+  } catch (...) {
+    removeReportFiles(dir);
+    throw;
+  }
+}
+
 py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError, double maxMissed,
                            bool selfIntersections, const std::optional<std::filesystem::path>& reportDir) {
   Scene scene = s.scene;
@@ -159,6 +199,12 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
   if (!(maxMissed >= 0.0 && maxMissed <= 1.0)) throw InputError("python", "max_missed", std::to_string(maxMissed), "must be in [0, 1]");
   vo.maxError = maxError;
   vo.maxMissedShare = maxMissed;
+  if (reportDir && scene.lightCount() > 1)  // before the work, as the command line
+    for (std::size_t k = 0; k < scene.lightCount(); ++k) lightReportFolder(*reportDir, k);
+  if (reportDir && std::filesystem::is_directory(*reportDir)) {  // an earlier report goes before the work
+    const OutputLock lock(*reportDir);
+    removeReportFiles(*reportDir);
+  }
   nlohmann::json j;
   {
     py::gil_scoped_release release;
@@ -193,15 +239,11 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     j["options"] = options;
     j["warnings"] = warnings;
     if (reportDir) {
-      for (std::size_t k = 0; k < lights.size(); ++k) {
-        const std::filesystem::path sub = lights.size() == 1 ? *reportDir : *reportDir / ("light-" + std::to_string(k));
-        std::error_code ec;
-        std::filesystem::create_directories(sub, ec);
-        if (ec || !std::filesystem::is_directory(sub))
-          throw InputError("python", "report_dir", reportDir->string(),
-                           "cannot create the folder " + sub.string() + (ec ? ": " + ec.message() : ""));
-        writeValidationImages(sub, lights[k].validation, lights[k].frame);
+      {  // a Ctrl-C during the work: no files (a fifteenth probe's wrote them all, then raised)
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
       }
+      writeReportFolder(*reportDir, lights, j);
     }
   }
   return toPython(j).cast<py::dict>();
@@ -267,7 +309,9 @@ void registerValidate(py::module_& m) {
       "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume, options: "
       "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "
       "several lights those checks are per light in `lights` (index, pointer, type, ...) and `passed` is over all. "
-      "report_dir: also write the PNGs there (exact, stencil, count, overlay, frame; light-K/ per light).");
+      "report_dir: also write the report there as `shadowvol validate --report` does (an earlier report's "
+      "files removed; the PNGs: exact, stencil, count, overlay, frame, light-K/ per light; report.json, this dict, "
+      "last); a Ctrl-C during the work writes nothing.");
 #else
   m.def(
       "validate", [](py::args, py::kwargs) -> py::dict {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <pybind11/stl.h>
@@ -33,8 +35,41 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
   o.refineSubdivisions = refineGrid;
   o.refineGridEverywhere = refineGridEverywhere;
   o.refineHidden = hiddenSearch;
-  checkUserVolumeOptions(o);  // the command line's rules (a probe found them missing here)
+  try {
+    checkUserVolumeOptions(o);  // the command line's rules (a probe found them missing here)
+  } catch (const InputError& e) {
+    throw asPythonArgumentError(e);
+  }
   return o;
+}
+
+namespace {
+
+// The volume options' fields and command-line flags as this module's keywords (a fifteenth probe's
+// finding: refine_grid=3 was "refine subdivisions", blur_offset "needs blur (--blur)").
+struct PythonName {
+  const char* library;
+  const char* keyword;
+};
+constexpr PythonName kFieldKeywords[] = {
+    {"blur offset", "blur_offset"},   {"bias", "bias"},          {"refine steps", "refine"},
+    {"cap", "cap"},                   {"refine subdivisions", "refine_grid"},
+    {"refine chords", "chord_points"}, {"refine grid everywhere", "refine_grid_everywhere"},
+    {"refine hidden", "hidden_search"}, {"flatten cap", "flatten_cap"}};
+constexpr PythonName kFlagKeywords[] = {{"--refine-grid S", "refine_grid=S"}, {"--refine K", "refine=K"},
+                                        {"--chord-points", "chord_points=True"}, {"(--blur)", "(blur=True)"}};
+
+}  // namespace
+
+InputError asPythonArgumentError(const InputError& e) {
+  if (e.source() != "volume options") return e;
+  std::string field = e.field(), problem = e.problem();
+  for (const PythonName& n : kFieldKeywords)
+    if (field == n.library) field = n.keyword;
+  for (const PythonName& n : kFlagKeywords)
+    for (std::size_t at; (at = problem.find(n.library)) != std::string::npos;)
+      problem.replace(at, std::string_view(n.library).size(), n.keyword);
+  return InputError("python", field, e.value(), problem);
 }
 
 namespace {

@@ -115,7 +115,7 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
     Vn, Fn, none = sv.build_volume(depth, refine=4, refine_grid=4, hidden_search=False, scene=scene)
     assert none["hiddenQuads"] == 0 and none["rimQuads"] == 0
     assert_closed_oriented(Vn, Fn)
-    with pytest.raises(ValueError, match="refine hidden"):
+    with pytest.raises(ValueError, match="hidden_search: is the sub-grid.s search"):
         sv.build_volume(depth, refine=4, hidden_search=False, scene=scene)  # the sub-grid's search: needs it
 
 
@@ -179,11 +179,23 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
 def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     """A probe's findings (2026-12-05): build_volume, export, from_array and the scene's texel
     queries took what the command line refuses, by the same rules (checkUserVolumeOptions)."""
-    for kw, field in [(dict(bias=-1.0), "bias"), (dict(blur=True, blur_offset=-1.0), "blur offset"),
-                      (dict(blur_offset=0.1), "blur offset"), (dict(chord_points=True), "refine chords"),
-                      (dict(cap="quad", flatten_cap=False), "flatten cap")]:
+    # Named by this module's keywords, in its terms (a fifteenth probe's finding: "blur offset",
+    # "needs blur (--blur)").
+    for kw, field in [(dict(bias=-1.0), "bias = "), (dict(blur=True, blur_offset=-1.0), "blur_offset = "),
+                      (dict(blur_offset=0.1), r"blur_offset = 0\.1: needs blur \(blur=True\)"),
+                      (dict(chord_points=True), r"chord_points: needs refinement \(.*refine=K\)"),
+                      (dict(refine=6, refine_grid=4, chord_points=True), r"refine_grid = 4: not with chord points \(chord_points=True\)"),
+                      (dict(cap="quad", flatten_cap=False), "flatten_cap")]:
         with pytest.raises(sv.InputError, match=field):
             sv.build_volume(depth, **kw)
+    # A finite depth beyond single precision became +inf, no hit, without a word (a fifteenth probe's).
+    huge = np.array(depth.depth, dtype=np.float64)
+    huge[4, 2] = 1e39
+    with pytest.raises(sv.InputError, match=r"texel 2,4 = 1e\+39: beyond single precision"):
+        sv.DepthMap.from_array(huge, depth.light_view, depth.light_projection, depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"2097152 rows x 4 columns"):  # named as given, not clamped
+        sv.DepthMap.from_array(np.zeros((2097152, 4), dtype=np.float32), depth.light_view, depth.light_projection,
+                               depth.near, depth.far)
     V, F, _ = sv.build_volume(depth)
     with pytest.raises(sv.InputError, match=r"single precision"):
         sv.export(np.full((3, 3), 1e300), np.array([[0, 1, 2]]), tmp_path / "huge.ply")
@@ -226,6 +238,10 @@ def test_capture_auto_is_the_default_and_follows_the_meshes(tmp_path):
     assert sv.capture_depth(sv.load_scene(path), 16, 16).capture == "front"
     assert sv.capture_depth(sv.load_scene(path), 16, 16, capture="back").capture == "back"
     assert sv.capture_depth(sv.default_scene(), 16, 16).capture == "back"
+    # For a refined volume, as `build --refine K` chooses (a fifteenth probe's: always the unrefined choice).
+    assert sv.capture_depth(sv.default_scene(), 16, 16, refine=6).capture == "entry"
+    with pytest.raises(sv.InputError, match=r"refine = -1"):
+        sv.capture_depth(sv.default_scene(), 16, 16, refine=-1)
 
 
 def test_entry_capture_is_front_where_back_has_a_back_face():
@@ -265,6 +281,23 @@ def test_validate_returns_the_report(tmp_path, scene):
     assert report["stencilVsCount"]["fraction"] >= 0.9999
     assert report["pixels"]["total"] == 96 * 72 and report["meshChecks"]["closedManifold"] is True
     assert (tmp_path / "r" / "overlay.png").is_file()
+    assert json.loads((tmp_path / "r" / "report.json").read_text())["passed"] is True
+
+
+@needs_gl
+def test_report_dir_is_written_as_the_command_line_writes_it(tmp_path, scene):
+    """A fifteenth probe's findings: validate(report_dir=R) wrote its PNGs through a symbolic link
+    placed in R (over a file outside it), and left an earlier report.json of another scene beside them."""
+    outside = tmp_path / "outside.txt"
+    outside.write_text("keep")
+    r = tmp_path / "r"
+    r.mkdir()
+    (r / "overlay.png").symlink_to(outside)
+    (r / "report.json").write_text('{"passed": false, "scene": "another"}')
+    report = sv.validate(scene, resolution=32, size=(48, 36), report_dir=r)
+    assert outside.read_text() == "keep"
+    assert not (r / "overlay.png").is_symlink() and (r / "overlay.png").read_bytes()[:4] == b"\x89PNG"
+    assert json.loads((r / "report.json").read_text()) == json.loads(json.dumps(report))
 
 
 @needs_gl
@@ -289,7 +322,7 @@ def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path,
     assert sv.validate(scene, resolution=16, size=(16, 12), capture="front")["options"] == {"capture": "front"}
     assert "capture" not in sv.validate(scene, method="silhouette", size=(16, 12))["options"]
     for kw, field in [(dict(method="shadowmap", blur=True), "blur"), (dict(method="none", capture="front"), "capture"),
-                      (dict(method="silhouette", refine=3), "refine"), (dict(refine=99), "refine steps"),
+                      (dict(method="silhouette", refine=3), "refine"), (dict(refine=99), "refine = 99"),
                       (dict(resolution=2), "resolution"),
                       # a third probe's findings: taken where the command line refuses them
                       (dict(method="shadowmap", volume="explicit"), "volume"),
