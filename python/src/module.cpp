@@ -26,9 +26,19 @@ py::array_t<double> matrixToNumpy(const glm::dmat4& m) {
   return a;
 }
 
-glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what) {
-  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
-    throw InputError("python", what, std::to_string(a.ndim()) + "-dimensional array", "expected a 4 x 4 array");
+glm::dmat4 matrixFromNumpy(const py::object& value, const std::string& what) {
+  // Real numbers in a 4 x 4 array, named as given (a fifteenth probe's: a 3 x 3 matrix was "a
+  // 2-dimensional array", a complex one lost its imaginary part, strings raised numpy's error).
+  const py::array raw = py::array::ensure(value);
+  if (!raw) throw InputError("python", what, std::string(py::str(py::repr(value))).substr(0, 80), "expected a 4 x 4 array");
+  const char kind = raw.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw InputError("python", what, std::string(py::str(raw.dtype())), "expected a 4 x 4 array of real numbers");
+  std::string shape;
+  for (py::ssize_t k = 0; k < raw.ndim(); ++k) shape += (k ? " x " : "") + std::to_string(raw.shape(k));
+  if (raw.ndim() != 2 || raw.shape(0) != 4 || raw.shape(1) != 4)
+    throw InputError("python", what, (shape.empty() ? "a scalar" : shape) + " array", "expected a 4 x 4 array");
+  const auto a = raw.cast<py::array_t<double, py::array::forcecast>>();
   glm::dmat4 m(1.0);
   auto r = a.unchecked<2>();
   for (int row = 0; row < 4; ++row)

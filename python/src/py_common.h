@@ -33,7 +33,7 @@ py::object toPython(const nlohmann::json& j);
 /// 4 x 4 numpy array, a[row, column] = m[column][row] (GLM stores columns).
 py::array_t<double> matrixToNumpy(const glm::dmat4& m);
 /// The inverse; throws InputError naming `what` unless `a` is a 4 x 4 array.
-glm::dmat4 matrixFromNumpy(const py::array_t<double, py::array::forcecast>& a, const std::string& what);
+glm::dmat4 matrixFromNumpy(const py::object& value, const std::string& what);
 
 /// The enum value named `text`; throws InputError naming the keyword argument and listing the choices.
 /// "auto" (chooseCapture, capture_choice.h) needs the scene the map is captured from and what the

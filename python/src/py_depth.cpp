@@ -79,9 +79,9 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
   if (!parseLightType(light, map.lightType) || map.lightType == LightType::Point)  // a map is one light view
     throw InputError("DepthMap.from_array", "light", light, "expected spot or directional");
   map.capture = captureModeArg(capture);
-  map.lightView = matrixFromNumpy(lightView.cast<py::array_t<double, py::array::forcecast>>(), "light_view");
+  map.lightView = matrixFromNumpy(lightView, "light_view");
   map.lightProjection =
-      matrixFromNumpy(lightProjection.cast<py::array_t<double, py::array::forcecast>>(), "light_projection");
+      matrixFromNumpy(lightProjection, "light_projection");
   map.nearPlane = nearPlane;
   map.farPlane = farPlane;
   map.origin = {origin[0], origin[1], origin[2]};

@@ -212,6 +212,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     const gl::RenderResult result = r.renderer.render(ro);
     const std::vector<LightValidation> lights = validateEveryLight(scene, ro, result, vo);
     const bool silhouette = ro.method == gl::ShadowMethod::Silhouette;
+    const bool drawsVolume = silhouette || ro.method == gl::ShadowMethod::Hybrid;  // a stencil count to name
     if (lights.size() == 1) {
       j = describeValidation(lights[0].validation, vo, silhouette);
     } else {  // as validate's report.json: one section per light, the verdict over all
@@ -222,7 +223,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
         l["index"] = k;
         l["pointer"] = scene.lightPointer(k);
         l["type"] = toString(scene.lightAt(k).type);
-        l["volumeCount"] = gl::toString(lights[k].result->volumeCountUsed);
+        if (drawsVolume) l["volumeCount"] = gl::toString(lights[k].result->volumeCountUsed);
         passed = passed && lights[k].validation.passed;
         j["lights"].push_back(l);
       }
@@ -230,7 +231,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     }
     j["scene"] = describeScene(scene);
     j["glRenderer"] = r.renderer.info().glRenderer;
-    j["volumeCount"] = gl::toString(result.volumeCountUsed);
+    if (drawsVolume) j["volumeCount"] = gl::toString(result.volumeCountUsed);  // as the command line's report
     j["shadowvolVersion"] = SHADOWVOL_VERSION;
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
     nlohmann::json options = nlohmann::json::object();

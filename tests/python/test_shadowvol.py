@@ -193,6 +193,11 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     huge[4, 2] = 1e39
     with pytest.raises(sv.InputError, match=r"texel 2,4 = 1e\+39: beyond single precision"):
         sv.DepthMap.from_array(huge, depth.light_view, depth.light_projection, depth.near, depth.far)
+    for matrix, said in [(np.eye(3), r"light_view = 3 x 3 array: expected a 4 x 4 array"),
+                         (np.eye(4, dtype=np.complex128), r"light_view = complex128: expected a 4 x 4 array of real"),
+                         ([["a"] * 4] * 4, r"light_view = <U1: expected a 4 x 4 array of real")]:
+        with pytest.raises(sv.InputError, match=said):
+            sv.DepthMap.from_array(depth.depth, matrix, depth.light_projection, depth.near, depth.far)
     with pytest.raises(sv.InputError, match=r"2097152 rows x 4 columns"):  # named as given, not clamped
         sv.DepthMap.from_array(np.zeros((2097152, 4), dtype=np.float32), depth.light_view, depth.light_projection,
                                depth.near, depth.far)
@@ -320,6 +325,8 @@ def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path,
     assert refined["options"]["capture"] == "entry" and refined["options"]["captureAuto"].startswith("entry capture")
     assert report["warnings"] == []
     assert sv.validate(scene, resolution=16, size=(16, 12), capture="front")["options"] == {"capture": "front"}
+    assert "volumeCount" in report and "volumeCount" not in sv.validate(scene, method="shadowmap", resolution=16,
+                                                                         size=(16, 12))  # no volume drawn
     assert "capture" not in sv.validate(scene, method="silhouette", size=(16, 12))["options"]
     for kw, field in [(dict(method="shadowmap", blur=True), "blur"), (dict(method="none", capture="front"), "capture"),
                       (dict(method="silhouette", refine=3), "refine"), (dict(refine=99), "refine = 99"),
