@@ -75,9 +75,27 @@ PYBIND11_MODULE(shadowvol, m) {
       "capture_depth -> build_volume -> export; validate renders a frame (EGL + OpenGL) and checks it by ray "
       "casting.";
   m.attr("__version__") = SHADOWVOL_VERSION;
-  pybind11::register_exception<shadowvol::InputError>(m, "InputError", PyExc_ValueError);
+  // InputError with its parts as attributes (source, field, value, problem), so a caller can tell
+  // which argument or file field was refused without parsing the message (a fifteenth probe's).
+  static pybind11::exception<shadowvol::InputError> inputError(m, "InputError", PyExc_ValueError);
+  inputError.doc() = "Bad input (a ValueError): the message names the file or argument, field and value; the parts "
+                     "are the attributes source, field, value and problem.";
+  pybind11::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const shadowvol::InputError& e) {
+      const auto type = pybind11::reinterpret_borrow<pybind11::object>(inputError.ptr());
+      pybind11::object error = type(e.what());
+      error.attr("source") = e.source();
+      error.attr("field") = e.field();
+      error.attr("value") = e.value();
+      error.attr("problem") = e.problem();
+      PyErr_SetObject(inputError.ptr(), error.ptr());
+    }
+  });
 #ifdef SHADOWVOL_WITH_GL
-  pybind11::register_exception<shadowvol::gl::GlError>(m, "GlError", PyExc_RuntimeError);
+  pybind11::register_exception<shadowvol::gl::GlError>(m, "GlError", PyExc_RuntimeError).doc() =
+      "The GL driver failed or is missing (a RuntimeError): no EGL display, no context, a GL error.";
   m.attr("has_gl") = true;
 #else
   m.attr("has_gl") = false;

@@ -1,5 +1,6 @@
 // Python: DepthMap (depths as a numpy array, light matrices), capture_depth(), load_depth(),
 // DepthMap.from_array() and DepthMap.save().
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -144,6 +145,22 @@ void registerDepth(py::module_& m) {
             writeDepthMap(d, path);
           },
           py::arg("path"), "Writes a PFM plus its JSON side file (path + '.json'), as `shadowvol depth` does.")
+      .def("__copy__", [](const DepthMap& d) { return DepthMap(d); })
+      .def("__deepcopy__", [](const DepthMap& d, const py::dict&) { return DepthMap(d); }, py::arg("memo"))
+      .def(py::pickle(  // as from_array's arguments, checked again when unpickled
+          [](const DepthMap& d) {
+            py::array_t<float> depth({py::ssize_t(d.height), py::ssize_t(d.width)});
+            std::copy(d.depth.begin(), d.depth.end(), depth.mutable_data());
+            return py::make_tuple(depth, matrixToNumpy(d.lightView),
+                                  matrixToNumpy(d.lightProjection), d.nearPlane, d.farPlane, toString(d.lightType),
+                                  std::string(toString(d.capture)), std::array<double, 3>{d.origin.x, d.origin.y, d.origin.z});
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 8) throw InputError("DepthMap.__setstate__", "state", std::to_string(t.size()) + " items",
+                                                "expected 8 (a DepthMap's pickle)");
+            return fromArray(t[0].cast<py::array>(), t[1], t[2], t[3].cast<double>(), t[4].cast<double>(),
+                             t[5].cast<std::string>(), t[6].cast<std::string>(), t[7].cast<std::array<double, 3>>());
+          }))
       .def("__repr__", [](const DepthMap& d) {
         return "<shadowvol.DepthMap " + std::to_string(d.width) + "x" + std::to_string(d.height) + " " +
                toString(d.lightType) + ", " + toString(d.capture) + ", " +

@@ -29,6 +29,9 @@ void registerScene(py::module_& m) {
                       "A scene: world-space triangle meshes, one or more lights, one camera (README 'Scene files'). Positions "
                       "are kept relative to `origin` (rebased when the scene lies far from the world origin).")
       .def_property_readonly("source", [](const PyScene& s) { return s.scene.source; }, "file it was loaded from, or 'default'")
+      .def("__copy__", [](const PyScene& s) { return PyScene(s); },
+           "A copy (copy.copy, copy.deepcopy): keep one before fit_light_to_view changes the scene in place.")
+      .def("__deepcopy__", [](const PyScene& s, const py::dict&) { return PyScene(s); }, py::arg("memo"))
       .def_property_readonly("triangle_count", [](const PyScene& s) { return s.scene.triangleCount(); })
       .def_property_readonly("object_names",
                              [](const PyScene& s) {

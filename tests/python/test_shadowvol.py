@@ -176,6 +176,27 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
         sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
 
 
+def test_copies_pickles_and_error_parts(depth):
+    """A fifteenth probe's findings: Scene and DepthMap could not be copied or pickled, and an
+    InputError's parts were only in its message."""
+    import copy
+    import pickle
+    again = pickle.loads(pickle.dumps(depth))
+    assert np.array_equal(again.depth, depth.depth) and again.capture == depth.capture
+    assert np.array_equal(again.light_projection, depth.light_projection) and again.origin == depth.origin
+    assert np.array_equal(copy.deepcopy(depth).depth, depth.depth)
+    s = sv.load_scene(SCENES / "tree-wide-ground.json")
+    kept = copy.copy(s)
+    s.fit_light_to_view(256)
+    assert kept.describe()["light"] != s.describe()["light"]  # the copy kept the scene as loaded
+    assert copy.deepcopy(kept).describe() == kept.describe()
+    with pytest.raises(sv.InputError) as refused:
+        sv.build_volume(depth, bias=-1.0)
+    e = refused.value
+    assert (e.source, e.field, e.value) == ("python", "bias", "-1") and e.problem.startswith("must be")
+    assert sv.InputError.__doc__ and sv.GlError.__doc__ if sv.has_gl else sv.InputError.__doc__
+
+
 def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     """A probe's findings (2026-12-05): build_volume, export, from_array and the scene's texel
     queries took what the command line refuses, by the same rules (checkUserVolumeOptions)."""
