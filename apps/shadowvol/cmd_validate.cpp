@@ -3,7 +3,6 @@
 // counts agree on >= 99.99 % of visible pixels and the mesh checks pass, 3 otherwise.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "cli_verbosity.h"
@@ -290,12 +289,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
             writeValidationImages(sub, checks[k].validation, checks[k].frame);
           }
         }
-        writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
-          std::ofstream out(tmp);
-          out << j.dump(2) << '\n';
-          out.flush();
-          if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
-        });
+        writeReportJson(dir, j);
       } catch (...) {
         removeReportFiles(dir);
         throw;

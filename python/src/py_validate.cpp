@@ -1,8 +1,6 @@
 // Python: render() and validate(): a frame through EGL + OpenGL, and its check by ray casting
 // (the same checks and report fields as `shadowvol validate`). GL builds only; without GL both
 // raise InputError.
-#include <fstream>
-
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -14,7 +12,6 @@
 #ifdef SHADOWVOL_WITH_GL
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/gl/renderer.h"
-#include "shadowvol/mesh_io.h"
 #include "shadowvol/output_lock.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/report_json.h"
@@ -177,12 +174,7 @@ void writeReportFolder(const std::filesystem::path& dir, const std::vector<Light
                          "cannot create the folder " + sub.string() + (ec ? ": " + ec.message() : ""));
       writeValidationImages(sub, lights[k].validation, lights[k].frame);
     }
-    writeAtomically(dir / "report.json", [&](const std::filesystem::path& tmp) {
-      std::ofstream out(tmp);
-      out << report.dump(2) << '\n';
-      out.flush();
-      if (!out) throw InputError((dir / "report.json").string(), "", "", "writing the report failed");
-    });
+    writeReportJson(dir, report);
   } catch (...) {
     removeReportFiles(dir);
     throw;

@@ -1,8 +1,10 @@
 #include "shadowvol/validate/report_folder.h"
 
+#include <fstream>
 #include <string>
 
 #include "shadowvol/error.h"
+#include "shadowvol/mesh_io.h"  // writeAtomically
 
 namespace shadowvol {
 namespace {
@@ -28,6 +30,16 @@ void removeReportFiles(const std::filesystem::path& dir) {
     removeIn(e.path());
     if (std::filesystem::is_empty(e.path(), ec)) std::filesystem::remove(e.path(), ec);
   }
+}
+
+void writeReportJson(const std::filesystem::path& dir, const nlohmann::json& report) {
+  const std::filesystem::path path = dir / "report.json";
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp);
+    out << report.dump(2) << '\n';
+    out.flush();
+    if (!out) throw InputError(path.string(), "", "", "writing the report failed");
+  });
 }
 
 std::filesystem::path lightReportFolder(const std::filesystem::path& dir, std::size_t k) {

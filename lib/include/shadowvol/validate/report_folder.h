@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <span>
 
+#include <nlohmann/json.hpp>
+
 namespace shadowvol {
 
 /// The files a report writes in its folder (and in each light-K folder of several lights), the
@@ -18,6 +20,9 @@ std::span<const char* const> reportFileNames();
 /// another folder had its files deleted), and a report file that is a link is removed, not its
 /// target. Call it under an OutputLock on `dir`.
 void removeReportFiles(const std::filesystem::path& dir);
+
+/// Writes `report` as dir/report.json (atomically: whole or not at all), the last file of a report.
+void writeReportJson(const std::filesystem::path& dir, const nlohmann::json& report);
 
 /// Light k's image folder in `dir` (dir/light-k), refused (InputError) when it is a symbolic link:
 /// the images would go where it points.
