@@ -214,6 +214,33 @@ TEST(AssimpReader, BrokenFilesAreRefusedNamingTheFile) {
   }
 }
 
+// The glTF of an empty volume (no mesh) reads as an empty mesh where one is allowed (`check`); a
+// file whose geometry Assimp could not convert (it hands back an empty scene flagged incomplete)
+// stays refused (a second reader's finding: an FBX with a bad index passed `check` as empty).
+TEST(AssimpReader, OnlyAGltfDeclaringNoMeshReadsAsEmpty) {
+  const auto dir = test::tempDir();
+  for (const char* name : {"empty.glb", "empty.gltf"}) {
+    writeTriangleMesh(TriangleMesh{}, dir / name);
+    EXPECT_TRUE(readTriangleMesh(dir / name, EmptyMesh::Allow).triangles.empty()) << name;
+    EXPECT_THROW(readTriangleMesh(dir / name), InputError) << name;  // no triangles: not a scene object
+  }
+  test::writeText(dir / "bad-index.fbx", "; FBX 7.4.0 project file\nFBXHeaderExtension:  {\n\tFBXHeaderVersion: 1003\n"
+                                         "\tFBXVersion: 7400\n}\nObjects:  {\n\tGeometry: 100, \"Geometry::g\", \"Mesh\" {\n"
+                                         "\t\tVertices: *9 { a: 0,0,0,1,0,0,0,1,0 }\n\t\tPolygonVertexIndex: *3 { a: 0,1,-8 }\n"
+                                         "\t}\n\tModel: 200, \"Model::m\", \"Mesh\" {\n\t\tVersion: 232\n\t}\n}\n"
+                                         "Connections:  {\n\tC: \"OO\",100,200\n\tC: \"OO\",200,0\n}\n");
+  test::writeText(dir / "no-primitives.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}], "meshes": [{"primitives": []}]})");
+  for (const char* name : {"bad-index.fbx", "no-primitives.gltf"}) {
+    try {
+      readTriangleMesh(dir / name, EmptyMesh::Allow);
+      ADD_FAILURE() << name << " was read as an empty mesh";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), (dir / name).string()) << e.what();
+    }
+  }
+}
+
 TEST(AssimpReader, UnknownExtensionsNameTheFormatsThatAreRead) {
   const auto path = test::tempDir() / "mesh.notamesh";
   test::writeText(path, "solid x\n");

@@ -8,8 +8,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
 
 #include <glm/matrix.hpp>
+#include <nlohmann/json.hpp>
 
 #include "mesh_readers/corner_welder.h"
 #include "mesh_readers/isolated_call.h"
@@ -109,6 +114,32 @@ void collectNode(const aiScene& scene, const aiNode& node, const glm::dmat4& par
 
 // The scene's triangles, in world units as the file's nodes place them, in double (every mesh as
 // stored when the file has no nodes): rebased and welded when stored (readChecked, storedMesh).
+// The whole of a file ("" when it cannot be read).
+std::string readAll(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Whether a glTF file (.gltf text or .glb binary) declares no mesh: its JSON has no "meshes", or
+// an empty array. False for any other format and for a document that does not parse.
+bool gltfDeclaresNoMesh(std::string_view bytes, const std::string& lowerExtension) {
+  if (lowerExtension != ".gltf" && lowerExtension != ".glb") return false;
+  std::string_view text = bytes;
+  if (lowerExtension == ".glb") {  // header (12 bytes), then the JSON chunk: length, type "JSON", data
+    constexpr std::uint32_t kJsonChunk = 0x4E4F534A;
+    std::uint32_t length = 0, type = 0;
+    if (bytes.size() < 20) return false;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    std::memcpy(&type, bytes.data() + 16, 4);
+    if (type != kJsonChunk || length > bytes.size() - 20) return false;
+    text = bytes.substr(20, length);
+  }
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return false;
+  const auto meshes = doc.find("meshes");
+  return meshes == doc.end() || (meshes->is_array() && meshes->empty());
+}
+
 ParsedMesh collect(const aiScene& scene, const std::string& source) {
   ParsedMesh mesh;
   mesh.weldCorners = true;
@@ -205,10 +236,13 @@ ParsedMesh readWithAssimp(const std::string& source, const std::filesystem::path
         throw InputError(source, "", "", "the mesh has no triangles (points and lines are dropped)");
       throw InputError(source, "", "", "Assimp cannot read it: " + why);
     }
-    // Assimp flags every scene without a mesh as incomplete: such a file holds no triangles (as the
-    // glTF of an empty volume that build writes), which the caller accepts or refuses (EmptyMesh).
-    // A probe's finding: `check` called that file unreadable.
-    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE && scene->mNumMeshes == 0) return serialize(ParsedMesh{});
+    // Assimp flags every scene without a mesh as incomplete, also one whose geometry it could not
+    // convert (an FBX with a bad index). A glTF that declares no mesh holds no triangles (as the
+    // empty volume build writes): the caller accepts or refuses it (EmptyMesh). A probe's finding:
+    // `check` called that file unreadable; a second reader's, that a broken FBX then passed.
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE && scene->mNumMeshes == 0 &&
+        gltfDeclaresNoMesh(path.empty() ? bytes : std::string_view(readAll(path)), lowerExtension))
+      return serialize(ParsedMesh{});
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
       throw InputError(source, "", "", "Assimp read it only in part (AI_SCENE_FLAGS_INCOMPLETE)");
     if (scene->mRootNode) checkNodes(*scene->mRootNode, glm::dmat4(1.0), "", source);
