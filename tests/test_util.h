@@ -57,12 +57,18 @@ inline double signedVolume(const TriangleMesh& m) {
 }
 
 /// Another process holding an exclusive flock on `folder` (as another shadowvol run's OutputLock
-/// does) from construction, once it has it, until destruction. Deterministic: pipes, no sleeps.
+/// does) from construction, once it has it, until release() or destruction. One at a time: a
+/// second one's process would hold the first one's pipe open.
 class FolderHeldElsewhere {
  public:
   explicit FolderHeldElsewhere(const std::filesystem::path& folder) {
     int held[2], release[2];
-    if (::pipe(held) != 0 || ::pipe(release) != 0) return;
+    if (::pipe2(held, O_CLOEXEC) != 0) return;
+    if (::pipe2(release, O_CLOEXEC) != 0) {
+      ::close(held[0]);
+      ::close(held[1]);
+      return;
+    }
     child_ = ::fork();
     if (child_ == 0) {
       ::close(held[0]);
@@ -81,9 +87,13 @@ class FolderHeldElsewhere {
     holding_ = child_ > 0 && ::read(held[0], &ok, 1) == 1 && ok == 'y';
     ::close(held[0]);
   }
-  ~FolderHeldElsewhere() {
+  ~FolderHeldElsewhere() { release(); }
+  /// Lets go of the lock: the other process ends.
+  void release() {
     if (releaseFd_ >= 0) ::close(releaseFd_);
     if (child_ > 0) ::waitpid(child_, nullptr, 0);
+    releaseFd_ = child_ = -1;
+    holding_ = false;
   }
   FolderHeldElsewhere(const FolderHeldElsewhere&) = delete;
   FolderHeldElsewhere& operator=(const FolderHeldElsewhere&) = delete;

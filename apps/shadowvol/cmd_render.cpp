@@ -124,11 +124,8 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       // takes the files this run wrote before it along, so no half set is left behind.
       // A signal that ends the command half-way takes them along too (OutputSetGuard). Another run
       // writing the same set waits for this one, or this one for it (OutputLock).
-      std::optional<OutputLock> imageLock, stencilLock;
-      if (!o->stencil.empty()) {
-        imageLock.emplace(folderOf(o->out));
-        stencilLock.emplace(folderOf(o->stencil));  // a no-op when it is the same folder
-      }
+      std::optional<OutputLocks> locks;
+      if (!o->stencil.empty()) locks.emplace(std::vector{folderOf(o->out), folderOf(o->stencil)});
       const OutputSetGuard set;
       std::vector<std::filesystem::path> written;
       written.reserve(2 + 2 * result.otherLights.size() + 1);  // no allocation between a write and its record

@@ -5,6 +5,7 @@
 #include <string>
 #include <thread>
 
+#include <glm/mat4x4.hpp>
 #include <gtest/gtest.h>
 
 #include "shadowvol/depth_map.h"
@@ -31,18 +32,23 @@ TEST(OutputLock, AFolderHeldByAnotherRunIsRefusedNamedAndTakenOnceFree) {
       EXPECT_NE(what.find(dir.string()), std::string::npos) << what;
       EXPECT_NE(what.find("another run holds this folder"), std::string::npos) << what;
     }
-    // The library's own set of files (a depth map and its side file) is not written amid it.
-    DepthMap map;
-    map.width = map.height = 2;
-    map.depth.assign(4, 1.0f);
-    map.nearPlane = 0.5, map.farPlane = 2.0;
-    EXPECT_THROW(
-        {
-          const OutputLock outer(dir, milliseconds(0));
-          writeDepthMap(map, dir / "d.pfm");
-        },
-        InputError);
-    EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));
+  }
+  // The library's own set of files, a depth map and its side file, waits for the folder: nothing
+  // is written while another run holds it, the whole set once it lets go.
+  DepthMap map;
+  map.width = map.height = 2;
+  map.depth.assign(4, 1.0f);
+  map.nearPlane = 0.5, map.farPlane = 2.0;
+  map.lightProjection = glm::dmat4(1.0);
+  {
+    test::FolderHeldElsewhere other(dir);
+    ASSERT_TRUE(other.holding());
+    std::thread writer([&] { writeDepthMap(map, dir / "d.pfm"); });
+    std::this_thread::sleep_for(milliseconds(300));
+    EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));  // written while the other run held the folder
+    other.release();
+    writer.join();
+    EXPECT_TRUE(std::filesystem::exists(dir / "d.pfm") && std::filesystem::exists(dir / "d.pfm.json"));
   }
   const OutputLock free(dir, milliseconds(0));  // released when the other process let go
   const OutputLock nested(dir, milliseconds(0));  // this thread holds it: no wait for itself

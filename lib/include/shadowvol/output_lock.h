@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <list>
+#include <vector>
 
 namespace shadowvol {
 
@@ -18,8 +20,9 @@ inline constexpr std::chrono::seconds kOutputLockWait{60};
 class OutputLock {
  public:
   /// Locks `folder` (which must exist), waiting up to `wait` for another process's lock on it.
-  /// Throws InputError naming the folder when the wait runs out. Where the file system has no
-  /// flock (some network file systems) nothing is locked and nothing is said. Locks of one process
+  /// Throws InputError naming the folder when the wait runs out, or when it does not exist. Where
+  /// the file system has no flock (some network file systems), or the folder cannot be opened for
+  /// reading (a write-only drop folder), nothing is locked and nothing is said. Locks of one process
   /// nest: a second lock on a folder this thread holds is a no-op; two threads take turns.
   explicit OutputLock(const std::filesystem::path& folder, std::chrono::milliseconds wait = kOutputLockWait);
   ~OutputLock();  ///< releases the lock (the kernel releases it too when the process ends)
@@ -28,6 +31,18 @@ class OutputLock {
 
  private:
   int fd_ = -1;  // the folder, open while locked by this object; -1 when nested or unlocked
+};
+
+/// OutputLocks on several folders, taken in one order (by device and inode) whatever the order
+/// they are given in, so that two runs naming the same folders the other way round cannot each hold
+/// one and wait for the other (a second reader's `render --out A/x --stencil B/y` against
+/// `--out B/x --stencil A/y`). A folder named twice is locked once.
+class OutputLocks {
+ public:
+  explicit OutputLocks(const std::vector<std::filesystem::path>& folders);
+
+ private:
+  std::list<OutputLock> locks_;
 };
 
 /// The folder a file path writes into ("." for a bare name): what an OutputLock for it locks.

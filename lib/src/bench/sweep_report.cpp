@@ -12,7 +12,6 @@
 
 #include "shadowvol/error.h"
 #include "shadowvol/mesh_io.h"
-#include "shadowvol/output_lock.h"
 
 namespace shadowvol {
 namespace {
@@ -724,7 +723,6 @@ std::vector<std::filesystem::path> writeSweepReport(const std::vector<SweepRow>&
   std::error_code ec;
   std::filesystem::create_directories(plots, ec);
   if (ec) throw InputError(plots.string(), "", "", "cannot create the directory: " + ec.message());
-  const OutputLock lock(dir);  // not amid a sweep's cells (runSweep holds the folder)
 
   auto orUnknown = [](const std::string& s) { return s.empty() ? std::string("unknown") : s; };
   std::ostringstream md;

@@ -1,5 +1,6 @@
 #include "shadowvol/output_lock.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <set>
@@ -26,8 +27,9 @@ constexpr std::chrono::milliseconds kRetry{20};
 
 OutputLock::OutputLock(const std::filesystem::path& folder, std::chrono::milliseconds wait) {
   const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0)
+  if (fd < 0 && (errno == ENOENT || errno == ENOTDIR))
     throw InputError(folder.string(), "", "", std::string("cannot open the output folder: ") + std::strerror(errno));
+  if (fd < 0) return;  // a folder one may write in but not read (mode 0733): written unlocked, as before
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     ::close(fd);
@@ -56,6 +58,19 @@ OutputLock::OutputLock(const std::filesystem::path& folder, std::chrono::millise
   }
   held.insert(key);
   fd_ = fd;
+}
+
+OutputLocks::OutputLocks(const std::vector<std::filesystem::path>& folders) {
+  std::vector<std::pair<std::pair<dev_t, ino_t>, std::filesystem::path>> order;
+  for (const auto& f : folders) {
+    struct stat st {};
+    if (::stat(f.c_str(), &st) != 0)
+      throw InputError(f.string(), "", "", std::string("cannot open the output folder: ") + std::strerror(errno));
+    order.push_back({{st.st_dev, st.st_ino}, f});
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (k == 0 || order[k].first != order[k - 1].first) locks_.emplace_back(order[k].second);
 }
 
 std::filesystem::path folderOf(const std::filesystem::path& file) {

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -96,6 +97,7 @@ std::string describeStatus(int status, int seconds) {
 IsolatedResult runIsolated(const std::function<std::string()>& work, const IsolationLimits& limits) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     ::close(fds[0]);
@@ -103,6 +105,10 @@ IsolatedResult runIsolated(const std::function<std::string()>& work, const Isola
     throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
   }
   if (pid == 0) {
+    // The child ends with its parent: a killed command leaves no reader behind, holding the
+    // descriptors it inherited (a second reader's finding: a killed sweep's folder lock).
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(3);  // the parent ended before the line above
     ::close(fds[0]);
     childMain(fds[1], work, limits);
   }
