@@ -32,13 +32,20 @@ glm::dmat4 matrixFromNumpy(const py::object& value, const std::string& what) {
   const py::array raw = py::array::ensure(value);
   if (!raw) throw InputError("python", what, std::string(py::str(py::repr(value))).substr(0, 80), "expected a 4 x 4 array");
   const char kind = raw.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u')
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'O')  // objects: converted below if they are numbers
     throw InputError("python", what, std::string(py::str(raw.dtype())), "expected a 4 x 4 array of real numbers");
   std::string shape;
   for (py::ssize_t k = 0; k < raw.ndim(); ++k) shape += (k ? " x " : "") + std::to_string(raw.shape(k));
   if (raw.ndim() != 2 || raw.shape(0) != 4 || raw.shape(1) != 4)
     throw InputError("python", what, (shape.empty() ? "a scalar" : shape) + " array", "expected a 4 x 4 array");
-  const auto a = raw.cast<py::array_t<double, py::array::forcecast>>();
+  py::array_t<double> a;
+  try {
+    a = raw.cast<py::array_t<double, py::array::forcecast>>();
+  } catch (const py::error_already_set&) {
+    throw InputError("python", what, "an array of objects", "expected a 4 x 4 array of real numbers");
+  } catch (const py::cast_error&) {
+    throw InputError("python", what, "an array of objects", "expected a 4 x 4 array of real numbers");
+  }
   glm::dmat4 m(1.0);
   auto r = a.unchecked<2>();
   for (int row = 0; row < 4; ++row)

@@ -45,15 +45,18 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
 }
 
 // A finite depth beyond single precision would become +inf, "no hit", without a word (a fifteenth
-// probe's 1e39 emptied a volume): refused, naming the texel (column, row) and the value.
-void refuseBeyondFloat(const py::array_t<double, py::array::forcecast>& depth) {
-  const auto r = depth.unchecked<2>();
-  for (py::ssize_t j = 0; j < r.shape(0); ++j)
-    for (py::ssize_t i = 0; i < r.shape(1); ++i)
-      if (std::isfinite(r(j, i)) && std::abs(r(j, i)) > double(std::numeric_limits<float>::max()))
-        throw InputError("DepthMap.from_array", "texel " + std::to_string(i) + "," + std::to_string(j),
-                         numberText(r(j, i)),
-                         "beyond single precision (depths are stored as float32): give +inf for no hit");
+// probe's 1e39 emptied a volume): refused, naming the texel (column, row) and the value. Asked of
+// numpy in the array's own type, so a long double beyond double's range is found too.
+void refuseBeyondFloat(const py::array& depth) {
+  const py::module_ np = py::module_::import("numpy");
+  const py::object beyond =
+      np.attr("logical_and")(np.attr("isfinite")(depth), np.attr("greater")(np.attr("abs")(depth), std::numeric_limits<float>::max()));
+  const auto at = np.attr("argwhere")(beyond).cast<py::array_t<py::ssize_t>>();
+  if (at.shape(0) == 0) return;
+  const py::ssize_t row = at.at(0, 0), column = at.at(0, 1);
+  throw InputError("DepthMap.from_array", "texel " + std::to_string(column) + "," + std::to_string(row),
+                   std::string(py::str(depth.attr("__getitem__")(py::make_tuple(row, column)))),
+                   "beyond single precision (depths are stored as float32): give +inf for no hit");
 }
 
 DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::object& lightProjection,
@@ -71,7 +74,7 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
     throw InputError("DepthMap.from_array", "depth",
                      std::to_string(raw.shape(0)) + " rows x " + std::to_string(raw.shape(1)) + " columns",
                      "a side is larger than " + std::to_string(kMaxDepthMapSide) + " texels");
-  if (kind == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw.cast<py::array_t<double, py::array::forcecast>>());
+  if (kind == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw);
   const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
   DepthMap map;
   map.height = int(depth.shape(0));

@@ -12,6 +12,7 @@
 #ifdef SHADOWVOL_WITH_GL
 #include "shadowvol/embree/embree_depth_oracle.h"
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/image_io.h"
 #include "shadowvol/output_lock.h"
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/report_json.h"
@@ -157,7 +158,7 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
 // images, then report.json last; under the folder's lock, and none of this run's files left when
 // a write fails or a signal ends the process half-way.
 void writeReportFolder(const std::filesystem::path& dir, const std::vector<LightValidation>& lights,
-                       const nlohmann::json& report) {
+                       const gl::RenderResult& frame, const nlohmann::json& report) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir))
@@ -166,6 +167,7 @@ void writeReportFolder(const std::filesystem::path& dir, const std::vector<Light
   removeReportFiles(dir);
   const OutputSetGuard set;
   try {
+    if (lights.size() > 1) writePng(dir / "frame.png", frame.width, frame.height, 4, frame.rgba);  // every light's
     for (std::size_t k = 0; k < lights.size(); ++k) {
       const std::filesystem::path sub = lights.size() == 1 ? dir : lightReportFolder(dir, k);
       std::filesystem::create_directories(sub, ec);
@@ -193,7 +195,13 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
   vo.maxMissedShare = maxMissed;
   if (reportDir && scene.lightCount() > 1)  // before the work, as the command line
     for (std::size_t k = 0; k < scene.lightCount(); ++k) lightReportFolder(*reportDir, k);
+  if (reportDir) {
+    std::error_code ec;
+    if (std::filesystem::exists(*reportDir, ec) && !std::filesystem::is_directory(*reportDir, ec))
+      throw InputError("python", "report_dir", reportDir->string(), "exists and is not a folder");
+  }
   if (reportDir && std::filesystem::is_directory(*reportDir)) {  // an earlier report goes before the work
+    py::gil_scoped_release release;  // other threads run while another run's lock is waited for
     const OutputLock lock(*reportDir);
     removeReportFiles(*reportDir);
   }
@@ -236,7 +244,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
         py::gil_scoped_acquire gil;
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
       }
-      writeReportFolder(*reportDir, lights, j);
+      writeReportFolder(*reportDir, lights, result, j);
     }
   }
   return toPython(j).cast<py::dict>();

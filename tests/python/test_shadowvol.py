@@ -219,6 +219,14 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
                          ([["a"] * 4] * 4, r"light_view = <U1: expected a 4 x 4 array of real")]:
         with pytest.raises(sv.InputError, match=said):
             sv.DepthMap.from_array(depth.depth, matrix, depth.light_projection, depth.near, depth.far)
+    if np.finfo(np.longdouble).max > np.finfo(np.float64).max:  # a long double beyond double's range too
+        far = np.array(depth.depth, dtype=np.longdouble)
+        far[1, 3] = np.longdouble("1e400")
+        with pytest.raises(sv.InputError, match=r"texel 3,1 = 1e\+400"):
+            sv.DepthMap.from_array(far, depth.light_view, depth.light_projection, depth.near, depth.far)
+    objects = sv.DepthMap.from_array(depth.depth, depth.light_view.astype(object), depth.light_projection, depth.near,
+                                     depth.far)  # numbers held as objects are numbers
+    assert np.array_equal(objects.light_view, depth.light_view)
     with pytest.raises(sv.InputError, match=r"2097152 rows x 4 columns"):  # named as given, not clamped
         sv.DepthMap.from_array(np.zeros((2097152, 4), dtype=np.float32), depth.light_view, depth.light_projection,
                                depth.near, depth.far)
@@ -382,6 +390,7 @@ def test_several_lights_are_validated_one_by_one(tmp_path):
     assert [l["type"] for l in report["lights"]] == ["spot", "point"]
     assert all(l["stencilVsCount"]["fraction"] >= 0.9999 for l in report["lights"])
     assert (tmp_path / "r" / "light-1" / "overlay.png").is_file()
+    assert (tmp_path / "r" / "frame.png").is_file() and (tmp_path / "r" / "report.json").is_file()  # as the CLI's
     # The GPU volume of every light: the spot's from its map, the point light's GPU cube volume.
     gpu = sv.validate(both, volume="gpu", resolution=32, size=(80, 60), report_dir=tmp_path / "g")
     assert gpu["passed"] is True
