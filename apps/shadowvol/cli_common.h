@@ -79,8 +79,11 @@ VolumeBuildOptions toVolumeBuildOptions(const VolumeCliOptions& o);
 void addJsonOption(CLI::App& cmd, bool& json);
 
 /// What a command uses of a scene: commands that render no image (build, depth) are not warned
-/// about the camera.
+/// about the camera, unless --fit view fits the light to what the camera sees.
 enum class SceneUse { WithCamera, LightsOnly };
+
+/// The scene's use by build or depth: LightsOnly, WithCamera with --fit view.
+inline SceneUse sceneUse(const SceneOptions& o) { return o.fit == "view" ? SceneUse::WithCamera : SceneUse::LightsOnly; }
 
 /// Loads the scene (or the default one), printing its warnings to stderr (and appending them to
 /// `warnings` when given: validate's report keeps them); the camera's only for SceneUse::WithCamera.

@@ -105,7 +105,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         j["depth"] = o->depth;
       } else {
         checkResolution("--resolution", o->resolution);
-        scene = loadSceneOrDefault(o->scene.scene, nullptr, SceneUse::LightsOnly);
+        scene = loadSceneOrDefault(o->scene.scene, nullptr, sceneUse(o->scene));
         const ResolvedCapture capture = resolveCapture(o->capture, scene, volumeUse(options.refineSteps));
         const CaptureMode mode = capture.mode;
         if (!capture.autoReason.empty()) j["captureAuto"] = capture.autoReason;

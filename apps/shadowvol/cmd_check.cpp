@@ -34,8 +34,9 @@ std::string failures(const MeshCheckReport& r) {
   // A fifteenth probe's: a triangle soup (corners written once per triangle) was named only by its
   // boundary edges.
   add(r.boundaryEdges > 0 && r.coincidentVertices > 0,
-      std::to_string(r.coincidentVertices) + " vertices lie on another vertex: corners the file does not share " +
-          "(weld them, or write the mesh as .stl, whose corners are welded on reading)");
+      (r.coincidentVertices == 1 ? std::string("1 vertex lies") : std::to_string(r.coincidentVertices) + " vertices lie") +
+          " on another vertex: corners the file may not share, where its edges are open (weld them, or write the "
+          "mesh as .stl, whose corners are welded on reading)");
   add(r.closedManifold() && r.triangles > 0 && !r.outward,
       "not outward (a part's signed volume disagrees with its nesting)");
   add(r.nonFiniteVertices > 0, std::to_string(r.nonFiniteVertices) + " non-finite vertices");

@@ -45,7 +45,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       checkOutputPath("--out", o->out);
       if (std::filesystem::path(o->out).extension() != ".pfm")
         throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
-      Scene scene = loadSceneOrDefault(o->scene.scene, nullptr, SceneUse::LightsOnly);
+      Scene scene = loadSceneOrDefault(o->scene.scene, nullptr, sceneUse(o->scene));
       checkOneMapLight(scene, std::size_t(std::max(o->light, 0)));  // by its pointer, before any note
       // An unrefined volume's map, as build --depth reads it.
       const ResolvedCapture capture = resolveCapture(o->capture, scene, CaptureUse::Volume);

@@ -239,8 +239,6 @@ EglContext EglContext::create(const ContextOptions& options) {
   if (p != "auto" && p != "device" && p != "surfaceless" && p != "default")
     throw InputError("ContextOptions", "platform", p, "expected auto, device, surfaceless or default");
   refuseForkedChild();
-  pid_t none = 0;
-  eglUser.compare_exchange_strong(none, ::getpid());  // before any EGL call: a fork during it is as late
   std::vector<std::string> attempts;
   State* state = nullptr;
   // eglGetPlatformDisplayEXT exists only with EGL_EXT_platform_base (epoxy would abort otherwise).
@@ -282,6 +280,8 @@ EglContext EglContext::create(const ContextOptions& options) {
     for (const auto& a : attempts) msg += "\n  " + a;
     throw GlError(msg);
   }
+  pid_t none = 0;
+  eglUser.compare_exchange_strong(none, ::getpid());  // this process has GL now (refuseForkedChild)
   return EglContext(std::unique_ptr<State>(state));
 }
 
