@@ -162,9 +162,10 @@ std::string serialize(const ParsedMesh& mesh) {
   p += sizeof placement;
   std::memcpy(p, counts, sizeof counts);
   p += sizeof counts;
-  std::memcpy(p, mesh.positions.data(), counts[0] * sizeof(glm::dvec3));
+  // An empty mesh's data() may be null, which memcpy must not be given even for 0 bytes (UBSan).
+  if (counts[0] > 0) std::memcpy(p, mesh.positions.data(), counts[0] * sizeof(glm::dvec3));
   p += counts[0] * sizeof(glm::dvec3);
-  std::memcpy(p, mesh.triangles.data(), counts[1] * 3 * sizeof(std::uint32_t));
+  if (counts[1] > 0) std::memcpy(p, mesh.triangles.data(), counts[1] * 3 * sizeof(std::uint32_t));
   return out;
 }
 
@@ -187,8 +188,8 @@ ParsedMesh deserialize(const std::string& bytes, const std::string& source) {
   mesh.positions.resize(counts[0]);
   mesh.triangles.resize(counts[1]);
   const char* p = bytes.data() + sizeof placement + sizeof counts;
-  std::memcpy(mesh.positions.data(), p, counts[0] * sizeof(glm::dvec3));
-  std::memcpy(mesh.triangles.data(), p + counts[0] * sizeof(glm::dvec3), counts[1] * 12);
+  if (counts[0] > 0) std::memcpy(mesh.positions.data(), p, counts[0] * sizeof(glm::dvec3));
+  if (counts[1] > 0) std::memcpy(mesh.triangles.data(), p + counts[0] * sizeof(glm::dvec3), counts[1] * 12);
   for (const auto& t : mesh.triangles)
     for (std::uint32_t k : t)
       if (k >= counts[0]) throw bad();
