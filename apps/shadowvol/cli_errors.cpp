@@ -33,6 +33,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"SweepOptions", "scenes", "--scenes"},
     LibraryFieldFlag{"volume options", "bias", "--bias"},
     LibraryFieldFlag{"volume options", "blur offset", "--blur-offset"},
+    LibraryFieldFlag{"volume options", "blur", "--blur"},
     LibraryFieldFlag{"volume options", "refine steps", "--refine"},
     LibraryFieldFlag{"volume options", "cap", "--cap"},
     LibraryFieldFlag{"volume options", "refine subdivisions", "--refine-grid"},
@@ -48,9 +49,20 @@ constexpr std::array kFlags{
 std::span<const LibraryFieldFlag> libraryFieldFlags() { return kFlags; }
 
 InputError asCommandLineError(const InputError& e) {
-  for (const LibraryFieldFlag& f : kFlags)
-    if (e.source() == f.source && e.field() == f.field)
-      return InputError("command line", std::string(f.flag), e.value(), e.problem());
+  const auto flagOf = [&](std::string_view field) -> const LibraryFieldFlag* {
+    for (const LibraryFieldFlag& f : kFlags)
+      if (e.source() == f.source && field == f.field) return &f;
+    return nullptr;
+  };
+  const std::string problem = e.problemNamed([&](std::string_view field) {
+    const LibraryFieldFlag* f = flagOf(field);
+    return std::string(f ? f->flag : field);
+  });
+  if (const LibraryFieldFlag* f = flagOf(e.field())) {
+    if (dynamic_cast<const OptionConflict*>(&e))
+      return OptionConflict("command line", std::string(f->flag), e.value(), problem);
+    return InputError("command line", std::string(f->flag), e.value(), problem);
+  }
   return e;
 }
 

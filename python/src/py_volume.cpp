@@ -45,8 +45,9 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
 
 namespace {
 
-// The volume options' fields and command-line flags as this module's keywords (a fifteenth probe's
-// finding: refine_grid=3 was "refine subdivisions", blur_offset "needs blur (--blur)").
+// The volume options' fields as this module's keywords (a fifteenth probe's finding: refine_grid=3
+// was "refine subdivisions", blur_offset "needs blur (--blur)"): the field refused and those its
+// problem names (${field} marks, error.h).
 struct PythonName {
   const char* library;
   const char* keyword;
@@ -55,21 +56,19 @@ constexpr PythonName kFieldKeywords[] = {
     {"blur offset", "blur_offset"},   {"bias", "bias"},          {"refine steps", "refine"},
     {"cap", "cap"},                   {"refine subdivisions", "refine_grid"},
     {"refine chords", "chord_points"}, {"refine grid everywhere", "refine_grid_everywhere"},
-    {"refine hidden", "hidden_search"}, {"flatten cap", "flatten_cap"}};
-constexpr PythonName kFlagKeywords[] = {{"--refine-grid S", "refine_grid=S"}, {"--refine K", "refine=K"},
-                                        {"--chord-points", "chord_points=True"}, {"(--blur)", "(blur=True)"}};
+    {"refine hidden", "hidden_search"}, {"flatten cap", "flatten_cap"}, {"blur", "blur"}};
+
+std::string keywordOf(std::string_view field) {
+  for (const PythonName& n : kFieldKeywords)
+    if (field == n.library) return n.keyword;
+  return std::string(field);
+}
 
 }  // namespace
 
 InputError asPythonArgumentError(const InputError& e) {
   if (e.source() != "volume options") return e;
-  std::string field = e.field(), problem = e.problem();
-  for (const PythonName& n : kFieldKeywords)
-    if (field == n.library) field = n.keyword;
-  for (const PythonName& n : kFlagKeywords)
-    for (std::size_t at; (at = problem.find(n.library)) != std::string::npos;)
-      problem.replace(at, std::string_view(n.library).size(), n.keyword);
-  return InputError("python", field, e.value(), problem);
+  return InputError("python", keywordOf(e.field()), e.value(), e.problemNamed(keywordOf));
 }
 
 namespace {

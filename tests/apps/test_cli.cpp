@@ -309,9 +309,28 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   EXPECT_EQ(runCli("build --depth " + pfm + " --scene " + scene("plate.json") + " --out " + a).code, 2);
   EXPECT_EQ(runCli("build --depth " + pfm + " --capture front --out " + a).code, 2);
   EXPECT_EQ(runCli("build --depth " + pfm + " --capture auto --out " + a).code, 0);
-  // --blur-offset without --blur changes nothing: a usage error.
-  EXPECT_EQ(runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string()).code, 2);
+  // --blur-offset without --blur changes nothing: a usage error, whose message names the flag it
+  // needs (the library's problem names the field, ${blur}; the command line spells it).
+  const CliResult offset = runCli("build --resolution 8 --blur-offset 0.1 --out " + (dir / "c.ply").string());
+  EXPECT_EQ(offset.code, 2);
+  EXPECT_TRUE(contains(offset.out, "command line: --blur-offset = 0.1: needs --blur")) << offset.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "c.ply"));
+}
+
+// The volume options' combinations name the other flag in the command line's words (the library's
+// problems name fields, error.h's ${field} marks, never a flag).
+TEST(Cli, VolumeOptionConflictsNameTheOtherFlag) {
+  const auto out = (test::tempDir() / "a.ply").string();
+  for (const auto& [args, said] : std::vector<std::pair<std::string, std::string>>{
+           {"--chord-points", "--chord-points: needs refinement (--refine of at least 1)"},
+           {"--refine 2 --refine-grid 4 --chord-points", "--refine-grid = 4: not with --chord-points: "},
+           {"--refine 2 --refine-grid-everywhere", "--refine-grid-everywhere: needs --refine-grid of 2, 4 or 8"},
+           {"--refine 2 --cap quad", "needs the exact cap (--cap exact: "}}) {
+    const CliResult r = runCli("build --resolution 8 " + args + " --out " + out);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_TRUE(contains(r.out, said)) << r.out;
+    EXPECT_FALSE(contains(r.out, "${")) << r.out;
+  }
 }
 
 // build and depth render no image: a camera looking away (its far plane moved, its view empty) is

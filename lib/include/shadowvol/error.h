@@ -5,8 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <concepts>
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace shadowvol {
 
@@ -27,10 +29,18 @@ std::string numberText(T v) {
 /// The library names its own terms (a file and JSON pointer, or an options struct and its member,
 /// such as source "RenderOptions", field "imageWidth x imageHeight"); a front end that spells them
 /// differently (the command line's flags) rethrows with source(), field() and problem() mapped.
+/// A problem that names another field of the same source writes it as ${field} ("needs ${blur}";
+/// a mark starts with a lower-case letter and holds letters, digits, dots and spaces, so other text
+/// holding "${", such as "${HOME}", is left as it is):
+/// what() and problem() show the library's name ("needs blur"), a front end its own spelling of it
+/// (problemNamed: "needs --blur", "needs blur=True"), so no library text spells a flag.
 class InputError : public std::runtime_error {
  public:
+  /// A field's name in a front end's words; the library's name where it has none.
+  using FieldNamer = std::function<std::string(std::string_view field)>;
+
   InputError(std::string source, std::string field, std::string value, const std::string& problem)
-      : std::runtime_error(compose(source, field, value, problem)),
+      : std::runtime_error(compose(source, field, value, expand(problem, nullptr))),
         source_(std::move(source)),
         field_(std::move(field)),
         value_(std::move(value)),
@@ -39,9 +49,40 @@ class InputError : public std::runtime_error {
   const std::string& source() const { return source_; }  ///< file path, options struct or "command line"
   const std::string& field() const { return field_; }    ///< JSON pointer, member or option; may be empty
   const std::string& value() const { return value_; }    ///< offending value as text; may be empty
-  const std::string& problem() const { return problem_; }  ///< what is wrong with it
+  std::string problem() const { return expand(problem_, nullptr); }  ///< what is wrong with it
+  /// The problem with each ${field} named by `name` (a front end's flag or keyword).
+  std::string problemNamed(const FieldNamer& name) const { return expand(problem_, name); }
+  /// The problem as given, ${field} marks kept: for a rethrow that adds to it.
+  const std::string& problemTemplate() const { return problem_; }
 
  private:
+  static std::string expand(const std::string& problem, const FieldNamer& name) {
+    std::string s;
+    std::size_t from = 0;
+    for (std::size_t at; (at = problem.find("${", from)) != std::string::npos;) {
+      const std::size_t end = problem.find('}', at);
+      if (end == std::string::npos) break;
+      const std::string_view field(problem.data() + at + 2, end - at - 2);
+      if (!isFieldMark(field)) {  // not a mark: text that happens to hold "${" (a path, a value)
+        s.append(problem, from, at + 2 - from);
+        from = at + 2;
+        continue;
+      }
+      s.append(problem, from, at - from);
+      s += name ? name(field) : std::string(field);
+      from = end + 1;
+    }
+    return s.append(problem, from);
+  }
+  // A mark's field, as the library's field names: a lower-case letter, then letters, digits, dots
+  // and spaces, not ending in a space ("refine steps", "volumeOptions.bias").
+  static bool isFieldMark(std::string_view field) {
+    if (field.empty() || field.front() < 'a' || field.front() > 'z' || field.back() == ' ') return false;
+    for (char c : field)
+      if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == ' ' || c == '.'))
+        return false;
+    return true;
+  }
   static std::string compose(const std::string& source, const std::string& field, const std::string& value,
                              const std::string& problem) {
     std::string s = source;

@@ -96,7 +96,7 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
     refuseValue("blur offset", numberText(o.blurOffset),
                 "must be finite and >= 0 (a negative offset pulls the sheet toward the light, into the lit surfaces "
                 "it was captured from)");
-  if (o.blurOffset != 0.0 && !o.blur) refuse("blur offset", numberText(o.blurOffset), "needs blur (--blur)");
+  if (o.blurOffset != 0.0 && !o.blur) refuse("blur offset", numberText(o.blurOffset), "needs ${blur}");
   if (o.bias && (!std::isfinite(*o.bias) || *o.bias < 0.0))
     refuseValue("bias", numberText(*o.bias), "must be finite and >= 0");
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
@@ -104,19 +104,19 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
                 "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
   if (o.refineSteps > 0 && o.cap != FarCap::Exact)
     refuse("refine steps", std::to_string(o.refineSteps),
-           "needs the exact cap (the quad cap keeps the far-plane sheet that refinement replaces by walls)");
-  const char* needsRefine = "needs refinement (refine steps of at least 1: --refine K)";
+           "needs the exact cap (${cap} exact: the quad cap keeps the far-plane sheet that refinement replaces by walls)");
+  const char* needsRefine = "needs refinement (${refine steps} of at least 1)";
   if (o.refineChords && o.refineSteps == 0) refuse("refine chords", "", needsRefine);
   if (o.refineSubdivisions > 1 && o.refineSteps == 0)
     refuse("refine subdivisions", std::to_string(o.refineSubdivisions), needsRefine);
   if (o.refineSubdivisions > 1 && o.refineChords)
     refuse("refine subdivisions", std::to_string(o.refineSubdivisions),
-           "not with chord points (--chord-points): they are alternatives (the sub-grid bends the wall in every sub-cell)");
+           "not with ${refine chords}: they are alternatives (the sub-grid bends the wall in every sub-cell)");
   if (o.refineGridEverywhere && o.refineSubdivisions == 1)
-    refuse("refine grid everywhere", "", "needs refine subdivisions of 2, 4 or 8 (--refine-grid S)");
+    refuse("refine grid everywhere", "", "needs ${refine subdivisions} of 2, 4 or 8");
   if (!o.refineSnap && o.refineSteps == 0) refuse("refine snap", "", needsRefine);
   if (!o.refineHidden && o.refineSubdivisions <= 1)
-    refuse("refine hidden", "", "is the sub-grid's search: it needs refine subdivisions of 2, 4 or 8 (--refine-grid S)");
+    refuse("refine hidden", "", "is the sub-grid's search: it needs ${refine subdivisions} of 2, 4 or 8");
   if (!o.flattenCap && o.cap != FarCap::Exact)
     refuse("flatten cap", "", "keeps the exact cap unflattened; the quad cap has one far rectangle, nothing to flatten");
 }

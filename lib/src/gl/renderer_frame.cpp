@@ -64,9 +64,9 @@ void Renderer::Impl::validateForLight(const RenderOptions& o, const CameraSetup&
   try {
     validate(o, cam);
   } catch (const OptionConflict& e) {  // stays a usage error
-    throw OptionConflict(e.source(), e.field(), e.value(), e.problem() + which());
+    throw OptionConflict(e.source(), e.field(), e.value(), e.problemTemplate() + which());
   } catch (const InputError& e) {
-    throw InputError(e.source(), e.field(), e.value(), e.problem() + which());
+    throw InputError(e.source(), e.field(), e.value(), e.problemTemplate() + which());
   }
 }
 

@@ -41,7 +41,7 @@ void SilhouetteRays::ensureHierarchy() {
                      "the GPU's rays need " + std::to_string(std::max(cornerBytes, nodeBytes) >> 20) + " MiB for the " +
                          std::to_string(mesh.triangles.size()) + " triangles' hierarchy in one buffer, above this "
                          "OpenGL's shader storage block limit of " + std::to_string(limit >> 20) +
-                         " MiB: use --crossings gpu-walk (RefineCrossings::GpuWalk) or --volume explicit");
+                         " MiB: set ${refineCrossings} to gpu-walk or ${volume} to explicit");
   const TriangleBvh bvh = buildTriangleBvh(mesh);
   // Buffers of at least one element, so an empty scene binds valid ranges (nodeCount 0 stops
   // every ray before it reads them).
