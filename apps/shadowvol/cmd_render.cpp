@@ -98,7 +98,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       const auto oracle = attachDepthOracle(scene, ro);
       std::vector<std::string> warnings;
       if (capturesMap(ro)) warnings = warnAboutCapture(scene, ro.depthWidth, ro.depthHeight, ro.capture, &ro.volumeOptions);
-      ro.readStencil = !o->stencil.empty() || o->render.method == "hybrid" || o->render.method == "silhouette";
+      ro.readStencil = !o->stencil.empty() || drawsShadowVolume(ro.method);
       gl::Renderer renderer(toRendererOptions(o->render));
       verboseNote("GL context: %s, %s (EGL platform %s)", renderer.info().glRenderer.c_str(),
                   renderer.info().glVersion.c_str(), renderer.info().platform.c_str());
@@ -165,7 +165,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
                           {"min", *std::min_element(v.begin(), v.end())},
                           {"max", *std::max_element(v.begin(), v.end())}});
       }
-      const bool stencilMethod = o->render.method == "hybrid" || o->render.method == "silhouette";
+      const bool stencilMethod = drawsShadowVolume(ro.method);
       nlohmann::json j = {
           {"scene", describeScene(scene)},
           {"lightFit", lightFit},

@@ -142,7 +142,9 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   d["total_ms"] = result.totalMs;
   d["timing"] = toString(result.timing);
   d["volume_triangles"] = result.volumeTriangles;
-  d["volume_count"] = gl::toString(result.volumeCountUsed);
+  // None where no volume is drawn (a shadow map), as `render --json` says null.
+  d["volume_count"] = drawsShadowVolume(ro.method) ? py::object(py::str(gl::toString(result.volumeCountUsed)))
+                                                       : py::object(py::none());
   d["gl_renderer"] = device;
   if (result.volumeStats) d["volume"] = toPython(describeVolumeStats(*result.volumeStats));
   nlohmann::json options;
@@ -212,7 +214,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     const gl::RenderResult result = r.renderer.render(ro);
     const std::vector<LightValidation> lights = validateEveryLight(scene, ro, result, vo);
     const bool silhouette = ro.method == gl::ShadowMethod::Silhouette;
-    const bool drawsVolume = silhouette || ro.method == gl::ShadowMethod::Hybrid;  // a stencil count to name
+    const bool drawsVolume = drawsShadowVolume(ro.method);  // a stencil count to name
     if (lights.size() == 1) {
       j = describeValidation(lights[0].validation, vo, silhouette);
     } else {  // as validate's report.json: one section per light, the verdict over all
@@ -286,7 +288,7 @@ void registerValidate(py::module_& m) {
       py::arg("platform") = "auto", py::arg("count") = "auto",
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
-      "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail), gl_renderer, volume (explicit volume's "
+      "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail; None for a method that draws no volume), gl_renderer, volume (explicit volume's "
       "build stats), options (capture, and captureAuto: why capture='auto', the default, chose it), warnings (what "
       "the depth map will miss), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
       "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`).");

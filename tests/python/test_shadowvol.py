@@ -200,15 +200,17 @@ def test_copies_pickles_and_error_parts(depth):
 def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     """A probe's findings (2026-12-05): build_volume, export, from_array and the scene's texel
     queries took what the command line refuses, by the same rules (checkUserVolumeOptions)."""
-    # Named by this module's keywords, in its terms (a fifteenth probe's finding: "blur offset",
-    # "needs blur (--blur)").
+    # Named by this module's keywords, in its terms, with no command-line flag (a fifteenth probe's
+    # finding: "blur offset", "needs blur (--blur)").
     for kw, field in [(dict(bias=-1.0), "bias = "), (dict(blur=True, blur_offset=-1.0), "blur_offset = "),
-                      (dict(blur_offset=0.1), r"blur_offset = 0\.1: needs blur \(blur=True\)"),
-                      (dict(chord_points=True), r"chord_points: needs refinement \(.*refine=K\)"),
-                      (dict(refine=6, refine_grid=4, chord_points=True), r"refine_grid = 4: not with chord points \(chord_points=True\)"),
+                      (dict(blur_offset=0.1), r"blur_offset = 0\.1: needs blur$"),
+                      (dict(chord_points=True), r"chord_points: needs refinement \(refine of at least 1\)$"),
+                      (dict(refine=6, refine_grid=4, chord_points=True), r"refine_grid = 4: not with chord_points: "),
+                      (dict(refine_grid_everywhere=True), r"refine_grid_everywhere: needs refine_grid of 2, 4 or 8$"),
                       (dict(cap="quad", flatten_cap=False), "flatten_cap")]:
-        with pytest.raises(sv.InputError, match=field):
+        with pytest.raises(sv.InputError, match=field) as refused:
             sv.build_volume(depth, **kw)
+        assert "--" not in str(refused.value) and "${" not in str(refused.value)
     # A finite depth beyond single precision became +inf, no hit, without a word (a fifteenth probe's).
     huge = np.array(depth.depth, dtype=np.float64)
     huge[4, 2] = 1e39
@@ -378,6 +380,8 @@ def test_render_returns_image_and_stencil(scene):
     assert "volume" in frame["passes_ms"]
     assert frame["volume_count"] == "z-pass"  # the default camera is beside the light's cone
     assert sv.render(scene, resolution=64, size=(40, 30), count="zfail")["volume_count"] == "z-fail"
+    # A shadow map draws no volume: no count named (as `render --json`'s null; a fifteenth probe's).
+    assert sv.render(scene, method="shadowmap", resolution=64, size=(40, 30))["volume_count"] is None
 
 
 @needs_gl

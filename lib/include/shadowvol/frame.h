@@ -35,6 +35,9 @@ inline constexpr EnumNames<ShadowMethod, 7> kShadowMethodNames{
      {ShadowMethod::None, "none"}}};
 const char* toString(ShadowMethod m);
 bool parseShadowMethod(const std::string& text, ShadowMethod& m);
+/// Whether `m` draws a shadow volume into the stencil (hybrid, silhouette): the methods whose
+/// results name a volume count (z-pass or z-fail); the maps and none draw none.
+constexpr bool drawsShadowVolume(ShadowMethod m) { return m == ShadowMethod::Hybrid || m == ShadowMethod::Silhouette; }
 
 enum class VolumeSource {
   Gpu,       ///< drawn straight from the depth texture, no read-back (production default)

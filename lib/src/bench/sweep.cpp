@@ -580,8 +580,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
     row.volumeQuads = result.gpuVolumeQuads;
     row.volumeQuadsDrawn = result.gpuVolumeQuadsDrawn;
     const gl::ShadowMethod family = c.method->options.method;
-    if (family == gl::ShadowMethod::Hybrid || family == gl::ShadowMethod::Silhouette)
-      row.volumeCount = gl::toString(result.volumeCountUsed);
+    if (drawsShadowVolume(family)) row.volumeCount = gl::toString(result.volumeCountUsed);
     row.pixels = m.pixels;
     row.error = m.pixels ? double(m.leak + m.acne) / double(m.pixels) : 0.0;
     row.leak = m.pixels ? double(m.leak) / double(m.pixels) : 0.0;
