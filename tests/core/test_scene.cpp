@@ -222,6 +222,25 @@ TEST(SceneParser, FarPlanesFitWhatTheFrustumSeesNotTheBoundsCorners) {
   EXPECT_LT(r.scene.camera.farPlane, top * 1.02);
 }
 
+// A low spot light beside a ground plane, looking across it at an object 5 away: the scene's box
+// reaches up to just under the light, but the light sees neither the ground below it nor the
+// space between; its near plane comes from the part of each object's box it sees (a sixteenth
+// probe's finding: near 0.0233 against far 11.6 from the scene's box, a far/near of 500 that
+// also made --capture auto give up entry capture). The camera keeps the scene's box.
+TEST(SceneParser, LightNearFitsTheObjectsItSeesNotTheSpaceBetweenThem) {
+  const auto r = parse(R"({"objects":[{"type":"plane","size":12},
+      {"type":"sphere","radius":0.5,"transform":{"translate":[0,0.5,0]}}],
+    "light":{"type":"spot","position":[-5,0.51,0],"target":[0,0.5,0],"fov":20},
+    "camera":{"eye":[0,3,6],"target":[0,0,0]}})");
+  // The ground is seen from where the frustum's lower plane (10 degrees down) meets it, 0.51 /
+  // tan(10 deg) = 2.9 out; the sphere from 4.5. The scene's box (y 0 to 1) holds the light, and gave
+  // the nearest geometry's distance, the ground 0.51 below it: a near of about 0.5.
+  const double ground = 0.51 / std::tan(10.0 * 3.14159265358979 / 180.0);
+  EXPECT_GT(r.scene.light.nearPlane, 0.97 * ground * std::cos(10.0 * 3.14159265358979 / 180.0) * 0.95);
+  EXPECT_LT(r.scene.light.nearPlane, ground);
+  EXPECT_LT(r.scene.light.farPlane / r.scene.light.nearPlane, 5.0);  // the ground's far edge: 11 deep
+}
+
 // The scene fuzz harness's corpus (tests/fuzz/corpus/scene: seeds and what fuzzing found), parsed
 // with the budget the harness had when most were found (200,000 triangles; it now uses 20,000):
 // each loads with fitted planes or is refused.

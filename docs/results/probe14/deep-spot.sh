@@ -5,7 +5,7 @@
 # /tmp/probe14/B; the meshes from /tmp/probe9, docs/results/subgrid-bias says how to fetch them).
 # Run from the repository root after building; prints one line per run.
 set -euo pipefail
-SV=${SV:-build/apps/shadowvol}
+export SV=$(realpath "${SV:-build/apps/shadowvol}")  # absolute: gen.py runs in /tmp/probe14/B
 mkdir -p /tmp/probe14/B && cp docs/results/probe14/B/*.py /tmp/probe14/B/
 (cd /tmp/probe14/B && python3 gen.py wide2 insh > /dev/null)
 for s in data/scenes/bunny-wide-ground.json /tmp/probe14/B/scenes/wide2_fov90.json \

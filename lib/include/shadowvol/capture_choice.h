@@ -56,9 +56,8 @@ struct CaptureChoice {
 /// entry's bias, a texel's footprint at the far plane (defaultBias), spans more than that many
 /// texels at the nearest casters and hides the shadows they cast close to themselves (a fourteenth
 /// probe's 160-degree spot: 273 wrong pixels at 256² against back capture's 46; measured in README
-/// "`--capture auto`", where the ratio sits between 7.1, entry as good, and 9.1, entry worse). Point
-/// lights keep entry capture: their near plane is a thousandth of far, not the nearest geometry,
-/// and the room scene is as accurate either way.
+/// "`--capture auto`", where the ratio sits between 7.1, entry as good, and 8.9, entry worse). Point
+/// lights keep entry capture: the room scene is as accurate either way (README).
 CaptureChoice chooseCapture(const Scene& scene, CaptureUse use);
 
 /// The far / near ratio of a spot light above which a refined volume takes back capture.

@@ -87,4 +87,16 @@ std::optional<std::pair<double, double>> depthRangeInFrustum(const Bounds3& b, c
   return std::pair{lo, hi};
 }
 
+std::optional<std::pair<double, double>> depthRangeInFrustum(std::span<const Bounds3> boxes, const ViewFrustum& f) {
+  std::optional<std::pair<double, double>> range;
+  for (const Bounds3& b : boxes) {
+    if (b.empty()) continue;
+    const auto r = depthRangeInFrustum(b, f);
+    if (!r) continue;
+    if (!range) range = r;
+    else range = std::pair{std::min(range->first, r->first), std::max(range->second, r->second)};
+  }
+  return range;
+}
+
 }  // namespace shadowvol::detail

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -40,5 +41,12 @@ std::vector<glm::dvec3> boxPartInFrustum(const Bounds3& b, const ViewFrustum& f)
 /// (each box face clipped by the frustum's four side planes, in double; the apex counts when it
 /// lies inside the box); nullopt when they do not meet.
 std::optional<std::pair<double, double>> depthRangeInFrustum(const Bounds3& b, const ViewFrustum& f);
+
+/// The same over several boxes (a scene's objects, each in its own): the union of their ranges,
+/// nullopt when the frustum meets none. Tighter than the range of the one box around them all
+/// where the view sees the space between them (a low spot light beside a ground plane, over
+/// which the scene's box reaches up to the light: a probe's fitted near plane of 0.02 where the
+/// nearest object the light sees is 5 away).
+std::optional<std::pair<double, double>> depthRangeInFrustum(std::span<const Bounds3> boxes, const ViewFrustum& f);
 
 }  // namespace shadowvol::detail

@@ -121,7 +121,7 @@ void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius, std::ve
 // plane: such a capture needs the light's near and far given (scene.h, fitLightAndCamera).
 constexpr double kFittedLightAspect = 1.0;
 
-// The depth range of the part of the bounds the view sees (frustum_depth_range.h), with a margin
+// The depth range of the part of the objects' boxes the view sees (frustum_depth_range.h), with a margin
 // of 1 % of the smaller of that part's depth extent and the scene's radius (that extent taken as
 // at least 1e-3 of the far side's depth and 1e-6 of the radius, so a part seen edge-on still gets
 // one), and the far plane just past it; when the view sees none of the bounds, their whole
@@ -129,9 +129,9 @@ constexpr double kFittedLightAspect = 1.0;
 struct FittedRange {
   double lo, hi, margin, far;
 };
-FittedRange seenRange(const Bounds3& b, const detail::ViewFrustum& f, const glm::dvec3& eye, const glm::dvec3& axis,
-                      double radius) {
-  if (const auto seen = detail::depthRangeInFrustum(b, f)) {
+FittedRange seenRange(const Bounds3& b, const std::vector<Bounds3>& objects, const detail::ViewFrustum& f,
+                      const glm::dvec3& eye, const glm::dvec3& axis, double radius) {
+  if (const auto seen = detail::depthRangeInFrustum(objects, f)) {
     const auto [lo, hi] = *seen;
     const double extent = hi - std::max(lo, 0.0);
     const double margin = 0.01 * std::min(radius, std::max({extent, 1e-3 * std::max(hi, 0.0), 1e-6 * radius}));
@@ -141,13 +141,22 @@ FittedRange seenRange(const Bounds3& b, const detail::ViewFrustum& f, const glm:
   return {lo, hi, 0.01 * radius, std::max(hi, 1e-3 * radius) + 0.01 * radius};
 }
 
+// Each object's box: the views' depth ranges are taken over these (the part of each that the view
+// sees), not over the scene's box, which also holds the space between them.
+std::vector<Bounds3> objectBoxes(const Scene& scene) {
+  std::vector<Bounds3> boxes;
+  for (const auto& o : scene.objects) boxes.push_back(o.mesh.bounds());
+  return boxes;
+}
+
 // What the scene needs: from just before the near side of the part of the bounds the light sees
 // to just past its far side (FittedRange's margin each way). A given plane outside that range is
 // moved to it: it would capture nothing more, and only spend depth precision (README "Scene
 // files", Light, has the measurement).
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
-  const auto [lo, hi, margin, far] = seenRange(b, detail::lightFrustum(l, kFittedLightAspect), l.position, l.direction, radius);
+  const auto [lo, hi, margin, far] =
+      seenRange(b, objectBoxes(scene), detail::lightFrustum(l, kFittedLightAspect), l.position, l.direction, radius);
   const double givenFar = l.farPlane;
   const std::size_t farNote = notes.size();
   if (l.farPlane == 0.0 || l.farPlane > far) l.farPlane = far;
@@ -170,11 +179,12 @@ void fitPointLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vec
   Light& l = scene.light;
   double far = 0.0;
   std::vector<double> nearSides;
+  const std::vector<Bounds3> objects = objectBoxes(scene);
   for (int f = 0; f < kCubeFaces; ++f) {
     const Light face = cubeFaceLight(l, f);
     const detail::ViewFrustum frustum = detail::lightFrustum(face, 1.0);
-    if (!detail::depthRangeInFrustum(b, frustum)) continue;
-    const auto [lo, hi, margin, faceFar] = seenRange(b, frustum, face.position, face.direction, radius);
+    if (!detail::depthRangeInFrustum(objects, frustum)) continue;
+    const auto [lo, hi, margin, faceFar] = seenRange(b, objects, frustum, face.position, face.direction, radius);
     far = std::max(far, faceFar);
     nearSides.push_back(lo - margin);
   }
@@ -195,7 +205,11 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
   Camera& c = scene.camera;
   const glm::dvec3 axis = glm::normalize(c.target - c.eye);
   const double aspect = double(c.width) / double(c.height);
-  const auto [lo, hi, margin, far] = seenRange(b, detail::cameraFrustum(c), c.eye, axis, radius);
+  // The camera keeps the scene's box (one box: a near plane no deeper than the box's nearest seen
+  // point): a deeper near plane would widen the near rectangle that z-pass needs outside every
+  // volume (frame.h), for depth precision the camera's test does not lack.
+  const std::vector<Bounds3> box{b};
+  const auto [lo, hi, margin, far] = seenRange(b, box, detail::cameraFrustum(c), c.eye, axis, radius);
   const double givenFar = c.farPlane;
   const std::size_t farNote = notes.size();
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;

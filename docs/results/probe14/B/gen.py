@@ -4,7 +4,7 @@ Each scene is a canonical layout (ground 8x8 at y=0, meshes ~2 units) put throug
 similarity W = T * R * s applied to objects (as 'matrix'), light and camera (explicit up vectors,
 explicit near/far/extent where rotation would change the AABB-based fit)."""
 import json, math, os, subprocess, sys
-BIN = '/tmp/svP14'
+BIN = os.environ.get('SV', '/tmp/svP14')  # the shadowvol binary (deep-spot.sh passes its SV)
 D = '/tmp/probe9/d/data/meshes/'
 X = '/tmp/probe9/x/usr/share/assimp/models/'
 HERE = os.path.dirname(os.path.abspath(__file__))
