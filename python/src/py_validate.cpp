@@ -32,8 +32,10 @@ namespace {
 struct FrameArgs {
   std::string method = "hybrid", volume = "gpu", capture = "auto", triangulation = "perfect", cap = "exact",
               platform = "auto", count = "auto";
-  int resolution = 512, refine = 0;
-  bool blur = false;
+  int resolution = 512, refine = 0, refineGrid = 1;
+  bool blur = false, chordPoints = false;
+  double blurOffset = 0.0;
+  std::optional<double> bias;
   std::optional<std::pair<int, int>> size;
 };
 
@@ -54,7 +56,9 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
   const std::pair<bool, const char*> volumeOnly[] = {
       {a.blur, "blur"},   {a.refine != 0, "refine"},       {a.cap != "exact", "cap"},
       {a.triangulation != "perfect", "triangulation"},   {a.volume != defaults.volume, "volume"},
-      {a.count != defaults.count, "count"}};
+      {a.count != defaults.count, "count"},      {a.blurOffset != 0.0, "blur_offset"},
+      {a.bias.has_value(), "bias"},               {a.refineGrid != 1, "refine_grid"},
+      {a.chordPoints, "chord_points"}};
   for (const auto& [given, name] : volumeOnly)
     if (given && !hybrid)
       throw InputError("python", name, "", "shapes the hybrid method's shadow volume; method " + a.method + " has none");
@@ -63,7 +67,8 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
   if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)
     throw InputError("python", "resolution", std::to_string(a.resolution),
                      "sizes the light's depth map; method " + a.method + " captures none");
-  ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, 0.0, std::nullopt, a.cap, true, a.refine, false);
+  ro.volumeOptions = volumeOptionsArg(a.triangulation, a.blur, a.blurOffset, a.bias, a.cap, true, a.refine,
+                                      a.chordPoints, a.refineGrid);
   ro.capture = capturing ? captureModeArg(a.capture, &scene, captureUse(ro)) : CaptureMode::Back;
   if (a.size) {
     const auto [w, h] = *a.size;
@@ -259,7 +264,8 @@ void registerValidate(py::module_& m) {
 #ifdef SHADOWVOL_WITH_GL
   auto frameArgs = [](std::string method, std::string volume, int resolution, std::string capture,
                       std::string triangulation, bool blur, std::string cap, int refine,
-                      std::optional<std::pair<int, int>> size, std::string platform, std::string count) {
+                      std::optional<std::pair<int, int>> size, std::string platform, std::string count,
+                      double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
     FrameArgs a;
     a.method = std::move(method);
     a.volume = std::move(volume);
@@ -272,42 +278,53 @@ void registerValidate(py::module_& m) {
     a.size = size;
     a.platform = std::move(platform);
     a.count = std::move(count);
+    a.blurOffset = blurOffset;
+    a.bias = bias;
+    a.refineGrid = refineGrid;
+    a.chordPoints = chordPoints;
     return a;
   };
   m.def(
       "render",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
-                  std::optional<std::pair<int, int>> size, std::string platform, std::string count) {
+                  std::optional<std::pair<int, int>> size, std::string platform, std::string count,
+                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
         return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
-                                        platform, count));
+                                        platform, count, blurOffset, bias, refineGrid, chordPoints));
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
-      py::arg("platform") = "auto", py::arg("count") = "auto",
+      py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("blur_offset") = 0.0,
+      py::arg("bias") = py::none(), py::arg("refine_grid") = 1, py::arg("chord_points") = false,
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
       "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail; None for a method that draws no volume), gl_renderer, volume (explicit volume's "
       "build stats), options (capture, and captureAuto: why capture='auto', the default, chose it), warnings (what "
       "the depth map will miss), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
-      "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`).");
+      "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`); blur_offset, bias, refine_grid "
+      "and chord_points shape the hybrid volume as build_volume's do (`--blur-offset`, `--bias`, `--refine-grid`, "
+      "`--chord-points`).");
   m.def(
       "validate",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
                   std::optional<std::pair<int, int>> size, std::string platform, std::string count, double maxError,
-                  double maxMissed, bool selfIntersections, std::optional<std::filesystem::path> reportDir) {
-        return validateFrameArgs(
-            s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size, platform, count),
-            maxError, maxMissed, selfIntersections, reportDir);
+                  double maxMissed, bool selfIntersections, std::optional<std::filesystem::path> reportDir,
+                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
+        return validateFrameArgs(s,
+                                 frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
+                                           platform, count, blurOffset, bias, refineGrid, chordPoints),
+                                 maxError, maxMissed, selfIntersections, reportDir);
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("max_error") = kDefaultMaxError,
       py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
-      py::arg("report_dir") = py::none(),
+      py::arg("report_dir") = py::none(), py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(),
+      py::arg("refine_grid") = 1, py::arg("chord_points") = false,
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
       "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume, options: "
       "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "

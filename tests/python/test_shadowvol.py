@@ -373,6 +373,34 @@ def test_validate_says_the_capture_and_refuses_what_the_method_ignores(tmp_path,
 
 
 @needs_gl
+def test_validate_and_render_take_the_volume_options_of_the_command_line(tmp_path, scene):
+    """The sub-grid, chord points, the bias and the blur offset (the note of 2026-12-07: validate
+    took only a subset), with the command line's figures and its refusals."""
+    grid = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4, refine_grid=4)
+    plain = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4)
+    assert grid["passed"] is True and grid["volume"]["subgridQuads"] > 0 and plain["volume"]["subgridQuads"] == 0
+    if CLI:  # the same volume as the command line's, whose map comes from the GPU too
+        cli = subprocess.run([CLI, "validate", "--json", "--resolution", "32", "--size", "64x48", "--volume",
+                              "explicit", "--depth-from", "gpu", "--refine", "4", "--refine-grid", "4", "--report",
+                              str(tmp_path / "cli")], capture_output=True, text=True)
+        assert cli.returncode == 0, cli.stderr
+        assert json.loads(cli.stdout)["volume"]["subgridQuads"] == grid["volume"]["subgridQuads"]
+    chords = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4, chord_points=True)
+    assert chords["volume"]["chordPoints"] > 0 and plain["volume"]["chordPoints"] == 0
+    assert sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", bias=0.01)["volume"]["bias"] == 0.01
+    frame = sv.render(scene, resolution=32, size=(40, 30), volume="explicit", blur=True, blur_offset=0.01,
+                      refine=0)
+    assert frame["stencil"].any()
+    for kw, said in [(dict(method="shadowmap", bias=0.1), r"bias: shapes the hybrid method's shadow volume"),
+                     (dict(method="shadowmap", refine_grid=4), "refine_grid"),
+                     (dict(volume="explicit", refine=4, refine_grid=4, chord_points=True),
+                      r"refine_grid = 4: not with chord_points: "),
+                     (dict(volume="explicit", refine_grid=4), r"refine_grid = 4: needs refinement \(refine of")]:
+        with pytest.raises(sv.InputError, match=said):
+            sv.validate(scene, resolution=16, size=(16, 12), **kw)
+
+
+@needs_gl
 def test_render_returns_image_and_stencil(scene):
     frame = sv.render(scene, resolution=64, size=(40, 30))
     assert frame["image"].shape == (30, 40, 4) and frame["image"].dtype == np.uint8
