@@ -33,7 +33,7 @@ std::string numberText(T v) {
 /// a mark starts with a lower-case letter and holds letters, digits, dots and spaces, so other text
 /// holding "${", such as "${HOME}", is left as it is):
 /// what() and problem() show the library's name ("needs blur"), a front end its own spelling of it
-/// (problemNamed: "needs --blur", "needs blur=True"), so no library text spells a flag.
+/// (problemNamed: the command line's "needs --blur"), so no library text spells a flag.
 class InputError : public std::runtime_error {
  public:
   /// A field's name in a front end's words; the library's name where it has none.

@@ -149,7 +149,7 @@ std::vector<Bounds3> objectBoxes(const Scene& scene) {
   return boxes;
 }
 
-// What the scene needs: from just before the near side of the part of the bounds the light sees
+// What the scene needs: from just before the near side of the part of the objects' boxes the light sees
 // to just past its far side (FittedRange's margin each way). A given plane outside that range is
 // moved to it: it would capture nothing more, and only spend depth precision (README "Scene
 // files", Light, has the measurement).
