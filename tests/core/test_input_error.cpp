@@ -13,7 +13,7 @@ TEST(InputError, FieldMarksShowTheLibraryNameUnlessAFrontEndNamesThem) {
   const InputError e("volume options", "refine chords", "", "needs refinement (${refine steps} of at least 1)");
   EXPECT_EQ(e.problem(), "needs refinement (refine steps of at least 1)");
   EXPECT_STREQ(e.what(), "volume options: refine chords: needs refinement (refine steps of at least 1)");
-  EXPECT_EQ(e.problemNamed([](std::string_view f) { return "<" + std::string(f) + ">"; }),
+  EXPECT_EQ(e.problemNamed([](std::string_view f) { return std::string("<").append(f).append(">"); }),
             "needs refinement (<refine steps> of at least 1)");
   EXPECT_EQ(e.problemTemplate(), "needs refinement (${refine steps} of at least 1)");
   const InputError member("RenderOptions", "volume", "gpu", "set ${refineCrossings} or ${volumeOptions.bias}");
@@ -25,7 +25,7 @@ TEST(InputError, TextThatOnlyLooksLikeAMarkIsKept) {
   for (const std::string text : {"cannot open ${HOME}/a.ply", "unclosed ${refine", "${} empty", "${ x}",
                                  "${a}${Path}", "$${b}"}) {
     const InputError e("file", "", "", text);
-    const std::string named = e.problemNamed([](std::string_view f) { return "[" + std::string(f) + "]"; });
+    const std::string named = e.problemNamed([](std::string_view f) { return std::string("[").append(f).append("]"); });
     if (text == "${a}${Path}") {
       EXPECT_EQ(named, "[a]${Path}");
     } else if (text == "$${b}") {
