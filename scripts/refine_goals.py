@@ -2,11 +2,15 @@
 """Issue 10's accuracy goals from a refine_eval.py results file (README "Silhouette refinement").
 
   python3 scripts/refine_goals.py out/refine-eval/results.jsonl [--closed a,b,...] [--ratio 1.5]
+      [--grid8 out/s8/results.jsonl]
 
 For each scene: the refined volumes' error at 128² and 256² against the 2048² shadow map
 (`shadowmap auto 2048`, the goal "128² at most the 2048² map"), and at 256² against the silhouette
 volume (the goal "within 1.5x of silhouette volumes", counted on the --closed scenes only, where
-silhouette volumes are exact). Prints a Markdown table and the counts. Stdlib only.
+silhouette volumes are exact). With --grid8 (refine_eval.py's results of `--refine-grid 8 --methods
+"refined auto 128"`), also the 128² goal with the 8 x 8 sub-grid; both sub-grids are also counted
+against the better of the auto and front 2048² maps (`shadowmap front 2048`) where those ran.
+Prints a Markdown table and the counts. Stdlib only.
 """
 import argparse
 import json
@@ -40,10 +44,16 @@ def main():
     ap.add_argument("results")
     ap.add_argument("--closed", default="", help="comma-separated scenes whose meshes are closed")
     ap.add_argument("--ratio", type=float, default=1.5)
+    ap.add_argument("--grid8", help="results of the 8 x 8 sub-grid at 128² (refined auto 128)")
     a = ap.parse_args()
     cells = load(a.results)
+    if a.grid8:
+        for scene, methods in load(a.grid8).items():
+            if "refined auto 128" in methods:
+                cells.setdefault(scene, {})["refined auto 128 S=8"] = methods["refined auto 128"]
     closed = [s for s in a.closed.split(",") if s]
-    volumes = [m for m in ("refined auto 128", "refined auto 256", "refined entry 128", "refined entry 256")
+    volumes = [m for m in ("refined auto 128", "refined auto 128 S=8", "refined auto 256", "refined entry 128",
+                           "refined entry 256")
                if any(m in c for c in cells.values())]
     print("| scene | 2048² map | " + " | ".join(volumes) + " | silhouette |")
     print("|---|---:|" + "---:|" * len(volumes) + "---:|")
@@ -56,6 +66,12 @@ def main():
         met = [s for s in scenes if error(cells, s, m) <= error(cells, s, "shadowmap auto 2048")]
         print("%s at most the 2048² map: %d of %d; missed: %s" %
               (m, len(met), len(scenes), ", ".join(sorted(set(scenes) - set(met))) or "none"))
+        better = [s for s in scenes if error(cells, s, "shadowmap front 2048") is not None]
+        if better:
+            met = [s for s in better if error(cells, s, m) <= min(error(cells, s, "shadowmap auto 2048"),
+                                                                 error(cells, s, "shadowmap front 2048"))]
+            print("%s at most the better of the auto and front 2048² maps: %d of %d; missed: %s" %
+                  (m, len(met), len(better), ", ".join(sorted(set(better) - set(met))) or "none"))
     for m in [v for v in volumes if v.endswith("256")]:
         scenes = [s for s in closed if error(cells, s, m) is not None and error(cells, s, "silhouette") is not None]
         met = [s for s in scenes if within(error(cells, s, m), error(cells, s, "silhouette"), a.ratio)]
