@@ -123,5 +123,28 @@ TEST(CubeMap, GuardedFaceLightsKeepTheFacesTexelCentres) {
       }
 }
 
+// What lies in a guarded face's band belongs to a neighbouring face, where the fitted near plane
+// holds it; along the guarded face's axis it may lie nearer: the guarded near plane keeps it (a
+// second reader's example: near 99.49, (100.5, 0, 99) in the +z face's band at depth 99).
+TEST(CubeMap, GuardedFaceNearPlaneKeepsWhatItsBandHolds) {
+  Light p = point();
+  p.position = glm::dvec3(0.0);
+  p.nearPlane = 99.49;
+  p.farPlane = 200.0;
+  const int n = 64, g = 4;
+  const double t = double(n + 2 * g) / double(n);
+  for (int f = 0; f < kCubeFaces; ++f) {
+    const Light l = guardedCubeFaceLight(p, f, n, g);
+    // The band's outermost corner direction at the smallest own-face depth the fit allows: its
+    // largest offset component is the neighbour's depth, its depth along this face's axis 1/t of it.
+    const glm::dvec3 corner = cubeTexelDirection(n, f, -g - 0.5, -g - 0.5);
+    const double ownFace = std::max({std::abs(corner.x), std::abs(corner.y), std::abs(corner.z)});
+    const glm::dvec3 q = corner * (p.nearPlane / ownFace);  // at the fitted near in its own face
+    EXPECT_GE(glm::dot(q, cubeFaceDirection(f)), l.nearPlane * (1.0 - 1e-12)) << f;
+    EXPECT_NEAR(l.nearPlane, p.nearPlane / t, 1e-12);
+    EXPECT_EQ(l.farPlane, p.farPlane);
+  }
+}
+
 }  // namespace
 }  // namespace shadowvol

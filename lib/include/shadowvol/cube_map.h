@@ -46,7 +46,9 @@ Light cubeFaceLight(const Light& point, int face);
 /// Face `face`'s spot light widened by `guard` texels on every side for an N x N face: an
 /// (N + 2 guard)^2 map of it has the face's texel centres, texel (i, j) of the face being its
 /// texel (i + guard, j + guard), and guard more texels of the same size beyond each border
-/// (opening 2 atan((N + 2 guard) / N)). The refined GPU cube volume's faces (docs/gpu.md).
+/// (opening 2 atan((N + 2 guard) / N)), its near plane the point light's divided by (N + 2 guard) / N
+/// (what lies in the band belongs to a neighbouring face and may lie that much nearer along this
+/// face's axis). The refined GPU cube volume's faces (docs/gpu.md).
 Light guardedCubeFaceLight(const Light& point, int face, int n, int guard);
 
 /// The direction of face `face`'s texel (i, j) of an N x N cube map, scaled to face depth 1:
