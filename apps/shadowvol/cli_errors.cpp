@@ -58,12 +58,11 @@ InputError asCommandLineError(const InputError& e) {
     const LibraryFieldFlag* f = flagOf(field);
     return std::string(f ? f->flag : field);
   });
-  if (const LibraryFieldFlag* f = flagOf(e.field())) {
-    if (dynamic_cast<const OptionConflict*>(&e))
-      return OptionConflict("command line", std::string(f->flag), e.value(), problem);
-    return InputError("command line", std::string(f->flag), e.value(), problem);
-  }
-  return e;
+  const LibraryFieldFlag* f = flagOf(e.field());
+  if (!f && !e.hasFieldMarks()) return e;
+  const std::string source = f ? "command line" : e.source(), field = f ? std::string(f->flag) : e.field();
+  if (dynamic_cast<const OptionConflict*>(&e)) return OptionConflict(source, field, e.value(), problem);
+  return InputError(source, field, e.value(), problem);
 }
 
 }  // namespace shadowvol::cli

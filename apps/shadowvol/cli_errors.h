@@ -10,7 +10,9 @@
 
 namespace shadowvol::cli {
 
-/// A library field (InputError's source and field) and the flag that sets it.
+/// A library field (InputError's source and field) and the flag that sets it. A field set by a
+/// negating flag (refine snap: --no-snap) must not be named by a ${field} mark ("needs --no-snap"
+/// would read backwards): marks name fields that their flag turns on or sets.
 struct LibraryFieldFlag {
   std::string_view source, field, flag;
 };
@@ -19,7 +21,8 @@ struct LibraryFieldFlag {
 std::span<const LibraryFieldFlag> libraryFieldFlags();
 
 /// `e` with its source and field replaced by the command line's flag when the field is one that
-/// a flag sets; otherwise `e` unchanged. The value and the problem are kept.
+/// a flag sets, and the fields its problem marks (error.h's MarkedProblem) spelled as their flags;
+/// otherwise `e` unchanged. The value is kept; an OptionConflict stays one.
 InputError asCommandLineError(const InputError& e);
 
 }  // namespace shadowvol::cli

@@ -195,8 +195,8 @@ void checkIneffectiveOptions(const RenderCliOptions& o) {
                                                        {v.noHiddenSearch, "--no-hidden-search"}};
     for (const auto& [given, flag] : volumeOnly)
       if (given)
-        throw CLI::ValidationError(flag, std::string("shapes or draws the hybrid method's shadow volume; --method ") +
-                                             o.method + " has none: add --method hybrid or leave out " + flag);
+        throw CLI::ValidationError(flag, std::string("shapes or draws only the hybrid method's shadow volume, not --method ") +
+                                             o.method + "'s: add --method hybrid or leave out " + flag);
   }
   if (o.method == "hybrid" || o.method == "silhouette" || o.method == "none") {
     if (o.shadowBias)

@@ -61,7 +61,7 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
       {a.chordPoints, "chord_points"}};
   for (const auto& [given, name] : volumeOnly)
     if (given && !hybrid)
-      throw InputError("python", name, "", "shapes the hybrid method's shadow volume; method " + a.method + " has none");
+      throw InputError("python", name, "", "shapes only the hybrid method's shadow volume, not method " + a.method + "'s");
   if (!capturing && a.capture != defaults.capture)
     throw InputError("python", "capture", a.capture, "chooses what a depth map records; method " + a.method + " captures none");
   if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)

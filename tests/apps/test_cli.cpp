@@ -331,6 +331,10 @@ TEST(Cli, VolumeOptionConflictsNameTheOtherFlag) {
     EXPECT_TRUE(contains(r.out, said)) << r.out;
     EXPECT_FALSE(contains(r.out, "${")) << r.out;
   }
+  // A path is not read for marks (a second reader's finding: "${out}" was shown as --out).
+  const CliResult path = runCli("build --resolution 8 --out 'nowhere/${out}/a.ply'");
+  EXPECT_EQ(path.code, 1) << path.out;
+  EXPECT_TRUE(contains(path.out, "nowhere/${out}")) << path.out;
 }
 
 // build and depth render no image: a camera looking away (its far plane moved, its view empty) is

@@ -234,7 +234,7 @@ TEST(SceneParser, LightNearFitsTheObjectsItSeesNotTheSpaceBetweenThem) {
     "camera":{"eye":[0,3,6],"target":[0,0,0]}})");
   // The ground is seen from where the frustum's lower plane (10 degrees down) meets it, 0.51 /
   // tan(10 deg) = 2.9 out; the sphere from 4.5. The scene's box (y 0 to 1) holds the light, and gave
-  // the nearest geometry's distance, the ground 0.51 below it: a near of about 0.5.
+  // the nearest-geometry fallback (perspectiveNear), kept to at most far / 1000: a near of 0.011.
   const double ground = 0.51 / std::tan(10.0 * 3.14159265358979 / 180.0);
   EXPECT_GT(r.scene.light.nearPlane, 0.97 * ground * std::cos(10.0 * 3.14159265358979 / 180.0) * 0.95);
   EXPECT_LT(r.scene.light.nearPlane, ground);

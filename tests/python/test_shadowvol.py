@@ -388,10 +388,14 @@ def test_validate_and_render_take_the_volume_options_of_the_command_line(tmp_pat
     chords = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4, chord_points=True)
     assert chords["volume"]["chordPoints"] > 0 and plain["volume"]["chordPoints"] == 0
     assert sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", bias=0.01)["volume"]["bias"] == 0.01
-    frame = sv.render(scene, resolution=32, size=(40, 30), volume="explicit", blur=True, blur_offset=0.01,
-                      refine=0)
-    assert frame["stencil"].any()
-    for kw, said in [(dict(method="shadowmap", bias=0.1), r"bias: shapes the hybrid method's shadow volume"),
+    # The blur offset pushes the sheet 2 units away from the light, below the ground under the
+    # sphere: most of its shadow goes (22 shadowed pixels -> 6).
+    blurred = sv.render(scene, resolution=32, size=(40, 30), volume="explicit", blur=True)["stencil"]
+    pushed = sv.render(scene, resolution=32, size=(40, 30), volume="explicit", blur=True, blur_offset=2.0)["stencil"]
+    assert np.count_nonzero(pushed) < np.count_nonzero(blurred) / 2
+    assert sv.render(scene, resolution=32, size=(40, 30), volume="explicit", refine=4,
+                     refine_grid=4)["volume"]["subgridQuads"] > 0
+    for kw, said in [(dict(method="shadowmap", bias=0.1), r"bias: shapes only the hybrid method's shadow volume"),
                      (dict(method="shadowmap", refine_grid=4), "refine_grid"),
                      (dict(volume="explicit", refine=4, refine_grid=4, chord_points=True),
                       r"refine_grid = 4: not with chord_points: "),

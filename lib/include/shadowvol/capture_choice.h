@@ -56,7 +56,7 @@ struct CaptureChoice {
 /// entry's bias, a texel's footprint at the far plane (defaultBias), spans more than that many
 /// texels at the nearest casters and hides the shadows they cast close to themselves (a fourteenth
 /// probe's 160-degree spot: 273 wrong pixels at 256² against back capture's 46; measured in README
-/// "`--capture auto`", where the ratio sits between 4.5, entry as good, and 8.9, entry worse). Point
+/// "`--capture auto`", where the ratio sits between 4.67, entry as good or better, and 8.85, entry worse). Point
 /// lights keep entry capture: the room scene is as accurate either way (README).
 CaptureChoice chooseCapture(const Scene& scene, CaptureUse use);
 

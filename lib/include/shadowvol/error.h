@@ -29,30 +29,45 @@ std::string numberText(T v) {
 /// The library names its own terms (a file and JSON pointer, or an options struct and its member,
 /// such as source "RenderOptions", field "imageWidth x imageHeight"); a front end that spells them
 /// differently (the command line's flags) rethrows with source(), field() and problem() mapped.
-/// A problem that names another field of the same source writes it as ${field} ("needs ${blur}";
-/// a mark starts with a lower-case letter and holds letters, digits, dots and spaces, so other text
-/// holding "${", such as "${HOME}", is left as it is):
-/// what() and problem() show the library's name ("needs blur"), a front end its own spelling of it
-/// (problemNamed: the command line's "needs --blur"), so no library text spells a flag.
+/// A problem that names another field of the same source may write it as ${field} ("needs
+/// ${blur}") when it is given as a MarkedProblem, text the library wrote itself (no path, value or
+/// other user text in it: those are never read for marks): what() and problem() show the
+/// library's name ("needs blur"), a front end its own spelling of it (problemNamed: the command
+/// line's "needs --blur"). A mark is a lower-case letter, then letters, digits, dots and spaces.
+struct MarkedProblem {
+  std::string text;
+};
+
 class InputError : public std::runtime_error {
  public:
   /// A field's name in a front end's words; the library's name where it has none.
   using FieldNamer = std::function<std::string(std::string_view field)>;
 
   InputError(std::string source, std::string field, std::string value, const std::string& problem)
-      : std::runtime_error(compose(source, field, value, expand(problem, nullptr))),
+      : std::runtime_error(compose(source, field, value, problem)),
         source_(std::move(source)),
         field_(std::move(field)),
         value_(std::move(value)),
         problem_(problem) {}
+  InputError(std::string source, std::string field, std::string value, const MarkedProblem& problem)
+      : std::runtime_error(compose(source, field, value, expand(problem.text, nullptr))),
+        source_(std::move(source)),
+        field_(std::move(field)),
+        value_(std::move(value)),
+        problem_(problem.text),
+        marked_(true) {}
 
   const std::string& source() const { return source_; }  ///< file path, options struct or "command line"
   const std::string& field() const { return field_; }    ///< JSON pointer, member or option; may be empty
   const std::string& value() const { return value_; }    ///< offending value as text; may be empty
-  std::string problem() const { return expand(problem_, nullptr); }  ///< what is wrong with it
-  /// The problem with each ${field} named by `name` (a front end's flag or keyword).
-  std::string problemNamed(const FieldNamer& name) const { return expand(problem_, name); }
-  /// The problem as given, ${field} marks kept: for a rethrow that adds to it.
+  std::string problem() const { return marked_ ? expand(problem_, nullptr) : problem_; }  ///< what is wrong with it
+  /// The problem with each ${field} of a MarkedProblem named by `name` (a front end's flag or
+  /// keyword); an unmarked problem as it is.
+  std::string problemNamed(const FieldNamer& name) const { return marked_ ? expand(problem_, name) : problem_; }
+  /// Whether the problem was given as a MarkedProblem.
+  bool hasFieldMarks() const { return marked_; }
+  /// The problem as given (a MarkedProblem's marks kept): for a rethrow that adds to it, with
+  /// hasFieldMarks() telling which constructor to give it to.
   const std::string& problemTemplate() const { return problem_; }
 
  private:
@@ -63,7 +78,7 @@ class InputError : public std::runtime_error {
       const std::size_t end = problem.find('}', at);
       if (end == std::string::npos) break;
       const std::string_view field(problem.data() + at + 2, end - at - 2);
-      if (!isFieldMark(field)) {  // not a mark: text that happens to hold "${" (a path, a value)
+      if (!isFieldMark(field)) {  // not a mark: "${" in the library's own text, kept
         s.append(problem, from, at + 2 - from);
         from = at + 2;
         continue;
@@ -92,6 +107,7 @@ class InputError : public std::runtime_error {
     return s;
   }
   std::string source_, field_, value_, problem_;
+  bool marked_ = false;
 };
 
 /// An option that contradicts another, or changes nothing without another (refinement's options

@@ -46,7 +46,7 @@ std::optional<std::pair<double, double>> depthRangeInFrustum(const Bounds3& b, c
 /// nullopt when the frustum meets none. Tighter than the range of the one box around them all
 /// where the view sees the space between them (a low spot light beside a ground plane, over
 /// which the scene's box reaches up to the light: a probe's fitted near plane of 0.02 where the
-/// nearest object the light sees is 5 away).
+/// nearest part of any object the light sees, the ground's, is 2.5 away).
 std::optional<std::pair<double, double>> depthRangeInFrustum(std::span<const Bounds3> boxes, const ViewFrustum& f);
 
 }  // namespace shadowvol::detail

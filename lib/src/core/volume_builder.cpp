@@ -86,11 +86,12 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
 }
 
 void checkUserVolumeOptions(const VolumeBuildOptions& o) {
+  // The problems name other options as ${field} marks (error.h): each front end spells them.
   auto refuseValue = [](const char* field, const std::string& value, const std::string& why) {
-    throw InputError("volume options", field, value, why);
+    throw InputError("volume options", field, value, MarkedProblem{why});
   };
   auto refuse = [](const char* field, const std::string& value, const std::string& why) {  // a combination
-    throw OptionConflict("volume options", field, value, why);
+    throw OptionConflict("volume options", field, value, MarkedProblem{why});
   };
   if (!std::isfinite(o.blurOffset) || o.blurOffset < 0.0)
     refuseValue("blur offset", numberText(o.blurOffset),

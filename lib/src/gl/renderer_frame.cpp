@@ -63,10 +63,12 @@ void Renderer::Impl::validateForLight(const RenderOptions& o, const CameraSetup&
   const auto which = [&] { return " (for light " + std::to_string(k) + " of the scene's " + std::to_string(lights.size()) + ")"; };
   try {
     validate(o, cam);
-  } catch (const OptionConflict& e) {  // stays a usage error
-    throw OptionConflict(e.source(), e.field(), e.value(), e.problemTemplate() + which());
+  } catch (const OptionConflict& e) {  // stays a usage error, its marks kept (error.h)
+    if (e.hasFieldMarks()) throw OptionConflict(e.source(), e.field(), e.value(), MarkedProblem{e.problemTemplate() + which()});
+    throw OptionConflict(e.source(), e.field(), e.value(), e.problem() + which());
   } catch (const InputError& e) {
-    throw InputError(e.source(), e.field(), e.value(), e.problemTemplate() + which());
+    if (e.hasFieldMarks()) throw InputError(e.source(), e.field(), e.value(), MarkedProblem{e.problemTemplate() + which()});
+    throw InputError(e.source(), e.field(), e.value(), e.problem() + which());
   }
 }
 

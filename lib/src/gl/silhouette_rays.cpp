@@ -38,10 +38,10 @@ void SilhouetteRays::ensureHierarchy() {
   const std::uint64_t cornerBytes = 3 * 16 * std::uint64_t(mesh.triangles.size()), nodeBytes = 2 * 32 * std::uint64_t(mesh.triangles.size());
   if (limit > 0 && std::max(cornerBytes, nodeBytes) > std::uint64_t(limit))
     throw InputError("RenderOptions", "refineCrossings", "rays",
-                     "the GPU's rays need " + std::to_string(std::max(cornerBytes, nodeBytes) >> 20) + " MiB for the " +
+                     MarkedProblem{"the GPU's rays need " + std::to_string(std::max(cornerBytes, nodeBytes) >> 20) + " MiB for the " +
                          std::to_string(mesh.triangles.size()) + " triangles' hierarchy in one buffer, above this "
                          "OpenGL's shader storage block limit of " + std::to_string(limit >> 20) +
-                         " MiB: set ${refineCrossings} to gpu-walk or ${volume} to explicit");
+                         " MiB: set ${refineCrossings} to gpu-walk or ${volume} to explicit"});
   const TriangleBvh bvh = buildTriangleBvh(mesh);
   // Buffers of at least one element, so an empty scene binds valid ranges (nodeCount 0 stops
   // every ray before it reads them).
