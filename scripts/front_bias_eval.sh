@@ -6,9 +6,11 @@
 # and the misclassified % (againstExact.method) at F, F/2, F/4. About 5 minutes on 2 cores.
 # Usage: bash scripts/front_bias_eval.sh [build dir, or the shadowvol executable]
 set -eu
-B=${1:-build}
+B=$(realpath "${1:-build}")  # given from the caller's folder
 SV=$B/apps/shadowvol
 [ -f "$B" ] && SV=$B
+root=$(cd "$(dirname "$0")/.." && pwd)  # the repository: the scenes are read from it
+cd "$root"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 PY=/usr/bin/python3

@@ -83,7 +83,7 @@ def main():
     scene = sv.default_scene()
     depth = sv.capture_depth(scene, 24, 24)
     for refine, name in ((0, "volume-24.svg"), (6, "volume-24-refined.svg")):
-        V, F, stats = sv.build_volume(depth, refine=refine, scene=scene)
+        V, F, stats = sv.build_volume(depth, refine=refine, scene=scene if refine else None)  # scene= only with refine
         title = (f"default scene, 24x24 depth map: {len(F)} triangles"
                  + (f", refine 6 ({stats['raysCast']} rays)" if refine else ""))
         (out / name).write_text(svg(scene, V, F, title))

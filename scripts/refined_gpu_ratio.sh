@@ -8,10 +8,12 @@
 #             "--refine 4 --crossings gpu-walk", as measured before 2026-12-04 with "--refine 4"]
 set -eu
 N=${1:-15}
-B=${2:-build}
+B=$(realpath "${2:-build}")  # given from the caller's folder
 REFINED=${3:---refine 6}
 SV=$B/apps/shadowvol
 [ -f "$B" ] && SV=$B
+root=$(cd "$(dirname "$0")/.." && pwd)  # the repository: the scenes are read from it
+cd "$root"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 frame() { "$SV" render --scene data/scenes/default.json --resolution 128 --frames 51 "$@" \

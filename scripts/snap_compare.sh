@@ -11,7 +11,8 @@ while [ "$#" -gt 0 ] && [ "$1" != "--" ]; do opts+=("$1"); shift; done
 # Back capture unless the options name one (the command line's default is --capture auto since
 # 2026-12-05; the figures in README were measured with back capture).
 case " ${opts[*]-} " in *" --capture "*) ;; *) opts+=(--capture back) ;; esac
-SV=${SV:-build/apps/shadowvol}
+# The binary: SV, or this repository's build (the scenes are paths from the caller's folder).
+SV=${SV:-$(cd "$(dirname "$0")/.." && pwd)/build/apps/shadowvol}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 error() {

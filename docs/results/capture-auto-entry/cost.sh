@@ -5,6 +5,7 @@
 # Usage: bash docs/results/capture-auto-entry/cost.sh ROUNDS "RES..." SCENE.json...
 set -euo pipefail
 rounds=$1 res=$2
+sv=$(cd "$(dirname "$0")/../../.." && pwd)/build/apps/shadowvol  # the scenes stay paths from the caller's folder
 shift 2
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -12,7 +13,7 @@ for r in $(seq 1 "$rounds"); do
   for s in "$@"; do
     for n in $res; do
       for c in back entry; do
-        build/apps/shadowvol render --scene "$s" --resolution "$n" --capture "$c" --frames 30 --json \
+        "$sv" render --scene "$s" --resolution "$n" --capture "$c" --frames 30 --json \
           --out "$out/x.png" 2>/dev/null | python3 -c "
 import json,sys; d=json.load(sys.stdin); print('$s', $n, '$c', d['frameMs'])" >> "$out/times.txt"
       done

@@ -7,9 +7,15 @@
 # (scripts/refine_goals.py), and the cost (scripts/ab_bench.sh with entry capture, then the frame
 # against hybrid-perfect/explicit on the default scene). Run from the repository root with a clean
 # tree, after building and fetching what docs/results/sharp-reference/run.sh needs; about 20 minutes.
+# The patch was made on bb5275d and does not apply to later trees (a seventeenth probe's finding):
+# run this in a checkout of it (git worktree add /tmp/exit-choice bb5275d, build there).
 set -e
 here=docs/results/exit-choice
 out=${OUT:-out/exit-choice}
+if ! git apply --check "$here/exit-choice.patch" 2> /dev/null; then
+  echo "exit-choice.patch does not apply to this tree: run this script in a checkout of bb5275d" >&2
+  exit 2
+fi
 mkdir -p "$out"
 cmake --build build --target shadowvol > /dev/null
 cp build/apps/shadowvol "$out/shadowvol-base"

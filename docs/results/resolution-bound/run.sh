@@ -4,6 +4,8 @@
 # from the repository root with a clean tree, after building and fetching what
 # docs/results/sharp-reference/run.sh and docs/results/probe10/run.sh need.
 #   bash docs/results/resolution-bound/run.sh [smooth|cap|corner|grazing|grid8] ...   (default: all; about 15 minutes)
+# The patches were made on bbcaa78; two of them (entry-exit-cap, entry-grazing-threshold) do not
+# apply to later trees (a seventeenth probe's finding): run this in a checkout of bbcaa78.
 set -e
 here=docs/results/resolution-bound
 exe=build/apps/shadowvol
@@ -37,6 +39,10 @@ print('%-36s %4s %-10s %-6s %5d %5d %.4f %s' % ('$name', '$res', '$label', d['op
 # with_patch PATCH COMMAND...: applies the patch, builds, runs the command, reverts.
 with_patch() {
   local patch=$1; shift
+  if ! git apply --check "$here/$patch" 2> /dev/null; then
+    echo "$patch does not apply to this tree: run this script in a checkout of bbcaa78" >&2
+    exit 2
+  fi
   git apply "$here/$patch"
   trap "git apply -R '$here/$patch'; cmake --build build --target shadowvol > /dev/null" EXIT
   cmake --build build --target shadowvol > /dev/null

@@ -1,6 +1,9 @@
 """build --device cpu vs gpu: triangle counts and enclosed volume (check --json) per capture."""
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import json, subprocess, sys
-BIN = '/tmp/svP14'
+BIN = SV
 def b(scene, cap, dev, extra=()):
     out = f'/tmp/probe14/B/vol/cb_{scene}_{cap}_{dev}.ply'
     r = subprocess.run(['nice', '-n', '5', 'timeout', '300', BIN, 'build', '--scene', f'scenes/{scene}.json', '--resolution', '192', '--capture', cap, '--device', dev, '--out', out] + list(extra), capture_output=True, text=True)

@@ -1,6 +1,9 @@
 """CPU (Embree) vs GPU depth maps of the same scene/capture: texels hit in one only, max relative depth difference."""
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import json, math, struct, subprocess, sys, os
-BIN = '/tmp/svP14'
+BIN = SV
 def rd(p):
     f = open(p, 'rb'); f.readline(); wh = f.readline().split(); sc = float(f.readline())
     w, h = int(wh[0]), int(wh[1]); return w, h, struct.unpack(('<' if sc < 0 else '>') + '%df' % (w*h), f.read())

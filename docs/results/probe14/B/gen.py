@@ -3,8 +3,11 @@
 Each scene is a canonical layout (ground 8x8 at y=0, meshes ~2 units) put through a whole-scene
 similarity W = T * R * s applied to objects (as 'matrix'), light and camera (explicit up vectors,
 explicit near/far/extent where rotation would change the AABB-based fit)."""
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import json, math, os, subprocess, sys
-BIN = os.environ.get('SV', '/tmp/svP14')  # the shadowvol binary (deep-spot.sh passes its SV)
+BIN = SV  # deep-spot.sh passes its SV
 D = '/tmp/probe9/d/data/meshes/'
 X = '/tmp/probe9/x/usr/share/assimp/models/'
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -352,9 +355,9 @@ if __name__ == '__main__' and 'twospot' in sys.argv:
 
 def twopoint():
     """room.json (shipped) with a second point light; mesh paths made absolute."""
-    j = json.load(open('/work/main/data/scenes/point/room.json'))
+    j = json.load(open(ROOT + '/data/scenes/point/room.json'))
     for o in j['objects']:
-        if 'file' in o: o['file'] = os.path.join('/work/main/data/scenes/point', o['file'])
+        if 'file' in o: o['file'] = os.path.join(ROOT + '/data/scenes/point', o['file'])
     L = j.pop('light'); L['intensity'] = 0.5
     j['lights'] = [L, dict(L, position=[1.0, 2.5, -0.8])]
     json.dump(j, open(os.path.join(HERE, 'scenes', 'twopoint_room.json'), 'w'), indent=1)

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """run.py validate|build SCENE TAG -- extra options. Appends a JSON line to results.jsonl."""
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import json, os, subprocess, sys, time
-BIN = '/tmp/svP14'; HERE = os.path.dirname(os.path.abspath(__file__))
+BIN = SV; HERE = os.path.dirname(os.path.abspath(__file__))
 def sh(args, to=300):
     t = time.time()
     p = subprocess.run(['nice', '-n', '5', 'timeout', str(to), BIN] + args, capture_output=True, text=True)

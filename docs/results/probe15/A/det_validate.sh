@@ -1,5 +1,8 @@
 #!/bin/bash
 # validate determinism: same command 3 times (third pinned to core 0); compare report.json (minus timing fields) and PNGs
+# SV: the shadowvol binary (default: this repository's build), copied to /tmp/probe15/sv
+sv=${SV:-$(cd "$(dirname "$0")/../../../.." && pwd)/build/apps/shadowvol}
+mkdir -p /tmp/probe15 && cp "$sv" /tmp/probe15/sv
 cd /tmp/probe15
 tag=$1; S=$2; shift 2
 for i in 1 2 3; do

@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
 """Generate base scenes and translated/scaled copies into /tmp/probe15/scenes."""
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import json, copy, os
 OUT = "/tmp/probe15/scenes"
 base = {}
-d = json.load(open("/work/main/data/scenes/default.json"))
+d = json.load(open(ROOT + "/data/scenes/default.json"))
 d.pop("description", None)
 base["default"] = d
 base["camel"] = {

@@ -1,5 +1,8 @@
 #!/bin/bash
 # validate every scene variant not yet validated; one process at a time
+# SV: the shadowvol binary (default: this repository's build), copied to /tmp/probe15/sv
+sv=${SV:-$(cd "$(dirname "$0")/../../../.." && pwd)/build/apps/shadowvol}
+mkdir -p /tmp/probe15 && cp "$sv" /tmp/probe15/sv
 cd /tmp/probe15
 for f in scenes/*.json; do n=$(basename $f .json)
   [ -f rep/$n.out ] && continue

@@ -1,6 +1,9 @@
 # Parent makes one GL call, then forks; the child's first call is validate (or what argv[2] names).
+import os as _os
+ROOT = _os.path.abspath(_os.path.join(_os.path.dirname(__file__), "../../../.."))  # the repository
+SV = _os.environ.get("SV", _os.path.join(ROOT, "build/apps/shadowvol"))  # the shadowvol binary
 import shadowvol as sv, multiprocessing as mp, sys
-sc = sv.load_scene("/work/main/data/scenes/fandisk.json")
+sc = sv.load_scene(ROOT + "/data/scenes/fandisk.json")
 pre = sys.argv[1]
 if pre == "render": sv.render(sc, resolution=64, size=(160,120))
 if pre == "gpucap": sv.capture_depth(sc, 64, 64, capture="back", device="gpu")
