@@ -128,6 +128,7 @@ constexpr double kFittedLightAspect = 1.0;
 // range, 1 % of the radius, and a far plane at least 1e-3 of the radius deep.
 struct FittedRange {
   double lo, hi, margin, far;
+  bool seen;  ///< the view sees part of an object's box (else the range is the whole box's)
 };
 FittedRange seenRange(const Bounds3& b, const std::vector<Bounds3>& objects, const detail::ViewFrustum& f,
                       const glm::dvec3& eye, const glm::dvec3& axis, double radius) {
@@ -135,10 +136,10 @@ FittedRange seenRange(const Bounds3& b, const std::vector<Bounds3>& objects, con
     const auto [lo, hi] = *seen;
     const double extent = hi - std::max(lo, 0.0);
     const double margin = 0.01 * std::min(radius, std::max({extent, 1e-3 * std::max(hi, 0.0), 1e-6 * radius}));
-    return {lo, hi, margin, std::max(hi, 0.0) + margin};
+    return {lo, hi, margin, std::max(hi, 0.0) + margin, true};
   }
   const auto [lo, hi] = depthRange(b, eye, axis);
-  return {lo, hi, 0.01 * radius, std::max(hi, 1e-3 * radius) + 0.01 * radius};
+  return {lo, hi, 0.01 * radius, std::max(hi, 1e-3 * radius) + 0.01 * radius, false};
 }
 
 // Each object's box: the views' depth ranges are taken over these (the part of each that the view
@@ -155,7 +156,7 @@ std::vector<Bounds3> objectBoxes(const Scene& scene) {
 // files", Light, has the measurement).
 void fitLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
-  const auto [lo, hi, margin, far] =
+  const auto [lo, hi, margin, far, seen] =
       seenRange(b, objectBoxes(scene), detail::lightFrustum(l, kFittedLightAspect), l.position, l.direction, radius);
   const double givenFar = l.farPlane;
   const std::size_t farNote = notes.size();
@@ -183,8 +184,8 @@ void fitPointLightPlanes(Scene& scene, const Bounds3& b, double radius, std::vec
   for (int f = 0; f < kCubeFaces; ++f) {
     const Light face = cubeFaceLight(l, f);
     const detail::ViewFrustum frustum = detail::lightFrustum(face, 1.0);
-    if (!detail::depthRangeInFrustum(objects, frustum)) continue;
-    const auto [lo, hi, margin, faceFar] = seenRange(b, objects, frustum, face.position, face.direction, radius);
+    const auto [lo, hi, margin, faceFar, seen] = seenRange(b, objects, frustum, face.position, face.direction, radius);
+    if (!seen) continue;
     far = std::max(far, faceFar);
     nearSides.push_back(lo - margin);
   }
@@ -209,7 +210,7 @@ void fitCameraPlanes(Scene& scene, const Bounds3& b, double radius, std::vector<
   // point): a deeper near plane would widen the near rectangle that z-pass needs outside every
   // volume (frame.h), for depth precision the camera's test does not lack.
   const std::vector<Bounds3> box{b};
-  const auto [lo, hi, margin, far] = seenRange(b, box, detail::cameraFrustum(c), c.eye, axis, radius);
+  const auto [lo, hi, margin, far, seen] = seenRange(b, box, detail::cameraFrustum(c), c.eye, axis, radius);
   const double givenFar = c.farPlane;
   const std::size_t farNote = notes.size();
   if (c.farPlane <= 0.0 || c.farPlane > far) c.farPlane = far;
