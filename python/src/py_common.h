@@ -47,8 +47,9 @@ void checkResolutionArg(int resolution, const std::string& what);
 
 /// The builder's options from the keyword arguments of build_volume and validate (names as there);
 /// InputError names the argument.
-/// A volume option's refusal (checkUserVolumeOptions: source "volume options") named by this
-/// module's keyword, and the fields its problem names (error.h's ${field} marks) by theirs; other errors as they are.
+/// A volume option's refusal (checkUserVolumeOptions: source "volume options") or a frame option's
+/// (source "RenderOptions") named by this module's keyword, and the fields its problem names
+/// (error.h's ${field} marks) by theirs; other errors as they are.
 InputError asPythonArgumentError(const InputError& e);
 
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,

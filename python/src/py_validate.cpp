@@ -31,7 +31,7 @@ namespace {
 // the arguments a method would ignore are refused.
 struct FrameArgs {
   std::string method = "hybrid", volume = "gpu", capture = "auto", triangulation = "perfect", cap = "exact",
-              platform = "auto", count = "auto";
+              platform = "auto", count = "auto", crossings = "auto";
   int resolution = 512, refine = 0, refineGrid = 1;
   bool blur = false, chordPoints = false;
   double blurOffset = 0.0;
@@ -49,6 +49,9 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
                     ro.method == gl::ShadowMethod::Hybrid ? DepthMapUse::Volume : DepthMapUse::ShadowMap);
   ro.depthWidth = ro.depthHeight = a.resolution;
   if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected " + choicesText(namesIn(kVolumeCountOptionNames)));
+  if (a.crossings != "auto" && !parseRefineCrossings(a.crossings, ro.refineCrossings))
+    throw InputError("python", "crossings", a.crossings,
+                     "expected " + choicesText(namesIn(kRefineCrossingsNames, {"auto"})));
   // Arguments the method would ignore are refused, as the command line refuses their flags.
   const bool hybrid = ro.method == gl::ShadowMethod::Hybrid;
   const bool capturing = ro.method != gl::ShadowMethod::Silhouette && ro.method != gl::ShadowMethod::None;
@@ -58,10 +61,21 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
       {a.triangulation != "perfect", "triangulation"},   {a.volume != defaults.volume, "volume"},
       {a.count != defaults.count, "count"},      {a.blurOffset != 0.0, "blur_offset"},
       {a.bias.has_value(), "bias"},               {a.refineGrid != 1, "refine_grid"},
-      {a.chordPoints, "chord_points"}};
+      {a.chordPoints, "chord_points"},        {a.crossings != defaults.crossings, "crossings"}};
   for (const auto& [given, name] : volumeOnly)
     if (given && !hybrid)
       throw InputError("python", name, "", "shapes only the hybrid method's shadow volume, not method " + a.method + "'s");
+  if (hybrid && a.crossings != defaults.crossings && a.refine == 0)  // as the command line's --crossings
+    throw InputError("python", "crossings", a.crossings, "chooses where refinement finds its crossings: add refine=K");
+  if (hybrid && a.crossings == "rays" && a.refine > 0 && a.volume == "gpu")  // as the command line's --crossings rays
+    throw InputError("python", "crossings", a.crossings,
+                     "the refined GPU volume finds its crossings on the GPU: use crossings gpu-rays (or auto) or "
+                     "gpu-walk, or volume explicit for Embree's rays");
+  for (const auto& [given, name] : {std::pair{a.refineGrid != 1, "refine_grid"}, std::pair{a.chordPoints, "chord_points"}})
+    if (hybrid && given && a.refine > 0 && a.volume == "gpu")  // as the command line's
+      throw InputError("python", name, "",
+                       "needs rays (volume explicit, crossings rays): the refined GPU volume refines the boundary "
+                       "edges' crossings alone");
   if (!capturing && a.capture != defaults.capture)
     throw InputError("python", "capture", a.capture, "chooses what a depth map records; method " + a.method + " captures none");
   if (!capturing && a.resolution != defaults.resolution)  // as the command line (without --fit view)
@@ -117,6 +131,15 @@ struct FrameRenderer {
   }
 };
 
+// A frame, its options' refusals (RenderOptions, volume options) naming this module's keywords.
+gl::RenderResult renderNamed(gl::Renderer& renderer, const gl::RenderOptions& ro) {
+  try {
+    return renderer.render(ro);
+  } catch (const InputError& e) {
+    throw asPythonArgumentError(e);
+  }
+}
+
 py::array_t<std::uint8_t> imageArray(const std::vector<std::uint8_t>& bytes, int w, int h, int channels) {
   py::array_t<std::uint8_t> a(channels == 1 ? std::vector<py::ssize_t>{h, w} : std::vector<py::ssize_t>{h, w, channels});
   std::copy(bytes.begin(), bytes.end(), a.mutable_data());
@@ -131,7 +154,7 @@ py::dict renderFrame(const PyScene& s, const FrameArgs& a) {
   {
     py::gil_scoped_release release;
     FrameRenderer r(scene, ro, a.platform);
-    result = r.renderer.render(ro);
+    result = renderNamed(r.renderer, ro);
     device = r.renderer.info().glRenderer;
   }
   py::dict d;
@@ -216,7 +239,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
   {
     py::gil_scoped_release release;
     FrameRenderer r(scene, ro, a.platform);
-    const gl::RenderResult result = r.renderer.render(ro);
+    const gl::RenderResult result = renderNamed(r.renderer, ro);
     const std::vector<LightValidation> lights = validateEveryLight(scene, ro, result, vo);
     const bool silhouette = ro.method == gl::ShadowMethod::Silhouette;
     const bool drawsVolume = drawsShadowVolume(ro.method);  // a stencil count to name
@@ -265,7 +288,8 @@ void registerValidate(py::module_& m) {
   auto frameArgs = [](std::string method, std::string volume, int resolution, std::string capture,
                       std::string triangulation, bool blur, std::string cap, int refine,
                       std::optional<std::pair<int, int>> size, std::string platform, std::string count,
-                      double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
+                      double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+                      std::string crossings) {
     FrameArgs a;
     a.method = std::move(method);
     a.volume = std::move(volume);
@@ -282,6 +306,7 @@ void registerValidate(py::module_& m) {
     a.bias = bias;
     a.refineGrid = refineGrid;
     a.chordPoints = chordPoints;
+    a.crossings = std::move(crossings);
     return a;
   };
   m.def(
@@ -289,15 +314,17 @@ void registerValidate(py::module_& m) {
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
                   std::optional<std::pair<int, int>> size, std::string platform, std::string count,
-                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
+                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+                  std::string crossings) {
         return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
-                                        platform, count, blurOffset, bias, refineGrid, chordPoints));
+                                        platform, count, blurOffset, bias, refineGrid, chordPoints, crossings));
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
       py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("blur_offset") = 0.0,
       py::arg("bias") = py::none(), py::arg("refine_grid") = 1, py::arg("chord_points") = false,
+      py::arg("crossings") = "auto",
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
       "total_ms, timing, volume_triangles, volume_count (z-pass or z-fail; None for a method that draws no volume), gl_renderer, volume (explicit volume's "
@@ -305,17 +332,19 @@ void registerValidate(py::module_& m) {
       "the depth map will miss), and with several lights other_stencils (each further light's stencil; `stencil` is the first's, "
       "the image every light's). size=(W, H); count: auto, zfail or zpass (`--count`); blur_offset, bias, refine_grid "
       "and chord_points shape the hybrid volume as build_volume's do (`--blur-offset`, `--bias`, `--refine-grid`, "
-      "`--chord-points`).");
+      "`--chord-points`); crossings: where refinement finds its crossings (`--crossings`: auto, rays, gpu-walk or "
+      "gpu-rays).");
   m.def(
       "validate",
       [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
                   std::string triangulation, bool blur, std::string cap, int refine,
                   std::optional<std::pair<int, int>> size, std::string platform, std::string count, double maxError,
                   double maxMissed, bool selfIntersections, std::optional<std::filesystem::path> reportDir,
-                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints) {
+                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+                  std::string crossings) {
         return validateFrameArgs(s,
                                  frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
-                                           platform, count, blurOffset, bias, refineGrid, chordPoints),
+                                           platform, count, blurOffset, bias, refineGrid, chordPoints, crossings),
                                  maxError, maxMissed, selfIntersections, reportDir);
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
@@ -324,7 +353,7 @@ void registerValidate(py::module_& m) {
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("max_error") = kDefaultMaxError,
       py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
       py::arg("report_dir") = py::none(), py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(),
-      py::arg("refine_grid") = 1, py::arg("chord_points") = false,
+      py::arg("refine_grid") = 1, py::arg("chord_points") = false, py::arg("crossings") = "auto",
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
       "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume, options: "
       "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "

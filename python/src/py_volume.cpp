@@ -45,30 +45,54 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
 
 namespace {
 
-// The volume options' fields as this module's keywords (a fifteenth probe's finding: refine_grid=3
+// The library's option fields as this module's keywords (a fifteenth probe's finding: refine_grid=3
 // was "refine subdivisions", blur_offset "needs blur (--blur)"): the field refused and those its
-// problem names (${field} marks, error.h).
+// problem names (${field} marks, error.h), for the volume options and the frame's RenderOptions.
 struct PythonName {
+  const char* source;
   const char* library;
   const char* keyword;
 };
 constexpr PythonName kFieldKeywords[] = {
-    {"blur offset", "blur_offset"},   {"bias", "bias"},          {"refine steps", "refine"},
-    {"cap", "cap"},                   {"refine subdivisions", "refine_grid"},
-    {"refine chords", "chord_points"}, {"refine grid everywhere", "refine_grid_everywhere"},
-    {"refine hidden", "hidden_search"}, {"flatten cap", "flatten_cap"}, {"blur", "blur"}};
+    {"volume options", "blur offset", "blur_offset"},
+    {"volume options", "bias", "bias"},
+    {"volume options", "refine steps", "refine"},
+    {"volume options", "cap", "cap"},
+    {"volume options", "refine subdivisions", "refine_grid"},
+    {"volume options", "refine chords", "chord_points"},
+    {"volume options", "refine grid everywhere", "refine_grid_everywhere"},
+    {"volume options", "refine hidden", "hidden_search"},
+    {"volume options", "flatten cap", "flatten_cap"},
+    {"volume options", "blur", "blur"},
+    {"RenderOptions", "refineCrossings", "crossings"},
+    {"RenderOptions", "volume", "volume"},
+    {"RenderOptions", "volumeCount", "count"},
+    {"RenderOptions", "depthWidth", "resolution"},
+    {"RenderOptions", "method", "method"},
+    {"RenderOptions", "capture", "capture"},
+    {"RenderOptions", "volumeOptions.cap", "cap"},
+    {"RenderOptions", "volumeOptions.refineSteps", "refine"},
+    {"RenderOptions", "volumeOptions.blurOffset", "blur_offset"},
+    {"RenderOptions", "volumeOptions.bias", "bias"}};
 
-std::string keywordOf(std::string_view field) {
+// The keyword of `field` of `source`'s options, or null where this module has none.
+const char* keywordOf(std::string_view source, std::string_view field) {
   for (const PythonName& n : kFieldKeywords)
-    if (field == n.library) return n.keyword;
-  return std::string(field);
+    if (source == n.source && field == n.library) return n.keyword;
+  return nullptr;
 }
 
 }  // namespace
 
 InputError asPythonArgumentError(const InputError& e) {
-  if (e.source() != "volume options") return e;
-  return InputError("python", keywordOf(e.field()), e.value(), e.problemNamed(keywordOf));
+  const std::string source = e.source();
+  const char* keyword = keywordOf(source, e.field());
+  if (!keyword && !e.hasFieldMarks()) return e;
+  const std::string problem = e.problemNamed([&](std::string_view field) {
+    const char* k = keywordOf(source, field);
+    return std::string(k ? k : field);
+  });
+  return keyword ? InputError("python", keyword, e.value(), problem) : InputError(source, e.field(), e.value(), problem);
 }
 
 namespace {

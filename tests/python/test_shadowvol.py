@@ -405,6 +405,33 @@ def test_validate_and_render_take_the_volume_options_of_the_command_line(tmp_pat
 
 
 @needs_gl
+def test_crossings_keyword_and_frame_refusals_name_keywords(scene):
+    """crossings= as `--crossings`; the renderer's refusals of a frame's options name this module's
+    keywords, never a C++ member ("refineCrossings", "RefineCrossings::Rays") or a raw ${mark}
+    (the note of 2026-12-07: the GPU rays' memory message showed refineCrossings)."""
+    walked = sv.render(scene, resolution=32, size=(40, 30), refine=4, crossings="gpu-walk")
+    rays = sv.render(scene, resolution=32, size=(40, 30), refine=4, crossings="gpu-rays")
+    assert walked["stencil"].any() and rays["stencil"].any()
+    for kw, said in [(dict(refine=4, crossings="sideways"), r"crossings = sideways: expected auto, rays, gpu-walk"),
+                     (dict(crossings="rays"), r"crossings = rays: .*add refine=K"),
+                     (dict(method="shadowmap", crossings="gpu-rays"), r"crossings: shapes only the hybrid"),
+                     (dict(refine=4, crossings="rays"), r"crossings = rays: .*use crossings gpu-rays"),
+                     (dict(refine=4, refine_grid=4), r"refine_grid: needs rays \(volume explicit, crossings rays\)"),
+                     # refused by the renderer itself, in the library's words with this module's keywords
+                     (dict(volume="explicit", refine=4, crossings="gpu-rays"),
+                      r"python: crossings = gpu-rays: .*needs method hybrid, volume gpu and refine > 0 "
+                      r"\(the explicit volume casts Embree's rays: crossings rays\)"),
+                     (dict(refine=4, crossings="gpu-walk", capture="entry"),
+                      r"python: crossings = gpu-walk: .*use crossings rays .*or back or front capture"),
+                     (dict(volume="explicit", refine=4, crossings="gpu-walk", refine_grid=4),
+                      r"python: crossings = gpu-walk: chord points and the sub-grid need crossings rays")]:
+        with pytest.raises(sv.InputError, match=said) as raised:
+            sv.render(scene, resolution=16, size=(16, 12), **kw)
+        text = str(raised.value)
+        assert "${" not in text and "refineCrossings" not in text and "::" not in text, text
+
+
+@needs_gl
 def test_render_returns_image_and_stencil(scene):
     frame = sv.render(scene, resolution=64, size=(40, 30))
     assert frame["image"].shape == (30, 40, 4) and frame["image"].dtype == np.uint8

@@ -106,7 +106,7 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
   if (refinedGpuVolume(o)) {
     auto refuse = [&](const std::string& why) {  // a combination of options
       throw OptionConflict("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
-                           "the refined GPU volume " + why);
+                           MarkedProblem{"the refined GPU volume " + why});
     };
     if (!hasCompute)
       throw InputError("RenderOptions", "volumeOptions.refineSteps", std::to_string(o.volumeOptions.refineSteps),
@@ -114,13 +114,13 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
                            context.info().glVersion);
     if (o.capture == CaptureMode::Midpoint)
       refuse("finds its crossings by one surface's rule (its rays or its walk); midpoint capture records the mean "
-             "of two: use back, front or entry capture, or the explicit volume with rays");
+             "of two: use back, front or entry ${capture}, or ${volume} explicit with ${refineCrossings} rays");
     if (o.volumeOptions.cap != FarCap::Exact)
-      refuse("needs the exact cap: the quad cap keeps the far-plane sheet that refinement replaces by walls");
+      refuse("needs the exact ${volumeOptions.cap}: the quad cap keeps the far-plane sheet that refinement replaces by walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
       refuse(
-          "finds the boundary edges' crossings alone: chord points and the sub-grid need the explicit volume "
-          "with rays");
+          "finds the boundary edges' crossings alone: chord points and the sub-grid need ${volume} explicit "
+          "with ${refineCrossings} rays");
     // The maps it walks: one W x H, or a point light's six faces with their guard band
     // (drawRefinedCubeFaces), each (N + 2 G)^2.
     const bool point = light.type == LightType::Point;
@@ -141,40 +141,44 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
   }
   if (o.gpuVolumeDraw == GpuVolumeDraw::Refined)
     throw InputError("RenderOptions", "gpuVolumeDraw", "refined",
-                     "is what a refined GPU volume (volumeOptions.refineSteps > 0) reports, not a choice");
+                     MarkedProblem{"is what a refined GPU volume (${volumeOptions.refineSteps} > 0) reports, not a choice"});
   if (o.refineCrossings == RefineCrossings::GpuWalk) {
     auto refuse = [](const std::string& value, const std::string& why) {  // a combination of options
-      throw OptionConflict("RenderOptions", "refineCrossings", value, why);
+      throw OptionConflict("RenderOptions", "refineCrossings", value, MarkedProblem{why});
     };
     if (o.method != ShadowMethod::Hybrid || o.volumeOptions.refineSteps == 0)
-      refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs method hybrid and refineSteps > 0");
+      refuse("gpu-walk", "the silhouette walk refines a hybrid volume: it needs ${method} hybrid and ${volumeOptions.refineSteps} > 0");
     if (!hasCompute)
       throw InputError("RenderOptions", "refineCrossings", "gpu-walk",
                        "the silhouette walk needs OpenGL 4.3 (compute shaders); this context has " +
                            context.info().glVersion);
     if (usesTwoLayers(o.capture))
       refuse("gpu-walk", std::string("the silhouette walk follows one layer; ") + toString(o.capture) +
-                             " capture reads two: use rays (RefineCrossings::Rays) or back or front capture");
+                             " capture reads two: use ${refineCrossings} rays (gpu-rays for the GPU volume), or back "
+                                           "or front ${capture}");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
       refuse("gpu-walk",
-             "chord points and the sub-grid need rays (a depth oracle); the walk gives the boundary "
-             "edges' crossings alone");
+             "chord points and the sub-grid need ${refineCrossings} rays (a depth oracle); the walk gives the "
+             "boundary edges' crossings alone");
   }
   if (o.refineCrossings == RefineCrossings::GpuRays && !refinedGpuVolume(o))
     throw OptionConflict("RenderOptions", "refineCrossings", "gpu-rays",
-                     "the GPU's rays refine the GPU volume: it needs method hybrid, volume gpu and refineSteps > 0 "
-                     "(the explicit volume casts Embree's rays: RefineCrossings::Rays)");
+                     MarkedProblem{"the GPU's rays refine the GPU volume: it needs ${method} hybrid, ${volume} gpu and "
+                                   "${volumeOptions.refineSteps} > 0 (the explicit volume casts Embree's rays: "
+                                   "${refineCrossings} rays)"});
   if (o.explicitDepth == ExplicitDepth::Rays) {
-    auto refuse = [](const std::string& why) { throw OptionConflict("RenderOptions", "explicitDepth", "rays", why); };
+    auto refuse = [](const std::string& why) {
+      throw OptionConflict("RenderOptions", "explicitDepth", "rays", MarkedProblem{why});
+    };
     if (o.method != ShadowMethod::Hybrid || o.volume != VolumeSource::Explicit)
-      refuse("casts the explicit volume's depth map: it needs method hybrid and volume explicit");
+      refuse("casts the explicit volume's depth map: it needs ${method} hybrid and ${volume} explicit");
     if (!o.volumeOptions.depthOracle)
       throw InputError("RenderOptions", "explicitDepth", "rays",
                        "needs volumeOptions.depthOracle, the scene's rays (EmbreeDepthOracle)");
     if (o.refineCrossings == RefineCrossings::GpuWalk)
       refuse(
           "has no light pass, whose triangle record the silhouette walk follows: use the light pass "
-          "(ExplicitDepth::LightPass) or the crossings from rays");
+          "(${explicitDepth} gpu) or ${refineCrossings} rays");
   }
 }
 
