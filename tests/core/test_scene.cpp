@@ -815,10 +815,45 @@ TEST(Scene, AFarDirectionalLightIsMovedNearTheSceneAlongItsDirection) {
   bool noted = false;
   for (const auto& w : far.warnings) noted = noted || w.find("far.json: /light/position: moved") != std::string::npos;
   EXPECT_TRUE(noted) << ::testing::PrintToString(far.warnings);
-  EXPECT_EQ(near.scene.light.position, glm::dvec3(-10, 100, 0) - near.scene.origin);
-  // Given planes are distances from the position as given: the light stays, and a far plane that
-  // ends before the scene is refused as before (a second reader's finding: it was fitted anew).
+  // Under 256 radii away it stays at its distance along the direction (moved across onto the
+  // scene's axis only: ADirectionalLightOffTheScenesAxisIsCentredWhenItsExtentIsFitted).
+  const glm::dvec3 given = glm::dvec3(-10, 100, 0) - near.scene.origin;
+  EXPECT_NEAR(glm::dot(near.scene.light.position - given, f.direction), 0.0, 1e-9);
+  // Given planes are distances from the position: they move with it and stay where they were in the
+  // scene (a probe's light 1e7 away with its far given kept the position: 1,127 of 262,144 texels
+  // hit and an empty volume); a far plane that ends before the scene is refused as before.
+  const Light& withPlanes =
+      parseScene(sceneWith(R"(,"position":[-1e6,1e7,0],"far":2e7)"), "far.json", ".").scene.light;
+  EXPECT_NEAR(glm::dot(withPlanes.position - f.position, f.direction), 0.0, 1e-6);
+  EXPECT_NEAR(withPlanes.farPlane, f.farPlane, 1e-6);  // the given far lay beyond the scene: fitted to it
+  EXPECT_NEAR(withPlanes.nearPlane, f.nearPlane, 1e-6);
   EXPECT_THROW(parseScene(sceneWith(R"(,"position":[-1e6,1e7,0],"far":100)"), "far.json", "."), InputError);
+}
+
+// A directional light's window is centred on its position: one given off to the side of the scene
+// (a probe's sun at [0, 1e5, 0] shining down at a slant: an extent of 11,347 over a scene 14 wide,
+// an empty volume) is moved across its direction onto the axis through the scene's centre when its
+// extent is left to the fit, keeping its distance along the direction; a given extent is the user's
+// window and keeps the position.
+TEST(Scene, ADirectionalLightOffTheScenesAxisIsCentredWhenItsExtentIsFitted) {
+  auto sceneWith = [](const std::string& light) {
+    return R"({"objects":[{"type":"plane","size":20},{"type":"sphere","radius":1,"transform":{"translate":[0,2,0]}}],
+      "light":{"type":"directional","direction":[0.1,-1,0.05])" + light + R"(},"camera":{"eye":[0,6,11],"target":[0,1,0]}})";
+  };
+  const Light fitted = parseScene(sceneWith(""), "fitted.json", ".").scene.light;
+  const SceneLoadResult side = parseScene(sceneWith(R"(,"position":[0,1000,0])"), "side.json", ".");
+  const Light& l = side.scene.light;
+  EXPECT_NEAR(l.halfExtent, fitted.halfExtent, 1e-9 * fitted.halfExtent);
+  const glm::dvec3 given = glm::dvec3(0, 1000, 0) - side.scene.origin;
+  EXPECT_NEAR(glm::dot(l.position - given, l.direction), 0.0, 1e-9);  // its distance along the direction kept
+  const glm::dvec3 toCentre = side.scene.bounds().center() - l.position;
+  EXPECT_NEAR(glm::length(toCentre - l.direction * glm::dot(toCentre, l.direction)), 0.0, 1e-9);
+  bool noted = false;
+  for (const auto& w : side.warnings) noted = noted || w.find("side.json: /light/position: moved") != std::string::npos;
+  EXPECT_TRUE(noted) << ::testing::PrintToString(side.warnings);
+  const Light& window = parseScene(sceneWith(R"(,"position":[0,1000,0],"extent":50)"), "window.json", ".").scene.light;
+  EXPECT_EQ(window.position, glm::dvec3(0, 1000, 0) - side.scene.origin);
+  EXPECT_EQ(window.halfExtent, 50.0);
 }
 
 // A directional light's extent so small that its window spans fewer than 64 float steps of the

@@ -652,7 +652,11 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
     else if (note.rfind(source + ": /camera/", 0) == 0) cameraWarnings.push_back(note);
     warnings.push_back(std::move(note));
   }
-  if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane)
+  // A far directional light's given planes move with it (scene_fit.cpp): its far, from where it stands now.
+  const double moved = scene.light.type == LightType::Directional
+                           ? glm::dot(scene.light.position - given.position, scene.light.direction)
+                           : 0.0;
+  if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane - moved)
     throw InputError(source, pointer + "/far", numberText(given.farPlane), "far lies before the fitted near plane");
 }
 
@@ -698,10 +702,16 @@ void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::si
                   l.nearPlane, l.farPlane / l.nearPlane, l.farPlane);
     warnings.push_back(source + ": " + pointer + buf);
   }
-  if (scene.light.type == LightType::Directional &&
-      detail::depthRange(scene.bounds(), scene.light.position, scene.light.direction).first < 0.0)
-    warnings.push_back(source + ": " + pointer + "/position: the plane through the directional light's position cuts "
-                                                 "the scene's bounds: what lies behind it is neither lit nor casts a shadow");
+  if (scene.light.type == LightType::Directional) {
+    const auto [lo, hi] = detail::depthRange(scene.bounds(), scene.light.position, scene.light.direction);
+    if (hi <= 0.0)
+      warnings.push_back(source + ": " + pointer + "/position: the whole scene lies behind the plane through the "
+                                                   "directional light's position: nothing is lit or casts a shadow");
+    else if (lo < 0.0)
+      warnings.push_back(source + ": " + pointer + "/position: the plane through the directional light's position "
+                                                   "cuts the scene's bounds: what lies behind it is neither lit nor "
+                                                   "casts a shadow");
+  }
 }
 
 // A camera whose view holds no object (it looks away, or a given near/far range holds nothing)

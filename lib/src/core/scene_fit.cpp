@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CGAL/Simple_cartesian.h>
@@ -62,10 +63,17 @@ double perspectiveNear(double boundsNear, double far, const Scene& scene, const 
   return std::max(std::min({far * 1e-3, std::max(geometry, boundsNear)}), far * 1e-7);
 }
 
-// "0.0123 (given 1e+06)" for the notes.
+// "0.0123 (given 1e+06)" for the notes, with as many digits as it takes to tell the two apart (a
+// far plane pulled in by 20 units at 1e7 read "1e+07 (given 1e+07)").
 std::string planeChange(double used, double given) {
   char buf[96];
-  std::snprintf(buf, sizeof buf, "%.6g (given %.6g)", used, given);
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g (given %.*g)", digits, used, digits, given);
+    char a[40], b[40];
+    std::snprintf(a, sizeof a, "%.*g", digits, used);
+    std::snprintf(b, sizeof b, "%.*g", digits, given);
+    if (std::string_view(a) != std::string_view(b)) break;
+  }
   return buf;
 }
 
@@ -90,27 +98,66 @@ void noteMovedFar(const char* pointer, double givenFar, double used, std::size_t
 constexpr double kMaxDirectionalDistanceRadii = 256.0;
 
 // Moves a given directional light's position along its direction to where the fit would place it
-// (1.1 radii before the bounds' centre) when it lies further back than kMaxDirectionalDistanceRadii
-// and its near and far planes are left to the fit (given ones are distances from the position as
-// given, and stay the user's). Notes what moved.
+// (1.1 radii before the bounds' centre) when it lies further back than kMaxDirectionalDistanceRadii.
+// Given near and far planes are distances from the position: they move back by as much, so they
+// stay where they were in the scene (a far plane that would then lie behind the position ends before
+// the scene: the light is left for the check that refuses it). Notes what moved.
 void moveFarDirectionalPosition(Light& l, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   const double behind = glm::dot(b.center() - l.position, l.direction);
-  if (l.fitPosition || l.nearPlane > 0.0 || l.farPlane > 0.0 || !(behind > kMaxDirectionalDistanceRadii * radius))
-    return;
+  if (l.fitPosition || !(behind > kMaxDirectionalDistanceRadii * radius)) return;
   const double shift = behind - 1.1 * radius;
+  if (l.farPlane > 0.0 && !(l.farPlane - shift > 0.0)) return;
+  const bool planes = l.nearPlane > 0.0 || l.farPlane > 0.0;
   l.position += l.direction * shift;
-  char buf[320];
+  if (l.farPlane > 0.0) l.farPlane -= shift;
+  if (l.nearPlane > 0.0) l.nearPlane = std::max(l.nearPlane - shift, 0.0);  // behind the position: fitted
+  char planesMoved[160] = "";
+  if (planes)
+    std::snprintf(planesMoved, sizeof planesMoved,
+                  " (its given planes with it, where they were: near %.6g, far %.6g from there; 0 = fitted)",
+                  l.nearPlane, l.farPlane);
+  char buf[480];
   std::snprintf(buf, sizeof buf,
                 "/light/position: moved %.6g units along the light's direction, to 1.1 radii before the scene's "
-                "centre: a directional light's shadows do not depend on its distance, and float depth cannot "
+                "centre%s: a directional light's shadows do not depend on its distance, and float depth cannot "
                 "resolve a scene %.3g deep %.3g away",
-                shift, 2.0 * radius, behind);
+                shift, planesMoved, 2.0 * radius, behind);
+  notes.push_back(buf);
+}
+
+// How far across its direction a given directional light may stand from the axis through the
+// scene's centre, in scene radii, before the fit moves it onto that axis (its fitted window, centred
+// on the position, is at most 0.1 % wider than it need be).
+constexpr double kMaxDirectionalOffAxisRadii = 1e-3;
+
+// Moves a given directional light's position across its direction onto the axis through the
+// bounds' centre when its extent is left to the fit: the window is centred on the position, so a
+// light off to the side got a window as wide as its offset (a probe's sun at [0, 1e5, 0] shining
+// down at a slant over a scene 14 wide: an extent of 11,347 and an empty volume). Its shadows do not
+// depend on where across its direction it stands; its distance along it, and so its given near and
+// far planes, stay. A given extent is the user's window and keeps the position. Notes what moved.
+void centreDirectionalWindow(Light& l, const Bounds3& b, double radius, std::vector<std::string>& notes) {
+  if (l.fitPosition || l.halfExtent > 0.0) return;
+  const glm::dvec3 toCentre = b.center() - l.position;
+  const glm::dvec3 across = toCentre - l.direction * glm::dot(toCentre, l.direction);
+  const double offset = glm::length(across);
+  if (!(offset > kMaxDirectionalOffAxisRadii * radius)) return;
+  const double before = detail::viewReach(b, lightView(l));
+  l.position += across;
+  const double after = detail::viewReach(b, lightView(l));
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "/light/position: moved %.6g units across the light's direction, onto the axis through the "
+                "scene's centre: the fitted window (extent) is centred on the position, and would have been %.3g "
+                "times as wide; a directional light's shadows do not depend on where across its direction it stands",
+                offset, after > 0.0 ? before / after : 1.0);
   notes.push_back(buf);
 }
 
 void fitDirectionalWindow(Scene& scene, const Bounds3& b, double radius, std::vector<std::string>& notes) {
   Light& l = scene.light;
   if (l.fitPosition) l.position = b.center() - l.direction * (radius * 1.1);
+  centreDirectionalWindow(l, b, radius, notes);
   moveFarDirectionalPosition(l, b, radius, notes);
   if (l.halfExtent > 0.0) return;
   l.halfExtent = detail::viewReach(b, lightView(l)) * 1.02;  // 2% margin: the far-plane border ring stays off the geometry
