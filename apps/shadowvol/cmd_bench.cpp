@@ -157,7 +157,19 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
   cmd->add_flag("--json", o->json,
                 "Print one JSON document on stdout: the cells of this results.csv (finished earlier ones too), the "
                 "notes and the files written; progress stays on stderr");
-  cmd->callback([&run, o] {
+  cmd->callback([&run, o, cmd] {
+    // Options that would change nothing are refused by name, not ignored (a probe's finding:
+    // --report-only took --resolutions, --size and --repeat, --list-methods --out, without a word).
+    std::vector<const char*> inert = {"--scenes", "--fit", "--resolutions", "--size", "--repeat", "--warmup",
+                                      "--platform"};
+    if (o->listMethods) inert.insert(inert.end(), {"--out", "--methods", "--report-only"});
+    if (o->listMethods || o->reportOnly)
+      for (const char* flag : inert)
+        if (cmd->count(flag) > 0)
+          throw CLI::ValidationError(flag, o->listMethods ? "changes nothing with --list-methods, which only prints "
+                                                            "the method keys: leave one out"
+                                                          : "changes nothing with --report-only, which rewrites the "
+                                                            "report from DIR/results.csv: leave one out");
     // A missing folder is a usage error (exit 2), as for every other required option.
     if (!o->listMethods && o->out.empty()) throw CLI::RequiredError("--out (the output folder)");
     run = [o] {

@@ -331,6 +331,20 @@ TEST(Cli, VolumeOptionConflictsNameTheOtherFlag) {
     EXPECT_TRUE(contains(r.out, said)) << r.out;
     EXPECT_FALSE(contains(r.out, "${")) << r.out;
   }
+  // A point light's refinement rule names the flags, as a conflict (exit 2; a probe's finding: it
+  // said "refine steps with a depth oracle ... crossing source" and exited 1).
+  const std::string room = (test::sourceDir() / "data" / "scenes" / "point" / "room.json").string();
+  for (const auto& [args, said] : std::vector<std::pair<std::string, std::string>>{
+           {"build --refine 2 --refine-grid 4", "--refine-grid = 4: a point light's volume is refined by --refine "
+                                                "bisection rays alone: not with --chord-points, --refine-grid above 1"},
+           {"render --volume explicit --refine 2 --crossings gpu-walk",
+            "--crossings = gpu-walk: a point light's explicit volume finds its crossings by the scene's rays alone: "
+            "--crossings rays, or --volume gpu for the GPU's"}}) {
+    const CliResult r = runCli(args + " --resolution 16 --scene " + room + " --out " +
+                               (test::tempDir() / (args.substr(0, 5) == "build" ? "p.ply" : "p.png")).string());
+    EXPECT_EQ(r.code, 2) << args << r.out;
+    EXPECT_TRUE(contains(r.out, said)) << r.out;
+  }
   // A path is not read for marks (a second reader's finding: "${out}" was shown as --out).
   const CliResult path = runCli("build --resolution 8 --out 'nowhere/${out}/a.ply'");
   EXPECT_EQ(path.code, 1) << path.out;
@@ -1227,6 +1241,16 @@ TEST(CliGl, BenchListsTakeCommas) {
   const auto lj = nlohmann::json::parse(list.out.substr(list.out.find('[')));
   ASSERT_FALSE(lj.empty());
   EXPECT_TRUE(lj[0].contains("key") && lj[0].contains("description")) << lj[0].dump();
+  // Options that change nothing with --report-only or --list-methods are refused by name (a
+  // probe's finding: they were taken without a word).
+  for (const auto& [args, flag] : std::vector<std::pair<std::string, std::string>>{
+           {"--report-only --resolutions 64 --out " + (dir / "b").string(), "--resolutions: changes nothing"},
+           {"--report-only --size 10x10 --out " + (dir / "b").string(), "--size: changes nothing"},
+           {"--list-methods --out " + (dir / "b").string(), "--out: changes nothing with --list-methods"}}) {
+    const CliResult r = runCli("bench " + args);
+    EXPECT_EQ(r.code, 2) << args << r.out;
+    EXPECT_TRUE(contains(r.out, flag)) << r.out;
+  }
   // A second sweep into a folder a run holds (OutputLock) is refused at once, and appends nothing.
   {
     const std::string before = test::readText(dir / "b" / "results.csv");

@@ -75,6 +75,24 @@ TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatch
   EXPECT_NE(d[0].find("40 x 40"), std::string::npos) << d[0];
 }
 
+// Many objects of one kind: the first 20 are named, one more line counts the rest (a probe's
+// 30,000 small boxes gave 12,534 lines).
+TEST(CaptureWarnings, ManyObjectsOfOneKindAreNamedUpToTwentyAndCounted) {
+  const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);
+  std::vector<SceneObject> objects;
+  for (int k = 0; k < 25; ++k) {  // specks between the texel centres of the 16^2 map, each in its own texel
+    const glm::dvec3 mid = 0.5 * (probe.worldPoint(k % 5 * 2 + 3, k / 5 * 2 + 3, 1.0) +
+                                  probe.worldPoint(k % 5 * 2 + 4, k / 5 * 2 + 4, 1.0));
+    TriangleMesh speck = makeBox(0.2, 0.2, 0.2);
+    for (auto& p : speck.positions) p += glm::vec3(float(mid.x), 2.0f, float(mid.z));
+    objects.push_back(SceneObject{"speck" + std::to_string(k), "box", speck});
+  }
+  const auto w = captureWarnings(sceneWith(objects), 16, 16, CaptureMode::Front);
+  ASSERT_EQ(w.size(), 21u);
+  for (int k = 0; k < 20; ++k) EXPECT_NE(w[std::size_t(k)].find("\"speck" + std::to_string(k) + "\""), std::string::npos);
+  EXPECT_EQ(w[20], "... and 5 more objects cover no texel centre (the first 20 are named above)");
+}
+
 TEST(CaptureWarnings, ObjectSeenEdgeOnSuggestsNoImpossibleMapSize) {
   // A plate 1e-6 thick standing along the light's rays, between two texel columns: no map size up
   // to the largest catches it (the warning once suggested maps of billions of texels).

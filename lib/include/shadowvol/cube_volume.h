@@ -41,10 +41,11 @@ namespace shadowvol {
 /// cap. With refinement, the refinement stats of buildVolume.
 VolumeBuildResult buildCubeVolume(const CubeDepthMap& cube, const VolumeBuildOptions& options);
 
-/// What a point light's refinement refuses (the InputError's problem, the CPU's and GPU's).
+/// What a point light's refinement refuses (an OptionConflict's problem of source "volume options",
+/// the CPU's and GPU's): a MarkedProblem text (error.h), its ${field} marks that source's fields.
 inline constexpr const char* kCubeRefinementRule =
-    "a point light's volume is refined by bisection rays alone (refine steps with a depth oracle): no chord "
-    "points, sub-grid or crossing source";
+    "a point light's volume is refined by ${refine steps} bisection rays alone: not with ${refine chords}, "
+    "${refine subdivisions} above 1 or a crossing source";
 
 /// Why a point light's volume refuses the quad cap (the InputError's problem, the CPU's and GPU's).
 inline constexpr const char* kCubeVolumeCapRule =

@@ -367,7 +367,8 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   for (const auto& key : o.methods)
     if (std::none_of(methods.begin(), methods.end(), [&](const SweepMethod* m) { return m->key == key; }))
       throw InputError("SweepOptions", "methods", key,
-                       "unknown method: see 'shadowvol bench --list-methods' (sweepMethods() in the library)");
+                       "unknown method: `shadowvol bench --list-methods` lists the method keys (sweepMethods() "
+                       "in the library)");
   const gl::ContextInfo& gli = renderer.info();
   if (gli.glMajor < 4 || (gli.glMajor == 4 && gli.glMinor < 3))
     std::erase_if(methods, [&](const SweepMethod* m) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -103,6 +104,20 @@ std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hid
   return buf;
 }
 
+// The most objects a warning of one kind names; the rest are counted in one more line (a probe's
+// 30,000 small boxes gave 12,534 lines, one per box that covers no texel centre).
+constexpr std::size_t kMaxNamedObjects = 20;
+
+// Appends `named` (one warning per object) to `out`, the first kMaxNamedObjects of them, and one
+// line counting the rest, which `what` describes ("cover no texel centre").
+void appendCapped(std::vector<std::string>& out, std::vector<std::string> named, const char* what) {
+  const std::size_t shown = std::min(named.size(), kMaxNamedObjects);
+  out.insert(out.end(), std::make_move_iterator(named.begin()), std::make_move_iterator(named.begin() + std::ptrdiff_t(shown)));
+  if (named.size() > shown)
+    out.push_back("... and " + std::to_string(named.size() - shown) + " more objects " + what + " (the first " +
+                  std::to_string(shown) + " are named above)");
+}
+
 // A point light's cube sees every direction; what it misses is what lies inside its near cube
 // (the largest |coordinate| of the offset from it below near, cube_map.h), and an object between
 // the texel centres of the N x N face that holds all of it (one over several faces is larger than
@@ -110,6 +125,7 @@ std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hid
 void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hiddenSearchGrid,
                         std::vector<std::string>& out) {
   const Light& l = scene.light;
+  std::vector<std::string> uncovered, clippedObjects;
   for (const auto& o : scene.objects) {
     if (o.mesh.positions.empty()) continue;
     const int face = cubeLookup(glm::dvec3(o.mesh.positions[0]) - l.position, n).face;
@@ -120,7 +136,7 @@ void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hidd
       const std::string name = std::string(cubeFaceName(face)) + " face of the light's cube map";
       // The six faces are held to one map's limit together (cube_map.cpp).
       if (std::string w = coverageWarning(probe, o, hiddenSearchGrid, name, kMaxDepthMapSide / kCubeFaces); !w.empty())
-        out.push_back(std::move(w));
+        uncovered.push_back(std::move(w));
     }
     std::size_t clipped = 0;
     for (const auto& p : o.mesh.positions) clipped += cubeDepth(glm::dvec3(p) - l.position) < l.nearPlane;
@@ -130,8 +146,10 @@ void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hidd
                   "%zu of the %zu vertices of object \"%s\" lie inside the point light's near cube (%.6g world "
                   "units each way): the light does not see them, so what they occlude is lit (give /light/near)",
                   clipped, o.mesh.positions.size(), o.name.c_str(), l.nearPlane);
-    out.push_back(buf);
+    clippedObjects.push_back(buf);
   }
+  appendCapped(out, std::move(clippedObjects), "have vertices inside the point light's near cube");
+  appendCapped(out, std::move(uncovered), "cover no texel centre of their cube face");
 }
 
 }  // namespace
@@ -156,6 +174,7 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
   const DepthMap probe = probeMap(scene.light, width, height, capture);
   const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
   const std::size_t before = out.size();
+  std::vector<std::string> uncovered, clippedObjects;
   for (const auto& o : scene.objects) {
     if (o.mesh.positions.empty()) continue;
     if (const std::size_t clipped = nearClipped(probe, toClip, o.mesh)) {
@@ -165,10 +184,12 @@ std::vector<std::string> captureWarnings(const Scene& scene, int width, int heig
                     "world units): the light does not see them, so what they occlude is lit (give /light/near, or "
                     "check the scene for an outlier vertex that stretches the fitted planes)",
                     clipped, o.mesh.positions.size(), o.name.c_str(), probe.nearPlane);
-      out.push_back(buf);
+      clippedObjects.push_back(buf);
     }
-    if (std::string w = coverageWarning(probe, o, hiddenSearchGrid); !w.empty()) out.push_back(std::move(w));
+    if (std::string w = coverageWarning(probe, o, hiddenSearchGrid); !w.empty()) uncovered.push_back(std::move(w));
   }
+  appendCapped(out, std::move(clippedObjects), "have vertices nearer to the light than its near plane");
+  appendCapped(out, std::move(uncovered), "cover no texel centre");
   // Nothing in the frustum at all, and no object named above as clipped by the near plane.
   if (out.size() == before) {
     std::string w = detail::emptyViewWarning(toClip, scene.objects, "inside the light's frustum", probe.nearPlane,

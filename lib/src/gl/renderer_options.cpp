@@ -8,18 +8,20 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     // The GPU cube volume's face volumes take the GPU's rays or walk as one map's refined GPU
     // volume does; the explicit cube volume only Embree's rays.
     if (o.volumeOptions.refineSteps > 0 && o.refineCrossings != RefineCrossings::Rays && o.volume != VolumeSource::Gpu)
-      throw InputError("RenderOptions", "refineCrossings", toString(o.refineCrossings), kCubeRefinementRule);
+      throw OptionConflict("RenderOptions", "refineCrossings", toString(o.refineCrossings),
+                           MarkedProblem{"a point light's explicit volume finds its crossings by the scene's rays "
+                                         "alone: ${refineCrossings} rays, or ${volume} gpu for the GPU's"});
     // Refused here, before any pass, rather than by buildCubeVolume mid-frame: with several
     // lights validateForLight then names the point light.
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineChords)
-      throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+      throw OptionConflict("volume options", "refine chords", "true", MarkedProblem{kCubeRefinementRule});
     // Here too rather than in chooseZPass mid-frame, so that several lights name this one (a
     // second probe's finding).
     if (o.volumeCount == VolumeCount::ZPass)
       throw InputError("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineSubdivisions > 1)
-      throw InputError("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
-                       kCubeRefinementRule);
+      throw OptionConflict("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
+                           MarkedProblem{kCubeRefinementRule});
     if (o.volumeOptions.cap != FarCap::Exact)
       throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
     if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);

@@ -47,12 +47,12 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
   if (o.refineSteps > 0 && o.crossingSource)
-    throw InputError("volume options", "crossing source", "set", kCubeRefinementRule);
+    throw OptionConflict("volume options", "crossing source", "set", MarkedProblem{kCubeRefinementRule});
   if (o.refineSteps > 0 && o.refineChords)
-    throw InputError("volume options", "refine chords", "true", kCubeRefinementRule);
+    throw OptionConflict("volume options", "refine chords", "true", MarkedProblem{kCubeRefinementRule});
   if (o.refineSteps > 0 && o.refineSubdivisions != 1)
-    throw InputError("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
-                     kCubeRefinementRule);
+    throw OptionConflict("volume options", "refine subdivisions", std::to_string(o.refineSubdivisions),
+                         MarkedProblem{kCubeRefinementRule});
   if (o.refineSteps > 0 && !o.depthOracle)
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
