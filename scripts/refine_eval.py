@@ -5,7 +5,13 @@ method and prints a Markdown table of the misclassified fraction of pixels facin
 with the stencil-vs-count agreement of every volume.
 
 Usage: python3 scripts/refine_eval.py [--exe build/apps/shadowvol] [--refine 6]
-           [--chord-points | --refine-grid S [--no-hidden-search]] [--out DIR] [--methods "refined 128,refined 256"] SCENE.json ...
+           [--chord-points | --refine-grid S [--no-hidden-search]] [--out DIR] [--methods "refined 128,refined 256"]
+           [--validate-args "--exact-offset-scale 1"] SCENE.json ...
+
+--validate-args appends its options to every `shadowvol validate` call (split as a shell would,
+shlex); e.g. "--exact-offset-scale 1" measures against the legacy exact reference of the tables
+written before 2026-12-06 (README "Validation"). Options with no space in them need the = form:
+--validate-args=--no-snap.
 
 Results go to DIR/results.jsonl (default out/refine-eval) as they come; a rerun with the same DIR
 skips what is there. Stdlib only.
@@ -13,6 +19,7 @@ skips what is there. Stdlib only.
 import argparse
 import json
 import os
+import shlex
 import subprocess
 import sys
 
@@ -49,8 +56,8 @@ def methods(k, chords=False, grid=1, hidden=True):
     }
 
 
-def run(exe, scene, opts, report):
-    r = subprocess.run([exe, "validate", "--scene", scene, "--report", report, "--json"] + opts,
+def run(exe, scene, opts, report, extra=()):
+    r = subprocess.run([exe, "validate", "--scene", scene, "--report", report, "--json"] + opts + list(extra),
                        capture_output=True, text=True)
     if r.returncode not in (0, 3):
         # Silhouette volumes refuse meshes that are neither closed manifolds nor open sheets.
@@ -72,15 +79,25 @@ def main():
     ap.add_argument("--no-hidden-search", action="store_true",
                     help="refined methods on the sub-grid without its search for hidden surfaces")
     ap.add_argument("--methods", help="comma-separated columns (default: all): " + ", ".join(methods(6)))
+    ap.add_argument("--validate-args", default="", metavar="OPTIONS",
+                    help="options appended to every validate call, one string split as a shell would "
+                         "(default none), e.g. --validate-args \"--exact-offset-scale 1\" for the legacy "
+                         "exact reference; recorded as validateArgs in results.jsonl, and a rerun into the "
+                         "same --out reuses only records made with the same string")
     ap.add_argument("scenes", nargs="+")
     a = ap.parse_args()
+    try:
+        extra = shlex.split(a.validate_args)
+    except ValueError as e:
+        ap.error("--validate-args: %s" % e)
     os.makedirs(a.out, exist_ok=True)
     path = os.path.join(a.out, "results.jsonl")
     done = {}
     if os.path.exists(path):
         for line in open(path):
             rec = json.loads(line)
-            done[(rec["scene"], rec["method"])] = rec
+            if rec.get("validateArgs", "") == a.validate_args:
+                done[(rec["scene"], rec["method"])] = rec
     cols = methods(a.refine, a.chord_points, a.refine_grid, not a.no_hidden_search)
     if a.methods:
         keys = [k.strip() for k in a.methods.split(",")]
@@ -96,7 +113,9 @@ def main():
                     continue
                 rec = {"scene": name, "method": key, "refine": a.refine, "refineGrid": a.refine_grid,
                        "hiddenSearch": not a.no_hidden_search}
-                rec.update(run(a.exe, scene, opts, os.path.join(a.out, "report")))
+                if a.validate_args:
+                    rec["validateArgs"] = a.validate_args
+                rec.update(run(a.exe, scene, opts, os.path.join(a.out, "report"), extra))
                 out.write(json.dumps(rec) + "\n")
                 out.flush()
                 done[(name, key)] = rec
