@@ -118,7 +118,8 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
       refuse("finds its crossings by one surface's rule (its rays or its walk); midpoint capture records the mean "
              "of two: use back, front or entry ${capture}, or ${volume} explicit with ${refineCrossings} rays");
     if (o.volumeOptions.cap != FarCap::Exact)
-      refuse("needs the exact ${volumeOptions.cap}: the quad cap keeps the far-plane sheet that refinement replaces by walls");
+      refuse("needs ${volumeOptions.cap} exact: the quad cap keeps the far-plane sheet that refinement replaces by "
+             "walls");
     if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
       refuse(
           "finds the boundary edges' crossings alone: chord points and the sub-grid need ${volume} explicit "
