@@ -114,6 +114,9 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
         "finer map, refinement or --fit view can help), %zu of capture (it gets them wrong too: capture mode, "
         "bias or mesh)\n",
         v.errorCauses->resolution, v.errorCauses->capture);
+  if (v.leaks && v.leaks->deep > 0)
+    std::printf("  missed deep inside the exact shadow: %zu pixels (at most %zu allowed: a hole, not resolution)\n",
+                v.leaks->deep, kMaxLeakPixels);
   if (ro.method == gl::ShadowMethod::Dpsm) {
     const nlohmann::json& d = j["dualParaboloid"];
     std::printf(

@@ -1005,6 +1005,30 @@ TEST(CliGl, ValidateReportFolderHoldsOneRun) {
     EXPECT_TRUE(std::filesystem::exists(dir / "rep" / kept)) << kept;
 }
 
+// A frame that misses a patch of shadow fails, however small a share of the pixels it is (a probe's
+// finding: a camera whose near plane cut the sphere drew its inside lit, 11.5 % of the exact shadow
+// in one patch, and passed the 5 % and 50 % thresholds); the same camera without the cut passes.
+TEST(CliGl, ValidateFailsAHoleInTheShadow) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const auto sceneWith = [&](const std::string& name, const std::string& near) {
+    test::writeText(dir / name, R"({"objects":[{"type":"plane","name":"ground","size":20},
+        {"type":"sphere","name":"sphere","radius":1,"detail":4,"transform":{"translate":[0,2,0]}}],
+        "camera":{"eye":[0,6,11],"target":[0,1.5,0],"fov":30,"width":320,"height":240)" + near + R"(},
+        "light":{"type":"spot","position":[3,9,2],"target":[-0.3,0,-0.2],"fov":55}})");
+    return (dir / name).string();
+  };
+  const CliResult cut = runCli("validate --scene " + sceneWith("cut.json", R"(,"near":11.6)") + " --json --report " +
+                               (dir / "cut").string());
+  EXPECT_EQ(cut.code, 3) << cut.out;
+  EXPECT_TRUE(contains(cut.out, "pixels deep inside the exact shadow")) << cut.out;
+  const auto report = nlohmann::json::parse(test::readText(dir / "cut" / "report.json"));
+  EXPECT_GT(report["leaks"]["deep"].get<std::size_t>(), 16u);
+  const CliResult whole = runCli("validate --scene " + sceneWith("whole.json", "") + " --report " +
+                                 (dir / "whole").string());
+  EXPECT_EQ(whole.code, 0) << whole.out;
+}
+
 // What loading the scene warned about is in the report too (`sceneWarnings`): a fourteenth probe
 // found the light inside a closed room said only on the terminal.
 TEST(CliGl, ValidateReportsTheScenesWarnings) {

@@ -830,6 +830,27 @@ TEST(Scene, AFarDirectionalLightIsMovedNearTheSceneAlongItsDirection) {
   EXPECT_THROW(parseScene(sceneWith(R"(,"position":[-1e6,1e7,0],"far":100)"), "far.json", "."), InputError);
 }
 
+// A camera whose near plane cuts a closed mesh is warned about, as one inside it is (a probe's
+// finding: the sphere's inside showed lit, without a word); a near plane in front of it is not.
+TEST(Scene, ANearPlaneThatCutsAClosedMeshIsWarnedAbout) {
+  auto warningsWith = [](const std::string& near) {
+    const std::string json = R"({"objects":[{"type":"plane","name":"ground","size":20},
+        {"type":"sphere","name":"ball","radius":1,"transform":{"translate":[0,2,0]}}],
+        "camera":{"eye":[0,6,11],"target":[0,1.5,0],"fov":30)" + near + R"(},
+        "light":{"type":"spot","position":[3,9,2],"target":[0,0,0],"fov":55}})";
+    return parseScene(json, "near.json", ".").warnings;
+  };
+  const auto said = [](const std::vector<std::string>& warnings) {
+    return std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+      return w.find("near.json: /camera/near: the camera's near plane (11.6) cuts the closed mesh \"ball\"") !=
+             std::string::npos;
+    });
+  };
+  EXPECT_TRUE(said(warningsWith(R"(,"near":11.6)")));
+  EXPECT_FALSE(said(warningsWith(R"(,"near":1)")));
+  EXPECT_FALSE(said(warningsWith("")));
+}
+
 // A directional light's window is centred on its position: one given off to the side of the scene
 // (a probe's sun at [0, 1e5, 0] shining down at a slant: an extent of 11,347 over a scene 14 wide,
 // an empty volume) is moved across its direction onto the axis through the scene's centre when its

@@ -714,15 +714,49 @@ void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::si
   }
 }
 
+// Points on the camera's near rectangle (9 x 7, its corners and border included), for the test of a
+// near plane that cuts a closed mesh.
+std::vector<glm::dvec3> nearRectangleSamples(const Camera& c) {
+  const glm::dvec3 forward = glm::normalize(c.target - c.eye);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double halfH = c.nearPlane * std::tan(0.5 * c.fovYDegrees * std::numbers::pi / 180.0);
+  const double halfW = halfH * double(c.width) / double(c.height);
+  std::vector<glm::dvec3> points;
+  for (int b = 0; b < 7; ++b)
+    for (int a = 0; a < 9; ++a)
+      points.push_back(c.eye + forward * c.nearPlane + right * (halfW * (a / 4.0 - 1.0)) + up * (halfH * (b / 3.0 - 1.0)));
+  return points;
+}
+
+bool boxesOverlap(const Bounds3& a, const Bounds3& b) {
+  return !(a.empty() || b.empty()) && a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y &&
+         b.min.y <= a.max.y && a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
 // A camera whose view holds no object (it looks away, or a given near/far range holds nothing)
 // renders only the background: said, since every command would otherwise run on without a word.
 void warnAboutCamera(const Scene& scene, const std::vector<bool>& closed, const std::string& source,
                      std::vector<std::string>& warnings) {
   const Camera& c = scene.camera;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (closed[i] && insideClosedMesh(scene.objects[i].mesh, c.eye))
+  const std::vector<glm::dvec3> nearPoints = nearRectangleSamples(c);
+  Bounds3 nearBox;
+  for (const auto& p : nearPoints) nearBox.extend(p);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    if (!closed[i]) continue;
+    const TriangleMesh& mesh = scene.objects[i].mesh;
+    if (insideClosedMesh(mesh, c.eye)) {
       warnings.push_back(source + ": /camera/eye: the camera is inside the closed mesh \"" + scene.objects[i].name +
                          "\": images show its inside, and validation counts its inner faces");
+      continue;
+    }
+    // A probe's finding: a near plane that cut the sphere showed its inside lit, without a word.
+    if (!boxesOverlap(nearBox, mesh.bounds())) continue;
+    if (std::any_of(nearPoints.begin(), nearPoints.end(), [&](const glm::dvec3& p) { return insideClosedMesh(mesh, p); }))
+      warnings.push_back(source + ": /camera/near: the camera's near plane (" + numberText(c.nearPlane) +
+                         ") cuts the closed mesh \"" + scene.objects[i].name +
+                         "\": images show its inside, which the light does not reach (validate scores it as shadowed)");
+  }
   const std::string w = detail::emptyViewWarning(
       cameraProjection(c) * cameraView(c), scene.objects, "in the camera's view", c.nearPlane, c.farPlane,
       "images show only the background (check /camera/target, /camera/near and /camera/far)");

@@ -151,6 +151,11 @@ CountedVolume countFaceVolumes(const EmbreeDevice& device, const RenderedFrame& 
   return c;
 }
 
+// "(x, row)" of image index k.
+std::string pixelText(std::size_t k, int width) {
+  return "(" + std::to_string(k % std::size_t(width)) + ", " + std::to_string(k / std::size_t(width)) + ")";
+}
+
 }  // namespace
 
 FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const VolumeBuildOptions& volumeOptions,
@@ -199,6 +204,12 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   }
   if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
     v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed);
+  if (frame.leakMapSide) {
+    LeakTexels texels;
+    if (*frame.leakMapSide > 0 && scene.light.type == LightType::Point) texels.cubeSide = *frame.leakMapSide;
+    else if (*frame.leakMapSide > 0) texels.map = &depth;
+    if (!(texels.map && depth.width == 0)) v.leaks = findShadowLeaks(scene, texels, hits, v.exact, methodShadowed);
+  }
 
   if (frame.hybrid) {
     // The explicit volume of the same depth map and options (or a cube volume's six faces), its
@@ -332,6 +343,11 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   if (v.exactShadowed >= kMinShadowPixels && double(e.missed) > options.maxMissedShare * double(v.exactShadowed))
     inaccurate.push_back("the method misses " + std::to_string(e.missed) + " of the exact shadow's " +
                          std::to_string(v.exactShadowed) + " pixels, more than " + percent(options.maxMissedShare));
+  if (v.leaks && v.leaks->deep > kMaxLeakPixels)
+    inaccurate.push_back("the method misses " + std::to_string(v.leaks->deep) + " pixels deep inside the exact "
+                         "shadow, further from its outline than its texels reach (at most " +
+                         std::to_string(kMaxLeakPixels) + "): a hole in the shadow, not its resolution (the first at "
+                         "pixel " + pixelText(v.leaks->firstDeep.front(), frame.width) + ", row 0 at the top)");
   v.accurate = inaccurate.empty();
   v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());
   v.passed = v.consistent && v.accurate;

@@ -1,6 +1,7 @@
 #include "shadowvol/validate/validation_report.h"
 
 #include "shadowvol/cgal/mesh_check_json.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol {
 namespace {
@@ -71,6 +72,15 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
   else
     j["errorCauses"] = "not computed: only for the depth-map methods (hybrid, shadowmap, pcf3, pcf5) of a spot or "
                        "directional light";
+  if (v.leaks)
+    j["leaks"] = {{"deep", v.leaks->deep},
+                  {"allowed", kMaxLeakPixels},
+                  {"rule", "missed pixels whose every neighbour within kLeakTexels (" + numberText(kLeakTexels) +
+                               ") of the light's texels along the surface, plus " + numberText(kLeakPixels) +
+                               " image pixels, is exactly shadowed: a hole in the shadow, not its resolution "
+                               "(validate/shadow_leaks.h)"}};
+  else
+    j["leaks"] = "not judged: a method whose texels are not sized here (dual-paraboloid maps)";
   j["requiredAgreement"] = kRequiredAgreement;
   j["verdict"] = {{"consistent", v.consistent},
                   {"accurate", v.accurate},

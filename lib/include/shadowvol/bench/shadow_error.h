@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "shadowvol/distance_transform.h"
 #include "shadowvol/embree/ray_queries.h"
 
 namespace shadowvol {
@@ -28,8 +29,5 @@ struct ShadowErrorMetrics {
 ShadowErrorMetrics measureShadowError(int width, int height, const std::vector<PixelClass>& exact,
                                       const std::vector<std::uint8_t>& testShadowed, double band);
 
-/// Squared Euclidean distance transform on a w x h grid (image order): for every cell, the squared
-/// distance in cells to the nearest cell with site[k] != 0; +inf where there is no site at all.
-std::vector<double> squaredDistanceTransform(int width, int height, const std::vector<std::uint8_t>& site);
 
 }  // namespace shadowvol

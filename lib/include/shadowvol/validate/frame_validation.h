@@ -16,6 +16,7 @@
 #include "shadowvol/embree/ray_queries.h"
 #include "shadowvol/scene.h"
 #include "shadowvol/validate/error_causes.h"
+#include "shadowvol/validate/shadow_leaks.h"
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
@@ -44,6 +45,11 @@ struct RenderedFrame {
   /// from the light (the volume's bias, plus the blur offset with blur; a shadow map's constant
   /// bias), to split its errors by cause (error_causes.h). Unset: not split.
   std::optional<double> depthOffset;
+  /// The accuracy verdict's leak criterion (shadow_leaks.h): how the method's texels are sized.
+  /// N > 0: a depth-map method, N the side of a point light's cube faces (a spot or directional
+  /// light's map is validateFrame's `depth`); 0: an exact method (silhouette volumes); unset: not
+  /// judged (a frame built by hand, dual-paraboloid maps).
+  std::optional<int> leakMapSide;
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with
@@ -123,13 +129,16 @@ struct FrameValidation {
   std::optional<ShadowError> countError;   ///< zfail != 0 as a shadow test
   ShadowError methodError;                 ///< the method's own test (hybrid: the stencil)
   std::optional<ErrorCauses> errorCauses;  ///< methodError's pixels by cause, with RenderedFrame::depthOffset
+  std::optional<ShadowLeaks> leaks;        ///< methodError's missed pixels deep in the exact shadow (shadow_leaks.h),
+                                           ///< with RenderedFrame::leakMapSide
   /// The consistency verdict (hybrid): stencil vs count >= kRequiredAgreement and the mesh checks
   /// pass; always true for the shadow-map baselines. With the quad cap the outward check does not
   /// apply (its far rectangle coincides with the far-plane sheet by design): closed, finite and
   /// non-degenerate are required, and meshChecksNotApplicable says why.
   bool consistent = true;
   /// The accuracy verdict: methodError within ValidationOptions::maxError and maxMissedShare, over
-  /// at least one pixel (a frame with no visible pixel facing the light checks nothing: not accurate).
+  /// at least one pixel (a frame with no visible pixel facing the light checks nothing: not accurate),
+  /// and at most kMaxLeakPixels deep missed pixels where the leak criterion judges the frame.
   bool accurate = true;
   std::vector<std::string> failures;       ///< one sentence per failed criterion (empty when passed)
   std::string meshChecksNotApplicable;     ///< the checks left out, and why (empty: all apply)

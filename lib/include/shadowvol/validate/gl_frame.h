@@ -23,8 +23,25 @@ inline gl::RenderOptions validationRenderOptions(gl::RenderOptions ro) {
   return ro;
 }
 
+/// The leak criterion's texel size of a method (RenderedFrame::leakMapSide): the map side for the
+/// depth-map methods, 0 for silhouette volumes (exact), unset for dual-paraboloid maps and none.
+inline std::optional<int> leakMapSideOf(gl::ShadowMethod method, int depthWidth) {
+  switch (method) {
+    case gl::ShadowMethod::Hybrid:
+    case gl::ShadowMethod::ShadowMap:
+    case gl::ShadowMethod::Pcf3:
+    case gl::ShadowMethod::Pcf5:
+      return depthWidth;
+    case gl::ShadowMethod::Silhouette:
+      return 0;
+    default:
+      return std::nullopt;
+  }
+}
+
 /// The frame as the validation sees it: the image, the stencil (shadow-volume methods), and the
-/// method's shadow test (visibility below one half = in shadow).
+/// method's shadow test (visibility below one half = in shadow); with `ro`, how the leak criterion
+/// sizes its texels.
 inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowMethod method) {
   RenderedFrame frame;
   frame.width = result.width;
@@ -40,6 +57,11 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   frame.faceGpuVolumes = result.faceGpuVolumes;
   frame.shadowed.resize(result.visibility.size());
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
+  return frame;
+}
+inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, const gl::RenderOptions& ro) {
+  RenderedFrame frame = toRenderedFrame(result, ro.method);
+  frame.leakMapSide = leakMapSideOf(ro.method, ro.depthWidth);
   return frame;
 }
 
@@ -87,7 +109,7 @@ inline std::vector<LightValidation> validateEveryLight(const Scene& scene, const
   for (std::size_t k = 0; k < out.size(); ++k) {
     LightValidation& l = out[k];
     l.result = k == 0 ? &result : &result.otherLights[k - 1];
-    l.frame = toRenderedFrame(*l.result, ro.method);
+    l.frame = toRenderedFrame(*l.result, ro);
     l.frame.rgba = result.rgba;
     l.frame.depthOffset = methodDepthOffset(ro, *l.result);
     l.validation = out.size() == 1 ? validateRender(scene, ro, *l.result, l.frame, options)
