@@ -115,7 +115,8 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
         "bias or mesh)\n",
         v.errorCauses->resolution, v.errorCauses->capture);
   if (v.leaks && v.leaks->deep > 0)
-    std::printf("  missed deep inside the exact shadow: %zu pixels (at most %zu allowed: a hole, not resolution)\n",
+    std::printf("  missed deep inside the exact shadow: %zu pixels (at most %zu allowed: further from the outline than "
+                "the method's texels and depth offset reach)\n",
                 v.leaks->deep, kMaxLeakPixels);
   if (ro.method == gl::ShadowMethod::Dpsm) {
     const nlohmann::json& d = j["dualParaboloid"];
@@ -155,7 +156,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       "against the GPU stencil, z-fail against z-pass, and every shadow test against exact shadow rays; CGAL checks "
       "of the volume. Writes DIR/report.json and PNGs. Exit 0 when the frame is consistent (stencil and counts "
       "agree on >= 99.99% of visible pixels, the mesh checks pass) and accurate (the method's error within "
-      "--max-error and --max-missed), 3 otherwise, naming what failed");
+      "--max-error and --max-missed, and no hole: at most 16 missed pixels deep inside the exact shadow, further "
+      "from its outline than the method's texels and depth offset reach), 3 otherwise, naming what failed");
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--report", o->reportDir, "Folder for report.json and the images (created if missing)")->required();
   cmd->add_flag("--self-intersections", o->selfIntersections,

@@ -68,6 +68,8 @@ constexpr PythonName kFieldKeywords[] = {
     {"RenderOptions", "volume", "volume"},
     {"RenderOptions", "volumeCount", "count"},
     {"RenderOptions", "depthWidth", "resolution"},
+    {"RenderOptions", "depthWidth x depthHeight", "resolution"},
+    {"RenderOptions", "imageWidth x imageHeight", "size"},
     {"RenderOptions", "method", "method"},
     {"RenderOptions", "capture", "capture"},
     {"RenderOptions", "volumeOptions.cap", "cap"},

@@ -828,6 +828,12 @@ TEST(Scene, AFarDirectionalLightIsMovedNearTheSceneAlongItsDirection) {
   EXPECT_NEAR(withPlanes.farPlane, f.farPlane, 1e-6);  // the given far lay beyond the scene: fitted to it
   EXPECT_NEAR(withPlanes.nearPlane, f.nearPlane, 1e-6);
   EXPECT_THROW(parseScene(sceneWith(R"(,"position":[-1e6,1e7,0],"far":100)"), "far.json", "."), InputError);
+  // A fitted position has no given one to move from: its far is judged as given (a second reader's
+  // finding: a scene 100 below the origin refused a far of 20 the fit holds).
+  const std::string low = R"({"objects":[{"type":"plane","size":20,"transform":{"translate":[0,-100,0]}},
+      {"type":"box","size":1,"transform":{"translate":[0,-99,0]}}],
+      "light":{"type":"directional","direction":[0.2,-1,0.1],"far":20},"camera":{"eye":[0,-94,11],"target":[0,-99,0]}})";
+  EXPECT_NO_THROW(parseScene(low, "low.json", "."));
 }
 
 // A camera whose near plane cuts a closed mesh is warned about, as one inside it is (a probe's

@@ -78,6 +78,30 @@ TEST(ShadowLeaks, AHoleInsideTheShadowIsDeepItsOutlineIsNot) {
   EXPECT_EQ(f.leaks({&fine, 0}).deep, 36u);
 }
 
+// The allowance grows where the method's texels stretch along the surface (a receiver tilted from
+// the light), with its depth offset, and with a point light's cube faces' texels (2 d / N).
+TEST(ShadowLeaks, TheAllowanceFollowsTheTiltTheOffsetAndTheCubeFaces) {
+  GroundFrame f;
+  f.miss(27, 17, 33, 23);  // 12.5 to 15 pixels (0.63 to 0.75 units) inside the outline
+  const DepthMap fine = makeDepthMap(f.scene.light, 512, 512, CaptureMode::Back);  // texels of 1/64 unit
+  ASSERT_EQ(f.leaks({&fine}).deep, 36u);
+  // A depth offset of 0.04 along the light's axis on a receiver facing it (sin a floored at 0.05):
+  // 0.8 units more along the surface.
+  EXPECT_EQ(f.leaks({&fine, 0, 0.04}).deep, 0u);
+  // The same as a slope bias needs tan a: none on a receiver facing the light.
+  EXPECT_EQ(f.leaks({&fine, 0, 0.0, 100.0}).deep, 36u);
+  // Normals tilted until N . L = 0.05 (the floor): 3 texels reach 0.94 units along the surface.
+  GroundFrame tilted;
+  tilted.miss(27, 17, 33, 23);
+  for (auto& n : tilted.hits.normal) n = glm::vec3(std::sqrt(1.0 - 0.05 * 0.05), 0.05, 0.0);
+  EXPECT_EQ(tilted.leaks({&fine}).deep, 0u);
+  // A point light 5 above the ground: its cube faces' texels are 10 / N wide there, 3 of them 0.47
+  // units at N = 64 (the hole stays deep), 0.94 at N = 32 (it does not).
+  f.scene.light.type = LightType::Point;
+  EXPECT_EQ(f.leaks({nullptr, 64}).deep, 36u);
+  EXPECT_EQ(f.leaks({nullptr, 32}).deep, 0u);
+}
+
 // Pixels that are not exactly shadowed, the image's border and jumps in the camera's view all count
 // as the outline: a shadow whose edge the camera cannot see is not judged deep next to them.
 TEST(ShadowLeaks, OutlinesTheCameraCannotSeeAreAssumedNearby) {

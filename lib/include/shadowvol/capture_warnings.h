@@ -30,8 +30,8 @@ namespace shadowvol {
 ///  - a spot or directional light whose frustum holds no object at all (it points away from the
 ///    scene, or a given near/far range holds nothing): the map sees nothing and the volume is
 ///    empty (said when no object is named as clipped by the near plane).
-/// Of the objects of one kind (no texel centre covered, vertices clipped) the first 20 are named
-/// and one more line counts the rest.
+/// The objects of one kind come together (those with vertices clipped by the near plane, then those
+/// that cover no texel centre), the first 20 of each named and one more line counting the rest.
 std::vector<std::string> captureWarnings(const Scene& scene, int width, int height, CaptureMode capture,
                                          int hiddenSearchGrid = 1);
 

@@ -653,7 +653,7 @@ void fitLoadedLight(Scene& scene, std::size_t k, const std::string& source, std:
     warnings.push_back(std::move(note));
   }
   // A far directional light's given planes move with it (scene_fit.cpp): its far, from where it stands now.
-  const double moved = scene.light.type == LightType::Directional
+  const double moved = scene.light.type == LightType::Directional && !given.fitPosition
                            ? glm::dot(scene.light.position - given.position, scene.light.direction)
                            : 0.0;
   if (given.farPlane > 0.0 && given.nearPlane == 0.0 && scene.light.nearPlane >= given.farPlane - moved)
@@ -751,11 +751,18 @@ void warnAboutCamera(const Scene& scene, const std::vector<bool>& closed, const 
       continue;
     }
     // A probe's finding: a near plane that cut the sphere showed its inside lit, without a word.
-    if (!boxesOverlap(nearBox, mesh.bounds())) continue;
-    if (std::any_of(nearPoints.begin(), nearPoints.end(), [&](const glm::dvec3& p) { return insideClosedMesh(mesh, p); }))
+    const Bounds3 box = mesh.bounds();
+    if (!boxesOverlap(nearBox, box)) continue;
+    const auto inBox = [&](const glm::dvec3& p) {
+      return p.x >= box.min.x && p.x <= box.max.x && p.y >= box.min.y && p.y <= box.max.y && p.z >= box.min.z &&
+             p.z <= box.max.z;
+    };  // each parity test reads every triangle: only the samples inside the mesh's box
+    if (std::any_of(nearPoints.begin(), nearPoints.end(),
+                    [&](const glm::dvec3& p) { return inBox(p) && insideClosedMesh(mesh, p); }))
       warnings.push_back(source + ": /camera/near: the camera's near plane (" + numberText(c.nearPlane) +
                          ") cuts the closed mesh \"" + scene.objects[i].name +
-                         "\": images show its inside, which the light does not reach (validate scores it as shadowed)");
+                         "\": images show its inside, which the light does not reach (validate scores it as shadowed or "
+                         "facing away)");
   }
   const std::string w = detail::emptyViewWarning(
       cameraProjection(c) * cameraView(c), scene.objects, "in the camera's view", c.nearPlane, c.farPlane,

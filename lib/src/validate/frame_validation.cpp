@@ -206,6 +206,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed);
   if (frame.leakMapSide) {
     LeakTexels texels;
+    texels.offset = frame.leakOffset;
+    texels.slope = frame.leakOffsetSlope;
     if (*frame.leakMapSide > 0 && scene.light.type == LightType::Point) texels.cubeSide = *frame.leakMapSide;
     else if (*frame.leakMapSide > 0) texels.map = &depth;
     if (!(texels.map && depth.width == 0)) v.leaks = findShadowLeaks(scene, texels, hits, v.exact, methodShadowed);
@@ -345,9 +347,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
                          std::to_string(v.exactShadowed) + " pixels, more than " + percent(options.maxMissedShare));
   if (v.leaks && v.leaks->deep > kMaxLeakPixels)
     inaccurate.push_back("the method misses " + std::to_string(v.leaks->deep) + " pixels deep inside the exact "
-                         "shadow, further from its outline than its texels reach (at most " +
-                         std::to_string(kMaxLeakPixels) + "): a hole in the shadow, not its resolution (the first at "
-                         "pixel " + pixelText(v.leaks->firstDeep.front(), frame.width) + ", row 0 at the top)");
+                         "shadow, further from its outline than its texels and depth offset reach (at most " +
+                         std::to_string(kMaxLeakPixels) + "): a hole in the shadow (the first at pixel " + pixelText(v.leaks->firstDeep.front(), frame.width) + ", row 0 at the top)");
   v.accurate = inaccurate.empty();
   v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());
   v.passed = v.consistent && v.accurate;

@@ -46,6 +46,29 @@ double texelWidthAt(const Light& light, const LeakTexels& texels, const TexelFoo
   return 0.0;
 }
 
+// How far along the surface at p (unit normal n) the method's shadow may stray from the exact one:
+// its texels' reach plus its depth offset's (see the header).
+double alongSurfaceReach(const Light& light, const LeakTexels& texels, const TexelFootprint& footprint,
+                         const glm::dvec3& p, const glm::dvec3& n) {
+  const double width = texelWidthAt(light, texels, footprint, p);
+  const glm::dvec3 toLight = light.type == LightType::Directional ? -light.direction : light.position - p;
+  const double toLightLength = glm::length(toLight);
+  const double cosine = toLightLength > 0.0 ? std::abs(glm::dot(n, toLight / toLightLength)) : 1.0;
+  // The light's view axis: a spot or directional light's direction, a point light's cube face.
+  glm::dvec3 axis = light.direction;
+  if (light.type == LightType::Point) {
+    const glm::dvec3 o = p - light.position, a = glm::abs(o);
+    const int major = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
+    axis = glm::dvec3(0.0);
+    axis[major] = 1.0;
+  }
+  const double cosAxis = std::min(std::abs(glm::dot(n, glm::normalize(axis))), 1.0);
+  const double sinAxis = std::sqrt(1.0 - cosAxis * cosAxis);
+  const double tanAxis = std::min(sinAxis / std::max(cosAxis, 1e-4), 10.0);  // scene.frag's clamp
+  const double offset = texels.offset + texels.slope * width * tanAxis;
+  return kLeakTexels * width / std::max(cosine, kLeakMinCos) + offset / std::max(sinAxis, kLeakMinCos);
+}
+
 }  // namespace
 
 ShadowLeaks findShadowLeaks(const Scene& scene, const LeakTexels& texels, const CameraHits& hits,
@@ -61,14 +84,15 @@ ShadowLeaks findShadowLeaks(const Scene& scene, const LeakTexels& texels, const 
   const std::vector<double> toOutline = squaredDistanceTransform(hits.width, hits.height, outlineSites(hits, exact));
   const Light& light = scene.light;
   const TexelFootprint footprint = texels.map ? TexelFootprint::of(*texels.map) : TexelFootprint{};
-  // An image pixel's width per unit of camera depth.
+  // An image pixel's width per unit of camera depth, on the image's axis.
   const double pixelPerDepth = 2.0 * std::tan(0.5 * glm::radians(scene.camera.fovYDegrees)) / scene.camera.height;
   for (std::size_t k : missed) {
-    const glm::dvec3 p = hits.point[k];
-    const glm::dvec3 toLight = light.type == LightType::Directional ? -light.direction : light.position - p;
-    const double cosine = std::abs(glm::dot(glm::dvec3(hits.normal[k]), glm::normalize(toLight)));
-    const double alongSurface = texelWidthAt(light, texels, footprint, p) / std::max(cosine, kLeakMinCos);
-    const double allowance = kLeakTexels * alongSurface / (pixelPerDepth * double(hits.depth[k])) + kLeakPixels;
+    const glm::dvec3 p = hits.point[k], n = glm::dvec3(hits.normal[k]);
+    const double along = alongSurfaceReach(light, texels, footprint, p, n);
+    // The width of an image pixel at p, across the ray: off the image's axis the ray meets the
+    // image plane obliquely and a pixel covers less (z / r of it, at distance r).
+    const double z = double(hits.depth[k]), r = glm::length(p - scene.camera.eye);
+    const double allowance = along / (pixelPerDepth * z * z / r) + kLeakPixels;
     const double distance = std::sqrt(toOutline[k]) - 0.5;  // from the outline pixel's edge
     if (!(distance > allowance)) continue;
     ++leaks.deep;

@@ -75,12 +75,13 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
   if (v.leaks)
     j["leaks"] = {{"deep", v.leaks->deep},
                   {"allowed", kMaxLeakPixels},
-                  {"rule", "missed pixels whose every neighbour within kLeakTexels (" + numberText(kLeakTexels) +
-                               ") of the light's texels along the surface, plus " + numberText(kLeakPixels) +
-                               " image pixels, is exactly shadowed: a hole in the shadow, not its resolution "
+                  {"rule", "missed pixels with no outline pixel (not exactly shadowed, on the image's border or "
+                               "beside a jump in the view) within " + numberText(kLeakTexels) +
+                               " of the light's texels along the surface plus the method's depth offset's reach, "
+                               "plus " + numberText(kLeakPixels) + " image pixels: a hole in the shadow "
                                "(validate/shadow_leaks.h)"}};
   else
-    j["leaks"] = "not judged: a method whose texels are not sized here (dual-paraboloid maps)";
+    j["leaks"] = "not judged: a method whose texels are not sized here (dual-paraboloid maps, none)";
   j["requiredAgreement"] = kRequiredAgreement;
   j["verdict"] = {{"consistent", v.consistent},
                   {"accurate", v.accurate},

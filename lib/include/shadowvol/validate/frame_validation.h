@@ -50,6 +50,9 @@ struct RenderedFrame {
   /// light's map is validateFrame's `depth`); 0: an exact method (silhouette volumes); unset: not
   /// judged (a frame built by hand, dual-paraboloid maps).
   std::optional<int> leakMapSide;
+  /// The method's depth offset for the leak criterion (LeakTexels): world units, and texel widths
+  /// x min(tan a, 10) (a shadow map's slope bias).
+  double leakOffset = 0.0, leakOffsetSlope = 0.0;
 };
 
 /// Defaults of the accuracy verdict (ValidationOptions): every shipped scene meets them with

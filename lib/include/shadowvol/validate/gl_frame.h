@@ -23,25 +23,8 @@ inline gl::RenderOptions validationRenderOptions(gl::RenderOptions ro) {
   return ro;
 }
 
-/// The leak criterion's texel size of a method (RenderedFrame::leakMapSide): the map side for the
-/// depth-map methods, 0 for silhouette volumes (exact), unset for dual-paraboloid maps and none.
-inline std::optional<int> leakMapSideOf(gl::ShadowMethod method, int depthWidth) {
-  switch (method) {
-    case gl::ShadowMethod::Hybrid:
-    case gl::ShadowMethod::ShadowMap:
-    case gl::ShadowMethod::Pcf3:
-    case gl::ShadowMethod::Pcf5:
-      return depthWidth;
-    case gl::ShadowMethod::Silhouette:
-      return 0;
-    default:
-      return std::nullopt;
-  }
-}
-
 /// The frame as the validation sees it: the image, the stencil (shadow-volume methods), and the
-/// method's shadow test (visibility below one half = in shadow); with `ro`, how the leak criterion
-/// sizes its texels.
+/// method's shadow test (visibility below one half = in shadow).
 inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowMethod method) {
   RenderedFrame frame;
   frame.width = result.width;
@@ -59,10 +42,30 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;
 }
-inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, const gl::RenderOptions& ro) {
-  RenderedFrame frame = toRenderedFrame(result, ro.method);
-  frame.leakMapSide = leakMapSideOf(ro.method, ro.depthWidth);
-  return frame;
+/// How the leak criterion (shadow_leaks.h) judges a frame of `ro` lit by `light`: the map side and
+/// depth offset of the depth-map methods (hybrid: the volume's bias and blur offset; the shadow maps:
+/// scene.frag's constant and slope bias), an exact method for silhouette volumes, not judged for
+/// the others (dual-paraboloid maps, none).
+inline void setLeakModel(RenderedFrame& frame, const gl::RenderOptions& ro, const gl::RenderResult& result,
+                         const Light& light) {
+  switch (ro.method) {
+    case gl::ShadowMethod::Hybrid:
+      frame.leakMapSide = ro.depthWidth;
+      frame.leakOffset = result.biasUsed + (ro.volumeOptions.blur ? ro.volumeOptions.blurOffset : 0.0);
+      return;
+    case gl::ShadowMethod::ShadowMap:
+    case gl::ShadowMethod::Pcf3:
+    case gl::ShadowMethod::Pcf5:
+      frame.leakMapSide = ro.depthWidth;
+      frame.leakOffset = ro.shadowBiasConstant.value_or(defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
+      frame.leakOffsetSlope = ro.shadowBiasSlope;
+      return;
+    case gl::ShadowMethod::Silhouette:
+      frame.leakMapSide = 0;
+      return;
+    default:
+      frame.leakMapSide.reset();
+  }
 }
 
 /// The depth offset of a single depth map's shadow test (RenderedFrame::depthOffset): the volume's
@@ -109,7 +112,8 @@ inline std::vector<LightValidation> validateEveryLight(const Scene& scene, const
   for (std::size_t k = 0; k < out.size(); ++k) {
     LightValidation& l = out[k];
     l.result = k == 0 ? &result : &result.otherLights[k - 1];
-    l.frame = toRenderedFrame(*l.result, ro);
+    l.frame = toRenderedFrame(*l.result, ro.method);
+    setLeakModel(l.frame, ro, *l.result, scene.lightAt(k));
     l.frame.rgba = result.rgba;
     l.frame.depthOffset = methodDepthOffset(ro, *l.result);
     l.validation = out.size() == 1 ? validateRender(scene, ro, *l.result, l.frame, options)
