@@ -355,7 +355,7 @@ void registerValidate(py::module_& m) {
       py::arg("report_dir") = py::none(), py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(),
       py::arg("refine_grid") = 1, py::arg("chord_points") = false, py::arg("crossings") = "auto",
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
-      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, verdict, passed, scene, volume, options: "
+      "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, errorCauses, leaks, verdict, passed, scene, volume, options: "
       "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "
       "several lights those checks are per light in `lights` (index, pointer, type, ...) and `passed` is over all. "
       "report_dir: also write the report there as `shadowvol validate --report` does (an earlier report's "

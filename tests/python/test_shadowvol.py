@@ -379,6 +379,7 @@ def test_validate_and_render_take_the_volume_options_of_the_command_line(tmp_pat
     grid = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4, refine_grid=4)
     plain = sv.validate(scene, resolution=32, size=(64, 48), volume="explicit", refine=4)
     assert grid["passed"] is True and grid["volume"]["subgridQuads"] > 0 and plain["volume"]["subgridQuads"] == 0
+    assert grid["leaks"]["deep"] == 0 and grid["leaks"]["allowed"] == 16  # the leak criterion, as the command line's
     if CLI:  # the same volume as the command line's, whose map comes from the GPU too
         cli = subprocess.run([CLI, "validate", "--json", "--resolution", "32", "--size", "64x48", "--volume",
                               "explicit", "--depth-from", "gpu", "--refine", "4", "--refine-grid", "4", "--report",
