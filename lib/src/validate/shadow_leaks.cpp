@@ -55,13 +55,9 @@ double alongSurfaceReach(const Light& light, const LeakTexels& texels, const Tex
   const double toLightLength = glm::length(toLight);
   const double cosine = toLightLength > 0.0 ? std::abs(glm::dot(n, toLight / toLightLength)) : 1.0;
   // The light's view axis: a spot or directional light's direction, a point light's cube face.
-  glm::dvec3 axis = light.direction;
-  if (light.type == LightType::Point) {
-    const glm::dvec3 o = p - light.position, a = glm::abs(o);
-    const int major = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
-    axis = glm::dvec3(0.0);
-    axis[major] = 1.0;
-  }
+  const glm::dvec3 axis = light.type == LightType::Point
+                             ? cubeFaceDirection(cubeLookup(p - light.position, std::max(texels.cubeSide, 1)).face)
+                             : light.direction;
   const double cosAxis = std::min(std::abs(glm::dot(n, glm::normalize(axis))), 1.0);
   const double sinAxis = std::sqrt(1.0 - cosAxis * cosAxis);
   const double tanAxis = std::min(sinAxis / std::max(cosAxis, 1e-4), 10.0);  // scene.frag's clamp
