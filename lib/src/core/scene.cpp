@@ -717,15 +717,13 @@ void warnAboutLight(const Scene& scene, const std::vector<bool>& closed, std::si
 // Points on the camera's near rectangle (9 x 7, its corners and border included), for the test of a
 // near plane that cuts a closed mesh.
 std::vector<glm::dvec3> nearRectangleSamples(const Camera& c) {
-  const glm::dvec3 forward = glm::normalize(c.target - c.eye);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, c.up));
-  const glm::dvec3 up = glm::cross(right, forward);
   const double halfH = c.nearPlane * std::tan(0.5 * c.fovYDegrees * std::numbers::pi / 180.0);
   const double halfW = halfH * double(c.width) / double(c.height);
+  const glm::dmat4 toWorld = glm::inverse(cameraView(c));  // the camera's own frame, as every pass has it
   std::vector<glm::dvec3> points;
   for (int b = 0; b < 7; ++b)
     for (int a = 0; a < 9; ++a)
-      points.push_back(c.eye + forward * c.nearPlane + right * (halfW * (a / 4.0 - 1.0)) + up * (halfH * (b / 3.0 - 1.0)));
+      points.push_back(glm::dvec3(toWorld * glm::dvec4(halfW * (a / 4.0 - 1.0), halfH * (b / 3.0 - 1.0), -c.nearPlane, 1.0)));
   return points;
 }
 
