@@ -108,12 +108,18 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
               v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
               100 * v.methodError.falseFraction(), v.methodError.pixels);
-  if (v.errorCauses)
+  if (v.errorCauses) {
     std::printf(
         "  errors by cause: %zu of resolution (the same capture at unlimited resolution gets them right: a "
         "finer map, refinement or --fit view can help), %zu of capture (it gets them wrong too: capture mode, "
-        "bias or mesh)\n",
+        "bias or mesh)",
         v.errorCauses->resolution, v.errorCauses->capture);
+    if (v.errorCauses->border > 0)
+      std::printf(", %zu at the light window's border (the volume's outermost texel ring lies on the far plane: "
+                  "a wider light window, extent or fov, or a finer map narrows that band; refinement does not)",
+                  v.errorCauses->border);
+    std::printf("\n");
+  }
   if (v.leaks && v.leaks->deep > 0)
     std::printf("  missed deep inside the exact shadow: %zu pixels (at most %zu allowed: further from the outline than "
                 "the method's texels and depth offset reach)\n",

@@ -1029,6 +1029,31 @@ TEST(CliGl, ValidateFailsAHoleInTheShadow) {
   EXPECT_EQ(whole.code, 0) << whole.out;
 }
 
+// A shadow that reaches a given light window's edge is lit along it (the volume's outermost texel
+// ring lies on the far plane): a twentieth probe's band passed; it fails now as border errors,
+// and the same plate under a window that holds its whole shadow passes.
+TEST(CliGl, ValidateFailsTheLitBandAlongTheLightWindowsBorder) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  const auto sceneWith = [&](const std::string& name, const std::string& extent) {
+    test::writeText(dir / name, R"({"objects":[{"type":"plane","name":"ground","size":8},
+        {"type":"box","name":"plate","size":[2,0.1,2],"transform":{"translate":[0,1.5,0]}}],
+        "camera":{"eye":[0.3,1.0,0.4],"target":[0.3,0,0.4],"up":[0,0,-1],"fov":90,"width":160,"height":120},
+        "light":{"type":"directional","direction":[0,-1,0],"position":[0,5,0],"extent":)" + extent + "}}");
+    return (dir / name).string();
+  };
+  const CliResult cut = runCli("validate --resolution 64 --scene " + sceneWith("cut.json", "0.8") + " --report " +
+                               (dir / "cut").string());
+  EXPECT_EQ(cut.code, 3) << cut.out;
+  EXPECT_TRUE(contains(cut.out, "inside the light window's border ring")) << cut.out;
+  const auto report = nlohmann::json::parse(test::readText(dir / "cut" / "report.json"));
+  EXPECT_GT(report["errorCauses"]["border"].get<std::size_t>(), 16u);
+  const CliResult whole = runCli("validate --resolution 64 --scene " + sceneWith("whole.json", "1.5") + " --report " +
+                                 (dir / "whole").string());
+  EXPECT_EQ(whole.code, 0) << whole.out;
+  EXPECT_EQ(nlohmann::json::parse(test::readText(dir / "whole" / "report.json"))["errorCauses"]["border"], 0u);
+}
+
 // What loading the scene warned about is in the report too (`sceneWarnings`): a fourteenth probe
 // found the light inside a closed room said only on the terminal.
 TEST(CliGl, ValidateReportsTheScenesWarnings) {

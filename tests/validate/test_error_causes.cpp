@@ -76,6 +76,57 @@ TEST(ErrorCauses, AnOpenSheetUnderBackCaptureIsACaptureError) {
   EXPECT_LE(front.causes.capture * 10, front.wrong) << "resolution " << front.causes.resolution;
 }
 
+TEST(ErrorCauses, AShadowCutByTheLightWindowIsABorderErrorOfVolumesOnly) {
+  // A directional light's given window lies inside a plate's shadow (a twentieth probe's scene):
+  // the volume's outermost texel ring lies on the far plane, so a band along the window's edge is
+  // lit in the middle of the umbra. Refinement would not move it: it is the border's, not the
+  // resolution's, for a volume; a shadow map's errors there (none expected) would be resolution.
+  Scene scene = parseScene(R"({"objects": [{"type": "plane", "name": "ground", "size": 8},
+      {"type": "box", "name": "plate", "size": [2, 0.1, 2], "transform": {"translate": [0, 1.5, 0]}}],
+      "camera": {"eye": [0.3, 1.0, 0.4], "target": [0.3, 0, 0.4], "up": [0, 0, -1], "fov": 90, "width": 160, "height": 120},
+      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 0.8}})",
+                           "window.json", ".").scene;
+  fitLightAndCamera(scene);
+  const DepthMap map = captureDepthEmbree(scene, 32, 32, CaptureMode::Back);
+  const VolumeBuildResult volume = buildVolume(map);
+  const EmbreeDevice device;
+  std::vector<const TriangleMesh*> meshes;
+  for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
+  const EmbreeScene sceneRt(device, meshes);
+  const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
+  const std::vector<PixelClass> exact = exactShadows(sceneRt, scene, hits);
+  const TriangleMesh volumeF = volume.mesh.toTriangleMesh();
+  const EmbreeScene volumeRt(device, {&volumeF});
+  const CrossingCounts counts = countCrossings(volumeRt, scene.camera, hits);
+  std::vector<std::uint8_t> shadowed(exact.size());
+  std::size_t wrong = 0;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    shadowed[k] = counts.zfail[k] != 0;
+    if ((exact[k] == PixelClass::Lit || exact[k] == PixelClass::Shadowed) &&
+        (exact[k] == PixelClass::Shadowed) != (shadowed[k] != 0))
+      ++wrong;
+  }
+  ASSERT_GT(wrong, 100u);  // the band: about a texel (0.05 units) wide along the window's square
+  const ErrorCauses asVolume = splitErrorCauses(scene, map, 0.0, hits, exact, shadowed, true);
+  EXPECT_EQ(asVolume.resolution + asVolume.capture + asVolume.border, wrong);
+  EXPECT_EQ(asVolume.border, wrong) << "resolution " << asVolume.resolution << ", capture " << asVolume.capture;
+  const ErrorCauses asMap = splitErrorCauses(scene, map, 0.0, hits, exact, shadowed, false);
+  EXPECT_EQ(asMap.border, 0u);
+  EXPECT_EQ(asMap.resolution, wrong);
+}
+
+TEST(ErrorCauses, TheBorderBandIsLessThanATexelInsideTheRingsCentres) {
+  // Texel centres at integers; the ring's at 0 and W - 1, the band reaches to the next centres.
+  EXPECT_TRUE(inVolumeBorderBand({-0.5, 5.0}, 8, 8));
+  EXPECT_TRUE(inVolumeBorderBand({0.99, 5.0}, 8, 8));
+  EXPECT_FALSE(inVolumeBorderBand({1.0, 5.0}, 8, 8));
+  EXPECT_FALSE(inVolumeBorderBand({6.0, 6.0}, 8, 8));
+  EXPECT_TRUE(inVolumeBorderBand({6.01, 3.0}, 8, 8));
+  EXPECT_TRUE(inVolumeBorderBand({3.0, 6.5}, 8, 8));
+  EXPECT_FALSE(inVolumeBorderBand({3.0, 3.0}, 8, 5));
+  EXPECT_TRUE(inVolumeBorderBand({3.0, 3.5}, 8, 5));
+}
+
 TEST(ErrorCauses, NoErrorsNoRays) {
   // A frame the method gets right everywhere splits nothing (and casts no ray).
   Scene scene = parseScene(R"({"objects": [{"type": "plane", "size": 20}], "light": {"type": "spot", "position": [3, 9, 2],

@@ -1,5 +1,7 @@
 #include "shadowvol/validate/error_causes.h"
 
+#include <algorithm>
+
 #include <glm/vec2.hpp>
 
 #include "shadowvol/check.h"
@@ -7,20 +9,27 @@
 
 namespace shadowvol {
 
+bool inVolumeBorderBand(const glm::dvec2& texel, int width, int height) {
+  return std::min(std::min(texel.x, texel.y), std::min(width - 1 - texel.x, height - 1 - texel.y)) < 1.0;
+}
+
 ErrorCauses splitErrorCauses(const Scene& scene, const DepthMap& map, double offset, const CameraHits& hits,
-                             const std::vector<PixelClass>& exact, const std::vector<std::uint8_t>& methodShadowed) {
+                             const std::vector<PixelClass>& exact, const std::vector<std::uint8_t>& methodShadowed,
+                             bool volumeRing) {
   SV_CHECK_EQ(exact.size(), methodShadowed.size());
   SV_CHECK_EQ(exact.size(), hits.point.size());
   ErrorCauses causes;
   causes.offset = offset;
   std::vector<std::size_t> wrong;
   std::vector<glm::dvec2> ndc;
+  std::vector<std::uint8_t> band;
   for (std::size_t k = 0; k < exact.size(); ++k) {
     if (exact[k] != PixelClass::Lit && exact[k] != PixelClass::Shadowed) continue;
     if ((exact[k] == PixelClass::Shadowed) == (methodShadowed[k] != 0)) continue;
     wrong.push_back(k);
     const glm::dvec2 texel = map.texelOf(hits.point[k]);
     ndc.push_back(map.texelNdc(texel.x, texel.y));
+    band.push_back(volumeRing && inVolumeBorderBand(texel, map.width, map.height));
   }
   if (wrong.empty()) return causes;
   const EmbreeDepthOracle oracle(scene);
@@ -30,7 +39,8 @@ ErrorCauses splitErrorCauses(const Scene& scene, const DepthMap& map, double off
     const std::size_t k = wrong[q];
     const bool ideal =
         !DepthMap::isNoHit(captured[q]) && double(captured[q]) + offset < map.viewDepthOf(hits.point[k]);
-    ++(ideal == (exact[k] == PixelClass::Shadowed) ? causes.resolution : causes.capture);
+    if (ideal != (exact[k] == PixelClass::Shadowed)) ++causes.capture;
+    else ++(band[q] ? causes.border : causes.resolution);
   }
   return causes;
 }

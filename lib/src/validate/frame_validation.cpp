@@ -203,7 +203,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     score(v.methodError, v.exact[k], methodShadowed[k] != 0);
   }
   if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
-    v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed);
+    v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed, frame.hybrid);
   if (frame.leakMapSide) {
     LeakTexels texels;
     texels.offset = frame.leakOffset;
@@ -349,6 +349,12 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     inaccurate.push_back("the method misses " + std::to_string(v.leaks->deep) + " pixels deep inside the exact "
                          "shadow, further from its outline than its texels and depth offset reach (at most " +
                          std::to_string(kMaxLeakPixels) + "): a hole in the shadow (the first at pixel " + pixelText(v.leaks->firstDeep.front(), frame.width) + ", row 0 at the top)");
+  if (v.errorCauses && v.errorCauses->border > kMaxLeakPixels)
+    inaccurate.push_back("the method misclassifies " + std::to_string(v.errorCauses->border) +
+                         " pixels less than a texel inside the light window's border ring, where a shadow reaches "
+                         "the window's edge (the volume's outermost texel ring lies on the far plane; at most " +
+                         std::to_string(kMaxLeakPixels) + "): widen the light's window (its extent or fov) so "
+                         "the shadow ends inside it, or use a finer map");
   v.accurate = inaccurate.empty();
   v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());
   v.passed = v.consistent && v.accurate;
