@@ -73,6 +73,15 @@ void checkResolutionArg(int resolution, const std::string& what) {
                      "must be between " + std::to_string(kMinVolumeMapSide) + " and " + std::to_string(kMaxDepthMapSide));
 }
 
+void refuseBareInstances(py::handle cls, const std::string& howToMake) {
+  const std::string name = py::str(cls.attr("__name__"));
+  const py::cpp_function refuse([name, howToMake](const py::args&, const py::kwargs&) -> py::object {
+    throw py::type_error("shadowvol." + name + " objects are made by " + howToMake + ", not by " + name +
+                         ".__new__");
+  });
+  cls.attr("__new__") = py::reinterpret_steal<py::object>(PyStaticMethod_New(refuse.ptr()));
+}
+
 }  // namespace shadowvol::python
 
 PYBIND11_MODULE(shadowvol, m) {

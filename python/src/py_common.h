@@ -57,6 +57,11 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
                                     bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false,
                                     bool hiddenSearch = true);
 
+/// Makes `Cls.__new__(Cls)` raise TypeError naming `howToMake`: pybind11 would hand out an instance
+/// whose C++ value was never constructed (a pickle stream of a bare NEWOBJ made one, and reading it
+/// crashed). The module's own functions create instances without __new__.
+void refuseBareInstances(py::handle cls, const std::string& howToMake);
+
 void registerScene(py::module_& m);
 void registerDepth(py::module_& m);
 void registerVolume(py::module_& m);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <pybind11/eval.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
@@ -22,7 +23,9 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
                       const std::string& platform, int refine) {
   // The map of a volume with `refine` steps, as build_volume reads it: capture='auto' chooses as
   // `shadowvol build --refine K` does (a fifteenth probe's finding: it chose for an unrefined volume).
-  if (refine < 0) throw InputError("python", "refine", std::to_string(refine), "must be >= 0 (0: unrefined)");
+  if (refine < 0 || refine > kMaxRefineSteps)  // as build_volume's refine
+    throw InputError("python", "refine", std::to_string(refine),
+                     "must be between 0 (unrefined) and " + std::to_string(kMaxRefineSteps));
   const CaptureMode mode = captureModeArg(capture, &s.scene, volumeUse(refine));
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
@@ -30,15 +33,24 @@ DepthMap captureDepth(const PyScene& s, int width, int height, const std::string
   // As the command line's --platform: an EGL platform names how the GPU is reached.
   if (device == "cpu" && platform != "auto")
     throw InputError("python", "platform", platform, "picks the GPU's EGL platform: only with device='gpu'");
+  if (s.scene.light.type == LightType::Point)
+    throw InputError("python", "scene", "a point light",
+                     "capture_depth and build_volume take one spot or directional light's map; a point light's six "
+                     "cube faces are not available here (render and validate take point lights, as does the command "
+                     "line's build)");
   py::gil_scoped_release release;
   if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
   if (device != "gpu") throw InputError("python", "device", device, "expected cpu or gpu");
 #ifdef SHADOWVOL_WITH_GL
   gl::RendererOptions ro;
   ro.context.platform = platform;
-  gl::Renderer renderer(ro);
-  renderer.setScene(s.scene);
-  return renderer.captureDepth(width, height, mode);
+  try {
+    gl::Renderer renderer(ro);
+    renderer.setScene(s.scene);
+    return renderer.captureDepth(width, height, mode);
+  } catch (const InputError& e) {  // the context's options (platform) by this module's keywords
+    throw asPythonArgumentError(e);
+  }
 #else
   throw InputError("python", "device", device, "this shadowvol was built without GL (SHADOWVOL_BUILD_GL=OFF)");
 #endif
@@ -74,6 +86,10 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
     throw InputError("DepthMap.from_array", "depth",
                      std::to_string(raw.shape(0)) + " rows x " + std::to_string(raw.shape(1)) + " columns",
                      "a side is larger than " + std::to_string(kMaxDepthMapSide) + " texels");
+  if (raw.shape(0) < 2 || raw.shape(1) < 2)  // named as given: rows x columns
+    throw InputError("DepthMap.from_array", "depth",
+                     std::to_string(raw.shape(0)) + " rows x " + std::to_string(raw.shape(1)) + " columns",
+                     "a depth map needs at least 2 x 2 texels");
   if (kind == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw);
   const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
   DepthMap map;
@@ -88,18 +104,32 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
       matrixFromNumpy(lightProjection, "light_projection");
   map.nearPlane = nearPlane;
   map.farPlane = farPlane;
-  map.origin = {origin[0], origin[1], origin[2]};
-  for (int k = 0; k < 3; ++k)  // as a side file's /origin (depth_map_io.cpp): save() writes what load_depth reads
-    if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))
-      throw InputError("DepthMap.from_array", "origin", numberText(map.origin[k]),
-                       "expected 3 finite numbers within +-1e12, as a scene's");
+  map.origin = {origin[0], origin[1], origin[2]};  // checked below as a side file's /origin is
   map.depth.resize(std::size_t(map.width) * std::size_t(map.height));
   auto r = depth.unchecked<2>();
   for (int j = 0; j < map.height; ++j)
     for (int i = 0; i < map.width; ++i) map.depth[map.index(i, j)] = r(j, i);
   checkDepthValues(map, "DepthMap.from_array");
-  checkDepthMapLight(map, "DepthMap.from_array");
+  static constexpr DepthMapFieldNames kKeywords{"depth", "near", "far", "light_view", "light_projection", "light",
+                                                 "origin"};
+  checkDepthMapLight(map, "DepthMap.from_array", kKeywords);
   return map;
+}
+
+// A DepthMap's pickle: from_array's arguments.
+py::tuple depthMapState(const DepthMap& d) {
+  py::array_t<float> depth({py::ssize_t(d.height), py::ssize_t(d.width)});
+  std::copy(d.depth.begin(), d.depth.end(), depth.mutable_data());
+  return py::make_tuple(depth, matrixToNumpy(d.lightView), matrixToNumpy(d.lightProjection), d.nearPlane, d.farPlane,
+                        toString(d.lightType), std::string(toString(d.capture)),
+                        std::array<double, 3>{d.origin.x, d.origin.y, d.origin.z});
+}
+
+DepthMap depthMapFromState(const py::tuple& t) {
+  if (t.size() != 8)
+    throw InputError("DepthMap pickle", "state", std::to_string(t.size()) + " items", "expected 8 (a DepthMap's pickle)");
+  return fromArray(t[0].cast<py::array>(), t[1], t[2], t[3].cast<double>(), t[4].cast<double>(),
+                   t[5].cast<std::string>(), t[6].cast<std::string>(), t[7].cast<std::array<double, 3>>());
 }
 
 /// The depths as a read-only H x W float32 view that keeps the DepthMap alive.
@@ -150,25 +180,28 @@ void registerDepth(py::module_& m) {
           py::arg("path"), "Writes a PFM plus its JSON side file (path + '.json'), as `shadowvol depth` does.")
       .def("__copy__", [](const DepthMap& d) { return DepthMap(d); })
       .def("__deepcopy__", [](const DepthMap& d, const py::dict&) { return DepthMap(d); }, py::arg("memo"))
-      .def(py::pickle(  // as from_array's arguments, checked again when unpickled
-          [](const DepthMap& d) {
-            py::array_t<float> depth({py::ssize_t(d.height), py::ssize_t(d.width)});
-            std::copy(d.depth.begin(), d.depth.end(), depth.mutable_data());
-            return py::make_tuple(depth, matrixToNumpy(d.lightView),
-                                  matrixToNumpy(d.lightProjection), d.nearPlane, d.farPlane, toString(d.lightType),
-                                  std::string(toString(d.capture)), std::array<double, 3>{d.origin.x, d.origin.y, d.origin.z});
-          },
-          [](const py::tuple& t) {
-            if (t.size() != 8) throw InputError("DepthMap.__setstate__", "state", std::to_string(t.size()) + " items",
-                                                "expected 8 (a DepthMap's pickle)");
-            return fromArray(t[0].cast<py::array>(), t[1], t[2], t[3].cast<double>(), t[4].cast<double>(),
-                             t[5].cast<std::string>(), t[6].cast<std::string>(), t[7].cast<std::array<double, 3>>());
-          }))
+      .def(
+          "__reduce__",
+          [](const py::object& self) {  // every protocol: (from-state function, (state,)), checked on loading
+            return py::make_tuple(py::module_::import("shadowvol").attr("_depth_map_from_state"),
+                                  py::make_tuple(depthMapState(self.cast<const DepthMap&>())));
+          })
       .def("__repr__", [](const DepthMap& d) {
         return "<shadowvol.DepthMap " + std::to_string(d.width) + "x" + std::to_string(d.height) + " " +
                toString(d.lightType) + ", " + toString(d.capture) + ", " +
                std::to_string(d.hitCount()) + " texels hit>";
       });
+
+  m.attr("DepthMap").attr("_from_state") = py::cpp_function(&depthMapFromState, py::arg("state"));
+  // Pickle names its reconstructor by module and name: a Python function does (a pybind11 one is
+  // bound to a capsule that pickle cannot name).
+  py::exec(R"(
+def _depth_map_from_state(state):
+    """A DepthMap from the state its pickle holds (DepthMap.__reduce__), checked as from_array's arguments."""
+    return DepthMap._from_state(state)
+)",
+           m.attr("__dict__"));
+  refuseBareInstances(m.attr("DepthMap"), "DepthMap.from_array, capture_depth or load_depth");
 
   m.def("capture_depth", &captureDepth, py::arg("scene"), py::arg("width") = 256, py::arg("height") = 256,
         py::arg("capture") = "auto", py::arg("device") = "cpu", py::arg("platform") = "auto", py::arg("refine") = 0,

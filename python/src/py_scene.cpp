@@ -25,9 +25,10 @@ py::tuple sceneMesh(const PyScene& s) {
 }  // namespace
 
 void registerScene(py::module_& m) {
-  py::class_<PyScene>(m, "Scene",
+  py::class_<PyScene> cls(m, "Scene",
                       "A scene: world-space triangle meshes, one or more lights, one camera (README 'Scene files'). Positions "
-                      "are kept relative to `origin` (rebased when the scene lies far from the world origin).")
+                      "are kept relative to `origin` (rebased when the scene lies far from the world origin).");
+  cls
       .def_property_readonly("source", [](const PyScene& s) { return s.scene.source; }, "file it was loaded from, or 'default'")
       .def("__copy__", [](const PyScene& s) { return PyScene(s); },
            "A copy (copy.copy, copy.deepcopy): keep one before fit_light_to_view changes the scene in place.")
@@ -74,7 +75,13 @@ void registerScene(py::module_& m) {
       .def("__repr__", [](const PyScene& s) {
         return "<shadowvol.Scene '" + s.scene.source + "': " + std::to_string(s.scene.objects.size()) + " objects, " +
                std::to_string(s.scene.triangleCount()) + " triangles>";
+      })
+      .def("__reduce__", [](const PyScene&) -> py::object {
+        // Every protocol asks here first (protocols 0 and 1 went on to a pybind11 base that aborted).
+        throw py::type_error("cannot pickle a shadowvol.Scene: keep its file and load_scene it again, or "
+                             "copy.deepcopy it within one process");
       });
+  refuseBareInstances(cls, "load_scene or default_scene");
 
   m.def("default_scene", [] { return PyScene{defaultScene(), {}}; },
         "The built-in default scene: a sphere floating above a ground plane under a spot light.");

@@ -115,7 +115,7 @@ struct FrameRenderer {
   gl::Renderer renderer;
 
   FrameRenderer(const Scene& scene, gl::RenderOptions& ro, const std::string& platform)
-      : renderer(rendererOptions(platform)) {
+  try : renderer(rendererOptions(platform)) {
     if (ro.volumeOptions.refineSteps > 0) {
       oracle = std::make_unique<EmbreeDepthOracle>(scene);
       ro.volumeOptions.depthOracle = oracle->oracle();
@@ -123,6 +123,8 @@ struct FrameRenderer {
       ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();  // the hidden-surface search, as the command line
     }
     renderer.setScene(scene);
+  } catch (const InputError& e) {  // the context's options (platform) by this module's keywords
+    throw asPythonArgumentError(e);
   }
   static gl::RendererOptions rendererOptions(const std::string& platform) {
     gl::RendererOptions r;
@@ -219,10 +221,12 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
   gl::RenderOptions ro = validationRenderOptions(renderOptions(a, scene, true));
   ValidationOptions vo;
   vo.selfIntersections = selfIntersections;
-  if (!(maxError >= 0.0 && maxError <= 1.0)) throw InputError("python", "max_error", std::to_string(maxError), "must be in [0, 1]");
-  if (!(maxMissed >= 0.0 && maxMissed <= 1.0)) throw InputError("python", "max_missed", std::to_string(maxMissed), "must be in [0, 1]");
+  if (!(maxError >= 0.0 && maxError <= 1.0)) throw InputError("python", "max_error", numberText(maxError), "must be in [0, 1]");
+  if (!(maxMissed >= 0.0 && maxMissed <= 1.0)) throw InputError("python", "max_missed", numberText(maxMissed), "must be in [0, 1]");
   vo.maxError = maxError;
   vo.maxMissedShare = maxMissed;
+  if (reportDir && reportDir->empty())  // before the work, as the command line's --report ""
+    throw InputError("python", "report_dir", "\"\"", "an output folder is required (or None: no report files)");
   if (reportDir && scene.lightCount() > 1)  // before the work, as the command line
     for (std::size_t k = 0; k < scene.lightCount(); ++k) lightReportFolder(*reportDir, k);
   if (reportDir) {

@@ -75,7 +75,8 @@ constexpr PythonName kFieldKeywords[] = {
     {"RenderOptions", "volumeOptions.cap", "cap"},
     {"RenderOptions", "volumeOptions.refineSteps", "refine"},
     {"RenderOptions", "volumeOptions.blurOffset", "blur_offset"},
-    {"RenderOptions", "volumeOptions.bias", "bias"}};
+    {"RenderOptions", "volumeOptions.bias", "bias"},
+    {"ContextOptions", "platform", "platform"}};
 
 // The keyword of `field` of `source`'s options, or null where this module has none.
 const char* keywordOf(std::string_view source, std::string_view field) {
@@ -158,7 +159,11 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
       o.nearerSurfaces = oracle->nearerSurfaces();  // the sub-grid's search for hidden surfaces
       checkMapFromScene(depth, o.depthOracle);
     }
-    r = buildVolume(depth, o);
+    try {
+      r = buildVolume(depth, o);
+    } catch (const InputError& e) {  // the options against the map (a bias beyond its depth range), by keyword
+      throw asPythonArgumentError(e);
+    }
   }
   if (r.mesh.vertexCount() > std::size_t(INT32_MAX))
     throw InputError("python", "depth", std::to_string(r.mesh.vertexCount()) + " vertices",
@@ -232,15 +237,25 @@ void registerVolume(py::module_& m) {
             if (p[k] > std::uint64_t(INT64_MAX))
               throw InputError("export", "F", std::to_string(p[k]), "a vertex index beyond any vertex array");
         }
-        const VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
-        py::gil_scoped_release release;
-        writeVolumeMesh(mesh, path, doublePrecision);
+        VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
+        if (!doublePrecision) {  // float positions keep the detail of a mesh far out only relative to its box
+          mesh.origin = floatStorageOrigin(mesh.positions, mesh.triangles);
+          for (glm::dvec3& p : mesh.positions) p -= mesh.origin;
+        }
+        {
+          py::gil_scoped_release release;
+          writeVolumeMesh(mesh, path, doublePrecision);
+        }
+        return py::make_tuple(mesh.origin.x, mesh.origin.y, mesh.origin.z);
       },
       py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision") = false,
       "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "
       "atomically (a failure leaves no file). Coordinates are written as float32 unless double_precision=True "
-      "(PLY doubles, OBJ/OFF 17 digits; glTF keeps float positions and the volume's origin as its node's "
-      "translation, as with double_precision=False; STL stores float only and refuses it).");
+      "(PLY doubles, OBJ/OFF 17 digits; STL stores float only and refuses it). In float32, V lying so far from "
+      "the world origin that float would keep fewer than about 2^20 steps across it is written relative to the "
+      "centre of its box (as a scene's mesh file is read), named in the PLY and OBJ comment 'shadowvol origin X Y "
+      "Z', STL's header and glTF's node translation (OFF has no place for it). Returns that origin, (0, 0, 0) "
+      "when V is written as given: world = written + origin.");
 }
 
 }  // namespace shadowvol::python

@@ -155,6 +155,53 @@ TEST(VolumeBuilder, BadDepthsThrowInputErrorNamingTheTexel) {
     }
 }
 
+// A map a caller fills by hand (its own renderer's) gets a depth file's checks (a twenty-first
+// probe's NaN view gave a mesh of NaN; a NaN far plane or a short depth vector aborted).
+TEST(VolumeBuilder, AHandFilledMapsLightAndSizeAreChecked) {
+  const DepthMap good = makeDepthMap(directionalDown(), 16, 16, CaptureMode::Back);
+  const auto refusal = [](const DepthMap& m) -> std::string {
+    try {
+      buildVolume(m);
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), "DepthMap") << e.what();
+      return e.field();
+    }
+    return "accepted";
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  DepthMap m = good;
+  m.lightView[0][0] = nan;
+  EXPECT_EQ(refusal(m), "lightView");
+  m = good;
+  m.lightView *= 1e-300;
+  EXPECT_EQ(refusal(m), "lightView");
+  m = good;
+  m.lightProjection = glm::dmat4(0.0);
+  EXPECT_EQ(refusal(m), "lightProjection");
+  m = good;
+  m.lightType = LightType::Spot;  // an orthographic projection for a spot light
+  EXPECT_EQ(refusal(m), "lightProjection");
+  m = good;
+  m.lightType = LightType::Point;
+  EXPECT_EQ(refusal(m), "lightType");
+  m = good;
+  m.farPlane = nan;
+  EXPECT_EQ(refusal(m), "farPlane");
+  m = good;
+  m.farPlane = m.nearPlane - 1.0;
+  EXPECT_EQ(refusal(m), "farPlane");
+  m = good;
+  m.origin.x = nan;
+  EXPECT_EQ(refusal(m), "origin");
+  m = good;
+  m.depth.resize(10);
+  EXPECT_EQ(refusal(m), "depth");
+  m = good;
+  m.width = 0;
+  EXPECT_EQ(refusal(m), "width x height");
+  EXPECT_EQ(refusal(good), "accepted");
+}
+
 // The far snap (depth_blur.h) decided on the stored float: the largest float below
 // far * (1 - kFarSnap) is a hit, the next float is not; -0 is a valid depth (clamped to near).
 TEST(VolumeBuilder, FarSnapBoundaryAndNegativeZero) {

@@ -154,9 +154,9 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
     bad[3, 5] = np.nan
     with pytest.raises(sv.InputError, match=r"texel 5,3"):
         sv.DepthMap.from_array(bad, depth.light_view, depth.light_projection, depth.near, depth.far)
-    with pytest.raises(sv.InputError, match=r"/lightView"):
+    with pytest.raises(sv.InputError, match=r"from_array: light_view = "):
         sv.DepthMap.from_array(depth.depth, 2 * np.eye(4), depth.light_projection, depth.near, depth.far)
-    with pytest.raises(sv.InputError, match=r"/near"):
+    with pytest.raises(sv.InputError, match=r"from_array: near = "):
         sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, -1.0, depth.far)
     with pytest.raises(sv.InputError, match=r"capture = sideways"):
         sv.capture_depth(sv.default_scene(), 8, 8, capture="sideways")
@@ -476,3 +476,79 @@ def test_open3d_calls_the_double_precision_volume_watertight(tmp_path, depth):
     sv.export(V, F, tmp_path / "v.ply", double_precision=True)
     mesh = o3d.io.read_triangle_mesh(str(tmp_path / "v.ply"))
     assert np.array_equal(np.asarray(mesh.vertices), V) and mesh.is_watertight()
+
+
+def test_pickles_of_every_protocol_and_no_bare_instances(depth, scene):
+    """A twenty-first probe's findings: protocols 0 and 1 aborted the interpreter (DepthMap and Scene),
+    and DepthMap.__new__ (a pickle stream's bare NEWOBJ) gave an object whose reading crashed."""
+    import pickle
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        again = pickle.loads(pickle.dumps(depth, protocol=protocol))
+        assert np.array_equal(again.depth, depth.depth) and again.capture == depth.capture
+        assert np.array_equal(again.light_view, depth.light_view) and again.origin == depth.origin
+        with pytest.raises(TypeError, match="cannot pickle a shadowvol.Scene"):
+            pickle.dumps(scene, protocol=protocol)
+    for cls in (sv.DepthMap, sv.Scene):
+        with pytest.raises(TypeError, match=r"are made by .*not by"):
+            cls.__new__(cls)
+    with pytest.raises(TypeError, match="are made by"):
+        pickle.loads(b"\x80\x02cshadowvol\nDepthMap\n)\x81.")
+    # A tampered state is checked as from_array's arguments.
+    state = list(depth.__reduce__()[1][0])
+    state[3] = -1.0
+    with pytest.raises(sv.InputError, match="near"):
+        sv._depth_map_from_state(tuple(state))
+
+
+def test_export_far_from_the_origin_keeps_the_volumes_detail(tmp_path):
+    """A twenty-first probe's finding: a volume 1e7 from the world origin was written in float32
+    world coordinates, its vertices on a 1-unit grid. Now written relative to its box's centre, named
+    in the file and returned."""
+    s = json.dumps({"objects": [{"type": "plane", "size": 10, "transform": {"translate": [1e7, 0, 1e7]}},
+                                {"type": "sphere", "radius": 1, "transform": {"translate": [1e7, 2, 1e7]}}],
+                    "light": {"type": "spot", "position": [1e7 + 3, 9, 1e7 + 2], "target": [1e7, 0, 1e7], "fov": 60},
+                    "camera": {"eye": [1e7, 6, 1e7 + 11], "target": [1e7, 1, 1e7]}})
+    (tmp_path / "far.json").write_text(s)
+    far = sv.load_scene(tmp_path / "far.json")
+    V, F, _ = sv.build_volume(sv.capture_depth(far, 64, 64))
+    assert_closed_oriented(V - V.mean(axis=0), F)
+    origin = sv.export(V, F, tmp_path / "v.obj")
+    assert abs(origin[0] - 1e7) < 10 and abs(origin[2] - 1e7) < 10
+    text = (tmp_path / "v.obj").read_text().splitlines()
+    named = [l for l in text if l.startswith("# shadowvol origin")]
+    assert named and np.allclose([float(x) for x in named[0].split()[3:6]], origin, rtol=0, atol=0)
+    written = np.array([[float(x) for x in l.split()[1:4]] for l in text if l.startswith("v ")])
+    assert np.abs(written + np.array(origin) - V).max() < 1e-5  # float steps at the volume's size, not at 1e7
+    assert sv.export(V, F, tmp_path / "w.ply", double_precision=True) == (0.0, 0.0, 0.0)
+    near_origin = sv.export(V - V.mean(axis=0), F, tmp_path / "n.glb")
+    assert near_origin == (0.0, 0.0, 0.0)
+
+
+def test_library_refusals_name_keywords(tmp_path, depth, scene):
+    """A twenty-first probe's findings: build_volume passed the builder's own refusals on in its
+    terms ("refine subdivisions", after building the scene's BVH), the GPU's platform was
+    "ContextOptions", a NaN matrix printed as null, and a point light's map named a C++ function."""
+    with pytest.raises(sv.InputError, match=r"^python: refine_grid = 3: must be 1 \(off\), 2, 4 or 8$"):
+        sv.build_volume(depth, refine=6, scene=scene, refine_grid=3)
+    with pytest.raises(sv.InputError, match=r"^python: bias = 100: .*depth range"):
+        sv.build_volume(depth, bias=100.0)
+    with pytest.raises(sv.InputError, match=r"near = -1"):
+        sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, -1.0, depth.far)
+    bad = np.array(depth.light_view)
+    bad[0, 0] = np.nan
+    with pytest.raises(sv.InputError, match=r"light_view = \[\[nan, "):
+        sv.DepthMap.from_array(depth.depth, bad, depth.light_projection, depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"depth = 0 rows x 5 columns: .*at least 2 x 2"):
+        sv.DepthMap.from_array(np.zeros((0, 5), np.float32), depth.light_view, depth.light_projection,
+                               depth.near, depth.far)
+    with pytest.raises(sv.InputError, match=r"refine = 99: must be between 0"):
+        sv.capture_depth(scene, 64, 64, refine=99)
+    with pytest.raises(sv.InputError, match=r"^python: scene = a point light: "):
+        sv.capture_depth(sv.load_scene(SCENES / "point" / "room.json"), 64, 64)
+    if sv.has_gl:
+        with pytest.raises(sv.InputError, match=r"^python: platform = bogus: expected auto"):
+            sv.capture_depth(scene, 64, 64, device="gpu", platform="bogus")
+        with pytest.raises(sv.InputError, match=r"^python: platform = bogus: expected auto"):
+            sv.render(scene, size=(32, 24), platform="bogus")
+        with pytest.raises(sv.InputError, match=r"^python: report_dir = \"\": an output folder is required"):
+            sv.validate(scene, size=(32, 24), report_dir="")

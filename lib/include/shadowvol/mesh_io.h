@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <span>
 #include <string_view>
 
 #include <glm/vec3.hpp>
@@ -52,6 +53,13 @@ struct RebasedMesh {
 /// mesh is readTriangleMesh's, bit for bit, with origin 0. Scenes read their mesh files so, and
 /// `check`.
 RebasedMesh readRebasedTriangleMesh(const std::filesystem::path& path, EmptyMesh empty = EmptyMesh::Refuse);
+
+/// Where positions given in double are stored as float without losing their detail (world =
+/// stored + origin): 0 while float keeps about 2^20 steps across the box of the vertices that some
+/// triangle uses at its distance from the world origin, else that box's centre. The rule
+/// readRebasedTriangleMesh applies to a file's mesh (and the Python module's export to its arrays).
+glm::dvec3 floatStorageOrigin(std::span<const glm::dvec3> positions,
+                              std::span<const std::array<std::uint32_t, 3>> triangles);
 
 /// The same readers on bytes held in memory (a mesh from an archive, a socket or a fuzzer):
 /// `format` is the extension it would have (".obj", ".off", ".ply", ".stl", or one of Assimp's,

@@ -14,6 +14,7 @@
 
 #include "shadowvol/depth_blur.h"
 #include "shadowvol/depth_map.h"
+#include "shadowvol/error.h"
 
 namespace shadowvol {
 
@@ -80,7 +81,7 @@ inline EmptyingOffset volumeOffsetEmptiesRange(double bias, double blurOffset, b
   if (std::string why = offsetEmptiesRange(bias, nearPlane, farPlane); !why.empty()) return {false, why};
   if (!blur) return {};
   if (std::string why = offsetEmptiesRange(bias + blurOffset, nearPlane, farPlane); !why.empty())
-    return {true, "plus the bias (" + std::to_string(bias) + ") " + why};
+    return {true, "plus the bias (" + numberText(bias) + ") " + why};
   return {};
 }
 

@@ -83,17 +83,36 @@ constexpr double kMinLightFovDegrees = 0.01;
 // (orthonormal rotation, bottom row 0 0 0 1), a projection of the light's kind whose near and far
 // map to NDC z = -1 and +1, and finite world corners. Anything else would give a volume with
 // non-finite or meaningless coordinates.
-void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
+std::string matrixText(const glm::dmat4& m) {
+  std::string t = "[";
+  for (int c = 0; c < 4; ++c) {
+    t += c ? ", [" : "[";
+    for (int r = 0; r < 4; ++r) t += (r ? ", " : "") + numberText(m[c][r]);
+    t += "]";
+  }
+  return t + "]";
+}
+
+void checkDepthMapLight(const DepthMap& map, const std::string& sfile, const DepthMapFieldNames& names,
+                        bool mixedAxes) {
   if (map.width < 2 || map.height < 2)
-    throw InputError(sfile, "/width", std::to_string(map.width) + "x" + std::to_string(map.height),
+    throw InputError(sfile, names.size, std::to_string(map.width) + "x" + std::to_string(map.height),
                      "a depth map needs at least 2 x 2 texels");
+  if (map.lightType != LightType::Spot && map.lightType != LightType::Directional)
+    throw InputError(sfile, names.lightType, toString(map.lightType),
+                     "a depth map is one spot or directional light's view (a point light's six faces are a "
+                     "cube map)");
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))
+      throw InputError(sfile, names.origin, numberText(map.origin[k]),
+                       "expected 3 finite numbers within +-1e12, as a scene's");
   const double tol = 1e-6;
   if (!(std::isfinite(map.nearPlane) && map.nearPlane >= 0.0))
-    throw InputError(sfile, "/near", numberText(map.nearPlane), "near must be finite and >= 0");
+    throw InputError(sfile, names.nearPlane, numberText(map.nearPlane), "near must be finite and >= 0");
   if (!(map.farPlane > map.nearPlane && map.farPlane < 1e30))
-    throw InputError(sfile, "/far", numberText(map.farPlane), "far must be greater than near and below 1e30");
+    throw InputError(sfile, names.farPlane, numberText(map.farPlane), "far must be greater than near and below 1e30");
   if (map.lightType == LightType::Spot && !(map.nearPlane > 0.0))
-    throw InputError(sfile, "/near", numberText(map.nearPlane), "a spot light needs near > 0");
+    throw InputError(sfile, names.nearPlane, numberText(map.nearPlane), "a spot light needs near > 0");
   const glm::dmat4& v = map.lightView;
   const glm::dmat3 r(v);
   const glm::dmat3 rrt = r * glm::transpose(r);
@@ -102,7 +121,7 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) rigid = rigid && std::abs(rrt[a][b] - (a == b ? 1.0 : 0.0)) < tol;
   if (!rigid)
-    throw InputError(sfile, "/lightView", matrixToJson(v).dump(),
+    throw InputError(sfile, names.lightView, matrixText(v),
                      "expected a rigid world -> light view transform (rotation and translation)");
   const glm::dmat4& p = map.lightProjection;
   const bool perspective = map.lightType == LightType::Spot;
@@ -112,7 +131,7 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
   const double scale = std::max({1.0, std::abs(p[0][0]), std::abs(p[1][1])});
   bool zeroElsewhere = true;
   for (const auto& [c, r] : {std::pair{0, 1}, {0, 2}, {0, 3}, {1, 0}, {1, 2}, {1, 3}})
-    zeroElsewhere = zeroElsewhere && std::abs(p[c][r]) < tol * scale;
+    if (!(mixedAxes && r + c == 1)) zeroElsewhere = zeroElsewhere && std::abs(p[c][r]) < tol * scale;
   const bool kindOk = zeroElsewhere && (perspective ? std::abs(p[2][3] + 1.0) < tol && std::abs(p[3][3]) < tol
                                                     : std::abs(p[2][3]) < tol && std::abs(p[3][3] - 1.0) < tol);
   auto ndcZ = [&](double d) {
@@ -122,14 +141,14 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
   const bool depthOk =
       std::abs(ndcZ(std::max(map.nearPlane, 1e-300)) + 1.0) < 1e-4 && std::abs(ndcZ(map.farPlane) - 1.0) < 1e-4;
   if (!kindOk || !depthOk || !(std::abs(glm::determinant(p)) > 0.0))
-    throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+    throw InputError(sfile, names.lightProjection, matrixText(p),
                      std::string("expected the ") + (perspective ? "perspective" : "orthographic") +
                          " projection of a " + toString(perspective ? LightType::Spot : LightType::Directional) +
                          " light that maps near and far to NDC z -1 and +1");
   // A spot light narrower than a scene's light may be (fov 0.01 degrees: P00, P11 = cot(fov / 2)).
   const double maxCot = 1.0 / std::tan(0.5 * kMinLightFovDegrees * std::numbers::pi / 180.0);
   if (perspective && (std::abs(p[0][0]) > maxCot || std::abs(p[1][1]) > maxCot))
-    throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+    throw InputError(sfile, names.lightProjection, matrixText(p),
                      "a spot light narrower than " + numberText(kMinLightFovDegrees) +
                          " degrees, the narrowest a scene's may be");
   const TexelUnprojector unproject(map);
@@ -138,7 +157,7 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
     const glm::dvec3 w = unproject.worldPoint(k & 1 ? map.width - 1 : 0, k & 2 ? map.height - 1 : 0,
                                               k & 4 ? map.farPlane : std::max(map.nearPlane, 1e-9));
     if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z) && glm::length(w) < 1e30))
-      throw InputError(sfile, "/lightProjection", matrixToJson(p).dump(),
+      throw InputError(sfile, names.lightProjection, matrixText(p),
                        "the light's window corners are not finite in world space");
     corners[std::size_t(k)] = w;
   }
@@ -149,12 +168,12 @@ void checkDepthMapLight(const DepthMap& map, const std::string& sfile) {
   for (const auto& c : corners) reach = std::max(reach, glm::length(c));
   const double window = std::min(glm::length(corners[5] - corners[4]), glm::length(corners[6] - corners[4]));
   if (window < kMinWindowFloatSteps * reach * std::numeric_limits<float>::epsilon())
-    throw InputError(sfile, "/lightView", matrixToJson(v).dump(),
+    throw InputError(sfile, names.lightView, matrixText(v),
                      "the light's window at the far plane is " + numberText(window) + " units wide but lies " +
                          numberText(reach) + " units from the origin: less than " +
                          numberText(kMinWindowFloatSteps) +
-                         " single-precision steps across, the volume would collapse (write the map with its "
-                         "/origin near the light's window)");
+                         " single-precision steps across, the volume would collapse (write the map with its " +
+                         std::string(names.origin) + " near the light's window)");
 }
 
 

@@ -1,11 +1,15 @@
 #include "shadowvol/mesh_io.h"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <system_error>
 #include <unistd.h>
@@ -327,6 +331,27 @@ void writeMesh(const Positions& P, const Triangles& T, const std::filesystem::pa
 }
 
 }  // namespace
+
+glm::dvec3 floatStorageOrigin(std::span<const glm::dvec3> positions,
+                              std::span<const std::array<std::uint32_t, 3>> triangles) {
+  // Over the vertices the faces use: a stray one near 0 (which a scene leaves out) must not keep
+  // a mesh far out from being rebased.
+  std::vector<bool> used(positions.size(), false);
+  for (const auto& t : triangles)
+    for (const std::uint32_t i : t) used[i] = true;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    if (used[i]) {
+      lo = glm::min(lo, positions[i]);
+      hi = glm::max(hi, positions[i]);
+    }
+  if (lo.x > hi.x) return glm::dvec3(0.0);  // no face
+  const glm::dvec3 reach = glm::max(glm::abs(lo), glm::abs(hi));
+  const double step = std::max({reach.x, reach.y, reach.z}) * std::ldexp(1.0, -23);  // float's spacing there, at most
+  const double extent = glm::length(hi - lo);
+  if (step == 0.0 || extent == 0.0 || extent >= mesh_readers::kMinStoredSteps * step) return glm::dvec3(0.0);
+  return 0.5 * lo + 0.5 * hi;  // (lo + hi) / 2 without overflow near the float range
+}
 
 bool isMeshOutputFormat(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);

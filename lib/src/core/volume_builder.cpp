@@ -11,6 +11,7 @@
 #include "shadowvol/boundary_edges.h"
 #include "shadowvol/check.h"
 #include "shadowvol/cube_map.h"
+#include "shadowvol/depth_map_io.h"
 #include "shadowvol/error.h"
 #include "shadowvol/far_cap.h"
 #include "shadowvol/sheet_depth.h"
@@ -103,6 +104,9 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
     refuseValue("refine steps", std::to_string(o.refineSteps),
                 "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
+  const int s = o.refineSubdivisions;
+  if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
+    refuseValue("refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
   if (o.refineSteps > 0 && o.cap != FarCap::Exact)
     refuse("refine steps", std::to_string(o.refineSteps),
            "needs the exact cap (${cap} exact: the quad cap keeps the far-plane sheet that refinement replaces by walls)");
@@ -125,12 +129,17 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
 namespace {
 
 // Cheap checks of the map's metadata and of the options, before anything else.
+// A map filled by hand (a caller's own renderer) gets the checks a depth file's light gets, so that
+// matrices or planes that would put vertices at NaN are refused instead (a probe's NaN view gave a
+// mesh of NaN); a map of one row or column has no quad and builds an empty volume.
 void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& options) {
-  SV_CHECK_GT(map.width, 0);
-  SV_CHECK_GT(map.height, 0);
-  SV_CHECK_EQ(map.depth.size(), std::size_t(map.width) * std::size_t(map.height));
-  SV_CHECK_GT(map.farPlane, map.nearPlane);
-  SV_CHECK_GE(map.nearPlane, 0.0);
+  if (map.width < 1 || map.height < 1 || map.width > kMaxDepthMapSide || map.height > kMaxDepthMapSide)
+    throw InputError("DepthMap", "width x height", std::to_string(map.width) + "x" + std::to_string(map.height),
+                     "each side must be 1 to " + std::to_string(kMaxDepthMapSide) + " texels");
+  if (map.depth.size() != std::size_t(map.width) * std::size_t(map.height))
+    throw InputError("DepthMap", "depth", std::to_string(map.depth.size()) + " values",
+                     "expected width x height = " + std::to_string(map.width) + " x " + std::to_string(map.height));
+  if (map.width >= 2 && map.height >= 2) checkDepthMapLight(map, "DepthMap", kDepthMapMembers, true);
   checkVolumeOffsets(options, map.nearPlane, map.farPlane);
   if (options.refineSteps < 0 || options.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),

@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "mesh_readers/corner_welder.h"
+#include "shadowvol/mesh_io.h"
 
 namespace shadowvol::mesh_readers {
 
@@ -32,25 +33,7 @@ FloatPlacement FloatPlacement::worse(const FloatPlacement& a, const FloatPlaceme
   return b.steps() < a.steps() ? b : a;
 }
 
-glm::dvec3 storageOrigin(const ParsedMesh& parsed) {
-  // Over the vertices the faces use: a stray one near 0 (which a scene leaves out) must not keep
-  // a mesh far out from being rebased.
-  std::vector<bool> used(parsed.positions.size(), false);
-  for (const auto& t : parsed.triangles)
-    for (const std::uint32_t i : t) used[i] = true;
-  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-  for (std::size_t i = 0; i < parsed.positions.size(); ++i)
-    if (used[i]) {
-      lo = glm::min(lo, parsed.positions[i]);
-      hi = glm::max(hi, parsed.positions[i]);
-    }
-  if (lo.x > hi.x) return glm::dvec3(0.0);  // no face
-  const glm::dvec3 reach = glm::max(glm::abs(lo), glm::abs(hi));
-  const double step = std::max({reach.x, reach.y, reach.z}) * std::ldexp(1.0, -23);  // float's spacing there, at most
-  const double extent = glm::length(hi - lo);
-  if (step == 0.0 || extent == 0.0 || extent >= kMinStoredSteps * step) return glm::dvec3(0.0);
-  return 0.5 * lo + 0.5 * hi;  // (lo + hi) / 2 without overflow near the float range
-}
+glm::dvec3 storageOrigin(const ParsedMesh& parsed) { return floatStorageOrigin(parsed.positions, parsed.triangles); }
 
 TriangleMesh storedMesh(const ParsedMesh& parsed, const glm::dvec3& origin) {
   TriangleMesh mesh;
