@@ -10,6 +10,7 @@
 
 #include "cli_verbosity.h"
 #include "render_options.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 #include "shadowvol/bench/sweep.h"
 #include "shadowvol/bench/sweep_report.h"
@@ -93,7 +94,7 @@ void printBenchOutput(bool json, const std::string& out, const SweepReportInfo& 
                             {"machine", info.machine},                 {"glRenderer", info.glRenderer},
                             {"interrupted", interrupted},              {"notes", notes},
                             {"files", files},                          {"cells", cells}};
-  std::cout << j.dump(2) << '\n';
+  std::cout << jsonText(j) << '\n';
 }
 
 
@@ -177,7 +178,7 @@ void registerBenchCommand(CLI::App& app, Runner& run) {
         if (o->json) {
           nlohmann::json methods = nlohmann::json::array();
           for (const auto& m : sweepMethods()) methods.push_back({{"key", m.key}, {"description", m.description}});
-          std::cout << methods.dump(2) << '\n';
+          std::cout << jsonText(methods) << '\n';
         } else {
           for (const auto& m : sweepMethods()) std::printf("%-26s %s\n", m.key.c_str(), m.description.c_str());
         }

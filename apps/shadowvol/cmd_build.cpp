@@ -9,6 +9,7 @@
 
 #include "capture_device.h"
 #include "cli_common.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 #include "shadowvol/cube_map.h"
 #include "shadowvol/cube_volume.h"
@@ -134,7 +135,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       }
       const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
-      writeVolumeMesh(r.mesh, o->out, o->worldCoords);
+      const WrittenVolume written = writeVolumeMesh(r.mesh, o->out, o->worldCoords);
       const double msWrite = msSince(t1);
       const VolumeBuildStats& s = r.stats;
       if (options.cap == FarCap::Quad && !r.mesh.triangles.empty()) {  // a fourteenth probe: said nowhere at build
@@ -152,11 +153,21 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       }
       // A second probe's finding: STL keeps no shared corners, and glTF's are welded by position on
       // reading (ours and most readers'), so the pinch copies meet again as non-manifold vertices.
-      if (s.splitVertices > 0 && (ext == ".stl" || ext == ".gltf" || ext == ".glb")) {
-        const std::string note = "the volume has " + std::to_string(s.splitVertices) +
-                                 " split vertices (copies at pinches, so that it is a 2-manifold); " + ext +
+      // Counted as written (a twenty-second probe: --no-flatten's copies were not in splitVertices).
+      if (written.coincidentVertices > 0 && (ext == ".stl" || ext == ".gltf" || ext == ".glb")) {
+        const std::string note = "the volume has " + std::to_string(written.coincidentVertices) +
+                                 " vertices at the position of another (split copies at pinches, so that it is a "
+                                 "2-manifold); " + ext +
                                  " readers that weld corners by position, `shadowvol check` among them, join them "
                                  "into non-manifold vertices: write .ply, .obj or .off to keep them apart";
+        std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
+        j["warnings"].push_back(o->out + ": " + note);
+      }
+      if (written.collapsedTriangles > 0) {  // float rounding beyond what the origin's choice avoids
+        const std::string note = std::to_string(written.collapsedTriangles) +
+                                 " triangles have two corners at one position as written (zero area in the file)" +
+                                 (o->worldCoords || ext == ".stl" ? std::string()
+                                                                   : ": --world-coords writes double precision");
         std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
         j["warnings"].push_back(o->out + ": " + note);
       }
@@ -173,7 +184,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"refineGrid", options.refineSubdivisions},
                 {"refineGridEverywhere", options.refineGridEverywhere},
                 {"refineHidden", options.refineHidden},
-                {"origin", {map.origin.x, map.origin.y, map.origin.z}},
+                {"origin", {written.origin.x, written.origin.y, written.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
                 {"triangles", r.mesh.triangleCount()},
@@ -182,7 +193,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       j["ms"].update({{"capture", msCapture}, {"build", s.msTotal}, {"write", msWrite}});
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (o->scene.json) {
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("volume of %s, %s%dx%d %s capture, %s triangulation%s, %s cap\n",
                     o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(),
@@ -229,13 +240,13 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::printf("  time: capture %.1f ms, blur %.1f ms, sheet %.1f ms, refine %.1f ms (rays %.1f ms), cap %.1f ms, "
                     "build %.1f ms, write %.1f ms\n",
                     msCapture, s.msBlur, s.msSheet, s.msRefine, s.msRays, s.msCap, s.msTotal, msWrite);
-        if (map.origin != glm::dvec3(0.0)) {
+        if (written.origin != glm::dvec3(0.0)) {
           const bool gltf = ext == ".gltf" || ext == ".glb";  // float positions, the origin as the node's translation
           std::printf("  coordinates %s origin (%.17g, %.17g, %.17g)\n",
                       gltf            ? "relative to the glTF node, whose translation is the local"
                       : o->worldCoords ? "in world units (double); local"
                                        : "relative to the local",
-                      map.origin.x, map.origin.y, map.origin.z);
+                      written.origin.x, written.origin.y, written.origin.z);
         }
         std::printf("wrote %s\n", o->out.c_str());
       }

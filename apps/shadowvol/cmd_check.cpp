@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli_common.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/cgal/mesh_check.h"
 #include "shadowvol/cgal/mesh_check_json.h"
 #include "shadowvol/mesh_io.h"
@@ -75,7 +76,7 @@ void registerCheckCommand(CLI::App& app, Runner& run) {
         j["file"] = o->mesh;
         j["failed"] = failed.empty() ? nlohmann::json() : nlohmann::json(failed);
         j["shadowvolVersion"] = SHADOWVOL_VERSION;
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("%s: %s\n", o->mesh.c_str(), r.summary().c_str());
         const char* valid = r.triangles == 0 ? "valid: an empty volume (no triangles: nothing in shadow)"

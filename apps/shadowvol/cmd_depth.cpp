@@ -7,6 +7,7 @@
 
 #include "capture_device.h"
 #include "cli_common.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/embree/depth_capture.h"
 #include "shadowvol/error.h"
@@ -83,7 +84,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                           {"shadowvolVersion", SHADOWVOL_VERSION}};
       if (!capture.autoReason.empty()) j["captureAuto"] = capture.autoReason;  // --capture auto's reason
       if (o->scene.json) {
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("depth %dx%d (%s capture, %s) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
                     toString(mode), o->device.device.c_str(), scene.source.c_str(), hits, map.depth.size());

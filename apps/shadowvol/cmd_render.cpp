@@ -11,6 +11,7 @@
 
 #include "cli_verbosity.h"
 #include "render_options.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 #include "shadowvol/error.h"
 #include "shadowvol/image_io.h"
@@ -205,7 +206,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (result.volumeStats) j["volumeBuild"] = describeVolumeStats(*result.volumeStats);
       if (o->render.scene.json) {
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("GL: %s on %s (%s, EGL platform %s%s%s)\n", info.glVersion.c_str(), info.glRenderer.c_str(),
                     info.glVendor.c_str(), info.platform.c_str(), info.device.empty() ? "" : ", device ",

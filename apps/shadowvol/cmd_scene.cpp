@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli_common.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
 
@@ -31,7 +32,7 @@ void registerSceneCommand(CLI::App& app, Runner& run) {
       j["shadowvolVersion"] = SHADOWVOL_VERSION;
       if (!exportPath->empty()) j["export"] = *exportPath;
       if (opts->json) {
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("scene %s: %zu objects, %zu triangles\n", scene.source.c_str(), scene.objects.size(),
                     scene.triangleCount());

@@ -306,7 +306,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         throw;
       }
       if (o->render.scene.json) {
-        std::cout << j.dump(2) << '\n';
+        std::cout << jsonText(j) << '\n';
       } else {
         std::printf("validate %s (%s%s%s) on %s\n", scene.source.c_str(), o->render.method.c_str(), hybrid ? ", " : "",
                     hybrid ? gl::toString(ro.volume) : "", renderer.info().glRenderer.c_str());

@@ -237,16 +237,20 @@ void registerVolume(py::module_& m) {
             if (p[k] > std::uint64_t(INT64_MAX))
               throw InputError("export", "F", std::to_string(p[k]), "a vertex index beyond any vertex array");
         }
-        VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
-        if (!doublePrecision) {  // float positions keep the detail of a mesh far out only relative to its box
-          mesh.origin = floatStorageOrigin(mesh.positions, mesh.triangles);
-          for (glm::dvec3& p : mesh.positions) p -= mesh.origin;
-        }
+        const VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
+        WrittenVolume written;
         {
           py::gil_scoped_release release;
-          writeVolumeMesh(mesh, path, doublePrecision);
+          written = writeVolumeMesh(mesh, path, doublePrecision);  // float: relative to V's box where far out
         }
-        return py::make_tuple(mesh.origin.x, mesh.origin.y, mesh.origin.z);
+        if (written.collapsedTriangles > 0 &&
+            PyErr_WarnEx(PyExc_RuntimeWarning,
+                         (path.string() + ": " + std::to_string(written.collapsedTriangles) +
+                          " triangles have two corners at one position as written (zero area in the file)")
+                             .c_str(),
+                         1) < 0)
+          throw py::error_already_set();  // a warnings filter made it an error
+        return py::make_tuple(written.origin.x, written.origin.y, written.origin.z);
       },
       py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision") = false,
       "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "

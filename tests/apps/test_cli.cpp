@@ -117,6 +117,19 @@ TEST(Cli, HelpAndUsage) {
 
 // A misspelt subcommand or option is named with the nearest valid name (regression: `buidl` said
 // "A subcommand is required", `build --hepl` "--out is required"); exit 2, nothing written.
+// A file name in another encoding than UTF-8 (Latin-1 "caf\xe9") ended build --json with an
+// internal error after the mesh was written (a twenty-second probe): JSON shows it as U+FFFD.
+TEST(Cli, FileNamesThatAreNotUtf8AreWrittenIntoJson) {
+  const auto dir = test::tempDir();
+  const std::string out = (dir / "caf\xe9.gltf").string();
+  const CliResult r = runCli("build --resolution 32 --json --out '" + out + "'");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(contains(r.out, "caf\xef\xbf\xbd.gltf")) << r.out;  // U+FFFD in UTF-8
+  EXPECT_TRUE(std::filesystem::exists(out));
+  const auto gltf = nlohmann::json::parse(test::readText(out));  // its node's name, from the file's stem
+  EXPECT_EQ(gltf["nodes"][0]["name"], "caf\xef\xbf\xbd");
+}
+
 TEST(Cli, MisspeltNamesAreNamedWithTheNearest) {
   const CliResult a = runCli("buidl");
   EXPECT_EQ(a.code, 2);

@@ -92,9 +92,27 @@ bool isMeshOutputFormat(const std::filesystem::path& path);
 /// large for glTF's 32-bit buffer, or a failed write.
 void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& path, const MeshFrame& frame = {});
 
-/// The same for a volume, its double positions kept when writing world coordinates; the origin
-/// is the mesh's (VolumeMesh::origin).
-void writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates = false);
+/// What writeVolumeMesh wrote.
+struct WrittenVolume {
+  /// The origin the file names (world = written + origin; with world coordinates in PLY, OBJ or
+  /// OFF the file holds world coordinates and this is only the mesh's local origin).
+  glm::dvec3 origin{0.0};
+  /// Vertices at the same position, as written (float or double), as an earlier vertex: readers
+  /// that weld by position (STL, glTF, `shadowvol check` on them) join them.
+  std::size_t coincidentVertices = 0;
+  /// Triangles with two corners at the same position as written: zero area in the file.
+  std::size_t collapsedTriangles = 0;
+};
+
+/// The same for a volume, its double positions kept when writing world coordinates. Float
+/// positions (without world coordinates, and always in glTF) are written relative to the mesh's
+/// origin (VolumeMesh::origin), moved to the centre of the volume's box where float would keep
+/// fewer than about 2^20 steps across it there (floatStorageOrigin; a probe's volume 1e6 from a
+/// scene origin of 0 had 60 zero-area triangles); that origin is named as MeshFrame says.
+WrittenVolume writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates = false);
+
+/// Vertices at the same position as an earlier vertex (exactly equal doubles).
+std::size_t coincidentVertices(const VolumeMesh& mesh);
 
 /// Calls write(tmp) with a temporary path beside `path`, then renames tmp to path. If write throws
 /// or the rename fails, the temporary file is removed and nothing is left at `path`.

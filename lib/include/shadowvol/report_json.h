@@ -2,6 +2,8 @@
 // report.json, the Python module's dictionaries): one place, so the field names stay the same.
 #pragma once
 
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "shadowvol/scene.h"
@@ -22,5 +24,10 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s);
 /// fraction in use, the solid angles (sr) of its smallest and largest texel and their ratio, and
 /// the ratio of the two maps' largest texels (paraboloid over cube).
 nlohmann::json describeDualParaboloid(int cubeFaceSide);
+
+/// `j` as text with `indent` (-1: one line): a byte that is not UTF-8 (a file name in another
+/// encoding) becomes U+FFFD instead of an exception (a twenty-second probe's Latin-1 file name
+/// ended build --json with an internal error after its mesh was written).
+std::string jsonText(const nlohmann::json& j, int indent = 2);
 
 }  // namespace shadowvol

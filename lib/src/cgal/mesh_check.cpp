@@ -23,6 +23,7 @@
 #include <CGAL/intersections.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/mesh_io.h"
 
 namespace shadowvol {
 namespace {
@@ -260,19 +261,6 @@ void checkFans(std::vector<Corner>& corners, MeshCheckReport& r) {
   }
 }
 
-// Vertices at the same position as another.
-std::size_t coincidentVertices(const VolumeMesh& mesh) {
-  std::vector<std::uint32_t> order(mesh.positions.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
-    const auto &p = mesh.positions[x], &q = mesh.positions[y];
-    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
-  });
-  std::size_t n = 0;
-  for (std::size_t k = 1; k < order.size(); ++k)
-    if (mesh.positions[order[k]] == mesh.positions[order[k - 1]]) ++n;
-  return n;
-}
 
 // Whether the exact intersection of two triangles lies wholly where touching is allowed. It is
 // constructed exactly (touching triangles meet in exactly one point or segment, which inexact

@@ -1,3 +1,4 @@
+#include "shadowvol/report_json.h"
 #include "shadowvol/depth_map_io.h"
 
 #include <algorithm>
@@ -220,7 +221,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
     // The side file is written before the PFM is renamed into place, so both exist or neither.
     writeAtomically(sidecar, [&](const std::filesystem::path& tmp2) {
       std::ofstream js(tmp2);
-      js << side.dump(2) << '\n';
+      js << jsonText(side) << '\n';
       js.flush();
       if (!js) throw InputError(sidecar.string(), "", "", "writing the file failed");
     });

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -121,7 +122,12 @@ std::filesystem::path writeTarget(const std::filesystem::path& path) {
     throw InputError(path.string(), "", "", "is a folder: a file cannot be written in its place");
   if (st.type() != std::filesystem::file_type::not_found && st.type() != std::filesystem::file_type::regular)
     throw InputError(path.string(), "", "", "is not a regular file (a device, pipe or socket): it would be replaced");
-  if (st.type() == std::filesystem::file_type::regular && ::access(target.c_str(), W_OK) != 0)
+  // The permission bits as well as access(): root may write anything, yet a file nobody may write
+  // was made read-only on purpose (a twenty-second probe's 0444 file was replaced under root).
+  const bool noWriteBits =
+      (st.permissions() & (std::filesystem::perms::owner_write | std::filesystem::perms::group_write |
+                           std::filesystem::perms::others_write)) == std::filesystem::perms::none;
+  if (st.type() == std::filesystem::file_type::regular && (noWriteBits || ::access(target.c_str(), W_OK) != 0))
     throw InputError(path.string(), "", "", "is read-only: it is not replaced");
   return target;
 }
@@ -195,10 +201,19 @@ void checkMeshExtension(const std::filesystem::path& path, const MeshFrame& fram
                      "STL stores single-precision coordinates only: write world coordinates as .ply, .obj or .off");
 }
 
-std::string originText(const glm::dvec3& o) {
+// The origin's doubles with 17 significant digits, or `shortest`: the shortest text that reads back
+// as each (numberText: "1e+06" for 1000000), for STL's 80-byte header.
+std::string originText(const glm::dvec3& o, bool shortest = false) {
+  if (shortest) return "shadowvol origin " + numberText(o.x) + " " + numberText(o.y) + " " + numberText(o.z);
   char buf[128];
   std::snprintf(buf, sizeof buf, "shadowvol origin %.17g %.17g %.17g", o.x, o.y, o.z);
   return buf;
+}
+
+// STL's header text: the origin, in full, in at most 79 bytes (the 80th ends the string).
+std::string stlOriginText(const glm::dvec3& o) {
+  const std::string full = originText(o);
+  return full.size() < 80 ? full : originText(o, true);
 }
 
 // What every format writer gets: the stored coordinates, how to write them, and the stream.
@@ -263,7 +278,7 @@ void writeObjOrOff(const M& m, bool obj) {
 template <class M>
 void writeStl(const M& m) {  // binary: 80-byte header, count, then normal + 3 vertices + attribute per triangle
   char header[80] = {};
-  const std::string text = m.namedOrigin() ? originText(m.frame.origin) : "binary STL written by shadowvol";
+  const std::string text = m.namedOrigin() ? stlOriginText(m.frame.origin) : "binary STL written by shadowvol";
   std::snprintf(header, sizeof header, "%s", text.c_str());
   m.out.write(header, 80);
   const auto n = static_cast<std::uint32_t>(m.T.size());
@@ -317,6 +332,12 @@ void writeMesh(const Positions& P, const Triangles& T, const std::filesystem::pa
                                                 "coordinates, .ply, .obj or .off) or move the mesh nearer its origin");
   }
   const std::string ext = lowerExtension(path);
+  // STL's header holds 80 bytes: an origin that does not fit in full is refused, not cut (a
+  // twenty-second probe's header lost the last number's exponent).
+  if (ext == ".stl" && !frame.worldCoordinates && frame.origin != glm::dvec3(0.0) &&
+      stlOriginText(frame.origin).size() >= 80)
+    throw InputError(path.string(), "origin", stlOriginText(frame.origin).substr(17),
+                     "does not fit STL's 80-byte header in full: write .ply, .obj or .gltf, which name it");
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw InputError(path.string(), "", "", "cannot create the file");
@@ -362,8 +383,52 @@ void writeTriangleMesh(const TriangleMesh& mesh, const std::filesystem::path& pa
   writeMesh(mesh.positions, mesh.triangles, path, frame);
 }
 
-void writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates) {
-  writeMesh(mesh.positions, mesh.triangles, path, MeshFrame{mesh.origin, worldCoordinates});
+namespace {
+
+// Vertices equal to an earlier one, and triangles with two equal corners, over positions P.
+template <class Positions, class Triangles>
+void countCoincident(const Positions& P, const Triangles& T, WrittenVolume& w) {
+  std::vector<std::uint32_t> order(P.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    const auto &p = P[x], &q = P[y];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+  });
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (P[order[k]] == P[order[k - 1]]) ++w.coincidentVertices;
+  for (const auto& t : T)
+    if (P[t[0]] == P[t[1]] || P[t[1]] == P[t[2]] || P[t[2]] == P[t[0]]) ++w.collapsedTriangles;
+}
+
+}  // namespace
+
+std::size_t coincidentVertices(const VolumeMesh& mesh) {
+  WrittenVolume w;
+  countCoincident(mesh.positions, std::vector<std::array<std::uint32_t, 3>>{}, w);
+  return w.coincidentVertices;
+}
+
+WrittenVolume writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::path& path, bool worldCoordinates) {
+  WrittenVolume w;
+  w.origin = mesh.origin;
+  if (worldCoordinates && !isGltf(lowerExtension(path))) {  // doubles, world = position + origin
+    writeMesh(mesh.positions, mesh.triangles, path, MeshFrame{mesh.origin, true});
+    countCoincident(mesh.positions, mesh.triangles, w);
+    return w;
+  }
+  const glm::dvec3 shift = floatStorageOrigin(mesh.positions, mesh.triangles);
+  w.origin = mesh.origin + shift;
+  std::vector<glm::vec3> written(mesh.positions.size());  // as the file stores them
+  for (std::size_t k = 0; k < written.size(); ++k) written[k] = glm::vec3(mesh.positions[k] - shift);
+  if (shift == glm::dvec3(0.0))
+    writeMesh(mesh.positions, mesh.triangles, path, MeshFrame{mesh.origin, worldCoordinates});
+  else {
+    std::vector<glm::dvec3> moved(mesh.positions.size());
+    for (std::size_t k = 0; k < moved.size(); ++k) moved[k] = mesh.positions[k] - shift;
+    writeMesh(moved, mesh.triangles, path, MeshFrame{w.origin, worldCoordinates});
+  }
+  countCoincident(written, mesh.triangles, w);
+  return w;
 }
 
 }  // namespace shadowvol

@@ -100,4 +100,8 @@ nlohmann::json describeDualParaboloid(int cubeFaceSide) {
   return j;
 }
 
+std::string jsonText(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace shadowvol

@@ -1,3 +1,4 @@
+#include "shadowvol/report_json.h"
 #include "shadowvol/validate/report_folder.h"
 
 #include <fstream>
@@ -36,7 +37,7 @@ void writeReportJson(const std::filesystem::path& dir, const nlohmann::json& rep
   const std::filesystem::path path = dir / "report.json";
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
     std::ofstream out(tmp);
-    out << report.dump(2) << '\n';
+    out << jsonText(report) << '\n';
     out.flush();
     if (!out) throw InputError(path.string(), "", "", "writing the report failed");
   });

@@ -6,6 +6,7 @@
 #include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
+#include "shadowvol/report_json.h"
 #include "shadowvol/version.h"
 
 namespace shadowvol::mesh_writers {
@@ -88,12 +89,12 @@ void writeGltf(std::ostream& out, const GltfMesh& m, bool binary) {
   const bool hasBuffer = doc.contains("buffers");
   if (!binary) {
     if (hasBuffer) doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
-    out << doc.dump(1) << '\n';
+    out << jsonText(doc, 1) << '\n';
     return;
   }
   // GLB: header (magic, version 2, total length), JSON chunk padded with spaces, BIN chunk padded
   // with zeros, each chunk's length a multiple of 4 (glTF 2.0, "Binary glTF Layout").
-  std::string json = doc.dump();
+  std::string json = jsonText(doc, -1);
   json.append((4 - json.size() % 4) % 4, ' ');
   std::string bin = bytes;
   bin.append((4 - bin.size() % 4) % 4, '\0');
