@@ -325,9 +325,9 @@ void registerValidate(py::module_& m) {
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
-      py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
+      py::arg("blur").noconvert() = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("blur_offset") = 0.0,
-      py::arg("bias") = py::none(), py::arg("refine_grid") = 1, py::arg("chord_points") = false,
+      py::arg("bias") = py::none(), py::arg("refine_grid") = 1, py::arg("chord_points").noconvert() = false,
       py::arg("crossings") = "auto",
       "Renders one frame with the scene's camera (headless EGL + OpenGL), as `shadowvol render` does. Returns a "
       "dict: image (H x W x 4 uint8, top row first), stencil (H x W uint8, shadow-volume methods), passes_ms, "
@@ -353,11 +353,11 @@ void registerValidate(py::module_& m) {
       },
       py::arg("scene"), py::kw_only(), py::arg("method") = "hybrid", py::arg("volume") = "gpu",
       py::arg("resolution") = 512, py::arg("capture") = "auto", py::arg("triangulation") = "perfect",
-      py::arg("blur") = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
+      py::arg("blur").noconvert() = false, py::arg("cap") = "exact", py::arg("refine") = 0, py::arg("size") = py::none(),
       py::arg("platform") = "auto", py::arg("count") = "auto", py::arg("max_error") = kDefaultMaxError,
-      py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections") = false,
+      py::arg("max_missed") = kDefaultMaxMissedShare, py::arg("self_intersections").noconvert() = false,
       py::arg("report_dir") = py::none(), py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(),
-      py::arg("refine_grid") = 1, py::arg("chord_points") = false, py::arg("crossings") = "auto",
+      py::arg("refine_grid") = 1, py::arg("chord_points").noconvert() = false, py::arg("crossings") = "auto",
       "Renders a frame and checks it by ray casting, as `shadowvol validate` does: returns the report as a dict "
       "(pixels, meshChecks, stencilVsCount, zfailVsZpass, againstExact, errorCauses, leaks, verdict, passed, scene, volume, options: "
       "capture and captureAuto, warnings); capture='auto' (the default) as `--capture auto`; with "

@@ -211,10 +211,10 @@ VolumeMesh meshFromArrays(const py::array_t<double, py::array::forcecast>& v,
 
 void registerVolume(py::module_& m) {
   m.def("build_volume", &buildVolumeArrays, py::arg("depth"), py::kw_only(), py::arg("triangulation") = "perfect",
-        py::arg("blur") = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
-        py::arg("flatten_cap") = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
-        py::arg("chord_points") = false, py::arg("refine_grid") = 1, py::arg("refine_grid_everywhere") = false,
-        py::arg("hidden_search") = true,
+        py::arg("blur").noconvert() = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
+        py::arg("flatten_cap").noconvert() = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
+        py::arg("chord_points").noconvert() = false, py::arg("refine_grid") = 1, py::arg("refine_grid_everywhere").noconvert() = false,
+        py::arg("hidden_search").noconvert() = true,
         "The shadow volume of a depth map: (V, F, stats) with V float64 N x 3 (world units), F int32 M x 3 "
         "(counter-clockwise seen from outside) and stats a dict of counts and times (milliseconds). With the exact "
         "cap (default) the mesh is closed, outward and welded (docs/volume.md). refine=K (1..16) places each wall "
@@ -252,7 +252,7 @@ void registerVolume(py::module_& m) {
           throw py::error_already_set();  // a warnings filter made it an error
         return py::make_tuple(written.origin.x, written.origin.y, written.origin.z);
       },
-      py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision") = false,
+      py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision").noconvert() = false,
       "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "
       "atomically (a failure leaves no file). Coordinates are written as float32 unless double_precision=True "
       "(PLY doubles, OBJ/OFF 17 digits; STL stores float only and refuses it). In float32, V lying so far from "

@@ -303,6 +303,7 @@ TEST(Sweep, SceneNamesAreCheckedBeforeAnythingIsMeasured) {
   std::filesystem::create_directories(other);
   std::filesystem::copy_file(test::sourceDir() / "data/scenes/plate.json", other / "default.json");
   std::filesystem::copy_file(test::sourceDir() / "data/scenes/plate.json", other / "a,b.json");
+  std::filesystem::copy_file(test::sourceDir() / "data/scenes/plate.json", other / "a\"b.json");
   gl::Renderer renderer;
   const std::atomic<bool> stop{false};
   std::vector<std::string> notes;
@@ -318,6 +319,7 @@ TEST(Sweep, SceneNamesAreCheckedBeforeAnythingIsMeasured) {
   EXPECT_NE(refusal({std::filesystem::path(), other / "default.json"}).find("the built-in scene"), std::string::npos);
   EXPECT_NE(refusal({plate, plate}).find("given twice"), std::string::npos);
   EXPECT_NE(refusal({plate, other / "a,b.json"}).find("a comma"), std::string::npos);
+  EXPECT_NE(refusal({plate, other / "a\"b.json"}).find("a double quote"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));  // nothing measured, nothing written
   SweepOptions o = quickSweep({plate}, {"shadowmap"}, 32, 24, dir / "once");
   o.fits = {LightFit::Scene};

@@ -236,8 +236,9 @@ def test_arguments_the_command_line_refuses_are_refused(tmp_path, depth):
     with pytest.raises(sv.InputError, match=r"single precision"):
         sv.export(np.full((3, 3), 1e300), np.array([[0, 1, 2]]), tmp_path / "huge.ply")
     assert not (tmp_path / "huge.ply").exists()
-    sv.export(np.full((3, 3), 1e300) * np.array([1, 2, 3]), np.array([[0, 1, 2]]), tmp_path / "huge.obj",
-              double_precision=True)  # doubles hold it
+    with pytest.warns(RuntimeWarning, match="two corners at one position"):  # its three corners are one point
+        sv.export(np.full((3, 3), 1e300) * np.array([1, 2, 3]), np.array([[0, 1, 2]]), tmp_path / "huge.obj",
+                  double_precision=True)  # doubles hold it
     with pytest.raises(sv.InputError, match=r"origin"):
         sv.DepthMap.from_array(depth.depth, depth.light_view, depth.light_projection, depth.near, depth.far,
                                origin=[1e300, 0, 0])
@@ -552,3 +553,11 @@ def test_library_refusals_name_keywords(tmp_path, depth, scene):
             sv.render(scene, size=(32, 24), platform="bogus")
         with pytest.raises(sv.InputError, match=r"^python: report_dir = \"\": an output folder is required"):
             sv.validate(scene, size=(32, 24), report_dir="")
+
+
+def test_switches_take_booleans_only(depth):
+    """A twenty-first probe's finding: blur=None and flatten_cap=None meant False, blur=2 True."""
+    for kw in (dict(blur=None), dict(flatten_cap=None), dict(blur=2), dict(chord_points=0)):
+        with pytest.raises(TypeError):
+            sv.build_volume(depth, **kw)
+    assert sv.build_volume(depth, blur=np.bool_(False))[0].shape == sv.build_volume(depth)[0].shape

@@ -245,10 +245,11 @@ void checkSceneNames(const std::vector<std::filesystem::path>& scenes, const std
   std::map<std::string, std::filesystem::path> seen;
   for (const auto& scene : scenes) {
     const std::string label = sceneLabel(scene), shown = scene.empty() ? "(the built-in scene)" : scene.string();
-    if (label.find_first_of(",\n\r") != std::string::npos)
+    // A double quote too: an unquoted field holding one is not CSV (RFC 4180; a twenty-second probe).
+    if (label.find_first_of(",\"\n\r") != std::string::npos)
       throw InputError("SweepOptions", "scenes", shown,
-                       "its name \"" + label + "\" holds a comma or a line break, which " + csv.string() +
-                           " cannot hold: copy the scene to a file named without them");
+                       "its name \"" + label + "\" holds a comma, a double quote or a line break, which " +
+                           csv.string() + " cannot hold: copy the scene to a file named without them");
     const auto [at, fresh] = seen.emplace(label, scene);
     if (!fresh)
       throw InputError("SweepOptions", "scenes", shown,
