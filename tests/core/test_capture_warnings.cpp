@@ -1,5 +1,9 @@
 // captureWarnings (capture_warnings.h): what a depth map will miss, said by name before capture.
+#include <cmath>
+
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 
 #include "shadowvol/capture_warnings.h"
 #include "shadowvol/primitives.h"
@@ -73,6 +77,32 @@ TEST(CaptureWarnings, ObjectBetweenTexelCentresIsNamedWithTheResolutionThatCatch
   ASSERT_EQ(d.size(), 1u);
   EXPECT_NE(d[0].find("no node of the 4 x 4 sub-grid"), std::string::npos) << d[0];
   EXPECT_NE(d[0].find("40 x 40"), std::string::npos) << d[0];
+}
+
+// An object whose box spans texel centres but whose image holds none (a diamond of 1.6 texels
+// centred on a texel corner: its box holds four centres, its image none, as a twenty-second
+// probe's sphere beside a wide spot's apex) is named; turned by 45 degrees, a square of the same
+// width covers the four centres and is not.
+TEST(CaptureWarnings, AnImageBetweenTexelCentresIsJudgedByItsTrianglesNotItsBox) {
+  const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);
+  const glm::dvec3 corner = 0.5 * (probe.worldPoint(7, 7, 1.0) + probe.worldPoint(8, 8, 1.0));
+  const double texel = glm::length(probe.worldPoint(8, 7, 1.0) - probe.worldPoint(7, 7, 1.0));
+  const auto plate = [&](bool diamond) {  // a thin plate, 1.6 texels wide, 0.5 above the map's far side
+    const double r = 0.8 * texel;
+    TriangleMesh m;
+    for (int k = 0; k < 4; ++k) {
+      const double a = (diamond ? 0.0 : 0.25) * 3.14159265358979 + k * 3.14159265358979 / 2;
+      const double q = diamond ? r : r * std::sqrt(2.0);
+      m.positions.push_back(glm::vec3(float(corner.x + q * std::cos(a)), 2.0f, float(corner.z + q * std::sin(a))));
+    }
+    m.triangles = {{0, 1, 2}, {0, 2, 3}, {2, 1, 0}, {3, 2, 0}};  // both sides
+    return m;
+  };
+  const auto named = captureWarnings(sceneWith({SceneObject{"diamond", "mesh", plate(true)}}), 16, 16, CaptureMode::Front);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_NE(named[0].find("\"diamond\" spans 1.6 x 1.6 texels"), std::string::npos) << named[0];
+  EXPECT_NE(named[0].find("a map of about 32 x 32 or more"), std::string::npos) << named[0];  // not a coarser one
+  EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"square", "mesh", plate(false)}}), 16, 16, CaptureMode::Front).empty());
 }
 
 // Many objects of one kind: the first 20 are named, one more line counts the rest (a probe's

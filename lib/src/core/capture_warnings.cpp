@@ -1,9 +1,11 @@
 #include "shadowvol/capture_warnings.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -55,6 +57,33 @@ bool hasAreaInView(const DepthMap& probe, const TriangleMesh& mesh) {
   return false;
 }
 
+// Whether a node (multiples of 1 / s in texel coordinates) in the box [lo, hi] lies inside the image
+// of a triangle of `mesh` (edges included; every vertex in front of the light). A box holding more
+// than kExactNodes nodes is taken as covered: only small objects are tested node by node (a
+// twenty-second probe's sphere beside a 179-degree spot's apex spanned 1.3 texels around a texel
+// corner, its box over four centres, its disk over none, and went unwarned).
+bool coversNode(const DepthMap& probe, const TriangleMesh& mesh, glm::dvec2 lo, glm::dvec2 hi, double s) {
+  constexpr double kExactNodes = 64;
+  const double i0 = std::ceil(lo.x * s), i1 = std::floor(hi.x * s), j0 = std::ceil(lo.y * s), j1 = std::floor(hi.y * s);
+  if (i1 < i0 || j1 < j0) return false;
+  if ((i1 - i0 + 1) * (j1 - j0 + 1) > kExactNodes) return true;
+  std::vector<std::array<glm::dvec2, 3>> images;
+  images.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    images.push_back({probe.texelOf(glm::dvec3(mesh.positions[t[0]])), probe.texelOf(glm::dvec3(mesh.positions[t[1]])),
+                      probe.texelOf(glm::dvec3(mesh.positions[t[2]]))});
+  const auto side = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+  for (double i = i0; i <= i1; ++i)
+    for (double j = j0; j <= j1; ++j) {
+      const glm::dvec2 p(i / s, j / s);
+      for (const auto& [a, b, c] : images) {
+        const double u = side(a, b, p), v = side(b, c, p), w = side(c, a, p);
+        if ((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0)) return true;
+      }
+    }
+  return false;
+}
+
 // The warning for an object of `probe`'s map (its light, W x H) that covers no texel centre, nor
 // a node of the S x S sub-grid that searches for hidden surfaces (S = hiddenSearchGrid > 1), or
 // whose triangles have no area in the light's view (the remedy names maps up to maxSide a side);
@@ -76,14 +105,15 @@ std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hid
   // A texel centre (integer coordinates), or a sub-grid node (multiples of 1/S), inside [lo, hi]
   // on both axes, and a triangle with area to hold it?
   const double s = std::max(1, hiddenSearchGrid);
-  const bool coversX = std::floor(hi.x * s) >= std::ceil(lo.x * s), coversY = std::floor(hi.y * s) >= std::ceil(lo.y * s);
   const bool area = hasAreaInView(probe, o.mesh);
-  if (coversX && coversY && area) return "";
+  if (area && coversNode(probe, o.mesh, lo, hi, s)) return "";
   if (!area)
     return "object \"" + o.name + "\" has no area in the light's view (its triangles are seen exactly edge-on, or " +
            "have zero area): it casts no shadow, whatever the resolution";
   const double span = std::max(1e-9, std::min(hi.x - lo.x, hi.y - lo.y));
-  const double need = std::ceil(std::max(width, height) / (span * s));
+  double need = std::ceil(std::max(width, height) / (span * s));
+  if (span * s >= 1.0)  // its box spans nodes that its image misses: a finer map than this one, at least
+    need = std::max(need, 2.0 * std::max(width, height));
   char remedy[160];
   if (need <= maxSide)
     std::snprintf(remedy, sizeof remedy, "a map of about %.0f x %.0f or more would catch it", need, need);
