@@ -352,7 +352,10 @@ TEST(Cli, VolumeOptionConflictsNameTheOtherFlag) {
                                                 "bisection rays alone: not with --chord-points, --refine-grid above 1"},
            {"render --volume explicit --refine 2 --crossings gpu-walk",
             "--crossings = gpu-walk: a point light's explicit volume finds its crossings by the scene's rays alone: "
-            "--crossings rays, or --volume gpu for the GPU's"}}) {
+            "--crossings rays, or --volume gpu for the GPU's"},
+           // A twenty-fourth probe: these two exited 1 beside the others' 2.
+           {"render --count zpass", "--count = zpass: a point light's volume is counted by z-fail only"},
+           {"render --method dpsm --capture entry", "--capture = entry: the dual-paraboloid map takes back or front"}}) {
     const CliResult r = runCli(args + " --resolution 16 --scene " + room + " --out " +
                                (test::tempDir() / (args.substr(0, 5) == "build" ? "p.ply" : "p.png")).string());
     EXPECT_EQ(r.code, 2) << args << r.out;

@@ -7,7 +7,8 @@ bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam,
                                  RenderResult& result) const {
   if (givenVolume || o.method != ShadowMethod::Hybrid || o.volumeCount == VolumeCount::ZFail) return false;
   if (light.type == LightType::Point) {  // zpass.h decides for one frustum; the cube has six
-    if (o.volumeCount == VolumeCount::ZPass) throw InputError("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
+    if (o.volumeCount == VolumeCount::ZPass)
+      throw OptionConflict("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
     result.zPassRefused = kPointZPassRule;
     return false;
   }

@@ -18,12 +18,12 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     // Here too rather than in chooseZPass mid-frame, so that several lights name this one (a
     // second probe's finding).
     if (o.volumeCount == VolumeCount::ZPass)
-      throw InputError("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
+      throw OptionConflict("RenderOptions", "volumeCount", "zpass", kPointZPassRule);
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineSubdivisions > 1)
       throw OptionConflict("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
                            MarkedProblem{kCubeRefinementRule});
     if (o.volumeOptions.cap != FarCap::Exact)
-      throw InputError("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
+      throw OptionConflict("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
     if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
   }
   const bool shadowMap =
@@ -33,8 +33,8 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
                      "a point light's cube shadow map needs OpenGL 4.3 (glCopyImageSubData); this context has " +
                          context.info().glVersion);
   if (o.method == ShadowMethod::Dpsm && usesTwoLayers(o.capture))
-    throw InputError("RenderOptions", "capture", toString(o.capture),
-                     "the dual-paraboloid map takes back or front capture (it has no second layer)");
+    throw OptionConflict("RenderOptions", "capture", toString(o.capture),
+                         "the dual-paraboloid map takes back or front capture (it has no second layer)");
   const int s = o.paraboloidSubdivision;
   if (s != 1 && s != 2 && s != 4 && s != 8)
     throw InputError("RenderOptions", "paraboloidSubdivision", std::to_string(s), "must be 1, 2, 4 or 8");
