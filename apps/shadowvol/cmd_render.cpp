@@ -170,7 +170,7 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
       nlohmann::json j = {
           {"scene", describeScene(scene)},
           {"lightFit", lightFit},
-          {"gl", describeContext(info)},
+          {"gl", gl::describeContext(info)},
           {"method", o->render.method},
           {"volume", o->render.method == "hybrid" ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
           {"depthFrom", depthFromUsed(o->render, ro, result)},

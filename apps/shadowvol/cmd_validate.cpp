@@ -228,7 +228,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
 
       nlohmann::json j;
       j["scene"] = describeScene(scene);
-      j["gl"] = describeContext(renderer.info());
+      j["gl"] = gl::describeContext(renderer.info());
       j["options"] = {{"method", o->render.method},
                       {"volume", hybrid ? nlohmann::json(gl::toString(ro.volume)) : nlohmann::json()},
                       {"depthFrom", depthFromUsed(o->render, ro, result)},

@@ -272,9 +272,4 @@ std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::Ren
   return oracle;
 }
 
-nlohmann::json describeContext(const gl::ContextInfo& info) {
-  return {{"platform", info.platform}, {"device", info.device},         {"eglVendor", info.eglVendor},
-          {"glVendor", info.glVendor}, {"glRenderer", info.glRenderer}, {"glVersion", info.glVersion}};
-}
-
 }  // namespace shadowvol::cli

@@ -66,7 +66,5 @@ void checkRenderOptionConflicts(const RenderCliOptions& o);
 /// oracle, set as ro.volumeOptions.depthOracle; keep the returned object alive while rendering. Null otherwise.
 std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::RenderOptions& ro);
 
-/// The GL context as JSON (platform, device, vendors, renderer, version).
-nlohmann::json describeContext(const gl::ContextInfo& info);
 
 }  // namespace shadowvol::cli

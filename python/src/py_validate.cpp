@@ -264,7 +264,8 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
       j["passed"] = passed;
     }
     j["scene"] = describeScene(scene);
-    j["glRenderer"] = r.renderer.info().glRenderer;
+    j["gl"] = gl::describeContext(r.renderer.info());  // as the command line's report
+    j["sceneWarnings"] = s.warnings;
     if (drawsVolume) j["volumeCount"] = gl::toString(result.volumeCountUsed);  // as the command line's report
     j["shadowvolVersion"] = SHADOWVOL_VERSION;
     if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);

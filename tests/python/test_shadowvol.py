@@ -561,3 +561,12 @@ def test_switches_take_booleans_only(depth):
         with pytest.raises(TypeError):
             sv.build_volume(depth, **kw)
     assert sv.build_volume(depth, blur=np.bool_(False))[0].shape == sv.build_volume(depth)[0].shape
+
+
+@needs_gl
+def test_validate_reports_the_context_and_scene_warnings_as_the_command_line(scene):
+    """A twenty-fourth probe's finding: Python's report had `glRenderer` where report.json has `gl`,
+    and no `sceneWarnings`."""
+    r = sv.validate(scene, resolution=64, size=(64, 48))
+    assert r["gl"]["glRenderer"] and "platform" in r["gl"] and "glRenderer" not in r
+    assert r["sceneWarnings"] == scene.warnings

@@ -234,6 +234,11 @@ std::string deviceDescription(EGLDeviceEXT device) {
 
 }  // namespace
 
+nlohmann::json describeContext(const ContextInfo& info) {
+  return {{"platform", info.platform}, {"device", info.device},         {"eglVendor", info.eglVendor},
+          {"glVendor", info.glVendor}, {"glRenderer", info.glRenderer}, {"glVersion", info.glVersion}};
+}
+
 EglContext EglContext::create(const ContextOptions& options) {
   const std::string& p = options.platform;
   if (p != "auto" && p != "device" && p != "surfaceless" && p != "default")

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace shadowvol::gl {
 
 struct ContextOptions {
@@ -35,6 +37,10 @@ struct ContextInfo {
                                       ///< times with glFinish + wall clock)
   std::vector<std::string> attempts;  ///< one line per platform/display tried before success
 };
+
+/// The context as JSON (platform, device, vendors, renderer, version): report.json's and the
+/// command line's `gl`, the Python module's too.
+nlohmann::json describeContext(const ContextInfo& info);
 
 /// Owns an EGL display reference and context; current on the creating thread after create().
 /// Move-only. Destruction releases the context and, with the last user, terminates the display.
