@@ -355,7 +355,8 @@ TEST(Cli, VolumeOptionConflictsNameTheOtherFlag) {
             "--crossings rays, or --volume gpu for the GPU's"},
            // A twenty-fourth probe: these two exited 1 beside the others' 2.
            {"render --count zpass", "--count = zpass: a point light's volume is counted by z-fail only"},
-           {"render --method dpsm --capture entry", "--capture = entry: the dual-paraboloid map takes back or front"}}) {
+           {"render --method dpsm --capture entry", "--capture = entry: the dual-paraboloid map takes back or front"},
+           {"render --volume gpu --gpu-draw kept-quads", "--gpu-draw = kept-quads: a point light's GPU cube volume"}}) {
     const CliResult r = runCli(args + " --resolution 16 --scene " + room + " --out " +
                                (test::tempDir() / (args.substr(0, 5) == "build" ? "p.ply" : "p.png")).string());
     EXPECT_EQ(r.code, 2) << args << r.out;
@@ -1045,6 +1046,28 @@ TEST(CliGl, ValidateFailsAHoleInTheShadow) {
   EXPECT_EQ(whole.code, 0) << whole.out;
 }
 
+// A rod thinner than a 64^2 map's texels casts a line of shadow the map loses: beside the sphere's
+// large shadow the frame's missed share was 10 % and it passed (a twenty-third probe); judged per
+// occluder it fails, naming the rod, and the refined explicit volume with the sub-grid passes.
+TEST(CliGl, ValidateFailsAThinOccludersLostShadow) {
+  if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
+  const auto dir = test::tempDir();
+  test::writeText(dir / "rod.json", R"({"objects":[{"type":"plane","name":"ground","size":20},
+      {"type":"sphere","name":"sphere","radius":1,"detail":4,"transform":{"translate":[0,2,0]}},
+      {"type":"box","name":"rod","size":[5,0.045,0.045],"transform":{"translate":[-1.5,1.0,3.0]}}],
+    "light":{"type":"spot","position":[3,9,2],"target":[-0.3,0,-0.2],"fov":55},
+    "camera":{"eye":[0,6,11],"target":[0,1,0],"fov":45,"width":320,"height":240}})");
+  const std::string scene = (dir / "rod.json").string();
+  const CliResult lost = runCli("validate --resolution 64 --scene " + scene + " --report " + (dir / "a").string());
+  EXPECT_EQ(lost.code, 3) << lost.out;
+  EXPECT_TRUE(contains(lost.out, "pixels of object \"rod\"'s shadow")) << lost.out;
+  const auto report = nlohmann::json::parse(test::readText(dir / "a" / "report.json"));
+  EXPECT_EQ(report["shadowsByOccluder"]["worst"]["object"], 2);
+  const CliResult found = runCli("validate --resolution 64 --volume explicit --refine 6 --refine-grid 4 --scene " +
+                                 scene + " --report " + (dir / "b").string());
+  EXPECT_EQ(found.code, 0) << found.out;
+}
+
 // A shadow that reaches a given light window's edge is lit along it (the volume's outermost texel
 // ring lies on the far plane): a twentieth probe's band passed; it fails now as border errors,
 // and the same plate under a window that holds its whole shadow passes.
@@ -1137,7 +1160,7 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_TRUE(contains(depth.out, "/light/type")) << depth.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "d.pfm"));
   const CliResult map = runCli("render --gpu-draw kept-quads --scene " + room + " --out " + (dir / "f.png").string());
-  EXPECT_EQ(map.code, 1);
+  EXPECT_EQ(map.code, 2);  // an option the point light refuses: a conflict, as its others
   EXPECT_TRUE(contains(map.out, "--gpu-draw")) << map.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
   // Refined by the scene's rays (build: the explicit volume) and on the GPU (the six refined face
@@ -1165,13 +1188,13 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   for (const char* v : {"gpu", "explicit"}) {  // the cube has no border ring for the quad cap: named as --cap
     const CliResult quad = runCli(std::string("render --cap quad --volume ") + v + " --scene " + room + " --out " +
                                   (dir / "q.png").string());
-    EXPECT_EQ(quad.code, 1) << v;
+    EXPECT_EQ(quad.code, 2) << v;
     EXPECT_TRUE(contains(quad.out, "--cap")) << quad.out;
     EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
   }
   const CliResult quadBuild = runCli("build --cap quad --resolution 16 --scene " + room + " --out " +
                                      (dir / "q.ply").string());
-  EXPECT_EQ(quadBuild.code, 1);
+  EXPECT_EQ(quadBuild.code, 2);
   EXPECT_TRUE(contains(quadBuild.out, "--cap")) << quadBuild.out;
   // The dual-paraboloid baseline: its maps beside the cube map's in the report.
   const CliResult d = runCli("validate --json --method dpsm --dpsm-subdivide 4 --resolution 32 --size 160x120 --scene " + room +
@@ -1184,7 +1207,7 @@ TEST(CliGl, PointLightBuildsAndValidates) {
   EXPECT_GT(jd["dualParaboloid"]["largestTexelOverCubes"].get<double>(), 1.0);
   const CliResult mid = runCli("validate --method dpsm --capture midpoint --scene " + room + " --report " +
                                (dir / "mid").string());
-  EXPECT_EQ(mid.code, 1);
+  EXPECT_EQ(mid.code, 2);
   EXPECT_TRUE(contains(mid.out, "--capture")) << mid.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "mid"));
 }
@@ -1241,7 +1264,7 @@ TEST(CliGl, SeveralLightsValidatePerLightAndBuildOneByOne) {
   EXPECT_EQ(gpu.code, 0) << gpu.out;
   EXPECT_TRUE(std::filesystem::exists(dir / "g.png"));
   const CliResult quad = runCli("render --cap quad --scene " + scene + " --out " + (dir / "q.png").string());
-  EXPECT_EQ(quad.code, 1);
+  EXPECT_EQ(quad.code, 2);
   EXPECT_TRUE(contains(quad.out, "light 1") && contains(quad.out, "--cap")) << quad.out;  // the cube has no quad cap
   EXPECT_FALSE(std::filesystem::exists(dir / "q.png"));
   // bench scores one light: refused before anything is written (it once left a header-only

@@ -112,13 +112,14 @@ double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localSc
 }
 
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double sceneOffset) {
+                                     double sceneOffset, std::vector<std::uint32_t>* occluders) {
   SV_CHECK_EQ(hits.triangle.size(), hits.depth.size());  // hits from castPrimaryRays
   const Light& light = description.light;
   const bool point = light.type == LightType::Point;
   const glm::dmat4 lv = lightView(light), lp = point ? glm::dmat4(1.0) : lightProjection(light);
   const glm::dvec3 towardsLight = -glm::normalize(light.direction);
   std::vector<PixelClass> out(hits.depth.size(), PixelClass::Background);
+  if (occluders) occluders->assign(out.size(), kNoOccluder);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, out.size(), 256), [&](const tbb::blocked_range<std::size_t>& b) {
     for (std::size_t k = b.begin(); k != b.end(); ++k) {
       if (hits.isBackground(k)) continue;
@@ -149,12 +150,18 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
       const double local = std::min(glm::length(p - description.camera.eye), tfar);
       const double off = shadowRayOffsetAt(sceneOffset, p, local);
       const glm::dvec3 org = p + n * off;
-      RTCRay ray = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - off : INFINITY)).ray;
+      const RTCRayHit shadowRay = makeRayHit(org, l, 0.0f, float(std::isfinite(tfar) ? tfar - off : INFINITY));
+      RTCRay ray = shadowRay.ray;
       SkipContext ctx{{}, hits.triangle[k].geomID, hits.triangle[k].primID};
       rtcInitIntersectContext(&ctx.ctx);
       ctx.ctx.filter = skipOwnTriangle;
       rtcOccluded1(scene.get(), &ctx.ctx, &ray);
       out[k] = ray.tfar < 0.0f ? PixelClass::Shadowed : PixelClass::Lit;  // Embree sets tfar = -inf on a hit
+      if (occluders && out[k] == PixelClass::Shadowed) {  // the same ray, its nearest hit
+        RTCRayHit nearest = shadowRay;
+        rtcIntersect1(scene.get(), &ctx.ctx, &nearest);
+        (*occluders)[k] = nearest.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kNoOccluder : nearest.hit.geomID;
+      }
     }
   });
   return out;

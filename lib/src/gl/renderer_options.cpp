@@ -60,8 +60,8 @@ void Renderer::Impl::validateGpuCubeVolume(const RenderOptions& o) const {
                          context.info().glVersion + ": use volume explicit");
   const GpuVolumeDraw d = o.gpuVolumeDraw;
   if (d != GpuVolumeDraw::Auto && d != GpuVolumeDraw::Indexed && d != GpuVolumeDraw::AllQuads)
-    throw InputError("RenderOptions", "gpuVolumeDraw", toString(d),
-                     "a point light's GPU cube volume is drawn indexed (auto) or one point per cell (all-quads)");
+    throw OptionConflict("RenderOptions", "gpuVolumeDraw", toString(d),
+                         "a point light's GPU cube volume is drawn indexed (auto) or one point per cell (all-quads)");
 }
 
 void Renderer::Impl::checkOffsetRanges(const RenderOptions& o) const {

@@ -184,7 +184,8 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   for (const auto& o : scene.objects) meshes.push_back(&o.mesh);
   const EmbreeScene sceneRt(device, meshes);
   const CameraHits hits = castPrimaryRays(sceneRt, scene.camera);
-  v.exact = exactShadows(sceneRt, scene, hits, options.exactOffsetScale * shadowRayOffset(scene));
+  std::vector<std::uint32_t> occluders;
+  v.exact = exactShadows(sceneRt, scene, hits, options.exactOffsetScale * shadowRayOffset(scene), &occluders);
   for (PixelClass c : v.exact) {
     switch (c) {
       case PixelClass::Background: ++v.background; break;
@@ -202,6 +203,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     methodShadowed[k] = !frame.shadowed.empty() ? frame.shadowed[k] != 0 : (frame.hybrid && frame.stencil[k] != 0);
     score(v.methodError, v.exact[k], methodShadowed[k] != 0);
   }
+  v.lostShadows = findLostShadows(v.exact, methodShadowed, occluders);
   if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
     v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed, frame.hybrid);
   if (frame.leakMapSide) {
@@ -349,6 +351,14 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     inaccurate.push_back("the method misses " + std::to_string(v.leaks->deep) + " pixels deep inside the exact "
                          "shadow, further from its outline than its texels and depth offset reach (at most " +
                          std::to_string(kMaxLeakPixels) + "): a hole in the shadow (the first at pixel " + pixelText(v.leaks->firstDeep.front(), frame.width) + ", row 0 at the top)");
+  if (const auto& worst = v.lostShadows.worst;
+      worst && double(worst->missed) > options.maxMissedShare * double(worst->pixels))
+    inaccurate.push_back("the method misses " + std::to_string(worst->missed) + " of the " +
+                         std::to_string(worst->pixels) + " pixels of object \"" + scene.objects[worst->object].name +
+                         "\"'s shadow (the first at pixel " + pixelText(worst->first, frame.width) +
+                         ", row 0 at the top), more than " + percent(options.maxMissedShare) +
+                         ": a shadow lost (an occluder thinner than the method's texels, say: a finer map, or the "
+                         "explicit volume's sub-grid, finds it)");
   if (v.errorCauses && v.errorCauses->border > kMaxLeakPixels)
     inaccurate.push_back("the method misclassifies " + std::to_string(v.errorCauses->border) +
                          " pixels less than a texel inside the light window's border ring, where a shadow reaches "

@@ -76,6 +76,20 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
   else
     j["errorCauses"] = "not computed: only for the depth-map methods (hybrid, shadowmap, pcf3, pcf5) of a spot or "
                        "directional light";
+  {
+    nlohmann::json lost = {{"occluders", v.lostShadows.occluders},
+                           {"judged", v.lostShadows.judged},
+                           {"minPixels", kMinOccluderPixels},
+                           {"rule", "each exactly shadowed pixel belongs to the object its exact shadow ray meets "
+                                    "first; an object shadowing at least minPixels pixels may have at most the "
+                                    "allowed missed share of them missed"}};
+    if (const auto& w = v.lostShadows.worst)
+      lost["worst"] = {{"object", w->object},
+                       {"pixels", w->pixels},
+                       {"missed", w->missed},
+                       {"firstPixel", {w->first % std::size_t(v.width), w->first / std::size_t(v.width)}}};
+    j["shadowsByOccluder"] = lost;
+  }
   if (v.leaks)
     j["leaks"] = {{"deep", v.leaks->deep},
                   {"allowed", kMaxLeakPixels},

@@ -74,9 +74,12 @@ double shadowRayOffsetAt(double sceneOffset, const glm::dvec3& p, double localSc
 /// off the surface along its normal, and passing through the triangle the point lies on (a filter
 /// skips it, so round-off in the hit point cannot shadow a point by its own triangle). The
 /// default, sceneOffset 0, starts each ray at the floor: the reference every figure since
-/// 2026-12-06 uses. Parallel and deterministic.
+/// 2026-12-06 uses. Parallel and deterministic. With `occluders`, each Shadowed pixel's nearest
+/// occluder along that ray (its geometry ID: the object's index in the scene the BVH was built
+/// from) is stored there by one more ray, kNoOccluder elsewhere.
+inline constexpr std::uint32_t kNoOccluder = 0xffffffffu;
 std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& description, const CameraHits& hits,
-                                     double sceneOffset = 0.0);
+                                     double sceneOffset = 0.0, std::vector<std::uint32_t>* occluders = nullptr);
 
 /// Signed crossing counts of a closed volume along each camera ray.
 ///  zfail[k]: from the visible point to infinity, +1 for each crossing that leaves the volume

@@ -17,6 +17,7 @@
 #include "shadowvol/scene.h"
 #include "shadowvol/validate/error_causes.h"
 #include "shadowvol/validate/shadow_leaks.h"
+#include "shadowvol/validate/lost_shadows.h"
 #include "shadowvol/volume_builder.h"
 
 namespace shadowvol {
@@ -134,6 +135,7 @@ struct FrameValidation {
   std::optional<ErrorCauses> errorCauses;  ///< methodError's pixels by cause, with RenderedFrame::depthOffset
   std::optional<ShadowLeaks> leaks;        ///< methodError's missed pixels deep in the exact shadow (shadow_leaks.h),
                                            ///< with RenderedFrame::leakMapSide
+  LostShadows lostShadows;                 ///< each occluder's shadow judged (lost_shadows.h)
   /// The consistency verdict (hybrid): stencil vs count >= kRequiredAgreement and the mesh checks
   /// pass; always true for the shadow-map baselines. With the quad cap the outward check does not
   /// apply (its far rectangle coincides with the far-plane sheet by design): closed, finite and
@@ -141,7 +143,8 @@ struct FrameValidation {
   bool consistent = true;
   /// The accuracy verdict: methodError within ValidationOptions::maxError and maxMissedShare, over
   /// at least one pixel (a frame with no visible pixel facing the light checks nothing: not accurate),
-  /// and at most kMaxLeakPixels deep missed pixels where the leak criterion judges the frame.
+  /// at most kMaxLeakPixels deep missed pixels where the leak criterion judges the frame, and at most
+  /// maxMissedShare of each occluder's shadow missed (lost_shadows.h).
   bool accurate = true;
   std::vector<std::string> failures;       ///< one sentence per failed criterion (empty when passed)
   std::string meshChecksNotApplicable;     ///< the checks left out, and why (empty: all apply)

@@ -58,7 +58,7 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
   if (o.cap != FarCap::Exact)
-    throw InputError("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
+    throw OptionConflict("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
   for (int f = 0; f < kCubeFaces; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {

@@ -1,0 +1,42 @@
+// The accuracy verdict's per-occluder criterion: each object's shadow is judged on its own (a
+// twenty-third probe's finding: a rod's thin shadow, 85 % missed, passed beside a sphere's large
+// one, which diluted the frame's missed share, and on its own when under the 100 pixels that share
+// needs; a shadow thinner than the method's texels has no pixel deep enough for the leak criterion).
+//
+// Every exactly shadowed pixel is attributed to its occluder: the object its exact shadow ray meets
+// first (exactShadows' occluders). An object whose shadow covers at least kMinOccluderPixels
+// pixels of the image is judged: the method may miss at most ValidationOptions::maxMissedShare of
+// them. A shadow lost whole (an occluder thinner than a texel, which no sample sees) fails; a large
+// object's self-shadows are judged with the rest of its shadow.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "shadowvol/embree/ray_queries.h"
+
+namespace shadowvol {
+
+inline constexpr std::size_t kMinOccluderPixels = 32;  ///< a smaller shadow is not judged on its own
+
+struct OccluderShadow {
+  std::uint32_t object = 0;  ///< the occluding object's index in the scene
+  std::size_t pixels = 0;    ///< exactly shadowed pixels it occludes first
+  std::size_t missed = 0;    ///< of which the method calls lit
+  std::size_t first = 0;     ///< the first of them in row order (row 0 at the top)
+};
+
+struct LostShadows {
+  std::size_t occluders = 0;             ///< objects that shadow some pixel
+  std::size_t judged = 0;                ///< of which shadow at least kMinOccluderPixels
+  std::optional<OccluderShadow> worst;   ///< the judged one with the largest missed share (ties: lower index)
+};
+
+/// Groups the exactly shadowed pixels by `occluders` (per pixel, kNoOccluder where none) and finds
+/// the worst judged group.
+LostShadows findLostShadows(const std::vector<PixelClass>& exact, const std::vector<std::uint8_t>& methodShadowed,
+                            const std::vector<std::uint32_t>& occluders);
+
+}  // namespace shadowvol
