@@ -166,8 +166,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       if (written.collapsedTriangles > 0) {  // float rounding beyond what the origin's choice avoids
         const std::string note = std::to_string(written.collapsedTriangles) +
                                  " triangles have two corners at one position as written (zero area in the file)" +
-                                 (o->worldCoords || ext == ".stl" ? std::string()
-                                                                   : ": --world-coords writes double precision");
+                                 (o->worldCoords || ext == ".stl" || ext == ".gltf" || ext == ".glb"
+                                      ? std::string()  // float only: a finer or nearer scene, or .ply/.obj/.off
+                                      : ": --world-coords writes double precision");
         std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
         j["warnings"].push_back(o->out + ": " + note);
       }

@@ -162,8 +162,10 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       "against the GPU stencil, z-fail against z-pass, and every shadow test against exact shadow rays; CGAL checks "
       "of the volume. Writes DIR/report.json and PNGs. Exit 0 when the frame is consistent (stencil and counts "
       "agree on >= 99.99% of visible pixels, the mesh checks pass) and accurate (the method's error within "
-      "--max-error and --max-missed, and no hole: at most 16 missed pixels deep inside the exact shadow, further "
-      "from its outline than the method's texels and depth offset reach), 3 otherwise, naming what failed");
+      "--max-error and --max-missed, over the whole shadow and over each object's shadow of at least 32 pixels; no "
+      "hole: at most 16 missed pixels deep inside the exact shadow, further from its outline than the method's "
+      "texels and depth offset reach; and for a shadow volume at most 16 missed in the band the light window's "
+      "border ring lights), 3 otherwise, naming what failed");
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--report", o->reportDir, "Folder for report.json and the images (created if missing)")->required();
   cmd->add_flag("--self-intersections", o->selfIntersections,
@@ -175,7 +177,9 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--max-missed", o->maxMissedShare,
                   "Accuracy verdict: the largest share of the exact shadow's pixels the method may miss (judged when "
-                  "the exact shadow has at least 100 pixels; an empty volume misses all of it)")
+                  "the exact shadow has at least 100 pixels; an empty volume misses all of it), and of each object's "
+                  "shadow of at least 32 pixels (the object its exact shadow ray meets first: a thin occluder's lost "
+                  "shadow)")
       ->check(finiteRange(0.0, 1.0))
       ->capture_default_str();
   cmd->add_option("--exact-offset-scale", o->exactOffsetScale,

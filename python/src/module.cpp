@@ -2,6 +2,9 @@
 // validation, with the library's rules and messages. Library errors become Python exceptions with
 // the same message: InputError -> shadowvol.InputError (a ValueError), GlError ->
 // shadowvol.GlError (a RuntimeError), anything else -> RuntimeError.
+#include <map>
+#include <string>
+
 #include "py_common.h"
 
 #include "shadowvol/capture_choice.h"
@@ -73,13 +76,37 @@ void checkResolutionArg(int resolution, const std::string& what) {
                      "must be between " + std::to_string(kMinVolumeMapSide) + " and " + std::to_string(kMaxDepthMapSide));
 }
 
+namespace {
+
+// The refusals by type (refuseBareInstances), for the C-level constructor slot below.
+std::map<PyTypeObject*, std::string>& bareInstanceRefusals() {
+  static std::map<PyTypeObject*, std::string> refusals;
+  return refusals;
+}
+
+PyObject* refuseNew(PyTypeObject* type, PyObject*, PyObject*) {
+  const auto& refusals = bareInstanceRefusals();
+  PyTypeObject* t = type;  // a Python subclass inherits the refusal
+  while (t && !refusals.count(t)) t = t->tp_base;
+  PyErr_SetString(PyExc_TypeError, t ? refusals.at(t).c_str() : "this shadowvol type has no constructor");
+  return nullptr;
+}
+
+}  // namespace
+
 void refuseBareInstances(py::handle cls, const std::string& howToMake) {
   const std::string name = py::str(cls.attr("__name__"));
-  const py::cpp_function refuse([name, howToMake](const py::args&, const py::kwargs&) -> py::object {
-    throw py::type_error("shadowvol." + name + " objects are made by " + howToMake + ", not by " + name +
-                         ".__new__");
-  });
+  const std::string text = "shadowvol." + name + " objects are made by " + howToMake + ", not by " + name + ".__new__";
+  bareInstanceRefusals()[reinterpret_cast<PyTypeObject*>(cls.ptr())] = text;
+  const py::cpp_function refuse([text](const py::args&, const py::kwargs&) -> py::object { throw py::type_error(text); });
   cls.attr("__new__") = py::reinterpret_steal<py::object>(PyStaticMethod_New(refuse.ptr()));
+  // Setting __new__ made the type's constructor slot call it; a C slot of its own instead makes
+  // Python refuse a base's __new__ on it too ("pybind11_object.__new__(DepthMap) is not safe"), as
+  // a pickle stream naming DepthMap.__base__.__new__ did (a second reader's finding: its object
+  // crashed when read). The module's functions make instances without __new__.
+  auto* type = reinterpret_cast<PyTypeObject*>(cls.ptr());
+  type->tp_new = refuseNew;
+  PyType_Modified(type);
 }
 
 }  // namespace shadowvol::python

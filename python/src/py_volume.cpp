@@ -1,5 +1,6 @@
 // Python: build_volume(depth, ...) -> (V, F, stats) and export(V, F, path).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -243,10 +244,15 @@ void registerVolume(py::module_& m) {
           py::gil_scoped_release release;
           written = writeVolumeMesh(mesh, path, doublePrecision);  // float: relative to V's box where far out
         }
+        std::string ext = path.extension().string();
+        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
         if (written.collapsedTriangles > 0 &&
             PyErr_WarnEx(PyExc_RuntimeWarning,
                          (path.string() + ": " + std::to_string(written.collapsedTriangles) +
-                          " triangles have two corners at one position as written (zero area in the file)")
+                          " triangles have two corners at one position as written (zero area in the file)" +
+                          (doublePrecision || ext == ".stl" || ext == ".gltf" || ext == ".glb"
+                               ? std::string()
+                               : std::string(": double_precision=True writes doubles")))
                              .c_str(),
                          1) < 0)
           throw py::error_already_set();  // a warnings filter made it an error
@@ -255,7 +261,8 @@ void registerVolume(py::module_& m) {
       py::arg("V"), py::arg("F"), py::arg("path"), py::kw_only(), py::arg("double_precision").noconvert() = false,
       "Writes a triangle mesh by the extension (case-insensitive): .ply (binary), .obj, .off, .stl, .gltf, .glb; "
       "atomically (a failure leaves no file). Coordinates are written as float32 unless double_precision=True "
-      "(PLY doubles, OBJ/OFF 17 digits; STL stores float only and refuses it). In float32, V lying so far from "
+      "(PLY doubles, OBJ/OFF 17 digits; glTF keeps float positions, its node's translation the origin; STL "
+      "stores float only and refuses it). In float32, V lying so far from "
       "the world origin that float would keep fewer than about 2^20 steps across it is written relative to the "
       "centre of its box (as a scene's mesh file is read), named in the PLY and OBJ comment 'shadowvol origin X Y "
       "Z', STL's header and glTF's node translation (OFF has no place for it). Returns that origin, (0, 0, 0) "

@@ -115,8 +115,6 @@ TEST(Cli, HelpAndUsage) {
   EXPECT_TRUE(contains(depthHelp.out, "entry"));
 }
 
-// A misspelt subcommand or option is named with the nearest valid name (regression: `buidl` said
-// "A subcommand is required", `build --hepl` "--out is required"); exit 2, nothing written.
 // A file name in another encoding than UTF-8 (Latin-1 "caf\xe9") ended build --json with an
 // internal error after the mesh was written (a twenty-second probe): JSON shows it as U+FFFD.
 TEST(Cli, FileNamesThatAreNotUtf8AreWrittenIntoJson) {
@@ -130,6 +128,8 @@ TEST(Cli, FileNamesThatAreNotUtf8AreWrittenIntoJson) {
   EXPECT_EQ(gltf["nodes"][0]["name"], "caf\xef\xbf\xbd");
 }
 
+// A misspelt subcommand or option is named with the nearest valid name (regression: `buidl` said
+// "A subcommand is required", `build --hepl` "--out is required"); exit 2, nothing written.
 TEST(Cli, MisspeltNamesAreNamedWithTheNearest) {
   const CliResult a = runCli("buidl");
   EXPECT_EQ(a.code, 2);

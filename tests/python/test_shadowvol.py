@@ -494,6 +494,19 @@ def test_pickles_of_every_protocol_and_no_bare_instances(depth, scene):
             cls.__new__(cls)
     with pytest.raises(TypeError, match="are made by"):
         pickle.loads(b"\x80\x02cshadowvol\nDepthMap\n)\x81.")
+    # A base's __new__ on them (a second reader's protocol-4 stream naming DepthMap.__base__.__new__).
+    for cls in (sv.DepthMap, sv.Scene):
+        with pytest.raises(TypeError):
+            cls.__base__.__new__(cls)
+        with pytest.raises(TypeError):
+            object.__new__(cls)
+    def global_(module, name):  # protocol 4: SHORT_BINUNICODE module, name, STACK_GLOBAL
+        return (b"\x8c" + bytes([len(module)]) + module.encode() + b"\x8c" + bytes([len(name)]) + name.encode() +
+                b"\x93")
+    stream = (b"\x80\x04" + global_("shadowvol", "DepthMap.__base__.__new__") + global_("shadowvol", "DepthMap") +
+              b"\x85R.")
+    with pytest.raises(TypeError):
+        pickle.loads(stream)
     # A tampered state is checked as from_array's arguments.
     state = list(depth.__reduce__()[1][0])
     state[3] = -1.0

@@ -25,7 +25,8 @@ DepthMap readDepthMap(const std::filesystem::path& pfm);
 void checkDepthValues(const DepthMap& map, const std::string& source);
 
 /// What checkDepthMapLight calls the map's fields: a side file's JSON pointers, the DepthMap
-/// struct's members (buildVolume's checks) or the Python keywords (DepthMap.from_array).
+/// struct's members (buildVolume's checks) or, given by the Python module itself, the keywords of
+/// DepthMap.from_array.
 struct DepthMapFieldNames {
   const char* size;
   const char* nearPlane;

@@ -402,6 +402,23 @@ void countCoincident(const Positions& P, const Triangles& T, WrittenVolume& w) {
 
 }  // namespace
 
+// The shift rounded to a multiple of a power of two about a quarter of the volume's extent, each
+// component, so that its text is short and exact (an STL header holds 80 bytes; a centre a hair
+// off zero printed as 1.2420184702932602e-07) while the positions stay within about the extent of
+// it; 0 stays 0.
+namespace {
+glm::dvec3 roundedShift(const glm::dvec3& shift, const VolumeMesh& mesh) {
+  if (shift == glm::dvec3(0.0)) return shift;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (const auto& t : mesh.triangles)
+    for (const std::uint32_t i : t) lo = glm::min(lo, mesh.positions[i]), hi = glm::max(hi, mesh.positions[i]);
+  const double extent = glm::length(hi - lo);
+  if (!(extent > 0.0)) return shift;
+  const double q = std::ldexp(1.0, int(std::floor(std::log2(extent / 4.0))));
+  return glm::round(shift / q) * q;
+}
+}  // namespace
+
 std::size_t coincidentVertices(const VolumeMesh& mesh) {
   WrittenVolume w;
   countCoincident(mesh.positions, std::vector<std::array<std::uint32_t, 3>>{}, w);
@@ -416,7 +433,7 @@ WrittenVolume writeVolumeMesh(const VolumeMesh& mesh, const std::filesystem::pat
     countCoincident(mesh.positions, mesh.triangles, w);
     return w;
   }
-  const glm::dvec3 shift = floatStorageOrigin(mesh.positions, mesh.triangles);
+  const glm::dvec3 shift = roundedShift(floatStorageOrigin(mesh.positions, mesh.triangles), mesh);
   w.origin = mesh.origin + shift;
   std::vector<glm::vec3> written(mesh.positions.size());  // as the file stores them
   for (std::size_t k = 0; k < written.size(); ++k) written[k] = glm::vec3(mesh.positions[k] - shift);

@@ -14,6 +14,7 @@
 #include "shadowvol/depth_map_io.h"
 #include "shadowvol/error.h"
 #include "shadowvol/far_cap.h"
+#include "shadowvol/scene.h"
 #include "shadowvol/sheet_depth.h"
 #include "shadowvol/silhouette_refinement.h"
 #include "volume/build_buffers.h"
@@ -86,6 +87,16 @@ void checkVolumeOffsets(const VolumeBuildOptions& options, double nearPlane, dou
                      numberText(e.blurOffset ? options.blurOffset : bias), e.why);
 }
 
+namespace {
+
+// The sub-grid's S: 1 (off), 2, 4 or 8.
+void checkRefineSubdivisions(int s) {
+  if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
+    throw InputError("volume options", "refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
+}
+
+}  // namespace
+
 void checkUserVolumeOptions(const VolumeBuildOptions& o) {
   // The problems name other options as ${field} marks (error.h): each front end spells them.
   auto refuseValue = [](const char* field, const std::string& value, const std::string& why) {
@@ -104,9 +115,7 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
   if (o.refineSteps < 0 || o.refineSteps > kMaxRefineSteps)
     refuseValue("refine steps", std::to_string(o.refineSteps),
                 "must be between 0 (off) and " + std::to_string(kMaxRefineSteps));
-  const int s = o.refineSubdivisions;
-  if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
-    refuseValue("refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
+  checkRefineSubdivisions(o.refineSubdivisions);
   if (o.refineSteps > 0 && o.cap != FarCap::Exact)
     refuse("refine steps", std::to_string(o.refineSteps),
            "needs the exact cap (${cap} exact: the quad cap keeps the far-plane sheet that refinement replaces by walls)");
@@ -139,7 +148,17 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (map.depth.size() != std::size_t(map.width) * std::size_t(map.height))
     throw InputError("DepthMap", "depth", std::to_string(map.depth.size()) + " values",
                      "expected width x height = " + std::to_string(map.width) + " x " + std::to_string(map.height));
-  if (map.width >= 2 && map.height >= 2) checkDepthMapLight(map, "DepthMap", kDepthMapMembers, true);
+  if (map.width >= 2 && map.height >= 2) {
+    checkDepthMapLight(map, "DepthMap", kDepthMapMembers, true);
+  } else {  // no quad, an empty volume: still no NaN planes or origin carried into it (a second reader's)
+    if (!(std::isfinite(map.nearPlane) && map.nearPlane >= 0.0))
+      throw InputError("DepthMap", "nearPlane", numberText(map.nearPlane), "near must be finite and >= 0");
+    if (!(map.farPlane > map.nearPlane && map.farPlane < 1e30))
+      throw InputError("DepthMap", "farPlane", numberText(map.farPlane), "far must be greater than near and below 1e30");
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))
+        throw InputError("DepthMap", "origin", numberText(map.origin[k]), "expected 3 finite numbers within +-1e12");
+  }
   checkVolumeOffsets(options, map.nearPlane, map.farPlane);
   if (options.refineSteps < 0 || options.refineSteps > kMaxRefineSteps)
     throw InputError("volume options", "refine steps", std::to_string(options.refineSteps),
@@ -154,8 +173,7 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
                      "chord points and the sub-grid sample points that only a depth oracle answers; the crossing "
                      "source gives the boundary edges' crossings alone");
   const int s = options.refineSubdivisions;
-  if (s < 1 || s > kMaxRefineSubdivisions || (s & (s - 1)) != 0)
-    throw InputError("volume options", "refine subdivisions", std::to_string(s), "must be 1 (off), 2, 4 or 8");
+  checkRefineSubdivisions(s);
   if (s > 1 && options.refineSteps == 0)
     throw OptionConflict("volume options", "refine subdivisions", std::to_string(s),
                      "the sub-grid is part of refinement: it needs refine steps of at least 1");

@@ -29,7 +29,8 @@ ErrorCauses splitErrorCauses(const Scene& scene, const DepthMap& map, double off
     wrong.push_back(k);
     const glm::dvec2 texel = map.texelOf(hits.point[k]);
     ndc.push_back(map.texelNdc(texel.x, texel.y));
-    band.push_back(volumeRing && inVolumeBorderBand(texel, map.width, map.height));
+    // Only a missed shadow: the ring on the far plane lights the band, it shadows nothing.
+    band.push_back(volumeRing && exact[k] == PixelClass::Shadowed && inVolumeBorderBand(texel, map.width, map.height));
   }
   if (wrong.empty()) return causes;
   const EmbreeDepthOracle oracle(scene);

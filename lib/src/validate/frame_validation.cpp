@@ -204,6 +204,7 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     score(v.methodError, v.exact[k], methodShadowed[k] != 0);
   }
   v.lostShadows = findLostShadows(v.exact, methodShadowed, occluders);
+  if (auto& w = v.lostShadows.worst; w && w->object < scene.objects.size()) w->name = scene.objects[w->object].name;
   if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
     v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed, frame.hybrid);
   if (frame.leakMapSide) {
@@ -354,16 +355,16 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
   if (const auto& worst = v.lostShadows.worst;
       worst && double(worst->missed) > options.maxMissedShare * double(worst->pixels))
     inaccurate.push_back("the method misses " + std::to_string(worst->missed) + " of the " +
-                         std::to_string(worst->pixels) + " pixels of object \"" + scene.objects[worst->object].name +
+                         std::to_string(worst->pixels) + " pixels of object \"" + worst->name +
                          "\"'s shadow (the first at pixel " + pixelText(worst->first, frame.width) +
                          ", row 0 at the top), more than " + percent(options.maxMissedShare) +
-                         ": a shadow lost (an occluder thinner than the method's texels, say: a finer map, or the "
-                         "explicit volume's sub-grid, finds it)");
-  if (v.errorCauses && v.errorCauses->border > kMaxLeakPixels)
-    inaccurate.push_back("the method misclassifies " + std::to_string(v.errorCauses->border) +
+                         " (--max-missed): a shadow lost (an occluder thinner than the method's texels, say: a finer "
+                         "map finds it" + (frame.hybrid ? ", as does the explicit volume's sub-grid)" : ")"));
+  if (v.errorCauses && v.errorCauses->border > kMaxBorderPixels)
+    inaccurate.push_back("the method misses " + std::to_string(v.errorCauses->border) +
                          " pixels less than a texel inside the light window's border ring, where a shadow reaches "
                          "the window's edge (the volume's outermost texel ring lies on the far plane; at most " +
-                         std::to_string(kMaxLeakPixels) + "): widen the light's window (its extent or fov) so "
+                         std::to_string(kMaxBorderPixels) + "): widen the light's window (its extent or fov) so "
                          "the shadow ends inside it, or use a finer map");
   v.accurate = inaccurate.empty();
   v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());

@@ -66,6 +66,7 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
     j["errorCauses"] = {{"resolution", v.errorCauses->resolution},
                         {"capture", v.errorCauses->capture},
                         {"border", v.errorCauses->border},
+                        {"borderAllowed", kMaxBorderPixels},
                         {"offset", v.errorCauses->offset},
                         {"rule", "resolution: the method's misclassified pixels that the same capture at unlimited "
                                  "resolution (captured depth on the pixel's own light ray + offset < the point's "
@@ -85,6 +86,7 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
                                     "allowed missed share of them missed"}};
     if (const auto& w = v.lostShadows.worst)
       lost["worst"] = {{"object", w->object},
+                       {"name", w->name},
                        {"pixels", w->pixels},
                        {"missed", w->missed},
                        {"firstPixel", {w->first % std::size_t(v.width), w->first / std::size_t(v.width)}}};

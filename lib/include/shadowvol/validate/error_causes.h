@@ -17,8 +17,9 @@
 // slants down across the last texel and the band between the window's edge and the centres of the
 // second ring (texel coordinate below 1 from the window's first texel centre, i.e. 1.5 texels from
 // its edge) may be lit. Refinement does not move it; a wider window (the light's extent or fov, or
-// a fitted one, which keeps a margin) or a finer map does. A pixel the test above gets right whose
-// point lies in that band is counted there rather than as resolution.
+// a fitted one, which keeps a margin) or a finer map does. A missed pixel (exact: shadowed) the
+// test above gets right whose point lies in that band is counted there rather than as resolution.
+// The accuracy verdict allows kMaxBorderPixels of them.
 #pragma once
 
 #include <cstddef>
@@ -33,10 +34,12 @@
 
 namespace shadowvol {
 
+inline constexpr std::size_t kMaxBorderPixels = 16;  ///< border pixels a frame may have (round-off)
+
 struct ErrorCauses {
   std::size_t resolution = 0;  ///< misclassified pixels the unlimited-resolution test gets right
   std::size_t capture = 0;     ///< misclassified pixels it gets wrong too
-  std::size_t border = 0;      ///< of those it gets right, the ones in a volume's border band (see above)
+  std::size_t border = 0;      ///< of the missed ones it gets right, those in a volume's border band (see above)
   double offset = 0.0;         ///< the method's depth offset used (world units, away from the light)
 };
 
