@@ -32,38 +32,6 @@ nlohmann::json crossingsUsed(const gl::RenderOptions& ro) {
   return ro.refineCrossings == gl::RefineCrossings::GpuWalk ? "gpu-walk" : "gpu-rays";
 }
 
-// The report's fields of one light's checks (all of them at the top level for one light).
-nlohmann::json describeLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
-                                       const ValidationOptions& vo) {
-  const gl::RenderResult& result = *c.result;
-  nlohmann::json j;
-  if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
-  if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
-    j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
-                          {"crossingFallbacks", result.gpuCrossingFallbacks},
-                          {"cpuRuleDifferences", result.cpuRuleEdgeDifferences},
-                          {"volumeTriangles", result.volumeTriangles}};
-  if (!result.faceVolumes.empty()) j["gpuRefinement"]["faceVolumes"] = result.faceVolumes.size();  // a point light's
-  j.update(describeValidation(c.validation, vo, ro.method == gl::ShadowMethod::Silhouette));
-  if (c.frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
-    j["volumeCount"] = gl::toString(result.volumeCountUsed);
-    if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
-  }
-  if (ro.method == gl::ShadowMethod::Dpsm) j["dualParaboloid"] = describeDualParaboloid(ro.depthWidth);
-  if (ro.method == gl::ShadowMethod::Silhouette) {
-    j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
-    j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
-  }
-  return j;
-}
-
-// The shadow maps' constant bias for `light` (the option's, or the default).
-double shadowBiasFor(const Light& light, const gl::RenderOptions& ro) {
-  return ro.shadowBiasConstant.value_or(ro.method == gl::ShadowMethod::Dpsm
-                                            ? dualParaboloidDefaultBias(light, ro.depthWidth, ro.capture)
-                                            : defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
-}
-
 // One light's checks as text (`j`: its describeLightValidation).
 void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro, const nlohmann::json& j) {
   const gl::RenderResult& result = *c.result;
@@ -108,6 +76,9 @@ void printLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
   std::printf("  against exact: missed %zu (%.3f%%), false %zu (%.3f%%) of %zu pixels facing the light\n",
               v.methodError.missed, 100 * v.methodError.missedFraction(), v.methodError.falseShadow,
               100 * v.methodError.falseFraction(), v.methodError.pixels);
+  if (v.lostShadows.missedSelf + v.lostShadows.missedOnOthers > 0)
+    std::printf("  missed by place: %zu on the object that shadows them (self-shadows), %zu on other objects\n",
+                v.lostShadows.missedSelf, v.lostShadows.missedOnOthers);
   if (v.errorCauses) {
     std::printf(
         "  errors by cause: %zu of resolution (the same capture at unlimited resolution gets them right: a "
@@ -245,7 +216,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
                       {"cap", o->render.shape.cap},
                       {"refine", o->render.shape.refine},
                       {"crossings", crossingsUsed(ro)},
-                      {"shadowBias", shadowBiasFor(scene.light, ro)},
+                      {"shadowBias", shadowMapBias(scene.light, ro)},
                       {"shadowSlope", o->render.shadowSlope},
                       {"dpsmSubdivide", o->render.dpsmSubdivide},
                       {"selfIntersections", o->selfIntersections},
@@ -266,16 +237,8 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
       } else {
         // Several lights: one section per light (its images in light-K/), the verdict over all.
         j["lights"] = nlohmann::json::array();
-        for (std::size_t k = 0; k < checks.size(); ++k) {
-          nlohmann::json section = {{"index", k},
-                                    {"pointer", scene.lightPointer(k)},
-                                    {"type", toString(scene.lightAt(k).type)},
-                                    {"bias", checks[k].result->biasUsed},
-                                    {"shadowBias", shadowBiasFor(scene.lightAt(k), ro)},
-                                    {"imageFolder", "light-" + std::to_string(k)}};
-          section.update(sections[k]);
-          j["lights"].push_back(section);
-        }
+        for (std::size_t k = 0; k < checks.size(); ++k)
+          j["lights"].push_back(describeLightSection(scene, k, checks[k], ro, sections[k]));
         j["passed"] = passed;
         j["verdict"] = passed ? "every light's frame is consistent and accurate"
                               : "at least one light's frame failed: see lights[k].verdict";

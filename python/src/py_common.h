@@ -62,9 +62,34 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
 /// crashed). The module's own functions create instances without __new__.
 void refuseBareInstances(py::handle cls, const std::string& howToMake);
 
+/// An integer keyword argument (a map's size, refine steps, a sub-grid's S). Python's bool is a
+/// subclass of int, which pybind11's int takes: refine=True built a volume refined with one ray per
+/// edge. This type refuses bool, as it does float, with the usual "incompatible function arguments"
+/// TypeError (the signature still reads int); numpy integers are taken.
+struct StrictInt {
+  int value = 0;
+  StrictInt(int v = 0) : value(v) {}  // NOLINT: defaults in py::arg(...) = 0
+  operator int() const { return value; }
+};
+
 void registerScene(py::module_& m);
 void registerDepth(py::module_& m);
 void registerVolume(py::module_& m);
 void registerValidate(py::module_& m);  ///< validate() and render(); GL builds only
 
 }  // namespace shadowvol::python
+
+namespace pybind11::detail {
+template <>
+struct type_caster<shadowvol::python::StrictInt> {
+  PYBIND11_TYPE_CASTER(shadowvol::python::StrictInt, const_name("int"));
+  bool load(handle src, bool /*convert*/) {
+    if (!src || PyBool_Check(src.ptr())) return false;
+    type_caster<int> inner;
+    if (!inner.load(src, false)) return false;  // an int or an object with __index__; never a float
+    value = shadowvol::python::StrictInt(static_cast<int>(inner));
+    return true;
+  }
+  static handle cast(shadowvol::python::StrictInt v, return_value_policy, handle) { return PyLong_FromLong(v.value); }
+};
+}  // namespace pybind11::detail

@@ -19,8 +19,8 @@
 namespace shadowvol::python {
 namespace {
 
-DepthMap captureDepth(const PyScene& s, int width, int height, const std::string& capture, const std::string& device,
-                      const std::string& platform, int refine) {
+DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const std::string& capture,
+                      const std::string& device, const std::string& platform, StrictInt refine) {
   // The map of a volume with `refine` steps, as build_volume reads it: capture='auto' chooses as
   // `shadowvol build --refine K` does (a fifteenth probe's finding: it chose for an unrefined volume).
   if (refine < 0 || refine > kMaxRefineSteps)  // as build_volume's refine

@@ -47,7 +47,7 @@ void registerScene(py::module_& m) {
            "The scene as `shadowvol scene --json` prints it: counts, bounds, light and camera (world units).")
       .def(
           "fit_light_to_view",
-          [](PyScene& s, int resolution) {
+          [](PyScene& s, StrictInt resolution) {
             checkResolutionArg(resolution, "resolution");
             const LightFitResult r = fitLightToView(s.scene, resolution);
             py::dict d;
@@ -63,7 +63,7 @@ void registerScene(py::module_& m) {
           "(degrees) or a directional light's half extent.")
       .def(
           "receiver_texel_size",
-          [](const PyScene& s, int resolution) {
+          [](const PyScene& s, StrictInt resolution) {
             checkResolutionArg(resolution, "resolution");
             return receiverTexelSize(s.scene, resolution);
           },

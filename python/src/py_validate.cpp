@@ -245,30 +245,21 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
     FrameRenderer r(scene, ro, a.platform);
     const gl::RenderResult result = renderNamed(r.renderer, ro);
     const std::vector<LightValidation> lights = validateEveryLight(scene, ro, result, vo);
-    const bool silhouette = ro.method == gl::ShadowMethod::Silhouette;
-    const bool drawsVolume = drawsShadowVolume(ro.method);  // a stencil count to name
     if (lights.size() == 1) {
-      j = describeValidation(lights[0].validation, vo, silhouette);
+      j = describeLightValidation(lights[0], ro, vo);
     } else {  // as validate's report.json: one section per light, the verdict over all
       bool passed = true;
       j["lights"] = nlohmann::json::array();
       for (std::size_t k = 0; k < lights.size(); ++k) {
-        nlohmann::json l = describeValidation(lights[k].validation, vo, silhouette);
-        l["index"] = k;
-        l["pointer"] = scene.lightPointer(k);
-        l["type"] = toString(scene.lightAt(k).type);
-        if (drawsVolume) l["volumeCount"] = gl::toString(lights[k].result->volumeCountUsed);
+        j["lights"].push_back(describeLightSection(scene, k, lights[k], ro, describeLightValidation(lights[k], ro, vo)));
         passed = passed && lights[k].validation.passed;
-        j["lights"].push_back(l);
       }
       j["passed"] = passed;
     }
     j["scene"] = describeScene(scene);
     j["gl"] = gl::describeContext(r.renderer.info());  // as the command line's report
     j["sceneWarnings"] = s.warnings;
-    if (drawsVolume) j["volumeCount"] = gl::toString(result.volumeCountUsed);  // as the command line's report
     j["shadowvolVersion"] = SHADOWVOL_VERSION;
-    if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);
     nlohmann::json options = nlohmann::json::object();
     std::vector<std::string> warnings;
     describeCapture(scene, a, ro, options, warnings);
@@ -290,10 +281,10 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
 
 void registerValidate(py::module_& m) {
 #ifdef SHADOWVOL_WITH_GL
-  auto frameArgs = [](std::string method, std::string volume, int resolution, std::string capture,
-                      std::string triangulation, bool blur, std::string cap, int refine,
-                      std::optional<std::pair<int, int>> size, std::string platform, std::string count,
-                      double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+  auto frameArgs = [](std::string method, std::string volume, StrictInt resolution, std::string capture,
+                      std::string triangulation, bool blur, std::string cap, StrictInt refine,
+                      std::optional<std::pair<StrictInt, StrictInt>> size, std::string platform, std::string count,
+                      double blurOffset, std::optional<double> bias, StrictInt refineGrid, bool chordPoints,
                       std::string crossings) {
     FrameArgs a;
     a.method = std::move(method);
@@ -316,10 +307,10 @@ void registerValidate(py::module_& m) {
   };
   m.def(
       "render",
-      [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
-                  std::string triangulation, bool blur, std::string cap, int refine,
-                  std::optional<std::pair<int, int>> size, std::string platform, std::string count,
-                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+      [frameArgs](const PyScene& s, std::string method, std::string volume, StrictInt resolution, std::string capture,
+                  std::string triangulation, bool blur, std::string cap, StrictInt refine,
+                  std::optional<std::pair<StrictInt, StrictInt>> size, std::string platform, std::string count,
+                  double blurOffset, std::optional<double> bias, StrictInt refineGrid, bool chordPoints,
                   std::string crossings) {
         return renderFrame(s, frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,
                                         platform, count, blurOffset, bias, refineGrid, chordPoints, crossings));
@@ -341,11 +332,11 @@ void registerValidate(py::module_& m) {
       "gpu-rays).");
   m.def(
       "validate",
-      [frameArgs](const PyScene& s, std::string method, std::string volume, int resolution, std::string capture,
-                  std::string triangulation, bool blur, std::string cap, int refine,
-                  std::optional<std::pair<int, int>> size, std::string platform, std::string count, double maxError,
+      [frameArgs](const PyScene& s, std::string method, std::string volume, StrictInt resolution, std::string capture,
+                  std::string triangulation, bool blur, std::string cap, StrictInt refine,
+                  std::optional<std::pair<StrictInt, StrictInt>> size, std::string platform, std::string count, double maxError,
                   double maxMissed, bool selfIntersections, std::optional<std::filesystem::path> reportDir,
-                  double blurOffset, std::optional<double> bias, int refineGrid, bool chordPoints,
+                  double blurOffset, std::optional<double> bias, StrictInt refineGrid, bool chordPoints,
                   std::string crossings) {
         return validateFrameArgs(s,
                                  frameArgs(method, volume, resolution, capture, triangulation, blur, cap, refine, size,

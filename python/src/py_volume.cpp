@@ -135,8 +135,8 @@ void checkMapFromScene(const DepthMap& depth, const DepthOracle& oracle) {
 }
 
 py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
-                            std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                            const PyScene* scene, bool chordPoints, int refineGrid, bool refineGridEverywhere,
+                            std::optional<double> bias, const std::string& cap, bool flattenCap, StrictInt refine,
+                            const PyScene* scene, bool chordPoints, StrictInt refineGrid, bool refineGridEverywhere,
                             bool hiddenSearch) {
   VolumeBuildOptions o = volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints,
                                           refineGrid, refineGridEverywhere, hiddenSearch);
@@ -226,8 +226,11 @@ void registerVolume(py::module_& m) {
         "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",
-      [](const py::array_t<double, py::array::forcecast>& v, const py::array& f, const std::filesystem::path& path,
-         bool doublePrecision) {
+      [](const py::array& v, const py::array& f, const std::filesystem::path& path, bool doublePrecision) {
+        // Positions must be real numbers: a complex array would lose its imaginary part (numpy only
+        // warns), booleans and objects are no coordinates.
+        if (v.dtype().kind() != 'f' && v.dtype().kind() != 'i' && v.dtype().kind() != 'u')
+          throw InputError("export", "V", std::string(py::str(v.dtype())), "expected a real (float or integer) array of positions");
         // Indices must be integers: a float array would be truncated without a word.
         if (f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
           throw InputError("export", "F", std::string(py::str(f.dtype())), "expected an integer array of vertex indices");
@@ -238,7 +241,8 @@ void registerVolume(py::module_& m) {
             if (p[k] > std::uint64_t(INT64_MAX))
               throw InputError("export", "F", std::to_string(p[k]), "a vertex index beyond any vertex array");
         }
-        const VolumeMesh mesh = meshFromArrays(v, f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
+        const VolumeMesh mesh = meshFromArrays(v.cast<py::array_t<double, py::array::forcecast>>(),
+                                               f.cast<py::array_t<std::int64_t, py::array::forcecast>>());
         WrittenVolume written;
         {
           py::gil_scoped_release release;

@@ -1063,6 +1063,11 @@ TEST(CliGl, ValidateFailsAThinOccludersLostShadow) {
   EXPECT_TRUE(contains(lost.out, "pixels of object \"rod\"'s shadow")) << lost.out;
   const auto report = nlohmann::json::parse(test::readText(dir / "a" / "report.json"));
   EXPECT_EQ(report["shadowsByOccluder"]["worst"]["object"], 2);
+  // The rod's lost shadow lies on the ground and the sphere: none of it on the rod itself.
+  EXPECT_EQ(report["shadowsByOccluder"]["worst"]["missedSelf"], 0);
+  EXPECT_GE(report["shadowsByOccluder"]["missedOnOthers"].get<std::size_t>(),
+            report["shadowsByOccluder"]["worst"]["missed"].get<std::size_t>());
+  EXPECT_TRUE(contains(lost.out, "on other objects")) << lost.out;
   const CliResult found = runCli("validate --resolution 64 --volume explicit --refine 6 --refine-grid 4 --scene " +
                                  scene + " --report " + (dir / "b").string());
   EXPECT_EQ(found.code, 0) << found.out;

@@ -174,6 +174,10 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
         sv.export(np.full_like(V, np.nan), F[:0], tmp_path / "nan.ply")
     with pytest.raises(sv.InputError, match=r"unsupported mesh format"):
         sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
+    # A complex V lost its imaginary part with only numpy's warning.
+    with pytest.raises(sv.InputError, match=r"^export: V = complex128: expected a real"):
+        sv.export(V + 1j, F, tmp_path / "complex.ply")
+    assert not (tmp_path / "complex.ply").exists()
 
 
 def test_copies_pickles_and_error_parts(depth):
@@ -456,6 +460,17 @@ def test_several_lights_are_validated_one_by_one(tmp_path):
     assert all(l["stencilVsCount"]["fraction"] >= 0.9999 for l in report["lights"])
     assert (tmp_path / "r" / "light-1" / "overlay.png").is_file()
     assert (tmp_path / "r" / "frame.png").is_file() and (tmp_path / "r" / "report.json").is_file()  # as the CLI's
+    # Each light's section as the command line's (the note of 2026-12-07: no bias, shadowBias, imageFolder).
+    assert [l["imageFolder"] for l in report["lights"]] == ["light-0", "light-1"]
+    assert all(l["bias"] >= 0 and l["shadowBias"] >= 0 for l in report["lights"])
+    if CLI:
+        cli = subprocess.run([CLI, "validate", "--json", "--scene", str(SCENES / "lights" / "spot-and-point.json"),
+                              "--volume", "explicit", "--resolution", "32", "--size", "80x60", "--report",
+                              str(tmp_path / "cli")], capture_output=True, text=True)
+        assert cli.returncode == 0, cli.stderr
+        lights = json.loads(cli.stdout)["lights"]
+        assert [sorted(l) for l in lights] == [sorted(l) for l in report["lights"]]
+        assert [(l["bias"], l["shadowBias"]) for l in lights] == [(l["bias"], l["shadowBias"]) for l in report["lights"]]
     # The GPU volume of every light: the spot's from its map, the point light's GPU cube volume.
     gpu = sv.validate(both, volume="gpu", resolution=32, size=(80, 60), report_dir=tmp_path / "g")
     assert gpu["passed"] is True
@@ -574,6 +589,25 @@ def test_switches_take_booleans_only(depth):
         with pytest.raises(TypeError):
             sv.build_volume(depth, **kw)
     assert sv.build_volume(depth, blur=np.bool_(False))[0].shape == sv.build_volume(depth)[0].shape
+
+
+def test_integers_refuse_booleans(depth):
+    """refine=True built a volume refined with one ray per edge, width=True asked for a 1-texel map:
+    Python's bool is an int to pybind11. Integers (numpy's too) are taken, booleans and floats not."""
+    scene = sv.default_scene()
+    for kw in (dict(refine=True), dict(width=True), dict(height=False), dict(width=64.0)):
+        with pytest.raises(TypeError):
+            sv.capture_depth(scene, **kw)
+    for kw in (dict(refine=True, scene=scene), dict(refine_grid=True)):
+        with pytest.raises(TypeError):
+            sv.build_volume(depth, **kw)
+    with pytest.raises(TypeError):
+        scene.receiver_texel_size(True)
+    assert sv.capture_depth(scene, np.int64(16), 16).width == 16
+    if sv.has_gl:
+        for kw in (dict(resolution=True), dict(refine=True), dict(size=(True, 24))):
+            with pytest.raises(TypeError):
+                sv.render(scene, **kw)
 
 
 @needs_gl

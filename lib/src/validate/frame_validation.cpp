@@ -203,7 +203,9 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
     methodShadowed[k] = !frame.shadowed.empty() ? frame.shadowed[k] != 0 : (frame.hybrid && frame.stencil[k] != 0);
     score(v.methodError, v.exact[k], methodShadowed[k] != 0);
   }
-  v.lostShadows = findLostShadows(v.exact, methodShadowed, occluders);
+  std::vector<std::uint32_t> receivers(n);
+  for (std::size_t k = 0; k < n; ++k) receivers[k] = hits.triangle[k].geomID;
+  v.lostShadows = findLostShadows(v.exact, methodShadowed, occluders, receivers);
   if (auto& w = v.lostShadows.worst; w && w->object < scene.objects.size()) w->name = scene.objects[w->object].name;
   if (frame.depthOffset && depth.width > 0 && scene.light.type != LightType::Point)
     v.errorCauses = splitErrorCauses(scene, depth, *frame.depthOffset, hits, v.exact, methodShadowed, frame.hybrid);

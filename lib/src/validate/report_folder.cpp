@@ -43,8 +43,10 @@ void writeReportJson(const std::filesystem::path& dir, const nlohmann::json& rep
   });
 }
 
+std::string lightReportFolderName(std::size_t k) { return "light-" + std::to_string(k); }
+
 std::filesystem::path lightReportFolder(const std::filesystem::path& dir, std::size_t k) {
-  const std::filesystem::path sub = dir / ("light-" + std::to_string(k));
+  const std::filesystem::path sub = dir / lightReportFolderName(k);
   std::error_code ec;
   if (std::filesystem::is_symlink(sub, ec))
     throw InputError(sub.string(), "", "", "is a symbolic link: validate writes each light's images in a "

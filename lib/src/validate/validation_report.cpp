@@ -81,14 +81,18 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
     nlohmann::json lost = {{"occluders", v.lostShadows.occluders},
                            {"judged", v.lostShadows.judged},
                            {"minPixels", kMinOccluderPixels},
+                           {"missedSelf", v.lostShadows.missedSelf},
+                           {"missedOnOthers", v.lostShadows.missedOnOthers},
                            {"rule", "each exactly shadowed pixel belongs to the object its exact shadow ray meets "
                                     "first; an object shadowing at least minPixels pixels may have at most the "
-                                    "allowed missed share of them missed"}};
+                                    "allowed missed share of them missed. missedSelf: missed pixels on the object "
+                                    "that occludes them (self-shadows); missedOnOthers: on another object"}};
     if (const auto& w = v.lostShadows.worst)
       lost["worst"] = {{"object", w->object},
                        {"name", w->name},
                        {"pixels", w->pixels},
                        {"missed", w->missed},
+                       {"missedSelf", w->missedSelf},
                        {"firstPixel", {w->first % std::size_t(v.width), w->first / std::size_t(v.width)}}};
     j["shadowsByOccluder"] = lost;
   }

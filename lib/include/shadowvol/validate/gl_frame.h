@@ -8,8 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "shadowvol/dual_paraboloid.h"
+#include <nlohmann/json.hpp>
+
 #include "shadowvol/gl/renderer.h"
+#include "shadowvol/report_json.h"
 #include "shadowvol/validate/frame_validation.h"
+#include "shadowvol/validate/report_folder.h"
+#include "shadowvol/validate/validation_report.h"
 
 namespace shadowvol {
 
@@ -42,6 +48,15 @@ inline RenderedFrame toRenderedFrame(const gl::RenderResult& result, gl::ShadowM
   for (std::size_t k = 0; k < result.visibility.size(); ++k) frame.shadowed[k] = result.visibility[k] < 128;
   return frame;
 }
+/// The shadow maps' constant bias for `light` as scene.frag applies it (renderer_camera.cpp): the
+/// option's, or the default of the map the method samples (a dual-paraboloid map's for dpsm).
+/// Reports name it `shadowBias`.
+inline double shadowMapBias(const Light& light, const gl::RenderOptions& ro) {
+  return ro.shadowBiasConstant.value_or(ro.method == gl::ShadowMethod::Dpsm
+                                            ? dualParaboloidDefaultBias(light, ro.depthWidth, ro.capture)
+                                            : defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
+}
+
 /// How the leak criterion (shadow_leaks.h) judges a frame of `ro` lit by `light`: the map side and
 /// depth offset of the depth-map methods (hybrid: the volume's bias and blur offset; the shadow maps:
 /// scene.frag's constant and slope bias), an exact method for silhouette volumes, not judged for
@@ -57,7 +72,7 @@ inline void setLeakModel(RenderedFrame& frame, const gl::RenderOptions& ro, cons
     case gl::ShadowMethod::Pcf3:
     case gl::ShadowMethod::Pcf5:
       frame.leakMapSide = ro.depthWidth;
-      frame.leakOffset = ro.shadowBiasConstant.value_or(defaultBias(light, ro.depthWidth, ro.depthHeight, ro.capture));
+      frame.leakOffset = shadowMapBias(light, ro);
       frame.leakOffsetSlope = ro.shadowBiasSlope;
       return;
     case gl::ShadowMethod::Silhouette:
@@ -120,6 +135,47 @@ inline std::vector<LightValidation> validateEveryLight(const Scene& scene, const
                                    : validateRender(scene.withOnlyLight(k), ro, *l.result, l.frame, options);
   }
   return out;
+}
+
+/// The report's fields of one light's checks (report.json's, all of them at the top level for one
+/// light; the Python module's validate returns the same): its volume's build figures, the refined
+/// GPU volume's, describeValidation's, the stencil count used and the method's extras.
+inline nlohmann::json describeLightValidation(const LightValidation& c, const gl::RenderOptions& ro,
+                                              const ValidationOptions& vo) {
+  const gl::RenderResult& result = *c.result;
+  nlohmann::json j;
+  if (result.volumeStats) j["volume"] = describeVolumeStats(*result.volumeStats);  // refined GPU: the CPU mesh's
+  if (result.gpuVolumeDrawUsed == gl::GpuVolumeDraw::Refined)
+    j["gpuRefinement"] = {{"boundaryEdges", result.gpuBoundaryEdges},
+                          {"crossingFallbacks", result.gpuCrossingFallbacks},
+                          {"cpuRuleDifferences", result.cpuRuleEdgeDifferences},
+                          {"volumeTriangles", result.volumeTriangles}};
+  if (!result.faceVolumes.empty()) j["gpuRefinement"]["faceVolumes"] = result.faceVolumes.size();  // a point light's
+  j.update(describeValidation(c.validation, vo, ro.method == gl::ShadowMethod::Silhouette));
+  if (c.frame.hybrid || ro.method == gl::ShadowMethod::Silhouette) {
+    j["volumeCount"] = gl::toString(result.volumeCountUsed);
+    if (!result.zPassRefused.empty()) j["zPassRefused"] = result.zPassRefused;
+  }
+  if (ro.method == gl::ShadowMethod::Dpsm) j["dualParaboloid"] = describeDualParaboloid(ro.depthWidth);
+  if (ro.method == gl::ShadowMethod::Silhouette) {
+    j["receiversOnly"] = result.receiversOnly;    // open objects: they cast no silhouette shadow
+    j["skippedCasters"] = result.skippedCasters;  // closed objects behind a spot light
+  }
+  return j;
+}
+
+/// Light k's section of a report with several lights (report.json's lights[k]): which light, its
+/// volume's bias and the shadow maps', its image folder, then `fields` (its describeLightValidation).
+inline nlohmann::json describeLightSection(const Scene& scene, std::size_t k, const LightValidation& c,
+                                           const gl::RenderOptions& ro, const nlohmann::json& fields) {
+  nlohmann::json section = {{"index", k},
+                            {"pointer", scene.lightPointer(k)},
+                            {"type", toString(scene.lightAt(k).type)},
+                            {"bias", c.result->biasUsed},
+                            {"shadowBias", shadowMapBias(scene.lightAt(k), ro)},
+                            {"imageFolder", lightReportFolderName(k)}};
+  section.update(fields);
+  return section;
 }
 
 }  // namespace shadowvol

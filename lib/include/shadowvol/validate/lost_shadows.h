@@ -8,6 +8,12 @@
 // pixels of the image is judged: the method may miss at most ValidationOptions::maxMissedShare of
 // them. A shadow lost whole (an occluder thinner than a texel, which no sample sees) fails; a large
 // object's self-shadows are judged with the rest of its shadow.
+//
+// Where the missed pixels lie is counted too: on the occluding object itself (a self-shadow: one
+// part of a mesh shadowing another, which a depth map's sheet must follow between its texel
+// centres and within its bias, and a silhouette volume gets from the mesh) or on another object
+// (a cast shadow's outline on a receiver). On issue 10's closed-mesh scenes at 256² most of the
+// refined volume's missed pixels are self-shadows (docs/results/error-places).
 #pragma once
 
 #include <cstddef>
@@ -29,6 +35,7 @@ struct OccluderShadow {
   std::uint32_t object = 0;  ///< the occluding object's index in the scene
   std::size_t pixels = 0;    ///< exactly shadowed pixels it occludes first
   std::size_t missed = 0;    ///< of which the method calls lit
+  std::size_t missedSelf = 0;  ///< of the missed, those on the occluding object itself (self-shadows)
   std::size_t first = 0;     ///< the first of them in row order (row 0 at the top)
   std::string name;          ///< the object's name, where the caller knows it (frame validation does)
 };
@@ -37,11 +44,14 @@ struct LostShadows {
   std::size_t occluders = 0;             ///< objects that shadow some pixel
   std::size_t judged = 0;                ///< of which shadow at least kMinOccluderPixels
   std::optional<OccluderShadow> worst;   ///< the judged one with the largest missed share (ties: lower index)
+  std::size_t missedSelf = 0;            ///< missed pixels on the object that occludes them, all occluders
+  std::size_t missedOnOthers = 0;        ///< missed pixels on another object than their occluder
 };
 
 /// Groups the exactly shadowed pixels by `occluders` (per pixel, kNoOccluder where none) and finds
-/// the worst judged group.
+/// the worst judged group; `receivers` (per pixel, the object the pixel's surface belongs to, as
+/// CameraHits::Triangle::geomID) splits the missed pixels into self-shadows and the others.
 LostShadows findLostShadows(const std::vector<PixelClass>& exact, const std::vector<std::uint8_t>& methodShadowed,
-                            const std::vector<std::uint32_t>& occluders);
+                            const std::vector<std::uint32_t>& occluders, const std::vector<std::uint32_t>& receivers);
 
 }  // namespace shadowvol

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <span>
 
 #include <nlohmann/json.hpp>
@@ -24,7 +25,10 @@ void removeReportFiles(const std::filesystem::path& dir);
 /// Writes `report` as dir/report.json (atomically: whole or not at all), the last file of a report.
 void writeReportJson(const std::filesystem::path& dir, const nlohmann::json& report);
 
-/// Light k's image folder in `dir` (dir/light-k), refused (InputError) when it is a symbolic link:
+/// The name of light k's image folder in a report folder: "light-k" (report.json's imageFolder).
+std::string lightReportFolderName(std::size_t k);
+
+/// Light k's image folder in `dir` (dir / lightReportFolderName(k)), refused (InputError) when it is a symbolic link:
 /// the images would go where it points.
 std::filesystem::path lightReportFolder(const std::filesystem::path& dir, std::size_t k);
 
