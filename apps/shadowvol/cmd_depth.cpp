@@ -44,8 +44,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     run = [o] {
       checkResolution("--resolution", o->resolution, DepthMapUse::MapOnly);
       checkOutputPath("--out", o->out);
-      if (std::filesystem::path(o->out).extension() != ".pfm")
-        throw InputError("command line", "--out", o->out, "depth maps are written as PFM: use a .pfm file name");
+      checkDepthMapPath(o->out, "command line", "--out");
       Scene scene = loadSceneOrDefault(o->scene.scene, nullptr, sceneUse(o->scene));
       checkOneMapLight(scene, std::size_t(std::max(o->light, 0)));  // by its pointer, before any note
       // An unrefined volume's map, as build --depth reads it.

@@ -172,8 +172,7 @@ void registerDepth(py::module_& m) {
       .def(
           "save",
           [](const DepthMap& d, const std::filesystem::path& path) {
-            if (path.extension() != ".pfm")  // as `shadowvol depth --out` (a probe wrote a PFM named x.png)
-              throw InputError("DepthMap.save", "path", path.string(), "depth maps are written as PFM: use a .pfm file name");
+            checkDepthMapPath(path, "DepthMap.save", "path");  // as `shadowvol depth --out`
             py::gil_scoped_release release;
             writeDepthMap(d, path);
           },

@@ -227,6 +227,7 @@ void registerVolume(py::module_& m) {
   m.def(
       "export",
       [](const py::array& v, const py::array& f, const std::filesystem::path& path, bool doublePrecision) {
+        if (path.empty()) throw InputError("export", "path", "\"\"", "a mesh file name is required");
         // Positions must be real numbers: a complex array would lose its imaginary part (numpy only
         // warns), booleans and objects are no coordinates.
         if (v.dtype().kind() != 'f' && v.dtype().kind() != 'i' && v.dtype().kind() != 'u')

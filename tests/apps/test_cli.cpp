@@ -302,6 +302,13 @@ TEST(Cli, DepthWritesPfmAndSideFile) {
   EXPECT_EQ(j["scene"]["source"], "default");
   EXPECT_TRUE(std::filesystem::exists(pfm));
   EXPECT_TRUE(std::filesystem::exists(pfm + ".json"));
+  // The extension in any case, as the mesh formats' (.PFM was refused); another one is refused.
+  const std::string upper = (dir / "D.PFM").string();
+  EXPECT_EQ(runCli("depth --resolution 8 --out " + upper).code, 0);
+  EXPECT_EQ(runCli("build --depth " + upper + " --out " + (dir / "v.ply").string()).code, 0);
+  const CliResult png = runCli("depth --resolution 8 --out " + (dir / "d.png").string());
+  EXPECT_EQ(png.code, 1) << png.out;  // bad input (the file name), not usage
+  EXPECT_TRUE(contains(png.out, "use a .pfm file name")) << png.out;
 }
 
 TEST(Cli, BuildFromSceneAndFromDepthFile) {

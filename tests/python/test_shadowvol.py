@@ -146,6 +146,11 @@ def test_depth_save_and_load(tmp_path, depth):
     depth.save(path)
     back = sv.load_depth(path)
     assert np.array_equal(back.depth, depth.depth) and np.array_equal(back.light_view, depth.light_view)
+    # The extension in any case, as the mesh formats' (.PFM was refused); an empty name is named.
+    depth.save(tmp_path / "D.PFM")
+    assert np.array_equal(sv.load_depth(tmp_path / "D.PFM").depth, depth.depth)
+    with pytest.raises(sv.InputError, match=r'^DepthMap.save: path = "": a .pfm file name is required'):
+        depth.save("")
 
 
 def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
@@ -174,6 +179,8 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
         sv.export(np.full_like(V, np.nan), F[:0], tmp_path / "nan.ply")
     with pytest.raises(sv.InputError, match=r"unsupported mesh format"):
         sv.export(V, F[:1] * 0, tmp_path / "v.xyz")
+    with pytest.raises(sv.InputError, match=r'^export: path = "": a mesh file name is required'):
+        sv.export(V, F, "")
     # A complex V lost its imaginary part with only numpy's warning.
     with pytest.raises(sv.InputError, match=r"^export: V = complex128: expected a real"):
         sv.export(V + 1j, F, tmp_path / "complex.ply")

@@ -16,6 +16,11 @@ std::filesystem::path depthSidecarPath(const std::filesystem::path& pfm);
 
 void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm);
 
+/// Refuses (InputError: `source`, `field`, the path) a depth map's output path whose extension is
+/// not .pfm in any case (.PFM too, as the mesh formats' extensions): a PFM named x.png would
+/// mislead every reader. The command line's `depth --out` and the Python module's DepthMap.save.
+void checkDepthMapPath(const std::filesystem::path& pfm, const std::string& source, const std::string& field);
+
 /// Reads a PFM and its side file; throws InputError naming the file and field on bad input.
 /// The checks are the two below.
 DepthMap readDepthMap(const std::filesystem::path& pfm);

@@ -328,6 +328,13 @@ void readSideFile(const std::filesystem::path& sidecar, const std::string& file,
 
 }  // namespace
 
+void checkDepthMapPath(const std::filesystem::path& pfm, const std::string& source, const std::string& field) {
+  std::string ext = pfm.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (pfm.empty()) throw InputError(source, field, "\"\"", "a .pfm file name is required");
+  if (ext != ".pfm") throw InputError(source, field, pfm.string(), "depth maps are written as PFM: use a .pfm file name");
+}
+
 DepthMap readDepthMap(const std::filesystem::path& pfm) {
   const std::string file = pfm.string();
   requireRegularFile(pfm, "the depth map");
