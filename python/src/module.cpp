@@ -70,6 +70,16 @@ CaptureMode captureModeArg(const std::string& text, const Scene* scene, CaptureU
   return mode;
 }
 
+py::array realArrayArg(const py::object& value, const std::string& source, const std::string& field,
+                       const std::string& what) {
+  const py::array a = py::array::ensure(value);
+  if (!a) throw InputError(source, field, std::string(py::str(py::repr(value))).substr(0, 80), "expected an array of " + what);
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw InputError(source, field, std::string(py::str(a.dtype())), "expected an array of real numbers (" + what + ")");
+  return a;
+}
+
 void checkResolutionArg(int resolution, const std::string& what) {
   if (resolution < kMinVolumeMapSide || resolution > kMaxDepthMapSide)
     throw InputError("python", what, std::to_string(resolution),

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -35,6 +36,12 @@ py::array_t<double> matrixToNumpy(const glm::dmat4& m);
 /// The inverse; throws InputError naming `what` unless `a` is a 4 x 4 array.
 glm::dmat4 matrixFromNumpy(const py::object& value, const std::string& what);
 
+/// `value` as a numpy array of real numbers (float or integer dtype; any array-like is converted
+/// first); InputError (`source`, `field`, the dtype) for complex, boolean, string or object arrays,
+/// which a conversion to float would take without a word (a complex one losing its imaginary part).
+py::array realArrayArg(const py::object& value, const std::string& source, const std::string& field,
+                       const std::string& what);
+
 /// The enum value named `text`; throws InputError naming the keyword argument and listing the choices.
 /// "auto" (chooseCapture, capture_choice.h) needs the scene the map is captured from and what the
 /// map is for.
@@ -63,9 +70,10 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
 void refuseBareInstances(py::handle cls, const std::string& howToMake);
 
 /// An integer keyword argument (a map's size, refine steps, a sub-grid's S). Python's bool is a
-/// subclass of int, which pybind11's int takes: refine=True built a volume refined with one ray per
-/// edge. This type refuses bool, as it does float, with the usual "incompatible function arguments"
-/// TypeError (the signature still reads int); numpy integers are taken.
+/// subclass of int, which pybind11's int takes, and numpy's bool_ has __index__: refine=True built
+/// a volume refined with one ray per edge. This type refuses both booleans, as it does float, with
+/// the usual "incompatible function arguments" TypeError (the signature still reads int); numpy
+/// integers are taken.
 struct StrictInt {
   int value = 0;
   StrictInt(int v = 0) : value(v) {}  // NOLINT: defaults in py::arg(...) = 0
@@ -85,6 +93,8 @@ struct type_caster<shadowvol::python::StrictInt> {
   PYBIND11_TYPE_CASTER(shadowvol::python::StrictInt, const_name("int"));
   bool load(handle src, bool /*convert*/) {
     if (!src || PyBool_Check(src.ptr())) return false;
+    const std::string_view type = Py_TYPE(src.ptr())->tp_name;  // numpy.bool_ (numpy 1), numpy.bool (2)
+    if (type == "numpy.bool_" || type == "numpy.bool") return false;
     type_caster<int> inner;
     if (!inner.load(src, false)) return false;  // an int or an object with __index__; never a float
     value = shadowvol::python::StrictInt(static_cast<int>(inner));

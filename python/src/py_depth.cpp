@@ -75,10 +75,7 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
                    double nearPlane, double farPlane, const std::string& light, const std::string& capture,
                    const std::array<double, 3>& origin) {
   // Real numbers only: a complex array would lose its imaginary part without a word (a probe's finding).
-  const char kind = raw.dtype().kind();
-  if (kind != 'f' && kind != 'i' && kind != 'u')
-    throw InputError("DepthMap.from_array", "depth", std::string(py::str(raw.dtype())),
-                     "expected an array of real numbers (float or integer depths)");
+  realArrayArg(raw, "DepthMap.from_array", "depth", "float or integer depths");
   if (raw.ndim() != 2)
     throw InputError("DepthMap.from_array", "depth", std::to_string(raw.ndim()) + "-dimensional array",
                      "expected a 2-dimensional array (rows x columns, row 0 at the bottom)");
@@ -90,7 +87,7 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
     throw InputError("DepthMap.from_array", "depth",
                      std::to_string(raw.shape(0)) + " rows x " + std::to_string(raw.shape(1)) + " columns",
                      "a depth map needs at least 2 x 2 texels");
-  if (kind == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw);
+  if (raw.dtype().kind() == 'f' && raw.itemsize() > 4) refuseBeyondFloat(raw);
   const auto depth = raw.cast<py::array_t<float, py::array::forcecast>>();
   DepthMap map;
   map.height = int(depth.shape(0));

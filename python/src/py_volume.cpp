@@ -226,12 +226,11 @@ void registerVolume(py::module_& m) {
         "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",
-      [](const py::array& v, const py::array& f, const std::filesystem::path& path, bool doublePrecision) {
+      [](const py::object& positions, const py::array& f, const std::filesystem::path& path, bool doublePrecision) {
         if (path.empty()) throw InputError("export", "path", "\"\"", "a mesh file name is required");
-        // Positions must be real numbers: a complex array would lose its imaginary part (numpy only
-        // warns), booleans and objects are no coordinates.
-        if (v.dtype().kind() != 'f' && v.dtype().kind() != 'i' && v.dtype().kind() != 'u')
-          throw InputError("export", "V", std::string(py::str(v.dtype())), "expected a real (float or integer) array of positions");
+        // Positions must be real numbers (any array-like, a list too): a complex array would lose its
+        // imaginary part (numpy only warns), booleans and objects are no coordinates.
+        const py::array v = realArrayArg(positions, "export", "V", "float or integer positions");
         // Indices must be integers: a float array would be truncated without a word.
         if (f.dtype().kind() != 'i' && f.dtype().kind() != 'u')
           throw InputError("export", "F", std::string(py::str(f.dtype())), "expected an integer array of vertex indices");

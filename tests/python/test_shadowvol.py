@@ -182,9 +182,10 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path, depth):
     with pytest.raises(sv.InputError, match=r'^export: path = "": a mesh file name is required'):
         sv.export(V, F, "")
     # A complex V lost its imaginary part with only numpy's warning.
-    with pytest.raises(sv.InputError, match=r"^export: V = complex128: expected a real"):
+    with pytest.raises(sv.InputError, match=r"^export: V = complex128: expected an array of real numbers"):
         sv.export(V + 1j, F, tmp_path / "complex.ply")
     assert not (tmp_path / "complex.ply").exists()
+    sv.export(V[:3].tolist(), F[:1] * 0 + [[0, 1, 2]], tmp_path / "list.ply")  # any array-like V, as before
 
 
 def test_copies_pickles_and_error_parts(depth):
@@ -600,19 +601,20 @@ def test_switches_take_booleans_only(depth):
 
 def test_integers_refuse_booleans(depth):
     """refine=True built a volume refined with one ray per edge, width=True asked for a 1-texel map:
-    Python's bool is an int to pybind11. Integers (numpy's too) are taken, booleans and floats not."""
+    Python's bool is an int to pybind11, numpy's bool_ has __index__. Integers (numpy's too) are
+    taken, booleans (numpy's too) and floats not."""
     scene = sv.default_scene()
-    for kw in (dict(refine=True), dict(width=True), dict(height=False), dict(width=64.0)):
+    for kw in (dict(refine=True), dict(width=True), dict(height=False), dict(width=64.0), dict(width=np.bool_(True))):
         with pytest.raises(TypeError):
             sv.capture_depth(scene, **kw)
-    for kw in (dict(refine=True, scene=scene), dict(refine_grid=True)):
+    for kw in (dict(refine=True, scene=scene), dict(refine=np.bool_(True), scene=scene), dict(refine_grid=True)):
         with pytest.raises(TypeError):
             sv.build_volume(depth, **kw)
     with pytest.raises(TypeError):
         scene.receiver_texel_size(True)
     assert sv.capture_depth(scene, np.int64(16), 16).width == 16
     if sv.has_gl:
-        for kw in (dict(resolution=True), dict(refine=True), dict(size=(True, 24))):
+        for kw in (dict(resolution=True), dict(refine=True), dict(size=(True, 24)), dict(size=(np.bool_(True), 24))):
             with pytest.raises(TypeError):
                 sv.render(scene, **kw)
 

@@ -4,8 +4,9 @@
 # with the 4 x 4 and the 8 x 8 sub-grid, against the silhouette volume: `validate`'s report.json
 # (againstExact, errorCauses, shadowsByOccluder's missedSelf and missedOnOthers). Fetch the meshes
 # first (docs/results/light-fit/run.sh says how), build, then run from the repository root (about
-# 20 minutes on a 2-core machine). EXE (default build/apps/shadowvol), OUT (default
-# out/error-places). Prints one line per scene and variant, then the sums.
+# 5 minutes on a 2-core machine). EXE (default build/apps/shadowvol), OUT (default
+# out/error-places). Prints one line per scene and variant, then the sums. A rerun with the same OUT
+# reuses the reports already there (delete OUT for a new binary).
 set -e
 exe=${EXE:-build/apps/shadowvol}
 out=${OUT:-out/error-places}
@@ -13,8 +14,8 @@ mkdir -p "$out"
 scenes="$(ls data/scenes/{armadillo,bunny,default,fandisk,hemisphere-grazing,lion-head,plate,plate-rotated,tree}.json \
   data/scenes/unseen/*.json docs/results/subgrid-bias/probe-scenes/*.json docs/results/probe10/scenes/*.json \
   docs/results/probe16/scenes/*.json)"
-# closed_scenes.py reads silhouette errors only for scenes of generated objects; the silhouette runs
-# below give them.
+# closed_scenes.py reads each scene's silhouette error (a scene of generated objects counts as
+# closed when its silhouette volume was exact); the silhouette runs below give them.
 for s in $scenes; do
   n=$(basename "$s" .json)
   [ -f "$out/$n-silhouette.json" ] || "$exe" validate --scene "$s" --method silhouette --report "$out/r" --json \

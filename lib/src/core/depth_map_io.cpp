@@ -26,6 +26,7 @@
 #include "shadowvol/temporary_files.h"
 #include "shadowvol/version.h"
 #include "shadowvol/mesh_io.h"
+#include "mesh_readers/text_lines.h"  // lowerCase
 #include "json_text.h"
 
 namespace shadowvol {
@@ -329,8 +330,7 @@ void readSideFile(const std::filesystem::path& sidecar, const std::string& file,
 }  // namespace
 
 void checkDepthMapPath(const std::filesystem::path& pfm, const std::string& source, const std::string& field) {
-  std::string ext = pfm.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = mesh_readers::lowerCase(pfm.extension().string());
   if (pfm.empty()) throw InputError(source, field, "\"\"", "a .pfm file name is required");
   if (ext != ".pfm") throw InputError(source, field, pfm.string(), "depth maps are written as PFM: use a .pfm file name");
 }
