@@ -105,6 +105,30 @@ TEST(CaptureWarnings, AnImageBetweenTexelCentresIsJudgedByItsTrianglesNotItsBox)
   EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"square", "mesh", plate(false)}}), 16, 16, CaptureMode::Front).empty());
 }
 
+// A rod 0.2 texels thick along a diagonal between the texel centres (on j = i + 0.5, 0.35 texels
+// from the nearest): its box spans 11 x 11 texels, which was taken as covered unseen (the note of
+// 2026-12-07); it is judged by its image now and named. Moved onto the centres (j = i), it is not.
+TEST(CaptureWarnings, AThinDiagonalRodBetweenTheTexelCentresIsNamed) {
+  const DepthMap probe = makeDepthMap(test::directionalDown(6.0), 16, 16, CaptureMode::Back);
+  const auto rod = [&](double offset) {
+    const double d = 0.1 / std::sqrt(2.0);  // half the thickness, along (1, -1) / sqrt(2)
+    const glm::dvec2 ends[2] = {{2.0, 2.0 + offset}, {13.0, 13.0 + offset}};
+    TriangleMesh m;
+    for (const glm::dvec2 q : {ends[0] + glm::dvec2(d, -d), ends[1] + glm::dvec2(d, -d), ends[1] + glm::dvec2(-d, d),
+                               ends[0] + glm::dvec2(-d, d)}) {
+      const glm::dvec3 w = probe.worldPoint(q.x, q.y, 1.0);
+      m.positions.push_back(glm::vec3(float(w.x), 2.0f, float(w.z)));
+    }
+    m.triangles = {{0, 1, 2}, {0, 2, 3}, {2, 1, 0}, {3, 2, 0}};  // both sides
+    return m;
+  };
+  const auto named = captureWarnings(sceneWith({SceneObject{"rod", "mesh", rod(0.5)}}), 16, 16, CaptureMode::Front);
+  ASSERT_EQ(named.size(), 1u);
+  EXPECT_NE(named[0].find("\"rod\" spans 11 x 11 texels"), std::string::npos) << named[0];
+  EXPECT_NE(named[0].find("covers no texel centre"), std::string::npos) << named[0];
+  EXPECT_TRUE(captureWarnings(sceneWith({SceneObject{"rod", "mesh", rod(0.0)}}), 16, 16, CaptureMode::Front).empty());
+}
+
 // Many objects of one kind: the first 20 are named, one more line counts the rest (a probe's
 // 30,000 small boxes gave 12,534 lines).
 TEST(CaptureWarnings, ManyObjectsOfOneKindAreNamedUpToTwentyAndCounted) {

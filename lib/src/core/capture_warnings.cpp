@@ -58,29 +58,33 @@ bool hasAreaInView(const DepthMap& probe, const TriangleMesh& mesh) {
 }
 
 // Whether a node (multiples of 1 / s in texel coordinates) in the box [lo, hi] lies inside the image
-// of a triangle of `mesh` (edges included; every vertex in front of the light). A box holding more
-// than kExactNodes nodes is taken as covered: only small objects are tested node by node (a
+// of a triangle of `mesh` (edges included; every vertex in front of the light): each triangle's
+// nodes, those inside its own image's box, are tested, so a long thin object along a diagonal (its
+// box over many nodes, its image between them: a rod) is judged by its image, as a small one is (a
 // twenty-second probe's sphere beside a 179-degree spot's apex spanned 1.3 texels around a texel
-// corner, its box over four centres, its disk over none, and went unwarned).
+// corner, its box over four centres, its disk over none, and went unwarned). The first node inside
+// ends the search; after kMaxNodeTests tests without one (huge slivers over a fine map) the object
+// is taken as covered, so the check stays bounded.
 bool coversNode(const DepthMap& probe, const TriangleMesh& mesh, glm::dvec2 lo, glm::dvec2 hi, double s) {
-  constexpr double kExactNodes = 64;
-  const double i0 = std::ceil(lo.x * s), i1 = std::floor(hi.x * s), j0 = std::ceil(lo.y * s), j1 = std::floor(hi.y * s);
-  if (i1 < i0 || j1 < j0) return false;
-  if ((i1 - i0 + 1) * (j1 - j0 + 1) > kExactNodes) return true;
-  std::vector<std::array<glm::dvec2, 3>> images;
-  images.reserve(mesh.triangles.size());
-  for (const auto& t : mesh.triangles)
-    images.push_back({probe.texelOf(glm::dvec3(mesh.positions[t[0]])), probe.texelOf(glm::dvec3(mesh.positions[t[1]])),
-                      probe.texelOf(glm::dvec3(mesh.positions[t[2]]))});
+  constexpr double kMaxNodeTests = 1 << 22;
+  if (std::floor(hi.x * s) < std::ceil(lo.x * s) || std::floor(hi.y * s) < std::ceil(lo.y * s)) return false;
   const auto side = [](glm::dvec2 a, glm::dvec2 b, glm::dvec2 p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
-  for (double i = i0; i <= i1; ++i)
-    for (double j = j0; j <= j1; ++j) {
-      const glm::dvec2 p(i / s, j / s);
-      for (const auto& [a, b, c] : images) {
+  double tests = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec2 a = probe.texelOf(glm::dvec3(mesh.positions[t[0]]));
+    const glm::dvec2 b = probe.texelOf(glm::dvec3(mesh.positions[t[1]]));
+    const glm::dvec2 c = probe.texelOf(glm::dvec3(mesh.positions[t[2]]));
+    const glm::dvec2 tlo = glm::max(lo, glm::min(a, glm::min(b, c))), thi = glm::min(hi, glm::max(a, glm::max(b, c)));
+    const double i0 = std::ceil(tlo.x * s), i1 = std::floor(thi.x * s), j0 = std::ceil(tlo.y * s), j1 = std::floor(thi.y * s);
+    if (i1 < i0 || j1 < j0) continue;
+    for (double i = i0; i <= i1; ++i)
+      for (double j = j0; j <= j1; ++j) {
+        const glm::dvec2 p(i / s, j / s);
         const double u = side(a, b, p), v = side(b, c, p), w = side(c, a, p);
         if ((u >= 0 && v >= 0 && w >= 0) || (u <= 0 && v <= 0 && w <= 0)) return true;
+        if (++tests > kMaxNodeTests) return true;
       }
-    }
+  }
   return false;
 }
 
