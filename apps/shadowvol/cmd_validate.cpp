@@ -239,9 +239,7 @@ void registerValidateCommand(CLI::App& app, Runner& run) {
         j["lights"] = nlohmann::json::array();
         for (std::size_t k = 0; k < checks.size(); ++k)
           j["lights"].push_back(describeLightSection(scene, k, checks[k], ro, sections[k]));
-        j["passed"] = passed;
-        j["verdict"] = passed ? "every light's frame is consistent and accurate"
-                              : "at least one light's frame failed: see lights[k].verdict";
+        describeSeveralLightsVerdict(passed, j);
       }
       j["warnings"] = warnings;
       j["sceneWarnings"] = sceneWarnings;

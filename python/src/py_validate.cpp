@@ -254,7 +254,7 @@ py::dict validateFrameArgs(const PyScene& s, const FrameArgs& a, double maxError
         j["lights"].push_back(describeLightSection(scene, k, lights[k], ro, describeLightValidation(lights[k], ro, vo)));
         passed = passed && lights[k].validation.passed;
       }
-      j["passed"] = passed;
+      describeSeveralLightsVerdict(passed, j);
     }
     j["scene"] = describeScene(scene);
     j["gl"] = gl::describeContext(r.renderer.info());  // as the command line's report

@@ -476,8 +476,10 @@ def test_several_lights_are_validated_one_by_one(tmp_path):
                               "--volume", "explicit", "--resolution", "32", "--size", "80x60", "--report",
                               str(tmp_path / "cli")], capture_output=True, text=True)
         assert cli.returncode == 0, cli.stderr
-        lights = json.loads(cli.stdout)["lights"]
+        whole = json.loads(cli.stdout)
+        lights = whole["lights"]
         assert [sorted(l) for l in lights] == [sorted(l) for l in report["lights"]]
+        assert report["verdict"] == whole["verdict"] and report["passed"] is whole["passed"] is True
         assert [(l["bias"], l["shadowBias"]) for l in lights] == [(l["bias"], l["shadowBias"]) for l in report["lights"]]
     # The GPU volume of every light: the spot's from its map, the point light's GPU cube volume.
     gpu = sv.validate(both, volume="gpu", resolution=32, size=(80, 60), report_dir=tmp_path / "g")

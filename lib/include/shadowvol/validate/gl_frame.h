@@ -178,4 +178,12 @@ inline nlohmann::json describeLightSection(const Scene& scene, std::size_t k, co
   return section;
 }
 
+/// The verdict over several lights' sections (report.json's top-level `verdict` and `passed` beside
+/// `lights`): passed when every light's frame passed.
+inline void describeSeveralLightsVerdict(bool passed, nlohmann::json& report) {
+  report["passed"] = passed;
+  report["verdict"] = passed ? "every light's frame is consistent and accurate"
+                             : "at least one light's frame failed: see lights[k].verdict";
+}
+
 }  // namespace shadowvol
