@@ -58,17 +58,19 @@ void checkOneMapLight(const Scene& scene, std::size_t light) {
                      "render, validate and bench take point lights");
 }
 
-DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode) {
+DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode,
+                         int guard) {
   checkOneMapLight(scene, 0);
   if (o.device == "cpu") {
-    DepthMap map = captureDepthEmbree(scene, width, height, mode);
-    verboseNote("depth captured on the CPU (Embree): %dx%d %s, %zu texels hit", width, height, toString(mode),
-                map.hitCount());
+    DepthMap map = captureDepthEmbree(scene, width, height, mode, guard);
+    verboseNote("depth captured on the CPU (Embree): %dx%d %s (a guard band of %d texels a side), %zu texels hit",
+                map.width, map.height, toString(mode), guard, map.hitCount());
     return map;
   }
 #ifdef SHADOWVOL_WITH_GL
-  DepthMap map = rendererFor(o, scene).captureDepth(width, height, mode);
-  verboseNote("depth captured on the GPU: %dx%d %s, %zu texels hit", width, height, toString(mode), map.hitCount());
+  DepthMap map = rendererFor(o, scene).captureDepth(width, height, mode, guard);
+  verboseNote("depth captured on the GPU: %dx%d %s (a guard band of %d texels a side), %zu texels hit", map.width,
+              map.height, toString(mode), guard, map.hitCount());
   return map;
 #else
   noGl(o);

@@ -27,8 +27,10 @@ void checkCaptureDeviceOptions(const CaptureDeviceOptions& o, bool fromFile);
 /// The depth map of `scene` at width x height on the chosen device. Throws InputError naming
 /// --device when this build has no GL (SHADOWVOL_BUILD_GL=OFF) and gpu was asked for, GlError when
 /// no EGL context can be made. A point light's scene is an InputError naming /light/type (it has
-/// six maps: captureCubeOnDevice).
-DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode);
+/// six maps: captureCubeOnDevice). `guard`: texels of the guard band on every side
+/// (captureDepthEmbree; kVolumeGuardTexels for a volume's map).
+DepthMap captureOnDevice(const CaptureDeviceOptions& o, const Scene& scene, int width, int height, CaptureMode mode,
+                         int guard);
 
 /// Refuses light K of the scene as it was loaded (before chooseLight) when it is a point light,
 /// whose six maps a one-map command (depth) cannot write, naming its JSON pointer ("/light" or

@@ -266,7 +266,12 @@ void checkResolution(const std::string& option, int resolution, DepthMapUse use)
     throw InputError("command line", option, std::to_string(resolution),
                      "must be at least " + std::to_string(kMinVolumeMapSide) +
                          ": a map's outermost ring of texels lies on the far plane, so a smaller map's volume is empty");
+  if (resolution > kMaxResolution)
+    throw InputError("command line", option, std::to_string(resolution),
+                     "above the limit of " + std::to_string(kMaxResolution) + " texels a side");
   checkDepthMapSize(resolution, resolution, "command line", option, use);
+  if (use == DepthMapUse::Volume)  // its map has a guard band (light.h)
+    checkGuardedDepthMapSize(resolution, resolution, kVolumeGuardTexels, "command line", option, use);
 }
 
 namespace {

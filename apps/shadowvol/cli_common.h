@@ -108,7 +108,7 @@ std::vector<std::string> warnAboutCapture(const Scene& scene, int width, int hei
                                           const VolumeBuildOptions* volume = nullptr);
 
 /// Largest side accepted for a depth map (texels).
-inline constexpr int kMaxResolution = kMaxDepthMapSide;
+inline constexpr int kMaxResolution = kMaxWindowSide;
 
 /// checkDepthMapSize (depth_map.h) of an N x N map for `use` (its memory), naming the option, and
 /// N >= kMinVolumeMapSide (volume_builder.h): a smaller map's volume is empty (a depth file's too).

@@ -119,7 +119,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
           cube = captureCubeOnDevice(o->device, scene, o->resolution, mode);
           map = cube->faces[0];  // size, capture and origin, which the six faces share
         } else {
-          map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
+          map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode, kVolumeGuardTexels);
         }
         msCapture = msSince(t0);
         j["device"] = o->device.device;
@@ -172,7 +172,11 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
         j["warnings"].push_back(o->out + ": " + note);
       }
-      j.update({{"resolution", {map.width, map.height}},
+      // A captured spot or directional map has its guard band (light.h); a read one is as it is.
+      const int guard = o->depth.empty() && !cube ? kVolumeGuardTexels : 0;
+      j.update({{"resolution", {map.width - 2 * guard, map.height - 2 * guard}},
+                {"guard", guard},
+                {"mapSize", {map.width, map.height}},
                 {"cubeFaces", cube ? 6 : 1},
                 {"capture", toString(map.capture)},
                 {"triangulation", o->volume.triangulation},
@@ -196,9 +200,14 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
       if (o->scene.json) {
         std::cout << jsonText(j) << '\n';
       } else {
-        std::printf("volume of %s, %s%dx%d %s capture, %s triangulation%s, %s cap\n",
+        std::string band;
+        if (guard > 0)
+          band = " (a " + std::to_string(map.width) + "x" + std::to_string(map.height) + " map with a guard band of " +
+                 std::to_string(guard) + " texels a side)";
+        std::printf("volume of %s, %s%dx%d %s capture%s, %s triangulation%s, %s cap\n",
                     o->depth.empty() ? j["scene"]["source"].get<std::string>().c_str() : o->depth.c_str(),
-                    cube ? "point light, 6 cube faces of " : "", map.width, map.height, toString(map.capture), o->volume.triangulation.c_str(), o->volume.blur ? ", blur" : "",
+                    cube ? "point light, 6 cube faces of " : "", map.width - 2 * guard, map.height - 2 * guard,
+                    toString(map.capture), band.c_str(), o->volume.triangulation.c_str(), o->volume.blur ? ", blur" : "",
                     o->volume.cap.c_str());
         std::printf(cube ? "  %zu vertices, %zu triangles; %zu of %zu cells dropped (far cube), %zu flipped (%.1f%%)\n"
                          : "  %zu vertices, %zu triangles; %zu of %zu quads dropped (far plane), %zu flipped (%.1f%%)\n",

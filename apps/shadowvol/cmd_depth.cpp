@@ -20,6 +20,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     SceneOptions scene;
     int resolution = 512;
     int light = 0;
+    int guard = kVolumeGuardTexels;
     std::string capture = "auto";
     std::string out;
     CaptureDeviceOptions device;
@@ -36,6 +37,13 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                   "Depth map size N (N x N texels), " + std::to_string(kMinVolumeMapSide) + ".." +
                       std::to_string(kMaxResolution))
       ->capture_default_str();
+  cmd->add_option("--guard", o->guard,
+                  "Texels the map reaches past the light's window on every side, the window's texels kept (the map "
+                  "is N + 2 G a side): a volume built from it puts the map's outermost ring, on the far plane, "
+                  "outside the window, so a shadow crossing the window's edge is not lit along it. The default is "
+                  "what build and render use; 0: the window's N x N texels alone")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
   addCaptureOption(*cmd, o->capture);
   addCaptureDeviceOptions(*cmd, o->device);
   cmd->add_option("--out", o->out, "Output PFM (the side file is written beside it as <out>.json)")->required();
@@ -43,6 +51,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
     checkCaptureDeviceOptions(o->device, false);
     run = [o] {
       checkResolution("--resolution", o->resolution, DepthMapUse::MapOnly);
+      checkGuardedDepthMapSize(o->resolution, o->resolution, o->guard, "command line", "--resolution", DepthMapUse::MapOnly);
       checkOutputPath("--out", o->out);
       checkDepthMapPath(o->out, "command line", "--out");
       Scene scene = loadSceneOrDefault(o->scene.scene, nullptr, sceneUse(o->scene));
@@ -56,7 +65,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       const nlohmann::json lightFit = applyLightFit(scene, o->scene, o->resolution);
       const auto warnings = warnAboutCapture(scene, o->resolution, o->resolution, mode);
       const auto t0 = std::chrono::steady_clock::now();
-      const DepthMap map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode);
+      const DepthMap map = captureOnDevice(o->device, scene, o->resolution, o->resolution, mode, o->guard);
       const double msCapture = msSince(t0);
       writeDepthMap(map, o->out);
       float lo = DepthMap::kNoHit, hi = 0.0f;
@@ -69,6 +78,9 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       nlohmann::json j = {{"scene", describeScene(scene)},
                           {"lightFit", lightFit},
                           {"resolution", o->resolution},
+                          {"guard", o->guard},
+                          {"width", map.width},
+                          {"height", map.height},
                           {"capture", toString(mode)},
 
                           {"device", o->device.device},
@@ -85,8 +97,10 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
       if (o->scene.json) {
         std::cout << jsonText(j) << '\n';
       } else {
-        std::printf("depth %dx%d (%s capture, %s) of %s: %zu of %zu texels hit", o->resolution, o->resolution,
-                    toString(mode), o->device.device.c_str(), scene.source.c_str(), hits, map.depth.size());
+        std::printf("depth %dx%d (%s capture, %s) of %s", o->resolution, o->resolution, toString(mode),
+                    o->device.device.c_str(), scene.source.c_str());
+        if (o->guard > 0) std::printf(", with a guard band of %d texels a side: %dx%d", o->guard, map.width, map.height);
+        std::printf(": %zu of %zu texels hit", hits, map.depth.size());
         if (hits) std::printf(", depth %.6g .. %.6g", lo, hi);
         std::printf("\ncapture %.1f ms\nwrote %s and %s\n", msCapture, o->out.c_str(),
                     depthSidecarPath(o->out).string().c_str());

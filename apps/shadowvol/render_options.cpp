@@ -88,7 +88,7 @@ void addRenderOptions(CLI::App& cmd, RenderCliOptions& o) {
       ->capture_default_str();
   cmd.add_option("--resolution", o.resolution,
                  "Light depth map size N (N x N texels; a point light: six faces of N x N, N up to " +
-                     std::to_string(kMaxDepthMapSide / kCubeFaces) + ")")
+                     std::to_string(kMaxWindowSide / kCubeFaces) + ")")
       ->capture_default_str();
   addCaptureOption(cmd, o.capture);
   addVolumeOptions(cmd, o.shape);

@@ -81,9 +81,9 @@ py::array realArrayArg(const py::object& value, const std::string& source, const
 }
 
 void checkResolutionArg(int resolution, const std::string& what) {
-  if (resolution < kMinVolumeMapSide || resolution > kMaxDepthMapSide)
+  if (resolution < kMinVolumeMapSide || resolution > kMaxWindowSide)
     throw InputError("python", what, std::to_string(resolution),
-                     "must be between " + std::to_string(kMinVolumeMapSide) + " and " + std::to_string(kMaxDepthMapSide));
+                     "must be between " + std::to_string(kMinVolumeMapSide) + " and " + std::to_string(kMaxWindowSide));
 }
 
 namespace {

@@ -48,7 +48,7 @@ py::array realArrayArg(const py::object& value, const std::string& source, const
 CaptureMode captureModeArg(const std::string& text, const Scene* scene = nullptr,
                            CaptureUse use = CaptureUse::ShadowMap);
 
-/// A light depth map's side N as the command line takes it (kMinVolumeMapSide .. kMaxDepthMapSide);
+/// A light depth map's side N as the command line takes it (kMinVolumeMapSide .. kMaxWindowSide);
 /// InputError naming `what` otherwise.
 void checkResolutionArg(int resolution, const std::string& what);
 

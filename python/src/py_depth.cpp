@@ -20,7 +20,7 @@ namespace shadowvol::python {
 namespace {
 
 DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const std::string& capture,
-                      const std::string& device, const std::string& platform, StrictInt refine) {
+                      const std::string& device, const std::string& platform, StrictInt refine, StrictInt guard) {
   // The map of a volume with `refine` steps, as build_volume reads it: capture='auto' chooses as
   // `shadowvol build --refine K` does (a fifteenth probe's finding: it chose for an unrefined volume).
   if (refine < 0 || refine > kMaxRefineSteps)  // as build_volume's refine
@@ -30,6 +30,9 @@ DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height", DepthMapUse::MapOnly);  // as `shadowvol depth`
+  if (guard < 0 || guard > 64)  // as `shadowvol depth --guard`
+    throw InputError("python", "guard", std::to_string(guard), "must be between 0 and 64 texels");
+  checkGuardedDepthMapSize(width, height, guard, "python", "width, height", DepthMapUse::MapOnly);
   // As the command line's --platform: an EGL platform names how the GPU is reached.
   if (device == "cpu" && platform != "auto")
     throw InputError("python", "platform", platform, "picks the GPU's EGL platform: only with device='gpu'");
@@ -39,7 +42,7 @@ DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const
                      "cube faces are not available here (render and validate take point lights, as does the command "
                      "line's build)");
   py::gil_scoped_release release;
-  if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode);
+  if (device == "cpu") return captureDepthEmbree(s.scene, width, height, mode, guard);
   if (device != "gpu") throw InputError("python", "device", device, "expected cpu or gpu");
 #ifdef SHADOWVOL_WITH_GL
   gl::RendererOptions ro;
@@ -47,7 +50,7 @@ DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const
   try {
     gl::Renderer renderer(ro);
     renderer.setScene(s.scene);
-    return renderer.captureDepth(width, height, mode);
+    return renderer.captureDepth(width, height, mode, guard);
   } catch (const InputError& e) {  // the context's options (platform) by this module's keywords
     throw asPythonArgumentError(e);
   }
@@ -201,13 +204,17 @@ def _depth_map_from_state(state):
 
   m.def("capture_depth", &captureDepth, py::arg("scene"), py::arg("width") = 256, py::arg("height") = 256,
         py::arg("capture") = "auto", py::arg("device") = "cpu", py::arg("platform") = "auto", py::arg("refine") = 0,
+        py::arg("guard") = kVolumeGuardTexels,
         "The light's depth map of a scene: device='cpu' casts one Embree ray per texel centre, 'gpu' renders the "
         "light pass through EGL + OpenGL and reads it back (same texels hit, depths within 1e-4 relative). "
         "capture: auto (back when every mesh object is closed, else front: `--capture auto`), back (first surface "
         "facing away from the light), front, midpoint or entry (front capture's surface where a back face lies "
         "behind it). refine: the bisection steps of the volume the map is for (build_volume's refine): capture='auto' "
         "chooses for it as `shadowvol build --refine K` does (entry capture for a refined volume on closed meshes); "
-        "0, the default, an unrefined volume's choice.");
+        "0, the default, an unrefined volume's choice. guard: texels the map reaches past the light's window on every "
+        "side (the map is width + 2 guard by height + 2 guard, the window's texels kept), so a volume built from it puts "
+        "the map's outermost ring, on the far plane, outside the window: a shadow crossing the window's edge is not lit "
+        "along it. The default is what `shadowvol depth` and the renderer use; 0: the window's texels alone.");
   m.def(
       "load_depth",
       [](const std::filesystem::path& path) {

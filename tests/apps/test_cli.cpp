@@ -297,7 +297,10 @@ TEST(Cli, DepthWritesPfmAndSideFile) {
   const CliResult r = runCli("depth --json --resolution 32 --capture front --out " + pfm);
   ASSERT_EQ(r.code, 0) << r.out;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["texels"], 32 * 32);
+  const int side = 32 + 2 * kVolumeGuardTexels;  // the default guard band (light.h)
+  EXPECT_EQ(j["texels"], side * side);
+  EXPECT_EQ(j["width"], side);
+  EXPECT_EQ(j["guard"], kVolumeGuardTexels);
   EXPECT_GT(j["hits"].get<int>(), 0);
   EXPECT_EQ(j["scene"]["source"], "default");
   EXPECT_TRUE(std::filesystem::exists(pfm));
@@ -544,7 +547,10 @@ TEST(Cli, QuietAndVerbose) {
   }
   const CliResult json = runCli("build -q --json --resolution 16 --out " + out);
   EXPECT_EQ(json.code, 0);
-  EXPECT_EQ(nlohmann::json::parse(json.out)["quads"], 15 * 15) << json.out;
+  const int side = 16 + 2 * kVolumeGuardTexels;  // the map's guard band (light.h)
+  EXPECT_EQ(nlohmann::json::parse(json.out)["quads"], (side - 1) * (side - 1)) << json.out;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["resolution"], nlohmann::json({16, 16})) << json.out;
+  EXPECT_EQ(nlohmann::json::parse(json.out)["mapSize"], nlohmann::json({side, side})) << json.out;
   const CliResult loud = runCli("build --verbose --resolution 16 --out " + out);
   EXPECT_EQ(loud.code, 0);
   EXPECT_TRUE(contains(loud.out, "s] scene default: 2 objects")) << loud.out;
@@ -1080,10 +1086,12 @@ TEST(CliGl, ValidateFailsAThinOccludersLostShadow) {
   EXPECT_EQ(found.code, 0) << found.out;
 }
 
-// A shadow that reaches a given light window's edge is lit along it (the volume's outermost texel
-// ring lies on the far plane): a twentieth probe's band passed; it fails now as border errors,
-// and the same plate under a window that holds its whole shadow passes.
-TEST(CliGl, ValidateFailsTheLitBandAlongTheLightWindowsBorder) {
+// A shadow that reaches a given light window's edge: a twentieth probe's lit band along it (the
+// volume's outermost texel ring on the far plane; 1,054 missed pixels at 64²), counted as border
+// errors and failed since; the guard band (light.h) puts the ring outside the window, so every
+// volume keeps the shadow up to the edge. The same plate under a window that holds its whole
+// shadow passes as before.
+TEST(CliGl, AShadowCrossingTheLightWindowsEdgeKeepsItsLastTexel) {
   if (!hasGl()) GTEST_SKIP() << "built without the GL renderer (SHADOWVOL_BUILD_GL=OFF)";
   const auto dir = test::tempDir();
   const auto sceneWith = [&](const std::string& name, const std::string& extent) {
@@ -1093,12 +1101,17 @@ TEST(CliGl, ValidateFailsTheLitBandAlongTheLightWindowsBorder) {
         "light":{"type":"directional","direction":[0,-1,0],"position":[0,5,0],"extent":)" + extent + "}}");
     return (dir / name).string();
   };
-  const CliResult cut = runCli("validate --resolution 64 --scene " + sceneWith("cut.json", "0.8") + " --report " +
-                               (dir / "cut").string());
-  EXPECT_EQ(cut.code, 3) << cut.out;
-  EXPECT_TRUE(contains(cut.out, "inside the light window's border ring")) << cut.out;
-  const auto report = nlohmann::json::parse(test::readText(dir / "cut" / "report.json"));
-  EXPECT_GT(report["errorCauses"]["border"].get<std::size_t>(), 16u);
+  for (const char* volume : {"explicit", "gpu"})
+    for (const char* refine : {"0", "6"}) {
+      SCOPED_TRACE(std::string(volume) + " --refine " + refine);
+      const std::string report = (dir / (std::string("cut-") + volume + refine)).string();
+      const CliResult cut = runCli("validate --resolution 64 --volume " + std::string(volume) + " --refine " + refine +
+                                   " --scene " + sceneWith("cut.json", "0.8") + " --report " + report);
+      EXPECT_EQ(cut.code, 0) << cut.out;
+      const auto j = nlohmann::json::parse(test::readText(std::filesystem::path(report) / "report.json"));
+      EXPECT_EQ(j["errorCauses"]["border"], 0u);
+      EXPECT_EQ(j["againstExact"]["method"]["missedShadow"], 0u) << j["againstExact"].dump();
+    }
   const CliResult whole = runCli("validate --resolution 64 --scene " + sceneWith("whole.json", "1.5") + " --report " +
                                  (dir / "whole").string());
   EXPECT_EQ(whole.code, 0) << whole.out;

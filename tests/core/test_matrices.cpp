@@ -77,15 +77,20 @@ TEST(CameraMatrices, LookAtAndPerspective) {
 
 class DepthMapSpaces : public ::testing::TestWithParam<LightType> {};
 
-TEST_P(DepthMapSpaces, TexelUnprojectionRoundTrips) {
+Light slantedLight(LightType type) {
   Light l;
-  l.type = GetParam();
+  l.type = type;
   l.position = {1, 7, -2};
   l.direction = glm::normalize(glm::dvec3(0.2, -1, 0.3));
   l.fovYDegrees = 40;
   l.halfExtent = 3;
   l.nearPlane = 0.5;
   l.farPlane = 20;
+  return l;
+}
+
+TEST_P(DepthMapSpaces, TexelUnprojectionRoundTrips) {
+  const Light l = slantedLight(GetParam());
   const DepthMap map = makeDepthMap(l, 17, 9, CaptureMode::Front);
   const TexelUnprojector u(map);
   for (double i : {0.0, 3.0, 16.0, 7.25})
@@ -101,6 +106,29 @@ TEST_P(DepthMapSpaces, TexelUnprojectionRoundTrips) {
   // Texel centres: texel 0 sits half a texel inside the window edge.
   EXPECT_NEAR(map.texelNdc(0, 0).x, -1.0 + 1.0 / 17, 1e-15);
   EXPECT_NEAR(map.texelNdc(16, 8).y, 1.0 - 1.0 / 9, 1e-15);
+}
+
+// A volume map's guard band (guardedLight, light.h): the (W + 2g) x (H + 2g) map of the widened
+// light has the W x H map's texel centres at (i + g, j + g), at every depth, on a map wider than
+// tall too; its border texels lie g texels past the window's edge; guard 0 is the light itself.
+TEST_P(DepthMapSpaces, GuardedLightKeepsTheWindowsTexelCentres) {
+  const Light l = slantedLight(GetParam());
+  for (int g : {0, 2, 5}) {
+    const Light guarded = guardedLight(l, 17, 9, g);
+    EXPECT_EQ(guarded.position, l.position);
+    EXPECT_EQ(guarded.nearPlane, l.nearPlane);
+    const DepthMap window = makeDepthMap(l, 17, 9, CaptureMode::Front);
+    const DepthMap band = makeDepthMap(guarded, 17 + 2 * g, 9 + 2 * g, CaptureMode::Front);
+    const TexelUnprojector u(window), v(band);
+    for (double i : {0.0, 3.0, 16.0, 7.25})
+      for (double j : {0.0, 4.0, 8.0})
+        for (double d : {0.5, 3.0, 20.0})
+          EXPECT_NEAR(glm::length(u.worldPoint(i, j, d) - v.worldPoint(i + g, j + g, d)), 0.0, 1e-12 * 20)
+              << g << " " << i << " " << j << " " << d;
+    // The band's first texel centre, g texels outside the window's first.
+    EXPECT_NEAR(window.texelOf(band.worldPoint(0, 0, 3.0)).x, -double(g), 1e-9);
+    if (g == 0) EXPECT_EQ(band.lightProjection, window.lightProjection);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(BothLights, DepthMapSpaces, ::testing::Values(LightType::Spot, LightType::Directional));

@@ -54,14 +54,15 @@ void expectAgreement(const Scene& scene, const Variant& v, int mapSize) {
       100.0 * share, std::size_t(std::llround((1.0 - share) * double(cpu.stencil.size()))), cpu.stencil.size(),
       shadowed, gpu.volumeTriangles, cpu.volumeTriangles);
   EXPECT_GT(shadowed, cpu.stencil.size() / 50) << "the view must contain shadow";
-  const std::size_t quads = std::size_t(mapSize - 1) * std::size_t(mapSize - 1);
+  const int side = mapSize + 2 * kVolumeGuardTexels;  // the map's guard band (light.h)
+  const std::size_t quads = std::size_t(side - 1) * std::size_t(side - 1);
   EXPECT_EQ(gpu.gpuVolumeQuads, quads);
   EXPECT_EQ(gpu.volumeCountUsed, count);
   EXPECT_EQ(cpu.volumeCountUsed, count);
   if (v.cap == FarCap::Quad) {
     // The full sheet, and with z-fail the far rectangle (a fan of one triangle per ring edge, so
     // that it shares the ring's vertices); no quad may be skipped: no compaction.
-    EXPECT_EQ(gpu.volumeTriangles, 2 * quads + (perQuad == 4 ? 4 * std::size_t(mapSize - 1) : 0));
+    EXPECT_EQ(gpu.volumeTriangles, 2 * quads + (perQuad == 4 ? 4 * std::size_t(side - 1) : 0));
     EXPECT_EQ(gpu.gpuVolumeQuadsDrawn, quads);
   } else {
     // only the kept quads were expanded

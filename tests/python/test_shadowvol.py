@@ -71,9 +71,9 @@ def test_load_scene_reads_shipped_scene():
 
 
 def test_capture_depth_gives_numpy_view(depth):
-    assert depth.width == 96 and depth.height == 96
+    assert depth.width == 100 and depth.height == 100  # 96 and a guard band of 2 texels a side
     a = depth.depth
-    assert a.shape == (96, 96) and a.dtype == np.float32 and not a.flags.writeable
+    assert a.shape == (100, 100) and a.dtype == np.float32 and not a.flags.writeable
     hit = np.isfinite(a)
     assert hit.sum() == depth.hit_count > 0
     assert (a[hit] >= depth.near).all() and (a[hit] <= depth.far).all()
@@ -82,8 +82,8 @@ def test_capture_depth_gives_numpy_view(depth):
 
 def test_build_volume_is_closed_and_matches_stats(depth):
     V, F, stats = sv.build_volume(depth)
-    assert_closed_oriented(V, F)
-    assert stats["quads"] == 95 * 95 and stats["capTrianglesAfter"] > 0 and stats["ms"]["total"] >= 0
+    assert_closed_oriented(V, F)  # 96 texels and a guard band of 2 a side: 100, 99 quads a side
+    assert stats["quads"] == 99 * 99 and stats["capTrianglesAfter"] > 0 and stats["ms"]["total"] >= 0
 
 
 def test_from_array_rebuilds_the_same_volume(depth):
@@ -601,6 +601,21 @@ def test_switches_take_booleans_only(depth):
     assert sv.build_volume(depth, blur=np.bool_(False))[0].shape == sv.build_volume(depth)[0].shape
 
 
+def test_capture_depth_guard_band_keeps_the_windows_texels(scene):
+    """guard=G: the map reaches G texels past the light's window on every side, the window's texel
+    centres kept: its inner texels are the guard=0 map's (light.h, guardedLight)."""
+    plain = sv.capture_depth(scene, 48, 48, guard=0)
+    guarded = sv.capture_depth(scene, 48, 48, guard=3)
+    assert (plain.width, guarded.width, guarded.height) == (48, 54, 54)
+    inner = guarded.depth[3:-3, 3:-3]
+    hit = np.isfinite(plain.depth)
+    assert (np.isfinite(inner) == hit).all()
+    assert np.allclose(inner[hit], plain.depth[hit], rtol=1e-5)
+    for bad in (-1, 65):
+        with pytest.raises(sv.InputError, match="guard"):
+            sv.capture_depth(scene, 48, 48, guard=bad)
+
+
 def test_integers_refuse_booleans(depth):
     """refine=True built a volume refined with one ray per edge, width=True asked for a 1-texel map:
     Python's bool is an int to pybind11, numpy's bool_ has __index__. Integers (numpy's too) are
@@ -614,7 +629,9 @@ def test_integers_refuse_booleans(depth):
             sv.build_volume(depth, **kw)
     with pytest.raises(TypeError):
         scene.receiver_texel_size(True)
-    assert sv.capture_depth(scene, np.int64(16), 16).width == 16
+    assert sv.capture_depth(scene, np.int64(16), 16, guard=np.int64(0)).width == 16
+    with pytest.raises(TypeError):
+        sv.capture_depth(scene, 16, 16, guard=True)
     if sv.has_gl:
         for kw in (dict(resolution=True), dict(refine=True), dict(size=(True, 24)), dict(size=(np.bool_(True), 24))):
             with pytest.raises(TypeError):

@@ -156,13 +156,22 @@ void checkVolumeFitsMemory(const DepthMap& map);
 /// The same for the maps of one volume together (a point light's six cube faces).
 void checkVolumeFitsMemory(std::span<const DepthMap> maps);
 
-/// Largest side of a depth map (texels).
-inline constexpr int kMaxDepthMapSide = 16384;
+/// Largest side N a caller or command asks for (texels over the light's window).
+inline constexpr int kMaxWindowSide = 16384;
+
+/// Largest side of a depth map (texels): the window's and a volume map's guard band (light.h).
+inline constexpr int kMaxDepthMapSide = kMaxWindowSide + 2 * kVolumeGuardTexels;
 
 /// Refuses, before anything is allocated, a W x H map with a side below 2 or above
 /// kMaxDepthMapSide, or whose buffers (depthMapBytes for `use`) need more than half of this
 /// machine's memory: InputError naming `source` and `field` with the value and the memory it would need.
 void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
                        DepthMapUse use = DepthMapUse::Volume);
+
+/// The same for the map of a W x H window with a guard band of `guard` texels a side
+/// (guardedLight, light.h), (W + 2 guard) x (H + 2 guard), naming the band in the message; nothing
+/// for guard 0. Check the W x H first (checkDepthMapSize).
+void checkGuardedDepthMapSize(int width, int height, int guard, const std::string& source, const std::string& field,
+                              DepthMapUse use = DepthMapUse::Volume);
 
 }  // namespace shadowvol

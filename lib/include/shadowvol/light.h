@@ -60,4 +60,20 @@ glm::dmat4 lightView(const Light& light);
 /// A point light has none (its faces do: cubeFaceLight); asking is a programming error.
 glm::dmat4 lightProjection(const Light& light, double aspect = 1.0);
 
+/// Texels a volume's depth map reaches past the light's window on every side: the map's
+/// outermost ring, which the volume puts on the far plane to close it (docs/volume.md), and the
+/// sheet's slope down to it (the quads between the ring and the next texels) lie outside the
+/// window, so a shadow that crosses the window's edge keeps its last texel (without the band, a
+/// lit strip about a texel wide). The blur reads up to 2.5 texels away, clamped at the map's edge,
+/// as anywhere near an edge. (A point light's refined GPU faces keep 4: their seams must see the
+/// blur of one unbounded map, renderer_impl.h.)
+inline constexpr int kVolumeGuardTexels = 2;
+
+/// A spot or directional light widened by `guard` texels on every side of a W x H map: a
+/// (W + 2 guard) x (H + 2 guard) map of it has the W x H map's texel centres and texel size,
+/// texel (i, j) of the W x H map being its texel (i + guard, j + guard). Spot: the opening's
+/// tangent times (H + 2 guard) / H; directional: the extent times the same; position, direction,
+/// up and planes kept. The light's own window (what it lights) stays the given light's.
+Light guardedLight(const Light& light, int width, int height, int guard);
+
 }  // namespace shadowvol

@@ -385,9 +385,9 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   const double physical = pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0.0;
   for (int r : o.resolutions) {
-    if (r < kMinVolumeMapSide || r > kMaxDepthMapSide)
+    if (r < kMinVolumeMapSide || r > kMaxWindowSide)
       throw InputError("SweepOptions", "resolutions", std::to_string(r),
-                       "must be in " + std::to_string(kMinVolumeMapSide) + ".." + std::to_string(kMaxDepthMapSide) +
+                       "must be in " + std::to_string(kMinVolumeMapSide) + ".." + std::to_string(kMaxWindowSide) +
                            (r < kMinVolumeMapSide ? " (a 2 x 2 map's volume is all border ring: empty)"
                                                   : " (the largest depth map side)"));
     const double need = double(depthMapBytes(r, r)) * 2.0;  // CPU map + mesh, plus GPU copies

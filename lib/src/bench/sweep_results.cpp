@@ -182,7 +182,7 @@ SweepRow parseSweepRow(const std::string& line, const std::string& source, std::
   r.method = text();
   r.family = text();
   r.capture = text();
-  r.resolution = int(whole(0, kMaxDepthMapSide));  // 0: silhouette volumes, which have no map
+  r.resolution = int(whole(0, kMaxWindowSide));  // 0: silhouette volumes, which have no map
   r.width = int(whole(1, 1 << 20));
   r.height = int(whole(1, 1 << 20));
   r.timing = text();

@@ -95,7 +95,7 @@ bool coversNode(const DepthMap& probe, const TriangleMesh& mesh, glm::dvec2 lo, 
 // the map (the frustum does not light it: not this check's business) or partly behind a spot
 // light's apex plane (not judged).
 std::string coverageWarning(const DepthMap& probe, const SceneObject& o, int hiddenSearchGrid,
-                            const std::string& mapName = "light map", int maxSide = kMaxDepthMapSide) {
+                            const std::string& mapName = "light map", int maxSide = kMaxWindowSide) {
   const glm::dmat4 toClip = probe.lightProjection * probe.lightView;
   const int width = probe.width, height = probe.height;
   glm::dvec2 lo(1e300), hi(-1e300);
@@ -169,7 +169,7 @@ void pointLightWarnings(const Scene& scene, int n, CaptureMode capture, int hidd
       const DepthMap probe = probeMap(cubeFaceLight(l, face), n, n, capture);
       const std::string name = std::string(cubeFaceName(face)) + " face of the light's cube map";
       // The six faces are held to one map's limit together (cube_map.cpp).
-      if (std::string w = coverageWarning(probe, o, hiddenSearchGrid, name, kMaxDepthMapSide / kCubeFaces); !w.empty())
+      if (std::string w = coverageWarning(probe, o, hiddenSearchGrid, name, kMaxWindowSide / kCubeFaces); !w.empty())
         uncovered.push_back(std::move(w));
     }
     std::size_t clipped = 0;

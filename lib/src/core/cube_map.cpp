@@ -107,11 +107,11 @@ glm::dvec3 CubeDepthMap::lightPosition() const {
 CubeDepthMap makeCubeDepthMap(const Light& point, int n, CaptureMode capture) {
   SV_CHECK(point.type == LightType::Point);
   // The six faces together are held to one map's limit (kCubeFaces * N a side): N <= 2730.
-  constexpr int kMaxFaceSide = kMaxDepthMapSide / kCubeFaces;
+  constexpr int kMaxFaceSide = kMaxWindowSide / kCubeFaces;
   if (n > kMaxFaceSide)
     throw InputError("cube map", "N", std::to_string(n),
                      "a point light's cube map holds six faces of N x N texels, held together to the limit of " +
-                         std::to_string(kMaxDepthMapSide) + " texels a side: N may be at most " +
+                         std::to_string(kMaxWindowSide) + " texels a side: N may be at most " +
                          std::to_string(kMaxFaceSide));
   checkDepthMapSize(n, kCubeFaces * n, "cube map", "N");
   CubeDepthMap cube;

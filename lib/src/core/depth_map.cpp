@@ -162,13 +162,35 @@ void checkVolumeFitsMemory(std::span<const DepthMap> maps) {
 
 void checkVolumeFitsMemory(const DepthMap& map) { checkVolumeFitsMemory(std::span<const DepthMap>(&map, 1)); }
 
+namespace {
+
+std::string sizeText(int width, int height) {
+  return width == height ? std::to_string(width) : std::to_string(width) + "x" + std::to_string(height);
+}
+
+}  // namespace
+
 void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
                        DepthMapUse use) {
-  const std::string value = width == height ? std::to_string(width) : std::to_string(width) + "x" + std::to_string(height);
+  const std::string value = sizeText(width, height);
   if (width < 2 || height < 2) throw InputError(source, field, value, "the resolution must be at least 2");
   if (width > kMaxDepthMapSide || height > kMaxDepthMapSide)
     throw InputError(source, field, value, "above the limit of " + std::to_string(kMaxDepthMapSide) + " texels a side");
   checkFitsMemory(depthMapBytes(width, height, use), source, field, value);
+}
+
+void checkGuardedDepthMapSize(int width, int height, int guard, const std::string& source, const std::string& field,
+                              DepthMapUse use) {
+  if (guard == 0) return;
+  const std::string value = sizeText(width, height);
+  const std::int64_t w = std::int64_t(width) + 2 * std::int64_t(guard), h = std::int64_t(height) + 2 * std::int64_t(guard);
+  const std::string band = "with its guard band of " + std::to_string(guard) + " texels a side (the map is " +
+                           std::to_string(w) + "x" + std::to_string(h) + " texels)";
+  if (w > kMaxDepthMapSide || h > kMaxDepthMapSide)
+    throw InputError(source, field, value,
+                     band + ", above the limit of " + std::to_string(kMaxDepthMapSide) + " texels a side: take at most " +
+                         std::to_string(kMaxDepthMapSide - 2 * guard));
+  checkFitsMemory(depthMapBytes(int(w), int(h), use), source, field, value);
 }
 
 }  // namespace shadowvol

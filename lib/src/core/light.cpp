@@ -38,4 +38,16 @@ glm::dmat4 lightProjection(const Light& light, double aspect) {
   return glm::ortho(-hx, hx, -hy, hy, light.nearPlane, light.farPlane);
 }
 
+Light guardedLight(const Light& light, int width, int height, int guard) {
+  SV_CHECK(light.type != LightType::Point);
+  SV_CHECK(width >= 1 && height >= 1 && guard >= 0);
+  Light l = light;
+  const double widen = double(height + 2 * guard) / double(height);  // the horizontal follows the aspect
+  if (light.type == LightType::Spot)
+    l.fovYDegrees = 2.0 * glm::degrees(std::atan(std::tan(0.5 * glm::radians(light.fovYDegrees)) * widen));
+  else
+    l.halfExtent = light.halfExtent * widen;
+  return l;
+}
+
 }  // namespace shadowvol

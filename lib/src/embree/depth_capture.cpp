@@ -237,12 +237,16 @@ std::vector<const TriangleMesh*> meshesOf(const Scene& scene) {
 
 }  // namespace
 
-DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode) {
+DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode, int guard) {
   if (scene.light.type == LightType::Point)
     throw InputError(scene.source, "/light/type", "point",
                      "a point light has six depth maps, one per cube face: capture them with captureCubeEmbree");
   checkDepthMapSize(width, height, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
-  DepthMap map = makeDepthMap(scene.light, width, height, mode);
+  if (guard < 0) throw InputError("captureDepthEmbree", "guard", std::to_string(guard), "must be at least 0");
+  checkGuardedDepthMapSize(width, height, guard, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
+  DepthMap map = guard == 0 ? makeDepthMap(scene.light, width, height, mode)
+                            : makeDepthMap(guardedLight(scene.light, width, height, guard), width + 2 * guard,
+                                           height + 2 * guard, mode);
   map.origin = scene.origin;
   const EmbreeDevice device;
   const EmbreeScene rtScene(device, meshesOf(scene));

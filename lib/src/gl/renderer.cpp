@@ -251,15 +251,23 @@ void Renderer::setScene(const Scene& scene) {
   s.hasScene = true;
 }
 
-DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode) {
+DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode, int guard) {
   Impl& s = *impl_;
   s.context.makeCurrent();
   s.requireScene();
   if (s.light.type == LightType::Point)
     throw InputError(s.scene.source, "/light/type", "point",
                      "a point light has six depth maps, one per cube face: capture them with captureCube");
-  s.checkSize("Renderer::captureDepth", "width x height", width, height, std::min(s.maxTextureSize, s.maxViewport[0]));
-  s.lightPass(width, height, mode, false);
+  const int limit = std::min(s.maxTextureSize, s.maxViewport[0]);
+  s.checkSize("Renderer::captureDepth", "width x height", width, height, limit);
+  if (guard < 0) throw InputError("Renderer::captureDepth", "guard", std::to_string(guard), "must be at least 0");
+  if (width > limit - 2 * guard || height > limit - 2 * guard)
+    throw InputError("Renderer::captureDepth", "width x height", std::to_string(width) + "x" + std::to_string(height),
+                     "with its guard band of " + std::to_string(guard) + " texels a side, at most " +
+                         std::to_string(limit - 2 * guard) + " per side on this OpenGL implementation");
+  const Impl::LightRestore restore{s.light, s.light};
+  if (guard > 0) s.light = guardedLight(s.light, width, height, guard);
+  s.lightPass(width + 2 * guard, height + 2 * guard, mode, false);
   return s.readBack(mode);
 }
 

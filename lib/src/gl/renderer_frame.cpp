@@ -96,7 +96,17 @@ Renderer::Impl::LightFrame Renderer::Impl::planLightFrame(const RenderOptions& o
   f.rayDepth = f.hybrid && !givenVolume && o.volume == VolumeSource::Explicit &&
                chooseExplicitDepth(o, scene.triangleCount(), context.info().softwareRenderer, f.point ? 6 : 1) ==
                    ExplicitDepth::Rays;
+  f.guarded = f.hybrid && !givenVolume && !f.point;
   return f;
+}
+
+Renderer::Impl::MapFrame Renderer::Impl::mapFrame(const RenderOptions& o, const LightFrame& f) const {
+  MapFrame m{light, o};
+  if (!f.guarded) return m;
+  m.light = guardedLight(light, o.depthWidth, o.depthHeight, kVolumeGuardTexels);
+  m.options.depthWidth += 2 * kVolumeGuardTexels;
+  m.options.depthHeight += 2 * kVolumeGuardTexels;
+  return m;
 }
 
 void Renderer::Impl::lightDepthPasses(const RenderOptions& o, const LightFrame& f, PassTimer& timer) {
@@ -197,12 +207,14 @@ void Renderer::Impl::volumeInput(const RenderOptions& o, LightFrame& f, const Vo
   }
 }
 
-void Renderer::Impl::stencilPasses(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f,
-                                   PassTimer& timer, bool added, RenderResult& result) {
+void Renderer::Impl::stencilPasses(const RenderOptions& o, const MapFrame& map, const CameraSetup& cam,
+                                   const LightFrame& f, PassTimer& timer, bool added, RenderResult& result) {
   const VolumeBuildOptions& vo = o.volumeOptions;
-  // The light frustum's aspect: the depth map's (silhouette has none: the options' size).
-  const int frustumW = f.silhouette ? o.depthWidth : std::max(lightW, 2);
-  const int frustumH = f.silhouette ? o.depthHeight : std::max(lightH, 2);
+  // The light frustum's aspect: the depth map's (silhouette has none, a guarded map a band: the
+  // options' size).
+  const bool optionsSize = f.silhouette || f.guarded;
+  const int frustumW = optionsSize ? o.depthWidth : std::max(lightW, 2);
+  const int frustumH = optionsSize ? o.depthHeight : std::max(lightH, 2);
   if (added) {
     beginAddedLight(cam, false);
   } else {
@@ -216,6 +228,8 @@ void Renderer::Impl::stencilPasses(const RenderOptions& o, const CameraSetup& ca
     drawRefinedCubeFaces(o, cam, timer, result);
   } else {
     TimedPass t(timer, f.silhouette ? "silhouette" : "volume");
+    const LightRestore restore{light, light};
+    light = map.light;
     beginVolume(zPassFrame);
     if (f.refinedGpu)
       drawRefinedGpuVolume(cam, vo, result.biasUsed, *f.volumeDepth, result);
@@ -286,16 +300,21 @@ RenderResult Renderer::Impl::renderLight(const RenderOptions& o, const CameraSet
   volumeTrianglesPending = false;  // a frame that threw may have left it set
   volumeReadsWindowDepth = false;
   RenderResult result;
-  zPassFrame = chooseZPass(o, cam, givenVolume != nullptr, result);
-  result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
   LightFrame f = planLightFrame(o, givenVolume != nullptr);
-  lightDepthPasses(o, f, timer);
-  volumeInput(o, f, givenVolume, timer, result);
+  const MapFrame map = mapFrame(o, f);
+  const LightRestore restore{light, light};
+  light = map.light;  // the depth passes and the volume's input: the map's light
+  zPassFrame = chooseZPass(map.options, cam, givenVolume != nullptr, result);
+  result.volumeCountUsed = zPassFrame ? VolumeCount::ZPass : VolumeCount::ZFail;
+  lightDepthPasses(map.options, f, timer);
+  volumeInput(map.options, f, givenVolume, timer, result);
+  light = restore.saved;  // the camera and lighting passes: the light's own window
   if (f.stencilShadows)
-    stencilPasses(o, cam, f, timer, added, result);
+    stencilPasses(o, map, cam, f, timer, added, result);
   else
     shadeWithMap(o, cam, f, timer, added);
-  lightFrameResults(o, cam, f, result);
+  light = map.light;  // read-backs of the map and the GPU volume's meshes
+  lightFrameResults(map.options, cam, f, result);
   return result;
 }
 

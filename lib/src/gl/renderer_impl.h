@@ -127,7 +127,8 @@ inline constexpr int kSceneVertexFloats = int(sizeof(SceneVertex) / sizeof(float
 constexpr std::int64_t kMaxRefinedGpuTexels = std::int64_t(2048) * 2048;
 // The refined GPU cube volume's guard band (guardedCubeFaceLight): each face's map reaches this
 // many texels past the face's borders, so that the map's border ring (on the far plane) and the
-// blur's reach (2.5 texels) stay outside the face's pyramid (docs/gpu.md).
+// blur's reach (2.5 texels) stay outside the face's pyramid (docs/gpu.md). A spot or directional
+// light's volume map has a narrower band (kVolumeGuardTexels, light.h).
 constexpr int kCubeGuardTexels = 4;
 
 struct Renderer::Impl {
@@ -228,6 +229,8 @@ struct Renderer::Impl {
   void requireScene() const;
 
   void checkSize(const char* source, const char* field, int w, int h, int limit) const;
+  /// A W x H volume map's guarded size (mapFrame) within the GL implementation's limits.
+  void checkGuardedSize(int w, int h) const;
 
   // ---- light targets -------------------------------------------------------------------------
 
@@ -577,12 +580,24 @@ struct Renderer::Impl {
     bool dpsm = false;            // a point light's dual-paraboloid maps
     bool cubeShadowMap = false;   // a point light's cube shadow map (or PCF)
     bool rayDepth = false;        // the explicit volume's map from the oracle's rays (ExplicitDepth::Rays, or Auto's pick)
+    bool guarded = false;         // a spot or directional light's own volume: its map has a guard band (guardedFrame)
     GpuVolumeDraw gpuDraw = GpuVolumeDraw::Auto;
     std::size_t explicitTriangles = 0;     // of an uploaded volume (drawExplicitVolume)
     const Texture* volumeDepth = nullptr;  // what a GPU volume reads (gpuVolumeDepth)
   };
 
   LightFrame planLightFrame(const RenderOptions& o, bool givenVolume) const;
+
+  /// What the light's depth passes, the volume's input and its draw use: for a guarded frame
+  /// (LightFrame::guarded) the light widened by kVolumeGuardTexels texels a side and the options'
+  /// depth size grown by as many (guardedLight, light.h), so the map's far-plane ring and blur
+  /// reach lie outside the light's window; otherwise the light and options as given. The camera
+  /// and lighting passes keep the given light's window.
+  struct MapFrame {
+    Light light;
+    RenderOptions options;
+  };
+  MapFrame mapFrame(const RenderOptions& o, const LightFrame& f) const;
 
   /// The light's depth passes this frame needs: the cube shadow map, the dual-paraboloid maps, or
   /// the light pass (none for a ray-cast map, the silhouette method or a given volume).
@@ -605,9 +620,10 @@ struct Renderer::Impl {
                    RenderResult& result);
 
   /// The stencil methods' passes: the camera pass (the first light), the volume into the
-  /// stencil, and the lighting (or a further light's diffuse) pass.
-  void stencilPasses(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, PassTimer& timer, bool added,
-                     RenderResult& result);
+  /// stencil, and the lighting (or a further light's diffuse) pass. The renderer's light is the
+  /// given one; the volume is drawn with `map`'s (mapFrame).
+  void stencilPasses(const RenderOptions& o, const MapFrame& map, const CameraSetup& cam, const LightFrame& f,
+                     PassTimer& timer, bool added, RenderResult& result);
 
   /// The shadow-map methods' one shade pass (and none: no shadow test).
   void shadeWithMap(const RenderOptions& o, const CameraSetup& cam, const LightFrame& f, PassTimer& timer, bool added);

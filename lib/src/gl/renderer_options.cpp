@@ -79,10 +79,21 @@ void Renderer::Impl::checkOffsetRanges(const RenderOptions& o) const {
       throw InputError("RenderOptions", "shadowBiasConstant", numberText(*o.shadowBiasConstant), why);
 }
 
+void Renderer::Impl::checkGuardedSize(int w, int h) const {
+  const int limit = std::min(maxTextureSize, maxViewport[0]), g = kVolumeGuardTexels;
+  if (w > limit - 2 * g || h > limit - 2 * g)
+    throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(w) + "x" + std::to_string(h),
+                     "a volume's map is drawn with a guard band of " + std::to_string(g) +
+                         " texels a side (light.h, kVolumeGuardTexels): at most " + std::to_string(limit - 2 * g) +
+                         " per side on this OpenGL implementation");
+}
+
 void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) const {
   requireScene();
   checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight,
             std::min(maxTextureSize, maxViewport[0]));
+  if (o.method == ShadowMethod::Hybrid && light.type != LightType::Point)
+    checkGuardedSize(o.depthWidth, o.depthHeight);
   if (cam.w < 1 || cam.h < 1 || cam.w > maxRenderbufferSize || cam.h > maxRenderbufferSize)
     throw InputError("RenderOptions", "imageWidth x imageHeight", std::to_string(cam.w) + "x" + std::to_string(cam.h),
                      "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
@@ -124,8 +135,8 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
       refuse(
           "finds the boundary edges' crossings alone: chord points and the sub-grid need ${volume} explicit "
           "with ${refineCrossings} rays");
-    // The maps it walks: one W x H, or a point light's six faces with their guard band
-    // (drawRefinedCubeFaces), each (N + 2 G)^2.
+    // The maps it walks: one W x H (its guard band of kVolumeGuardTexels, mapFrame, within the
+    // bound's slack), or a point light's six faces with theirs (drawRefinedCubeFaces), each (N + 2 G)^2.
     const bool point = light.type == LightType::Point;
     const std::int64_t w = point ? o.depthWidth + 2 * kCubeGuardTexels : o.depthWidth;
     const std::int64_t h = point ? w : o.depthHeight;

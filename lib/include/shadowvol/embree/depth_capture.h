@@ -28,7 +28,10 @@ namespace shadowvol {
 /// checkDepthMapSize refuses (below 2 or above kMaxDepthMapSide a side, or more than half of the
 /// machine's memory) is an InputError naming it.
 /// A point light's scene is an InputError here (it has six maps: captureCubeEmbree).
-DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode);
+/// `guard` > 0: the map of guardedLight(scene.light, width, height, guard), (width + 2 guard) x
+/// (height + 2 guard) texels, the given size's texels and a band of `guard` more on every side
+/// (kVolumeGuardTexels for a volume: light.h); both sizes checked as above.
+DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMode mode, int guard = 0);
 
 /// A point light's cube map (cube_map.h): each face as captureDepthEmbree captures that face's
 /// spot light (cubeFaceLight), with one BVH for the six. The scene's light must be a point light.

@@ -94,7 +94,9 @@ class Renderer {
   /// Light pass + read-back: the same quantity as captureDepthEmbree (depth_map.h: light-view
   /// depth, kNoHit where the light sees nothing, row 0 at the bottom). Window depth is converted
   /// in double. Throws InputError for a size below 2 or too large for the GL implementation.
-  DepthMap captureDepth(int width, int height, CaptureMode mode);
+  /// `guard` > 0: the map of the light widened by that many texels a side (guardedLight, light.h),
+  /// (width + 2 guard) x (height + 2 guard), as captureDepthEmbree's.
+  DepthMap captureDepth(int width, int height, CaptureMode mode, int guard = 0);
 
   /// A point light's cube map (cube_map.h): six light passes, one per face's spot light
   /// (cubeFaceLight), each read back as captureDepth does. The scene's light must be a point light.

@@ -19,7 +19,9 @@
 // its edge) may be lit. Refinement does not move it; a wider window (the light's extent or fov, or
 // a fitted one, which keeps a margin) or a finer map does. A missed pixel (exact: shadowed) the
 // test above gets right whose point lies in that band is counted there rather than as resolution.
-// The accuracy verdict allows kMaxBorderPixels of them.
+// The accuracy verdict allows kMaxBorderPixels of them. The volumes' own maps reach a guard band
+// past the window (kVolumeGuardTexels, light.h), which puts that band outside it: there the count
+// is 0, and stays as the check that it is; a map without one (captured with guard 0) shows it.
 #pragma once
 
 #include <cstddef>
