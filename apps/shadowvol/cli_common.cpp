@@ -269,9 +269,7 @@ void checkResolution(const std::string& option, int resolution, DepthMapUse use)
   if (resolution > kMaxResolution)
     throw InputError("command line", option, std::to_string(resolution),
                      "above the limit of " + std::to_string(kMaxResolution) + " texels a side");
-  checkDepthMapSize(resolution, resolution, "command line", option, use);
-  if (use == DepthMapUse::Volume)  // its map has a guard band (light.h)
-    checkGuardedDepthMapSize(resolution, resolution, kVolumeGuardTexels, "command line", option, use);
+  checkWindowMapSize(resolution, resolution, "command line", option, use);  // a volume's: with its guard band
 }
 
 namespace {

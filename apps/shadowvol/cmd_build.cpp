@@ -172,8 +172,8 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         std::fprintf(stderr, "shadowvol: warning: %s: %s\n", o->out.c_str(), note.c_str());
         j["warnings"].push_back(o->out + ": " + note);
       }
-      // A captured spot or directional map has its guard band (light.h); a read one is as it is.
-      const int guard = o->depth.empty() && !cube ? kVolumeGuardTexels : 0;
+      // A spot or directional map's guard band (light.h): captured with one, or as its side file says.
+      const int guard = cube ? 0 : map.guard;
       j.update({{"resolution", {map.width - 2 * guard, map.height - 2 * guard}},
                 {"guard", guard},
                 {"mapSize", {map.width, map.height}},

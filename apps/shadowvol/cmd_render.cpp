@@ -211,8 +211,11 @@ void registerRenderCommand(CLI::App& app, Runner& run) {
         std::printf("GL: %s on %s (%s, EGL platform %s%s%s)\n", info.glVersion.c_str(), info.glRenderer.c_str(),
                     info.glVendor.c_str(), info.platform.c_str(), info.device.empty() ? "" : ", device ",
                     info.device.c_str());
-        std::printf("%s of %s: %dx%d image, %dx%d depth map%s, %s capture", o->render.method.c_str(),
+        // A spot or directional light's volume map has a guard band (light.h).
+        const bool band = o->render.method == "hybrid" && scene.light.type != LightType::Point;
+        std::printf("%s of %s: %dx%d image, %dx%d depth map%s%s, %s capture", o->render.method.c_str(),
                     scene.source.c_str(), result.width, result.height, o->render.resolution, o->render.resolution,
+                    band ? (" and a guard band of " + std::to_string(kVolumeGuardTexels) + " texels a side").c_str() : "",
                     result.explicitDepthUsed == gl::ExplicitDepth::Rays && ro.volume == gl::VolumeSource::Explicit ? " (ray-cast)" : "", capturesMap(ro) ? toString(ro.capture) : "no");
         if (o->render.method == "hybrid")
           std::printf(", %s volume, %s triangulation%s, %s cap, %zu volume triangles, %zu stencil pixels != 0",

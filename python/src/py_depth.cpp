@@ -76,7 +76,7 @@ void refuseBeyondFloat(const py::array& depth) {
 
 DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::object& lightProjection,
                    double nearPlane, double farPlane, const std::string& light, const std::string& capture,
-                   const std::array<double, 3>& origin) {
+                   const std::array<double, 3>& origin, StrictInt guard) {
   // Real numbers only: a complex array would lose its imaginary part without a word (a probe's finding).
   realArrayArg(raw, "DepthMap.from_array", "depth", "float or integer depths");
   if (raw.ndim() != 2)
@@ -105,6 +105,8 @@ DepthMap fromArray(const py::array& raw, const py::object& lightView, const py::
   map.nearPlane = nearPlane;
   map.farPlane = farPlane;
   map.origin = {origin[0], origin[1], origin[2]};  // checked below as a side file's /origin is
+  checkDepthMapGuard(guard, map.width, map.height, "DepthMap.from_array", "guard");  // as a side file's /guard
+  map.guard = guard;
   map.depth.resize(std::size_t(map.width) * std::size_t(map.height));
   auto r = depth.unchecked<2>();
   for (int j = 0; j < map.height; ++j)
@@ -122,14 +124,16 @@ py::tuple depthMapState(const DepthMap& d) {
   std::copy(d.depth.begin(), d.depth.end(), depth.mutable_data());
   return py::make_tuple(depth, matrixToNumpy(d.lightView), matrixToNumpy(d.lightProjection), d.nearPlane, d.farPlane,
                         toString(d.lightType), std::string(toString(d.capture)),
-                        std::array<double, 3>{d.origin.x, d.origin.y, d.origin.z});
+                        std::array<double, 3>{d.origin.x, d.origin.y, d.origin.z}, d.guard);
 }
 
 DepthMap depthMapFromState(const py::tuple& t) {
-  if (t.size() != 8)
-    throw InputError("DepthMap pickle", "state", std::to_string(t.size()) + " items", "expected 8 (a DepthMap's pickle)");
+  // 8 items: a pickle from before the guard band was kept (guard 0).
+  if (t.size() != 8 && t.size() != 9)
+    throw InputError("DepthMap pickle", "state", std::to_string(t.size()) + " items", "expected 9 (a DepthMap's pickle)");
   return fromArray(t[0].cast<py::array>(), t[1], t[2], t[3].cast<double>(), t[4].cast<double>(),
-                   t[5].cast<std::string>(), t[6].cast<std::string>(), t[7].cast<std::array<double, 3>>());
+                   t[5].cast<std::string>(), t[6].cast<std::string>(), t[7].cast<std::array<double, 3>>(),
+                   t.size() == 9 ? t[8].cast<StrictInt>() : StrictInt{0});
 }
 
 /// The depths as a read-only H x W float32 view that keeps the DepthMap alive.
@@ -162,10 +166,13 @@ void registerDepth(py::module_& m) {
       .def_property_readonly("far", [](const DepthMap& d) { return d.farPlane; })
       .def_property_readonly("origin", [](const DepthMap& d) { return py::make_tuple(d.origin.x, d.origin.y, d.origin.z); },
                              "world = the coordinates the matrices use + origin")
+      .def_property_readonly("guard", [](const DepthMap& d) { return d.guard; },
+                             "texels of the guard band on every side (capture_depth's guard): the light's window is "
+                             "the inner (width - 2 guard) x (height - 2 guard) texels")
       .def_property_readonly("hit_count", &DepthMap::hitCount, "texels where the light saw a surface")
       .def_static("from_array", &fromArray, py::arg("depth"), py::arg("light_view"), py::arg("light_projection"),
                   py::arg("near"), py::arg("far"), py::arg("light") = "spot", py::arg("capture") = "back",
-                  py::arg("origin") = std::array<double, 3>{0.0, 0.0, 0.0},
+                  py::arg("origin") = std::array<double, 3>{0.0, 0.0, 0.0}, py::arg("guard") = 0,
                   "A depth map from a numpy array (rows x columns, row 0 at the bottom, inf = no hit) and the "
                   "light's matrices, checked as a depth file's side file is (docs: rigid view, a projection of "
                   "the light's kind mapping near and far to NDC z -1 and +1).")

@@ -45,8 +45,8 @@ gl::RenderOptions renderOptions(const FrameArgs& a, Scene& scene, bool scored) {
     throw InputError("python", "method", a.method, "expected " + choicesText(namesIn(kShadowMethodNames)));
   if (!gl::parseVolumeSource(a.volume, ro.volume)) throw InputError("python", "volume", a.volume, "expected " + choicesText(namesIn(kVolumeSourceNames)));
   checkResolutionArg(a.resolution, "resolution");
-  checkDepthMapSize(a.resolution, a.resolution, "python", "resolution",
-                    ro.method == gl::ShadowMethod::Hybrid ? DepthMapUse::Volume : DepthMapUse::ShadowMap);
+  checkWindowMapSize(a.resolution, a.resolution, "python", "resolution",
+                     ro.method == gl::ShadowMethod::Hybrid ? DepthMapUse::Volume : DepthMapUse::ShadowMap);
   ro.depthWidth = ro.depthHeight = a.resolution;
   if (!gl::parseVolumeCount(a.count, ro.volumeCount)) throw InputError("python", "count", a.count, "expected " + choicesText(namesIn(kVolumeCountOptionNames)));
   if (a.crossings != "auto" && !parseRefineCrossings(a.crossings, ro.refineCrossings))

@@ -324,6 +324,9 @@ TEST(Cli, BuildFromSceneAndFromDepthFile) {
   ASSERT_EQ(fromDepth.code, 0) << fromDepth.out;
   const auto ja = nlohmann::json::parse(fromScene.out), jb = nlohmann::json::parse(fromDepth.out);
   EXPECT_EQ(ja["triangles"], jb["triangles"]);  // same depth map, same mesh
+  EXPECT_EQ(jb["guard"], kVolumeGuardTexels);    // the side file carries the map's guard band
+  EXPECT_EQ(jb["resolution"], ja["resolution"]);
+  EXPECT_EQ(ja["resolution"], nlohmann::json({48, 48}));
   EXPECT_GT(ja["triangles"].get<int>(), 0);
   EXPECT_TRUE(std::filesystem::exists(a));
   EXPECT_TRUE(std::filesystem::exists(b));

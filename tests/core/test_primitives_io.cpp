@@ -316,6 +316,15 @@ TEST(DepthMapIo, RoundTripsDepthsMatricesAndNoHit) {
   map.origin = {1e6, 2.5, -3e5};
   writeDepthMap(map, dir / "far.pfm");
   EXPECT_EQ(readDepthMap(dir / "far.pfm").origin, map.origin);
+  EXPECT_EQ(readDepthMap(dir / "far.pfm").guard, 0);
+  // The guard band (light.h) travels with the map; one that leaves no 2 x 2 window is not written.
+  DepthMap banded = makeDepthMap(spotDown(), 6, 6, CaptureMode::Back);
+  banded.guard = 2;
+  writeDepthMap(banded, dir / "band.pfm");
+  EXPECT_EQ(readDepthMap(dir / "band.pfm").guard, 2);
+  map.guard = 1;  // 5 x 3
+  EXPECT_THROW(writeDepthMap(map, dir / "bad.pfm"), InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.pfm"));
 }
 
 // Regression (non-finite output with exit 0): a side file with a singular or non-rigid lightView,
@@ -371,6 +380,11 @@ TEST(DepthMapIo, SideFilesWithUnusableMatricesAreRefused) {
   expectRefused("origin", "[1, 2]", "/origin");
   expectRefused("origin", "[1e300, 0, 0]", "/origin");  // regression: written out as 1e300 (inf in glTF)
   expectRefused("origin", "[0, 0, -2e12]", "/origin");
+  // The guard band: whole texels, at most kMaxGuardTexels, leaving a 2 x 2 window (this map is 4 x 4).
+  expectRefused("guard", "-1", "/guard");
+  expectRefused("guard", "2", "/guard");
+  expectRefused("guard", "1.5", "/guard");
+  expectRefused("guard", "\"1\"", "/guard");
   // A third probe's findings: a height that did not match was named as /width; an unknown key, a
   // format of another version and a checksum that is not a string or of another algorithm passed or
   // were named vaguely; a key given twice was blamed on the matrix after it.

@@ -3,6 +3,7 @@ PYTHONPATH=<build>/python, SV_SOURCE_DIR (the repository) and SV_SHADOWVOL_EXE (
 
 import json
 import os
+import pickle
 import subprocess
 import sys
 from collections import Counter
@@ -611,9 +612,17 @@ def test_capture_depth_guard_band_keeps_the_windows_texels(scene):
     hit = np.isfinite(plain.depth)
     assert (np.isfinite(inner) == hit).all()
     assert np.allclose(inner[hit], plain.depth[hit], rtol=1e-5)
+    assert (plain.guard, guarded.guard) == (0, 3)
+    assert pickle.loads(pickle.dumps(guarded)).guard == 3
+    copy = sv.DepthMap.from_array(np.array(guarded.depth), guarded.light_view, guarded.light_projection, guarded.near,
+                                  guarded.far, light=guarded.light, capture=guarded.capture, guard=3)
+    assert copy.guard == 3
     for bad in (-1, 65):
         with pytest.raises(sv.InputError, match="guard"):
             sv.capture_depth(scene, 48, 48, guard=bad)
+    with pytest.raises(sv.InputError, match="guard"):
+        sv.DepthMap.from_array(np.array(plain.depth), plain.light_view, plain.light_projection, plain.near, plain.far,
+                               guard=24)
 
 
 def test_integers_refuse_booleans(depth):

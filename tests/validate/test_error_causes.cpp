@@ -22,9 +22,13 @@ struct Split {
 
 // The explicit volume of a res x res map of `scene` (fitted), scored against exact shadows and
 // split by cause (`volumeRing`: as a shadow volume's, the border band counted).
-Split splitOfScene(Scene scene, int res, CaptureMode mode, bool volumeRing = false) {
+// `guard`: the volume's map's guard band; `judgedGuard`: that of the map the causes are split
+// over (validate's, the renderer's map: the same, unless a band went missing).
+Split splitOfScene(Scene scene, int res, CaptureMode mode, bool volumeRing = false, int guard = 0,
+                   int judgedGuard = -1) {
   fitLightAndCamera(scene);
-  const DepthMap map = captureDepthEmbree(scene, res, res, mode);
+  const DepthMap map = captureDepthEmbree(scene, res, res, mode, guard);
+  const DepthMap judged = judgedGuard < 0 ? map : captureDepthEmbree(scene, res, res, mode, judgedGuard);
   const VolumeBuildResult volume = buildVolume(map);
   const EmbreeDevice device;
   std::vector<const TriangleMesh*> meshes;
@@ -44,7 +48,7 @@ Split splitOfScene(Scene scene, int res, CaptureMode mode, bool volumeRing = fal
         (exact[k] == PixelClass::Shadowed) != (shadowed[k] != 0))
       ++s.wrong;
   }
-  s.causes = splitErrorCauses(scene, map, volume.stats.biasUsed, hits, exact, shadowed, volumeRing);
+  s.causes = splitErrorCauses(scene, judged, volume.stats.biasUsed, hits, exact, shadowed, volumeRing);
   EXPECT_EQ(s.causes.offset, volume.stats.biasUsed);
   return s;
 }
@@ -99,6 +103,23 @@ TEST(ErrorCauses, AShadowCutByTheLightWindowIsABorderErrorOfVolumesOnly) {
   const Split asMap = splitOfScene(scene, 32, CaptureMode::Back, false);
   EXPECT_EQ(asMap.causes.border, 0u);
   EXPECT_EQ(asMap.causes.resolution, asMap.wrong);
+}
+
+// With the volume map's guard band (light.h) the volume keeps the plate's shadow up to the window's
+// edge; a volume without one, judged over a guarded map (a renderer whose band went missing), has
+// its lit strip counted as border still: the strip is measured in the window's own texels.
+TEST(ErrorCauses, AGuardBandKeepsTheWindowsEdgeAndTheStripIsStillCounted) {
+  const Scene scene = parseScene(R"({"objects": [{"type": "plane", "name": "ground", "size": 8},
+      {"type": "box", "name": "plate", "size": [2, 0.1, 2], "transform": {"translate": [0, 1.5, 0]}}],
+      "camera": {"eye": [0.3, 1.0, 0.4], "target": [0.3, 0, 0.4], "up": [0, 0, -1], "fov": 90, "width": 160, "height": 120},
+      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 0.8}})",
+                                 "window.json", ".").scene;
+  const Split guarded = splitOfScene(scene, 32, CaptureMode::Back, true, kVolumeGuardTexels);
+  EXPECT_EQ(guarded.wrong, 0u);
+  EXPECT_GT(guarded.exactShadowed, 1000u);
+  const Split bandLost = splitOfScene(scene, 32, CaptureMode::Back, true, 0, kVolumeGuardTexels);
+  ASSERT_GT(bandLost.wrong, 100u);
+  EXPECT_EQ(bandLost.causes.border, bandLost.wrong) << "resolution " << bandLost.causes.resolution;
 }
 
 TEST(ErrorCauses, TheBorderBandIsLessThanATexelInsideTheRingsCentres) {

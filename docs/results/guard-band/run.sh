@@ -2,9 +2,9 @@
 # The volume map's guard band (light.h, kVolumeGuardTexels; README "Volume mesh"): two scenes whose
 # given light window cuts a shadow, every volume at 64² and 256², `validate` at its defaults.
 # Prints scene, resolution, variant, missed and false pixels against the exact shadows, the
-# *border* errors and the verdict. Run from the repository root after building (about a minute on
-# a 2-core machine); EXE (default build/apps/shadowvol) runs another binary, e.g. one of commit
-# 1466bae, before the band, for the "before" column of results.md. OUT (default out/guard-band).
+# *border* errors and the verdict. Run from the repository root after building (about 25 s on a
+# 2-core machine); EXE (default build/apps/shadowvol) runs another binary, e.g. one of commit
+# 1466bae, before the band, for before.txt (README.md here). OUT (default out/guard-band).
 set -e
 exe=${EXE:-build/apps/shadowvol}
 out=${OUT:-out/guard-band}

@@ -72,6 +72,10 @@ struct DepthMap {
   /// World = the coordinates the matrices use + origin (the scene's local origin, Scene::origin);
   /// carried into the volume (VolumeMesh::origin) and the side file.
   glm::dvec3 origin{0.0};
+  /// Texels of a guard band on every side (guardedLight, light.h): the light's own window is the
+  /// inner (width - 2 guard) x (height - 2 guard) texels. Set by the captures that take a guard and
+  /// carried by the side file; 0 for a map of the window alone.
+  int guard = 0;
 
   std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(width) + std::size_t(i); }
   float at(int i, int j) const { return depth[index(i, j)]; }
@@ -167,6 +171,15 @@ inline constexpr int kMaxDepthMapSide = kMaxWindowSide + 2 * kVolumeGuardTexels;
 /// machine's memory: InputError naming `source` and `field` with the value and the memory it would need.
 void checkDepthMapSize(int width, int height, const std::string& source, const std::string& field,
                        DepthMapUse use = DepthMapUse::Volume);
+
+/// A light window of W x H texels asked for `use`: checkDepthMapSize, and for a volume the map with
+/// its guard band (kVolumeGuardTexels, light.h) by checkGuardedDepthMapSize. The command line's
+/// --resolution and Python's resolution.
+void checkWindowMapSize(int width, int height, const std::string& source, const std::string& field, DepthMapUse use);
+
+/// Refuses a DepthMap::guard outside 0..kMaxGuardTexels (light.h) or one that leaves less than
+/// 2 x 2 texels of the window inside a W x H map: InputError naming `source` and `field`.
+void checkDepthMapGuard(std::int64_t guard, int width, int height, const std::string& source, const std::string& field);
 
 /// The same for the map of a W x H window with a guard band of `guard` texels a side
 /// (guardedLight, light.h), (W + 2 guard) x (H + 2 guard), naming the band in the message; nothing

@@ -135,8 +135,9 @@ bool parseExplicitDepth(const std::string& text, ExplicitDepth& d);
 struct RenderOptions {
   ShadowMethod method = ShadowMethod::Hybrid;  ///< the project's method by default
   VolumeSource volume = VolumeSource::Gpu;     ///< hybrid only; gpu is the production path
-  int depthWidth = 256;                        ///< light depth map texels (> 1)
-  int depthHeight = 256;                       ///< light depth map texels (> 1)
+  int depthWidth = 256;                        ///< light depth map texels over the light's window (> 1); a
+                                               ///< spot or directional volume's map has a guard band of
+  int depthHeight = 256;                       ///< kVolumeGuardTexels more a side (light.h): (W + 4) x (H + 4)
   CaptureMode capture = CaptureMode::Back;     ///< back faces: no self-shadow acne on lit faces
   VolumeBuildOptions volumeOptions;            ///< hybrid: triangulation, blur, blurOffset, bias,
                                                ///< cap (flattenCap, depthOracle, chord points and the
@@ -242,10 +243,14 @@ struct RenderResult {
   ///     light get the test's answer like any other pixel.
   ///   hybrid, silhouette (and renderWithVolume): 255 where stencil == 0, else 0, from the stencil read-back
   ///     (no GL pass). Background pixels carry whatever the stencil holds there (not meaningful),
-  ///     and so do pixels outside the light's frustum in a z-pass frame (volumeCountUsed).
+  ///     and so do pixels outside the light's frustum in a z-pass frame (volumeCountUsed), and in
+  ///     any hybrid frame of a spot or directional light those just outside it (the volume's map
+  ///     reaches its guard band past the window, light.h): the lighting ignores both. The stencil
+  ///     and its counts (stencil.png, render's "stencil pixels != 0") include them.
   ///   none: 255 everywhere.
   std::vector<std::uint8_t> visibility;
-  std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit
+  std::optional<DepthMap> depthMap;   ///< light depth (read back) when readDepthMap or explicit; a
+                                      ///< volume's: (W + 4) x (H + 4) with its guard band (DepthMap::guard)
   std::optional<VolumeMesh> volume;   ///< the explicit volume drawn, when RenderOptions::keepVolume
                                       ///< (refined GPU volume: the CPU mesh from its crossings;
                                       ///< GPU cube volume: the explicit one of the same faces)
@@ -262,7 +267,7 @@ struct RenderResult {
   std::size_t volumeTriangles = 0;  ///< triangles of the volume: explicit = the mesh's; gpu = emitted
                                     ///< by the geometry shader (GL_PRIMITIVES_GENERATED);
                                     ///< silhouette = the silhouette volume's
-  std::size_t gpuVolumeQuads = 0;       ///< hybrid/gpu: quads of the depth map, (W - 1) (H - 1)
+  std::size_t gpuVolumeQuads = 0;       ///< hybrid/gpu: quads of the depth map, (W + 3) (H + 3) with its guard band
   std::size_t gpuVolumeQuadsDrawn = 0;  ///< hybrid/gpu: quads whose triangles were drawn (all of
                                         ///< them with AllQuads)
   GpuVolumeDraw gpuVolumeDrawUsed = GpuVolumeDraw::Auto;  ///< hybrid/gpu: the way actually taken

@@ -69,6 +69,9 @@ glm::dmat4 lightProjection(const Light& light, double aspect = 1.0);
 /// blur of one unbounded map, renderer_impl.h.)
 inline constexpr int kVolumeGuardTexels = 2;
 
+/// The widest guard band a caller may ask for (texels a side).
+inline constexpr int kMaxGuardTexels = 64;
+
 /// A spot or directional light widened by `guard` texels on every side of a W x H map: a
 /// (W + 2 guard) x (H + 2 guard) map of it has the W x H map's texel centres and texel size,
 /// texel (i, j) of the W x H map being its texel (i + guard, j + guard). Spot: the opening's

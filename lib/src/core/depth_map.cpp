@@ -179,6 +179,19 @@ void checkDepthMapSize(int width, int height, const std::string& source, const s
   checkFitsMemory(depthMapBytes(width, height, use), source, field, value);
 }
 
+void checkWindowMapSize(int width, int height, const std::string& source, const std::string& field, DepthMapUse use) {
+  checkDepthMapSize(width, height, source, field, use);
+  if (use == DepthMapUse::Volume) checkGuardedDepthMapSize(width, height, kVolumeGuardTexels, source, field, use);
+}
+
+void checkDepthMapGuard(std::int64_t guard, int width, int height, const std::string& source, const std::string& field) {
+  if (guard < 0 || guard > kMaxGuardTexels || 2 * guard + 2 > std::min(width, height))
+    throw InputError(source, field, std::to_string(guard),
+                     "expected a whole number of texels from 0 to " + std::to_string(kMaxGuardTexels) +
+                         " that leaves at least 2 x 2 texels of the window inside the " + sizeText(width, height) +
+                         " map");
+}
+
 void checkGuardedDepthMapSize(int width, int height, int guard, const std::string& source, const std::string& field,
                               DepthMapUse use) {
   if (guard == 0) return;

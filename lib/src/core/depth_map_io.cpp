@@ -194,6 +194,7 @@ constexpr const char* kSideFileQuantity = "light-view depth (-z in light view sp
 
 void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
   static_assert(std::endian::native == std::endian::little, "PFM writer assumes a little-endian host");
+  checkDepthMapGuard(map.guard, map.width, map.height, pfm.string(), "guard");  // as the reader would
   json side = {
       {"format", kSideFileFormat},
       {"writer", "shadowvol " SHADOWVOL_VERSION},
@@ -207,6 +208,7 @@ void writeDepthMap(const DepthMap& map, const std::filesystem::path& pfm) {
       {"lightView", matrixToJson(map.lightView)},
       {"lightProjection", matrixToJson(map.lightProjection)},
       {"origin", {map.origin.x, map.origin.y, map.origin.z}},
+      {"guard", map.guard},
       {"depthChecksum", "fnv1a64:" + depthChecksum(map.depth)},
   };
   const auto sidecar = depthSidecarPath(pfm);
@@ -252,7 +254,7 @@ void checkSideFileChecksum(const json& given, const std::string& sfile, const st
 
 // The keys a side file may hold (writeDepthMap's); any other is refused, as a scene file's are.
 const char* const kSideFileKeys[] = {"format", "writer", "width", "height", "quantity", "light", "capture", "near",
-                                     "far", "lightView", "lightProjection", "origin", "depthChecksum"};
+                                     "far", "lightView", "lightProjection", "origin", "guard", "depthChecksum"};
 
 // The side file's width or height: a whole number equal to the PFM's (`given`).
 void checkSideFileSize(const json& side, const char* key, int given, const std::string& sfile) {
@@ -324,6 +326,12 @@ void readSideFile(const std::filesystem::path& sidecar, const std::string& file,
     for (int k = 0; k < 3; ++k)
       if (!(std::abs(map.origin[k]) <= kMaxSceneMagnitude))  // NaN too
         throw InputError(sfile, "/origin", o.dump(), "expected 3 finite numbers within +-1e12, as a scene's");
+  }
+  if (side.contains("guard")) {  // optional: files from before it was written have none
+    const json& g = side["guard"];
+    if (!g.is_number_integer()) throw InputError(sfile, "/guard", g.dump().substr(0, 40), "expected a whole number");
+    checkDepthMapGuard(g.get<std::int64_t>(), map.width, map.height, sfile, "/guard");
+    map.guard = int(g.get<std::int64_t>());
   }
 }
 

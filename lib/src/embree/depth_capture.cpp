@@ -242,12 +242,15 @@ DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMo
     throw InputError(scene.source, "/light/type", "point",
                      "a point light has six depth maps, one per cube face: capture them with captureCubeEmbree");
   checkDepthMapSize(width, height, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
-  if (guard < 0) throw InputError("captureDepthEmbree", "guard", std::to_string(guard), "must be at least 0");
+  if (guard < 0 || guard > kMaxGuardTexels)
+    throw InputError("captureDepthEmbree", "guard", std::to_string(guard),
+                     "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels");
   checkGuardedDepthMapSize(width, height, guard, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
   DepthMap map = guard == 0 ? makeDepthMap(scene.light, width, height, mode)
                             : makeDepthMap(guardedLight(scene.light, width, height, guard), width + 2 * guard,
                                            height + 2 * guard, mode);
   map.origin = scene.origin;
+  map.guard = guard;
   const EmbreeDevice device;
   const EmbreeScene rtScene(device, meshesOf(scene));
   fillDepthMap(rtScene, map);

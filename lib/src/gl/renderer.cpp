@@ -260,7 +260,9 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode, int gua
                      "a point light has six depth maps, one per cube face: capture them with captureCube");
   const int limit = std::min(s.maxTextureSize, s.maxViewport[0]);
   s.checkSize("Renderer::captureDepth", "width x height", width, height, limit);
-  if (guard < 0) throw InputError("Renderer::captureDepth", "guard", std::to_string(guard), "must be at least 0");
+  if (guard < 0 || guard > kMaxGuardTexels)
+    throw InputError("Renderer::captureDepth", "guard", std::to_string(guard),
+                     "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels");
   if (width > limit - 2 * guard || height > limit - 2 * guard)
     throw InputError("Renderer::captureDepth", "width x height", std::to_string(width) + "x" + std::to_string(height),
                      "with its guard band of " + std::to_string(guard) + " texels a side, at most " +
@@ -268,7 +270,9 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode, int gua
   const Impl::LightRestore restore{s.light, s.light};
   if (guard > 0) s.light = guardedLight(s.light, width, height, guard);
   s.lightPass(width + 2 * guard, height + 2 * guard, mode, false);
-  return s.readBack(mode);
+  DepthMap map = s.readBack(mode);
+  map.guard = guard;
+  return map;
 }
 
 CubeDepthMap Renderer::captureCube(int n, CaptureMode mode) {

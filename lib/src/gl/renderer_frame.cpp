@@ -210,11 +210,10 @@ void Renderer::Impl::volumeInput(const RenderOptions& o, LightFrame& f, const Vo
 void Renderer::Impl::stencilPasses(const RenderOptions& o, const MapFrame& map, const CameraSetup& cam,
                                    const LightFrame& f, PassTimer& timer, bool added, RenderResult& result) {
   const VolumeBuildOptions& vo = o.volumeOptions;
-  // The light frustum's aspect: the depth map's (silhouette has none, a guarded map a band: the
-  // options' size).
-  const bool optionsSize = f.silhouette || f.guarded;
-  const int frustumW = optionsSize ? o.depthWidth : std::max(lightW, 2);
-  const int frustumH = optionsSize ? o.depthHeight : std::max(lightH, 2);
+  // The light frustum's aspect: the options' size (the map's has a guard band; silhouette and a
+  // caller's volume have none); a point light's faces' pass sizes.
+  const int frustumW = f.point ? std::max(lightW, 2) : o.depthWidth;
+  const int frustumH = f.point ? std::max(lightH, 2) : o.depthHeight;
   if (added) {
     beginAddedLight(cam, false);
   } else {
@@ -315,6 +314,7 @@ RenderResult Renderer::Impl::renderLight(const RenderOptions& o, const CameraSet
     shadeWithMap(o, cam, f, timer, added);
   light = map.light;  // read-backs of the map and the GPU volume's meshes
   lightFrameResults(map.options, cam, f, result);
+  if (result.depthMap && f.guarded) result.depthMap->guard = kVolumeGuardTexels;
   return result;
 }
 

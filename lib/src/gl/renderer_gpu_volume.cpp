@@ -42,7 +42,7 @@ void Renderer::Impl::drawGpuVolume(const CameraSetup& cam, const VolumeBuildOpti
   const std::int64_t quads = std::int64_t(lightW - 1) * std::int64_t(lightH - 1);
   result.gpuVolumeQuads = std::size_t(quads);
   result.gpuVolumeQuadsDrawn = std::size_t(quads);
-  // KeptQuads needs 4 bytes per quad: up to 2^26 quads (8192^2 maps), 256 MB.
+  // KeptQuads needs 4 bytes per quad: up to 2^26 quads (8193^2 maps: 8189^2 with the guard band), 256 MB.
   constexpr std::int64_t kMaxKeptQuads = std::int64_t(1) << 26;
   if (how == GpuVolumeDraw::Indexed && drawIndexedGpuVolume(cam, lightViewToClip, vo, bias, depth, quads, result)) {
     result.gpuVolumeDrawUsed = how;
@@ -247,8 +247,10 @@ void Renderer::Impl::drawRefinedGpuVolume(const CameraSetup& cam, const VolumeBu
   SV_GL(glBindTexture(GL_TEXTURE_2D_ARRAY, 0));
   SV_GL(glActiveTexture(GL_TEXTURE0));
   if (!drawn)
-    throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(lightW) + "x" + std::to_string(lightH),
-                     "the refined GPU volume's index list would pass 512 MiB or 32-bit indices: use a smaller map");
+    throw InputError("RenderOptions", "depthWidth x depthHeight",
+                     std::to_string(lightW - 2 * kVolumeGuardTexels) + "x" + std::to_string(lightH - 2 * kVolumeGuardTexels),
+                     "the refined GPU volume's index list (of the map and its guard band, light.h) would pass 512 MiB "
+                     "or 32-bit indices: use a smaller map");
   const RefinedGpuCounts counts = refined->walkCounts();
   result.gpuVolumeDrawUsed = GpuVolumeDraw::Refined;
   result.gpuVolumeQuads = std::size_t(quads);

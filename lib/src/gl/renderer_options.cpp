@@ -135,20 +135,20 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
       refuse(
           "finds the boundary edges' crossings alone: chord points and the sub-grid need ${volume} explicit "
           "with ${refineCrossings} rays");
-    // The maps it walks: one W x H (its guard band of kVolumeGuardTexels, mapFrame, within the
-    // bound's slack), or a point light's six faces with theirs (drawRefinedCubeFaces), each (N + 2 G)^2.
+    // The maps it walks, with their guard band: one (W + 2 G) x (H + 2 G) (mapFrame, G =
+    // kVolumeGuardTexels), or a point light's six faces (drawRefinedCubeFaces), each (N + 2 G)^2
+    // with G = kCubeGuardTexels.
     const bool point = light.type == LightType::Point;
-    const std::int64_t w = point ? o.depthWidth + 2 * kCubeGuardTexels : o.depthWidth;
-    const std::int64_t h = point ? w : o.depthHeight;
+    const int guard = point ? kCubeGuardTexels : kVolumeGuardTexels;
+    const std::int64_t w = o.depthWidth + 2 * guard;
+    const std::int64_t h = (point ? o.depthWidth : o.depthHeight) + 2 * guard;
     if (w * h > kMaxRefinedGpuTexels)
       throw InputError("RenderOptions", "depthWidth x depthHeight",
                        std::to_string(o.depthWidth) + "x" + std::to_string(o.depthHeight),
                        "the refined GPU volume takes maps of up to 2048 x 2048 texels (its index list is kept "
-                       "under 512 MiB)" +
-                           (point ? std::string("; a point light's faces are drawn with a guard band of ") +
-                                        std::to_string(kCubeGuardTexels) + " texels a side, so up to " +
-                                        std::to_string(2048 - 2 * kCubeGuardTexels) + " texels per face"
-                                  : std::string()));
+                       "under 512 MiB), its guard band of " + std::to_string(guard) +
+                           " texels a side included (light.h), so up to " + std::to_string(2048 - 2 * guard) +
+                           (point ? " texels per face" : " texels a side"));
     if (o.gpuVolumeDraw != GpuVolumeDraw::Auto)
       throw OptionConflict("RenderOptions", "gpuVolumeDraw", toString(o.gpuVolumeDraw),
                            "the refined GPU volume lists its triangles its own way: leave it at auto");

@@ -29,8 +29,11 @@ ErrorCauses splitErrorCauses(const Scene& scene, const DepthMap& map, double off
     wrong.push_back(k);
     const glm::dvec2 texel = map.texelOf(hits.point[k]);
     ndc.push_back(map.texelNdc(texel.x, texel.y));
-    // Only a missed shadow: the ring on the far plane lights the band, it shadows nothing.
-    band.push_back(volumeRing && exact[k] == PixelClass::Shadowed && inVolumeBorderBand(texel, map.width, map.height));
+    // Only a missed shadow: the ring on the far plane lights the band, it shadows nothing. With a
+    // guard band the strip is the light window's own (the band's texels lie outside it).
+    const glm::dvec2 inWindow = texel - glm::dvec2(map.guard);
+    band.push_back(volumeRing && exact[k] == PixelClass::Shadowed &&
+                   inVolumeBorderBand(inWindow, map.width - 2 * map.guard, map.height - 2 * map.guard));
   }
   if (wrong.empty()) return causes;
   const EmbreeDepthOracle oracle(scene);

@@ -20,8 +20,10 @@
 // a fitted one, which keeps a margin) or a finer map does. A missed pixel (exact: shadowed) the
 // test above gets right whose point lies in that band is counted there rather than as resolution.
 // The accuracy verdict allows kMaxBorderPixels of them. The volumes' own maps reach a guard band
-// past the window (kVolumeGuardTexels, light.h), which puts that band outside it: there the count
-// is 0, and stays as the check that it is; a map without one (captured with guard 0) shows it.
+// past the window (DepthMap::guard, kVolumeGuardTexels in light.h) that puts the ring and its slope
+// outside the window: for them the strip counted is the same one, less than a texel inside the
+// window's own outermost texel centres, which the band is there to keep shadowed (0 when it does;
+// a map without a band, guard 0, shows the lit strip).
 #pragma once
 
 #include <cstddef>
