@@ -24,9 +24,11 @@ int main(int argc, char** argv) {
     // 2. The light's depth map: one ray per texel from the light. "Back" capture records the
     //    first surface that faces away from the light (the thesis's default): the sphere's
     //    underside. The ground faces the light, so it records nothing there (no self-shadowing).
+    //    The guard band takes the map 2 texels past the light's window on every side, so the
+    //    volume's closing ring (on the far plane) lies outside what the light lights.
     const int resolution = 256;
-    const shadowvol::DepthMap depth =
-        shadowvol::captureDepthEmbree(scene, resolution, resolution, shadowvol::CaptureMode::Back);
+    const shadowvol::DepthMap depth = shadowvol::captureDepthEmbree(
+        scene, resolution, resolution, shadowvol::CaptureMode::Back, shadowvol::kVolumeGuardTexels);
 
     // 3. The shadow volume: every texel becomes a vertex, neighbouring texels form quads (the
     //    "sheet"). Perfect triangulation picks each quad's diagonal so shadow edges do not

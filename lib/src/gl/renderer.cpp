@@ -263,10 +263,7 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode, int gua
   if (guard < 0 || guard > kMaxGuardTexels)
     throw InputError("Renderer::captureDepth", "guard", std::to_string(guard),
                      "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels");
-  if (width > limit - 2 * guard || height > limit - 2 * guard)
-    throw InputError("Renderer::captureDepth", "width x height", std::to_string(width) + "x" + std::to_string(height),
-                     "with its guard band of " + std::to_string(guard) + " texels a side, at most " +
-                         std::to_string(limit - 2 * guard) + " per side on this OpenGL implementation");
+  s.checkGuardedSize("Renderer::captureDepth", "width x height", width, height, guard);
   const Impl::LightRestore restore{s.light, s.light};
   if (guard > 0) s.light = guardedLight(s.light, width, height, guard);
   s.lightPass(width + 2 * guard, height + 2 * guard, mode, false);

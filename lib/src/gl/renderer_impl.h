@@ -229,8 +229,9 @@ struct Renderer::Impl {
   void requireScene() const;
 
   void checkSize(const char* source, const char* field, int w, int h, int limit) const;
-  /// A W x H volume map's guarded size (mapFrame) within the GL implementation's limits.
-  void checkGuardedSize(int w, int h) const;
+  /// A W x H window's map with a guard band of `guard` texels a side (guardedLight, light.h)
+  /// within the GL implementation's limits: InputError naming source and field.
+  void checkGuardedSize(const char* source, const char* field, int w, int h, int guard) const;
 
   // ---- light targets -------------------------------------------------------------------------
 

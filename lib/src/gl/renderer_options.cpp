@@ -79,13 +79,12 @@ void Renderer::Impl::checkOffsetRanges(const RenderOptions& o) const {
       throw InputError("RenderOptions", "shadowBiasConstant", numberText(*o.shadowBiasConstant), why);
 }
 
-void Renderer::Impl::checkGuardedSize(int w, int h) const {
-  const int limit = std::min(maxTextureSize, maxViewport[0]), g = kVolumeGuardTexels;
-  if (w > limit - 2 * g || h > limit - 2 * g)
-    throw InputError("RenderOptions", "depthWidth x depthHeight", std::to_string(w) + "x" + std::to_string(h),
-                     "a volume's map is drawn with a guard band of " + std::to_string(g) +
-                         " texels a side (light.h, kVolumeGuardTexels): at most " + std::to_string(limit - 2 * g) +
-                         " per side on this OpenGL implementation");
+void Renderer::Impl::checkGuardedSize(const char* source, const char* field, int w, int h, int guard) const {
+  const int limit = std::min(maxTextureSize, maxViewport[0]);
+  if (w > limit - 2 * guard || h > limit - 2 * guard)
+    throw InputError(source, field, std::to_string(w) + "x" + std::to_string(h),
+                     "the map has a guard band of " + std::to_string(guard) + " texels a side (light.h): at most " +
+                         std::to_string(limit - 2 * guard) + " per side on this OpenGL implementation");
 }
 
 void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) const {
@@ -93,7 +92,7 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
   checkSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight,
             std::min(maxTextureSize, maxViewport[0]));
   if (o.method == ShadowMethod::Hybrid && light.type != LightType::Point)
-    checkGuardedSize(o.depthWidth, o.depthHeight);
+    checkGuardedSize("RenderOptions", "depthWidth x depthHeight", o.depthWidth, o.depthHeight, kVolumeGuardTexels);
   if (cam.w < 1 || cam.h < 1 || cam.w > maxRenderbufferSize || cam.h > maxRenderbufferSize)
     throw InputError("RenderOptions", "imageWidth x imageHeight", std::to_string(cam.w) + "x" + std::to_string(cam.h),
                      "must be between 1 and " + std::to_string(maxRenderbufferSize) + " per side");
