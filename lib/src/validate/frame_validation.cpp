@@ -364,10 +364,10 @@ FrameValidation validateFrame(const Scene& scene, const DepthMap& depth, const V
                          "map finds it" + (frame.hybrid ? ", as does the explicit volume's sub-grid)" : ")"));
   if (v.errorCauses && v.errorCauses->border > kMaxBorderPixels)
     inaccurate.push_back("the method misses " + std::to_string(v.errorCauses->border) +
-                         " pixels less than a texel inside the light window's border ring, where a shadow reaches "
-                         "the window's edge (the volume's outermost texel ring lies on the far plane; at most " +
-                         std::to_string(kMaxBorderPixels) + "): widen the light's window (its extent or fov) so "
-                         "the shadow ends inside it, or use a finer map");
+                         " pixels less than a texel inside the light window's outermost texel centres, where a "
+                         "shadow reaches the window's edge (at most " + std::to_string(kMaxBorderPixels) +
+                         "): the volume's map has no guard band there (its outermost ring lies on the far plane; "
+                         "light.h, kVolumeGuardTexels), or the band failed");
   v.accurate = inaccurate.empty();
   v.failures.insert(v.failures.end(), inaccurate.begin(), inaccurate.end());
   v.passed = v.consistent && v.accurate;

@@ -71,9 +71,9 @@ nlohmann::json describeValidation(const FrameValidation& v, const ValidationOpti
                         {"rule", "resolution: the method's misclassified pixels that the same capture at unlimited "
                                  "resolution (captured depth on the pixel's own light ray + offset < the point's "
                                  "light-view depth) gets right; capture: those it gets wrong too; border: of those "
-                                 "it gets right, a shadow volume's pixels less than one texel inside the map's "
-                                 "outermost ring, which lies on the far plane (a wider light window or a finer map "
-                                 "narrows that band; refinement does not)"}};
+                                 "it gets right, a shadow volume's missed pixels less than one texel inside the light "
+                                 "window's outermost texel centres, where a map without a guard band puts its ring "
+                                 "on the far plane (the renderer's maps have one: 0 while it works)"}};
   else
     j["errorCauses"] = "not computed: only for the depth-map methods (hybrid, shadowmap, pcf3, pcf5) of a spot or "
                        "directional light";
