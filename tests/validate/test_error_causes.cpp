@@ -85,16 +85,22 @@ TEST(ErrorCauses, AnOpenSheetUnderBackCaptureIsACaptureError) {
   EXPECT_LE(front.causes.capture * 10, front.wrong) << "resolution " << front.causes.resolution;
 }
 
+// A directional light's given window inside a plate's shadow (a twentieth probe's scene).
+Scene windowInsidePlateShadow() {
+  return parseScene(R"({"objects": [{"type": "plane", "name": "ground", "size": 8},
+      {"type": "box", "name": "plate", "size": [2, 0.1, 2], "transform": {"translate": [0, 1.5, 0]}}],
+      "camera": {"eye": [0.3, 1.0, 0.4], "target": [0.3, 0, 0.4], "up": [0, 0, -1], "fov": 90, "width": 160, "height": 120},
+      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 0.8}})",
+                    "window.json", ".")
+      .scene;
+}
+
 TEST(ErrorCauses, AShadowCutByTheLightWindowIsABorderErrorOfVolumesOnly) {
   // A directional light's given window lies inside a plate's shadow (a twentieth probe's scene):
   // the volume's outermost texel ring lies on the far plane, so a band along the window's edge is
   // lit in the middle of the umbra. Refinement would not move it: it is the border's, not the
   // resolution's, for a volume; a shadow map's errors there (none expected) would be resolution.
-  const Scene scene = parseScene(R"({"objects": [{"type": "plane", "name": "ground", "size": 8},
-      {"type": "box", "name": "plate", "size": [2, 0.1, 2], "transform": {"translate": [0, 1.5, 0]}}],
-      "camera": {"eye": [0.3, 1.0, 0.4], "target": [0.3, 0, 0.4], "up": [0, 0, -1], "fov": 90, "width": 160, "height": 120},
-      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 0.8}})",
-                                 "window.json", ".").scene;
+  const Scene scene = windowInsidePlateShadow();
   const Split asVolume = splitOfScene(scene, 32, CaptureMode::Back, true);
   ASSERT_GT(asVolume.wrong, 100u);  // the band: about a texel (0.05 units) wide along the window's square
   EXPECT_EQ(asVolume.causes.resolution + asVolume.causes.capture + asVolume.causes.border, asVolume.wrong);
@@ -109,11 +115,7 @@ TEST(ErrorCauses, AShadowCutByTheLightWindowIsABorderErrorOfVolumesOnly) {
 // edge; a volume without one, judged over a guarded map (a renderer whose band went missing), has
 // its lit strip counted as border still: the strip is measured in the window's own texels.
 TEST(ErrorCauses, AGuardBandKeepsTheWindowsEdgeAndTheStripIsStillCounted) {
-  const Scene scene = parseScene(R"({"objects": [{"type": "plane", "name": "ground", "size": 8},
-      {"type": "box", "name": "plate", "size": [2, 0.1, 2], "transform": {"translate": [0, 1.5, 0]}}],
-      "camera": {"eye": [0.3, 1.0, 0.4], "target": [0.3, 0, 0.4], "up": [0, 0, -1], "fov": 90, "width": 160, "height": 120},
-      "light": {"type": "directional", "direction": [0, -1, 0], "position": [0, 5, 0], "extent": 0.8}})",
-                                 "window.json", ".").scene;
+  const Scene scene = windowInsidePlateShadow();
   const Split guarded = splitOfScene(scene, 32, CaptureMode::Back, true, kVolumeGuardTexels);
   EXPECT_EQ(guarded.wrong, 0u);
   EXPECT_GT(guarded.exactShadowed, 1000u);
