@@ -42,7 +42,7 @@ void registerDepthCommand(CLI::App& app, Runner& run) {
                   "is N + 2 G a side): a volume built from it puts the map's outermost ring, on the far plane, "
                   "outside the window, so a shadow crossing the window's edge is not lit along it. The default is "
                   "what build and render use; 0: the window's N x N texels alone")
-      ->check(CLI::Range(0, 64))
+      ->check(CLI::Range(0, kMaxGuardTexels))
       ->capture_default_str();
   addCaptureOption(*cmd, o->capture);
   addCaptureDeviceOptions(*cmd, o->device);

@@ -30,8 +30,7 @@ DepthMap captureDepth(const PyScene& s, StrictInt width, StrictInt height, const
   checkResolutionArg(width, "width");  // at least 3, as the command line's: a smaller map's volume is empty
   checkResolutionArg(height, "height");
   checkDepthMapSize(width, height, "python", "width, height", DepthMapUse::MapOnly);  // as `shadowvol depth`
-  if (guard < 0 || guard > 64)  // as `shadowvol depth --guard`
-    throw InputError("python", "guard", std::to_string(guard), "must be between 0 and 64 texels");
+  checkGuardTexels(guard, "python", "guard");  // as `shadowvol depth --guard`
   checkGuardedDepthMapSize(width, height, guard, "python", "width, height", DepthMapUse::MapOnly);
   // As the command line's --platform: an EGL platform names how the GPU is reached.
   if (device == "cpu" && platform != "auto")

@@ -177,6 +177,10 @@ void checkDepthMapSize(int width, int height, const std::string& source, const s
 /// --resolution and Python's resolution.
 void checkWindowMapSize(int width, int height, const std::string& source, const std::string& field, DepthMapUse use);
 
+/// Refuses a guard band (texels a side) outside 0..kMaxGuardTexels (light.h): InputError naming
+/// `source` and `field`. The captures' `guard` and checkDepthMapGuard.
+void checkGuardTexels(std::int64_t guard, const std::string& source, const std::string& field);
+
 /// Refuses a DepthMap::guard outside 0..kMaxGuardTexels (light.h) or one that leaves less than
 /// 2 x 2 texels of the window inside a W x H map: InputError naming `source` and `field`.
 void checkDepthMapGuard(std::int64_t guard, int width, int height, const std::string& source, const std::string& field);

@@ -184,12 +184,17 @@ void checkWindowMapSize(int width, int height, const std::string& source, const 
   if (use == DepthMapUse::Volume) checkGuardedDepthMapSize(width, height, kVolumeGuardTexels, source, field, use);
 }
 
-void checkDepthMapGuard(std::int64_t guard, int width, int height, const std::string& source, const std::string& field) {
-  if (guard < 0 || guard > kMaxGuardTexels || 2 * guard + 2 > std::min(width, height))
+void checkGuardTexels(std::int64_t guard, const std::string& source, const std::string& field) {
+  if (guard < 0 || guard > kMaxGuardTexels)
     throw InputError(source, field, std::to_string(guard),
-                     "expected a whole number of texels from 0 to " + std::to_string(kMaxGuardTexels) +
-                         " that leaves at least 2 x 2 texels of the window inside the " + sizeText(width, height) +
-                         " map");
+                     "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels a side");
+}
+
+void checkDepthMapGuard(std::int64_t guard, int width, int height, const std::string& source, const std::string& field) {
+  checkGuardTexels(guard, source, field);
+  if (2 * guard + 2 > std::min(width, height))
+    throw InputError(source, field, std::to_string(guard),
+                     "leaves less than 2 x 2 texels of the window inside the " + sizeText(width, height) + " map");
 }
 
 void checkGuardedDepthMapSize(int width, int height, int guard, const std::string& source, const std::string& field,

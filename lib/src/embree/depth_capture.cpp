@@ -242,9 +242,7 @@ DepthMap captureDepthEmbree(const Scene& scene, int width, int height, CaptureMo
     throw InputError(scene.source, "/light/type", "point",
                      "a point light has six depth maps, one per cube face: capture them with captureCubeEmbree");
   checkDepthMapSize(width, height, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
-  if (guard < 0 || guard > kMaxGuardTexels)
-    throw InputError("captureDepthEmbree", "guard", std::to_string(guard),
-                     "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels");
+  checkGuardTexels(guard, "captureDepthEmbree", "guard");
   checkGuardedDepthMapSize(width, height, guard, "captureDepthEmbree", "width x height", DepthMapUse::MapOnly);
   DepthMap map = guard == 0 ? makeDepthMap(scene.light, width, height, mode)
                             : makeDepthMap(guardedLight(scene.light, width, height, guard), width + 2 * guard,

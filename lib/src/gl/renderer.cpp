@@ -260,9 +260,7 @@ DepthMap Renderer::captureDepth(int width, int height, CaptureMode mode, int gua
                      "a point light has six depth maps, one per cube face: capture them with captureCube");
   const int limit = std::min(s.maxTextureSize, s.maxViewport[0]);
   s.checkSize("Renderer::captureDepth", "width x height", width, height, limit);
-  if (guard < 0 || guard > kMaxGuardTexels)
-    throw InputError("Renderer::captureDepth", "guard", std::to_string(guard),
-                     "must be from 0 to " + std::to_string(kMaxGuardTexels) + " texels");
+  checkGuardTexels(guard, "Renderer::captureDepth", "guard");
   s.checkGuardedSize("Renderer::captureDepth", "width x height", width, height, guard);
   const Impl::LightRestore restore{s.light, s.light};
   if (guard > 0) s.light = guardedLight(s.light, width, height, guard);
