@@ -70,6 +70,7 @@ struct VolumeCliOptions {
   bool refineGridEverywhere = false;  ///< --refine-grid-everywhere (refineGridEverywhere)
   bool noSnap = false;                ///< --no-snap (refineSnap = false)
   bool noHiddenSearch = false;        ///< --no-hidden-search (refineHidden = false)
+  bool facePrisms = false;            ///< --face-prisms (facePrisms)
 };
 /// Adds the options; returns --refine's option (for excludes).
 CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o);

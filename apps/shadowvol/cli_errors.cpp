@@ -41,6 +41,7 @@ constexpr std::array kFlags{
     LibraryFieldFlag{"volume options", "refine grid everywhere", "--refine-grid-everywhere"},
     LibraryFieldFlag{"volume options", "refine snap", "--no-snap"},
     LibraryFieldFlag{"volume options", "refine hidden", "--no-hidden-search"},
+    LibraryFieldFlag{"volume options", "face prisms", "--face-prisms"},
     LibraryFieldFlag{"volume options", "flatten cap", "--no-flatten"},
 };
 

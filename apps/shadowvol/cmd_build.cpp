@@ -132,6 +132,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         options.depthOracle = oracle->oracle();
         options.surfaceEnds = oracle->surfaceEnds();
         options.nearerSurfaces = oracle->nearerSurfaces();
+        options.casterFaces = oracle->casterFaces();
       }
       const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
@@ -189,6 +190,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"refineGrid", options.refineSubdivisions},
                 {"refineGridEverywhere", options.refineGridEverywhere},
                 {"refineHidden", options.refineHidden},
+                {"facePrisms", options.facePrisms},
                 {"origin", {written.origin.x, written.origin.y, written.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
@@ -244,6 +246,10 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       "decided by a centre ray, %zu chord points), %zu rays\n",
                       options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, cube ? "cube" : "plane",
                       s.refinedCells, cube ? "cells" : "quads", s.ambiguousCells, s.chordPoints, s.raysCast);
+        if (options.facePrisms)
+          std::printf("  face prisms: %zu faces in the refined quads' columns, %zu border walls, %zu triangles "
+                      "(%.1f ms)\n",
+                      s.prismFaces, s.prismWalls, s.prismTriangles, s.msPrisms);
         if (options.refineSteps > 0)
           std::printf("  %zu crossings snapped to where their triangle ends%s\n", s.snappedCrossings,
                       !options.refineSnap ? " (--no-snap)" : cube ? " (not for a point light's cube)" : "");

@@ -125,6 +125,7 @@ const char* refinedGpuConflict(const RenderCliOptions& o) {
   if (o.crossings == "rays") return "--crossings";
   if (o.shape.chordPoints) return "--chord-points";
   if (o.shape.refineGrid > 1) return "--refine-grid";
+  if (o.shape.facePrisms) return "--face-prisms";
   return nullptr;
 }
 
@@ -192,7 +193,8 @@ void checkIneffectiveOptions(const RenderCliOptions& o) {
                                                        {v.refineGrid != none.refineGrid, "--refine-grid"},
                                                        {v.refineGridEverywhere, "--refine-grid-everywhere"},
                                                        {v.noSnap, "--no-snap"},
-                                                       {v.noHiddenSearch, "--no-hidden-search"}};
+                                                       {v.noHiddenSearch, "--no-hidden-search"},
+                                                       {v.facePrisms, "--face-prisms"}};
     for (const auto& [given, flag] : volumeOnly)
       if (given)
         throw CLI::ValidationError(flag, std::string("shapes or draws only the hybrid method's shadow volume, not --method ") +
@@ -269,6 +271,7 @@ std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::Ren
   ro.volumeOptions.depthOracle = oracle->oracle();
   ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
   ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
+  ro.volumeOptions.casterFaces = oracle->casterFaces();
   return oracle;
 }
 

@@ -62,7 +62,7 @@ InputError asPythonArgumentError(const InputError& e);
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                     std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
                                     bool chordPoints, int refineGrid = 1, bool refineGridEverywhere = false,
-                                    bool hiddenSearch = true);
+                                    bool hiddenSearch = true, bool facePrisms = false);
 
 /// Makes `Cls.__new__(Cls)` raise TypeError naming `howToMake`: pybind11 would hand out an instance
 /// whose C++ value was never constructed (a pickle stream of a bare NEWOBJ made one, and reading it

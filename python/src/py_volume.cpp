@@ -22,7 +22,8 @@ namespace shadowvol::python {
 
 VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur, double blurOffset,
                                  std::optional<double> bias, const std::string& cap, bool flattenCap, int refine,
-                                 bool chordPoints, int refineGrid, bool refineGridEverywhere, bool hiddenSearch) {
+                                 bool chordPoints, int refineGrid, bool refineGridEverywhere, bool hiddenSearch,
+                                 bool facePrisms) {
   VolumeBuildOptions o;
   if (!parseTriangulation(triangulation, o.triangulation))
     throw InputError("python", "triangulation", triangulation, "expected " + choicesText(namesIn(kTriangulationNames)));
@@ -36,6 +37,7 @@ VolumeBuildOptions volumeOptionsArg(const std::string& triangulation, bool blur,
   o.refineSubdivisions = refineGrid;
   o.refineGridEverywhere = refineGridEverywhere;
   o.refineHidden = hiddenSearch;
+  o.facePrisms = facePrisms;
   try {
     checkUserVolumeOptions(o);  // the command line's rules (a probe found them missing here)
   } catch (const InputError& e) {
@@ -63,6 +65,7 @@ constexpr PythonName kFieldKeywords[] = {
     {"volume options", "refine chords", "chord_points"},
     {"volume options", "refine grid everywhere", "refine_grid_everywhere"},
     {"volume options", "refine hidden", "hidden_search"},
+    {"volume options", "face prisms", "face_prisms"},
     {"volume options", "flatten cap", "flatten_cap"},
     {"volume options", "blur", "blur"},
     {"RenderOptions", "refineCrossings", "crossings"},
@@ -137,9 +140,9 @@ void checkMapFromScene(const DepthMap& depth, const DepthOracle& oracle) {
 py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulation, bool blur, double blurOffset,
                             std::optional<double> bias, const std::string& cap, bool flattenCap, StrictInt refine,
                             const PyScene* scene, bool chordPoints, StrictInt refineGrid, bool refineGridEverywhere,
-                            bool hiddenSearch) {
+                            bool hiddenSearch, bool facePrisms) {
   VolumeBuildOptions o = volumeOptionsArg(triangulation, blur, blurOffset, bias, cap, flattenCap, refine, chordPoints,
-                                          refineGrid, refineGridEverywhere, hiddenSearch);
+                                          refineGrid, refineGridEverywhere, hiddenSearch, facePrisms);
   if (refine > 0 && !scene)
     throw InputError("python", "refine", std::to_string(refine),
                      "needs scene=: the refinement casts rays into the scene the depth map was captured from");
@@ -158,6 +161,7 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
       o.depthOracle = oracle->oracle();
       o.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line (crossing_snap.h)
       o.nearerSurfaces = oracle->nearerSurfaces();  // the sub-grid's search for hidden surfaces
+      o.casterFaces = oracle->casterFaces();        // the face prisms' faces
       checkMapFromScene(depth, o.depthOracle);
     }
     try {
@@ -177,7 +181,9 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
     for (int c = 0; c < 3; ++c) vr(k, c) = r.mesh.positions[k][c] + r.mesh.origin[c];
   for (std::size_t k = 0; k < r.mesh.triangleCount(); ++k)
     for (int c = 0; c < 3; ++c) fr(k, c) = std::int32_t(r.mesh.triangles[k][c]);
-  return py::make_tuple(v, f, toPython(describeVolumeStats(r.stats)));
+  nlohmann::json stats = describeVolumeStats(r.stats);
+  stats["partStarts"] = r.mesh.partStarts;  // F's rows where a closed part after the first begins (face prisms)
+  return py::make_tuple(v, f, toPython(stats));
 }
 
 /// V (N x 3, finite) and F (M x 3, indices in [0, N)) as a VolumeMesh; InputError names the array,
@@ -215,7 +221,7 @@ void registerVolume(py::module_& m) {
         py::arg("blur").noconvert() = false, py::arg("blur_offset") = 0.0, py::arg("bias") = py::none(), py::arg("cap") = "exact",
         py::arg("flatten_cap").noconvert() = true, py::arg("refine") = 0, py::arg("scene") = nullptr,
         py::arg("chord_points").noconvert() = false, py::arg("refine_grid") = 1, py::arg("refine_grid_everywhere").noconvert() = false,
-        py::arg("hidden_search").noconvert() = true,
+        py::arg("hidden_search").noconvert() = true, py::arg("face_prisms").noconvert() = false,
         "The shadow volume of a depth map: (V, F, stats) with V float64 N x 3 (world units), F int32 M x 3 "
         "(counter-clockwise seen from outside) and stats a dict of counts and times (milliseconds). With the exact "
         "cap (default) the mesh is closed, outward and welded (docs/volume.md). refine=K (1..16) places each wall "
@@ -223,7 +229,10 @@ void registerVolume(py::module_& m) {
         "captured from); refine_grid=S (2, 4, 8) refines the quads with a boundary edge whose straight wall misses "
         "the sub-grid's samples on an S x S sub-grid, every such quad with refine_grid_everywhere=True "
         "(docs/volume.md, \"Sub-grid\"), and the quads whose square hides a surface between the texel centres "
-        "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). bias=None: the default (0 for back capture).");
+        "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). "
+        "face_prisms=True (with refine) adds the prisms of the closed meshes' faces turned away from the light in the "
+        "refined quads' columns as a second closed part, whose first row in F is stats['partStarts'][0] "
+        "(docs/volume.md, \"Face prisms\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",
       [](const py::object& positions, const py::array& f, const std::filesystem::path& path, bool doublePrecision) {

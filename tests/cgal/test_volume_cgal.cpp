@@ -138,7 +138,7 @@ TEST(VolumeCgal, InvariantsOnEveryScene) {
 // coincident vertices (refinement needs no pinch splits).
 TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
   const auto files = sceneFiles();
-  std::size_t builds = 0, refined = 0, hidden = 0, creases = 0;
+  std::size_t builds = 0, refined = 0, hidden = 0, creases = 0, prismFaces = 0;
   for (const auto& file : files) {
     const Scene& scene = cachedScene(file);
     const EmbreeDepthOracle oracle(scene);
@@ -185,6 +185,15 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           EXPECT_EQ(g.stats.creaseQuads > 0 || g.stats.subgridBiasSamples > 0, g.stats.biasUsed > 0.0 && g.stats.refinedCells > 0)
               << what;
           EXPECT_GE(g.stats.raysCast, g.stats.subgridSamples + g.stats.subgridBiasSamples) << what;
+          // With the face prisms: the same volume and a second part after it, valid on its own.
+          o.casterFaces = oracle.casterFaces();
+          o.facePrisms = true;
+          const auto f = buildVolume(map, o);
+          const MeshCheckReport fr = checkMesh(f.mesh);
+          ASSERT_TRUE(fr.valid()) << what << " face prisms: " << fr.summary();
+          EXPECT_EQ(f.mesh.partStarts.size(), f.stats.prismFaces > 0 ? 1u : 0u) << what;
+          EXPECT_EQ(f.mesh.triangleCount(), g.mesh.triangleCount() + f.stats.prismTriangles) << what;
+          prismFaces += f.stats.prismFaces;
         }
       }
   }
@@ -192,6 +201,7 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
   EXPECT_GT(refined, files.size() * 2 * 4 * 8 * 9 / 10);
   EXPECT_GT(hidden, 0u);  // thin parts of the shipped scenes between texel centres at these sizes
   EXPECT_GT(creases, 0u);  // front and entry capture: the meshes' concave folds
+  EXPECT_GT(prismFaces, 0u);
 }
 
 // Random hit levels under a random oracle (hits on other levels, misses, anything): refined

@@ -45,5 +45,25 @@ TEST(VolumeMesh, SortTrianglesGivesOneOrderAndKeepsTheWinding) {
   ASSERT_EQ(a.triangles.size(), given.size());
 }
 
+// A mesh of two parts (VolumeMesh::partStarts): partMesh gives each alone with its vertices
+// renumbered in order of first use, and sortTriangles keeps each part's triangles in its range.
+TEST(VolumeMesh, PartsAreTakenAndSortedEachAlone) {
+  VolumeMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}, {5, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2},   // a tetrahedron
+                 {6, 7, 5}, {4, 6, 5}, {4, 5, 7}, {4, 7, 6}};  // another, as the second part
+  m.partStarts = {4};
+  EXPECT_EQ(m.partCount(), 2u);
+  const VolumeMesh second = m.partMesh(1);
+  EXPECT_EQ(second.positions.size(), 4u);
+  EXPECT_EQ(second.positions[0], glm::dvec3(5, 1, 0));  // vertex 6, the first used
+  EXPECT_EQ(second.triangles.size(), 4u);
+  EXPECT_TRUE(second.partStarts.empty());
+  m.sortTriangles();
+  for (std::size_t t = 0; t < 4; ++t) EXPECT_LT(*std::max_element(m.triangles[t].begin(), m.triangles[t].end()), 4u);
+  for (std::size_t t = 4; t < 8; ++t) EXPECT_GE(*std::min_element(m.triangles[t].begin(), m.triangles[t].end()), 4u);
+  EXPECT_TRUE(std::is_sorted(m.triangles.begin() + 4, m.triangles.end()));
+}
+
 }  // namespace
 }  // namespace shadowvol

@@ -120,6 +120,20 @@ def test_refinement_casts_rays_and_stays_closed(scene, depth):
         sv.build_volume(depth, refine=4, hidden_search=False, scene=scene)  # the sub-grid's search: needs it
 
 
+def test_face_prisms_are_a_second_closed_part(scene, depth):
+    """face_prisms=True: the closed meshes' faces in the refined quads' columns as prisms, a second
+    closed part after the volume as built without them (docs/volume.md, "Face prisms")."""
+    V0, F0, plain = sv.build_volume(depth, refine=4, refine_grid=4, scene=scene)
+    V, F, stats = sv.build_volume(depth, refine=4, refine_grid=4, face_prisms=True, scene=scene)
+    assert plain["partStarts"] == [] and plain["prismFaces"] == 0
+    assert stats["prismFaces"] > 0 and stats["partStarts"] == [len(F0)]
+    assert np.array_equal(F[: len(F0)], F0) and np.array_equal(V[: len(V0)], V0)
+    assert len(F) - len(F0) == stats["prismTriangles"]
+    assert_closed_oriented(V, F)
+    with pytest.raises(ValueError, match="face_prisms"):
+        sv.build_volume(depth, face_prisms=True)  # no refined quads without refinement
+
+
 def test_refinement_needs_the_scene_the_map_shows(scene, depth):
     """A thirteenth probe's findings: scene= without refine was taken without a word, and a map from
     another scene was refined against surfaces it does not show."""

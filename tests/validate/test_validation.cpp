@@ -847,6 +847,28 @@ TEST(Validation, CountPixelTakesAnInfiniteDepth) {
   EXPECT_GE(c.zfail, 1);
 }
 
+// The merge rule: hits at one distance merge into one event only where they lie on the borders
+// of triangles that share a vertex (a crossing reported twice at a shared edge; a fold grazed),
+// else each counts: two walls a hair apart, two faces that overlap around a shared vertex, two
+// parts' coincident caps (VolumeMesh::partStarts). Touching is transitive within the group.
+TEST(Validation, CountPixelMergesOnlyHitsOfTouchingTriangles) {
+  using C = std::array<std::uint32_t, 3>;
+  const double t = 5.0, hair = 4e-6;  // within kCrossingMergeTolerance of t
+  std::vector<VolumeCrossing> shared{{t, 1, C{0, 1, 2}, true}, {t + hair, 1, C{1, 2, 3}, true}};
+  EXPECT_EQ(countPixel(shared, 1.0, 1e-4).zfail, 1);  // one crossing seen twice
+  std::vector<VolumeCrossing> apart{{t, 1, C{0, 1, 2}, true}, {t + hair, 1, C{4, 5, 6}, true}};
+  EXPECT_EQ(countPixel(apart, 1.0, 1e-4).zfail, 2);  // two crossings
+  std::vector<VolumeCrossing> overlap{{t, 1, C{0, 1, 2}, false}, {t, 1, C{2, 3, 4}, false}};
+  EXPECT_EQ(countPixel(overlap, 1.0, 1e-4).zfail, 2);  // inside both: two faces that overlap
+  std::vector<VolumeCrossing> fold{{t, 1, C{0, 1, 2}, true}, {t + hair, -1, C{2, 3, 4}, true},
+                                   {t + hair, 1, C{7, 8, 9}, true}};
+  EXPECT_EQ(countPixel(fold, 1.0, 1e-4).zfail, 1);  // a grazed fold (0) and a crossing of its own
+  std::vector<VolumeCrossing> chain{{t, 1, C{0, 1, 2}, true}, {t, 1, C{5, 6, 7}, true}, {t, 1, C{2, 3, 5}, true}};
+  EXPECT_EQ(countPixel(chain, 1.0, 1e-4).zfail, 1);  // 0 touches 2 touches 1: one event
+  std::vector<VolumeCrossing> unknown{{t, 1}, {t + hair, 1, C{4, 5, 6}, false}};
+  EXPECT_EQ(countPixel(unknown, 1.0, 1e-4).zfail, 1);  // an unknown triangle touches every other
+}
+
 // Counts that contradict the eye's side are recounted in double and come back as Embree counted
 // them where Embree was right: corrupted counts of the plate's frame are restored exactly, with the
 // eye outside the volume and inside it (where the volume's triangles cross the eye plane; the

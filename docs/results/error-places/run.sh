@@ -5,7 +5,7 @@
 # (againstExact, errorCauses, shadowsByOccluder's missedSelf and missedOnOthers). Fetch the meshes
 # first (docs/results/light-fit/run.sh says how), build, then run from the repository root (about
 # 5 minutes on a 2-core machine). EXE (default build/apps/shadowvol), OUT (default
-# out/error-places). Prints one line per scene and variant, then the sums. A rerun with the same OUT
+# out/error-places), FLAGS (more options for the refined volume's runs, such as --face-prisms). Prints one line per scene and variant, then the sums. A rerun with the same OUT
 # reuses the reports already there (delete OUT for a new binary).
 set -e
 exe=${EXE:-build/apps/shadowvol}
@@ -38,7 +38,7 @@ for s in $scenes; do
   case ",$closed," in *",$n,"*) ;; *) continue ;; esac
   for g in 4 8; do
     [ -f "$out/$n-s$g.json" ] || "$exe" validate --scene "$s" --volume explicit --refine 6 --refine-grid $g \
-        --resolution 256 --report "$out/r" --json > "$out/$n-s$g.json" 2>/dev/null || true
+        --resolution 256 $FLAGS --report "$out/r" --json > "$out/$n-s$g.json" 2>/dev/null || true
   done
 done
 python3 - "$out" "$closed" <<'PY'

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -47,6 +48,13 @@ using SurfaceEndOracle =
 /// findOpenRims). Same calling rules as DepthOracle.
 using NearerSurfaceOracle = std::function<void(const DepthMap& map, std::span<const float> limit,
                                                std::span<const float> rimLimit, std::span<std::uint8_t> flags)>;
+
+/// The casters' faces for the refined volume's face prisms (VolumeBuildOptions::facePrisms): the
+/// faces findCasterFaces (caster_faces.h) selects for the quads flagged non-zero in `quads`
+/// ((W - 1) * (H - 1) entries, q = qj * (W - 1) + qi), corners in the map's coordinates (as its
+/// rays). The Embree oracle answers it from the scene's triangles. Same calling rules as DepthOracle.
+using CasterFaceOracle =
+    std::function<std::vector<std::array<glm::dvec3, 3>>(const DepthMap& map, std::span<const std::uint8_t> quads)>;
 
 /// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
 /// the oracle at the texel's centre: the map a capture by the oracle's rays stores (with

@@ -113,6 +113,13 @@ struct VolumeBuildOptions {
                                 ///< centres (docs/volume.md "Hidden surfaces"); unset = they are not
   bool refineHidden = true;     ///< false: no search even with nearerSurfaces (for comparison;
                                 ///< --no-hidden-search)
+  bool facePrisms = false;      ///< refinement only: add the prisms of the closed casters' faces turned
+                                ///< away from the light in the columns of the refined quads, from each
+                                ///< face to the far plane, as a second closed part of the mesh
+                                ///< (VolumeMesh::partStarts): the mesh's own shadow where the sheet
+                                ///< cannot follow it, a thin part's self-shadow (docs/volume.md "Face
+                                ///< prisms"). Needs casterFaces. Off by default (README "Face prisms")
+  CasterFaceOracle casterFaces; ///< facePrisms only: the faces (depth_oracle.h; EmbreeDepthOracle::casterFaces)
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -186,6 +193,9 @@ struct VolumeBuildStats {
   std::size_t rimCrossings = 0;       ///< sub-grid with front capture's bias: snapped crossings whose near vertex
                                       ///< moved towards the rim (the plain refinement's, some then cut, and the
                                       ///< sub-grid's; docs/volume.md "Sub-grid", step 9)
+  std::size_t prismFaces = 0;         ///< face prisms: casters' faces taken (docs/volume.md "Face prisms")
+  std::size_t prismWalls = 0;         ///< face prisms: border edges of those faces, a wall each
+  std::size_t prismTriangles = 0;     ///< face prisms: the part's triangles (in the mesh's count)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)
@@ -193,6 +203,7 @@ struct VolumeBuildStats {
   double msRefine = 0.0;              ///< refinement: boundary edges, oracle rays and walls (ms)
   double msRays = 0.0;                ///< refinement: the oracle calls alone (ms; part of msRefine)
   double msHidden = 0.0;              ///< sub-grid: the search for hidden surfaces (ms; part of msRefine)
+  double msPrisms = 0.0;              ///< face prisms: the faces' selection and their part (ms; part of msRefine)
   double msCap = 0.0;                 ///< boundary runs, cap edges and cap triangulation (ms); the
                                       ///< triangulation runs during the sheet's last pass, so
                                       ///< msBlur + msSheet + msCap can exceed msTotal

@@ -156,6 +156,19 @@ SweepMethod refinedGrid(CaptureMode capture, int subdivisions = kSweepRefineSubd
   return m;
 }
 
+// The refined volume on the sub-grid with the face prisms (docs/volume.md "Face prisms": the closed
+// meshes' faces turned away from the light in the refined quads' columns, a second closed part; the
+// oracle's casterFaces that runSweep attaches). Keys: hybrid-refined-grid[S]-prisms[-capture]/explicit.
+SweepMethod refinedPrisms(CaptureMode capture, int subdivisions = kSweepRefineSubdivisions) {
+  SweepMethod m = refinedGrid(capture, subdivisions);
+  const std::string s = std::to_string(subdivisions);
+  m.key = std::string("hybrid-refined-grid") + (subdivisions == kSweepRefineSubdivisions ? "" : s) + "-prisms" +
+          captureSuffix(capture) + "/explicit";
+  m.options.volumeOptions.facePrisms = true;
+  m.description += "; with the prisms of the closed meshes' faces in the refined quads' columns";
+  return m;
+}
+
 SweepMethod shadowMap(const std::string& key, gl::ShadowMethod method, CaptureMode capture, const std::string& what) {
   SweepMethod m;
   m.key = key;
@@ -323,6 +336,7 @@ const std::vector<SweepMethod>& sweepMethods() {
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c));
     // S = 8: what --capture auto takes with the finer sub-grid (entry on closed meshes, front on open ones).
     for (CaptureMode c : {CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGrid(c, 8));
+    for (int s : {kSweepRefineSubdivisions, 8}) v.push_back(refinedPrisms(CaptureMode::Entry, s));  // closed meshes
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedWalk(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front, CaptureMode::Entry}) v.push_back(refinedGpu(c));
     for (CaptureMode c : {CaptureMode::Back, CaptureMode::Front}) v.push_back(refinedGpuWalk(c));
@@ -534,6 +548,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       ro.volumeOptions.depthOracle = oracle->oracle();
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
       ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
+      ro.volumeOptions.casterFaces = oracle->casterFaces();
     }
     ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
     ro.readStencil = false;

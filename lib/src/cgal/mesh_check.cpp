@@ -303,7 +303,70 @@ void checkSelfIntersections(const Mesh& sm, const MeshCheckOptions& options, Mes
 
 }  // namespace
 
+MeshCheckReport sumReports(const std::vector<MeshCheckReport>& reports) {
+  MeshCheckReport r;
+  r.outward = true;
+  bool selfChecked = true;
+  std::size_t selfPairs = 0;
+  for (const MeshCheckReport& m : reports) {
+    r.vertices += m.vertices;
+    r.triangles += m.triangles;
+    r.nonFiniteVertices += m.nonFiniteVertices;
+    r.badIndexTriangles += m.badIndexTriangles;
+    r.degenerateTriangles += m.degenerateTriangles;
+    r.boundaryEdges += m.boundaryEdges;
+    r.overusedEdges += m.overusedEdges;
+    r.nonManifoldVertices += m.nonManifoldVertices;
+    r.isolatedVertices += m.isolatedVertices;
+    r.coincidentVertices += m.coincidentVertices;
+    if (m.triangles > 0) r.outward = r.outward && m.outward;  // an empty mesh is valid, not outward
+    r.volume += m.volume;
+    selfChecked = selfChecked && m.selfIntersectingPairs.has_value();
+    selfPairs += m.selfIntersectingPairs.value_or(0);
+    r.allowedTouchingPairs += m.allowedTouchingPairs;
+  }
+  if (selfChecked) r.selfIntersectingPairs = selfPairs;
+  r.outward = r.outward && r.triangles > 0;
+  return r;
+}
+
+namespace {
+
+// Whether every connected component has a positive signed volume: the outward rule of a union of
+// solids that may overlap (a volume's parts after the first, VolumeMesh::partStarts), where one
+// component's probe may lie inside another without being a cavity.
+bool everyComponentOutward(const Mesh& sm) {
+  std::vector<Mesh> parts;
+  PMP::split_connected_components(sm, parts);
+  for (const Mesh& m : parts)
+    if (!(CGAL::to_double(PMP::volume(m)) > 0.0)) return false;
+  return true;
+}
+
+MeshCheckReport checkPart(const VolumeMesh& mesh, const MeshCheckOptions& options, bool overlapping);
+
+}  // namespace
+
 MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options) {
+  if (mesh.partCount() > 1) {
+    std::vector<MeshCheckReport> parts;
+    for (std::size_t k = 0; k < mesh.partCount(); ++k) parts.push_back(checkPart(mesh.partMesh(k), options, k > 0));
+    MeshCheckReport r = sumReports(parts);
+    // Vertices no part uses are still isolated: count the whole mesh's (a part's are renumbered).
+    r.vertices = mesh.positions.size();
+    std::vector<std::uint8_t> used(mesh.positions.size(), 0);
+    for (const auto& t : mesh.triangles)
+      for (const std::uint32_t v : t)
+        if (v < used.size()) used[v] = 1;
+    r.isolatedVertices += std::size_t(std::count(used.begin(), used.end(), std::uint8_t(0)));
+    return r;
+  }
+  return checkPart(mesh, options, false);
+}
+
+namespace {
+
+MeshCheckReport checkPart(const VolumeMesh& mesh, const MeshCheckOptions& options, bool overlapping) {
   MeshCheckReport r;
   r.vertices = mesh.positions.size();
   r.triangles = mesh.triangles.size();
@@ -322,35 +385,44 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
     ++r.nonManifoldVertices;  // CGAL refused a face our checks accepted; report it as non-manifold
     return r;
   }
-  r.outward = isOutward(sm);
+  r.outward = overlapping ? everyComponentOutward(sm) : isOutward(sm);
   r.volume = CGAL::to_double(PMP::volume(sm));
   if (options.selfIntersections && r.degenerateTriangles == 0) checkSelfIntersections(sm, options, r);
   return r;
 }
 
+}  // namespace
+
 struct VolumeClassifier::Impl {
-  Mesh mesh;
-  std::unique_ptr<InsideTest> side;
+  std::vector<Mesh> meshes;  // one per part
+  std::vector<std::unique_ptr<InsideTest>> sides;
 };
 
 VolumeClassifier::VolumeClassifier(const VolumeMesh& mesh) : impl_(std::make_unique<Impl>()) {
-  const bool ok = buildSurfaceMesh(mesh, impl_->mesh);
-  SV_CHECK(ok);
-  impl_->side = std::make_unique<InsideTest>(impl_->mesh);
+  impl_->meshes.resize(mesh.partCount());
+  for (std::size_t k = 0; k < mesh.partCount(); ++k) {
+    const bool ok = mesh.partCount() == 1 ? buildSurfaceMesh(mesh, impl_->meshes[k])
+                                          : buildSurfaceMesh(mesh.partMesh(k), impl_->meshes[k]);
+    SV_CHECK(ok);
+  }
+  for (const Mesh& m : impl_->meshes) impl_->sides.push_back(std::make_unique<InsideTest>(m));
 }
 VolumeClassifier::~VolumeClassifier() = default;
 VolumeClassifier::VolumeClassifier(VolumeClassifier&&) noexcept = default;
 VolumeClassifier& VolumeClassifier::operator=(VolumeClassifier&&) noexcept = default;
 
 VolumeClassifier::Side VolumeClassifier::classify(const glm::dvec3& point) const {
-  switch ((*impl_->side)(toPoint(point))) {
-    case CGAL::ON_BOUNDED_SIDE:
-      return Side::Inside;
-    case CGAL::ON_BOUNDARY:
-      return Side::Boundary;
-    default:
-      return Side::Outside;
-  }
+  Side side = Side::Outside;
+  for (const auto& test : impl_->sides) switch ((*test)(toPoint(point))) {
+      case CGAL::ON_BOUNDED_SIDE:
+        return Side::Inside;
+      case CGAL::ON_BOUNDARY:
+        side = Side::Boundary;
+        break;
+      default:
+        break;
+    }
+  return side;
 }
 
 }  // namespace shadowvol

@@ -77,8 +77,11 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"raysCast", s.raysCast},
           {"crossingFallbacks", s.crossingFallbacks},
           {"snappedCrossings", s.snappedCrossings},
+          {"prismFaces", s.prismFaces},
+          {"prismWalls", s.prismWalls},
+          {"prismTriangles", s.prismTriangles},
           {"bias", s.biasUsed},
-          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays}, {"hidden", s.msHidden},
+          {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays}, {"hidden", s.msHidden}, {"prisms", s.msPrisms},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};
 }
 

@@ -20,6 +20,7 @@
 #include "volume/build_buffers.h"
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
+#include "volume/face_prisms.h"
 #include "volume/crease_quads.h"
 #include "volume/thin_quads.h"
 #include "volume/grid_unprojector.h"
@@ -131,6 +132,7 @@ void checkUserVolumeOptions(const VolumeBuildOptions& o) {
   if (!o.refineSnap && o.refineSteps == 0) refuse("refine snap", "", needsRefine);
   if (!o.refineHidden && o.refineSubdivisions <= 1)
     refuse("refine hidden", "", "is the sub-grid's search: it needs ${refine subdivisions} of 2, 4 or 8");
+  if (o.facePrisms && o.refineSteps == 0) refuse("face prisms", "", needsRefine);
   if (!o.flattenCap && o.cap != FarCap::Exact)
     refuse("flatten cap", "", "keeps the exact cap unflattened; the quad cap has one far rectangle, nothing to flatten");
 }
@@ -186,6 +188,13 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (s > 1 && !options.flattenCap)
     throw OptionConflict("volume options", "flatten cap", "false",
                      "the sub-grid needs the flattened cap (the mirrored cap does not follow its sub-cells)");
+  if (options.facePrisms && options.refineSteps == 0)
+    throw OptionConflict("volume options", "face prisms", "true",
+                         "the face prisms stand in the refined quads' columns: they need refine steps of at least 1");
+  if (options.facePrisms && !options.casterFaces)
+    throw InputError("volume options", "face prisms", "true",
+                     "the prisms are made of the scene's faces: they need a caster-face oracle (an Embree scene on "
+                     "the command line)");
   if (options.refineSteps > 0 && options.cap != FarCap::Exact)
     throw OptionConflict("volume options", "cap", toString(options.cap),
                      "refinement needs the exact cap: the quad cap keeps the far-plane sheet whose quads "
@@ -511,6 +520,22 @@ void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const R
   stats.subgridSplitTriangles = mesh.positions.size() - (base.subgrid + r.sub.positions.size());
 }
 
+// Stage 7f: the casters' faces in the columns of the refined quads (the oracle's selection) and
+// their prisms, appended as the mesh's second part.
+void appendPrismPart(const DepthMap& map, const volume::RefinedQuads& quads, const VolumeBuildOptions& options,
+                     VolumeMesh& mesh, VolumeBuildStats& stats) {
+  const auto t0 = volume::Clock::now();
+  std::vector<std::uint8_t> flags(stats.quads, 0);
+  for (const std::uint32_t q : quads.quads) flags[q] = 1;
+  const std::vector<std::array<glm::dvec3, 3>> faces = options.casterFaces(map, flags);
+  const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
+  stats.prismFaces = c.faces;
+  stats.prismWalls = c.walls;
+  stats.prismTriangles = c.triangles;
+  stats.msPrisms = volume::msSince(t0);
+  stats.msRefine += stats.msPrisms;
+}
+
 }  // namespace
 
 // Grid-sized scratch kept by a VolumeBuilder between builds.
@@ -536,6 +561,7 @@ VolumeBuildResult buildVolume(const DepthMap& map, const VolumeBuildOptions& opt
 void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
   result.mesh.positions.clear();
   result.mesh.triangles.clear();
+  result.mesh.partStarts.clear();
   result.mesh.origin = map.origin;
   result.stats = {};
   // A map of many small islands needs nine times a plain one's memory: refused before the build's
@@ -547,6 +573,7 @@ void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options
   } catch (...) {
     result.mesh.positions.clear();
     result.mesh.triangles.clear();
+    result.mesh.partStarts.clear();
     result.stats = {};
     throw;
   }
@@ -690,6 +717,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     dropUnusedVertices(mesh, base.crossing);
     stats.msRefine += msSince(tc);
   }
+  // 7f. The face prisms in the refined quads' columns: a part of their own, after the sheet's.
+  if (refine && options.facePrisms) appendPrismPart(map, found.quads, options, mesh, stats);
   stats.msTotal = msSince(tStart);
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "shadowvol/caster_faces.h"
 #include "shadowvol/check.h"
 #include "shadowvol/embree/capture_ray.h"
 #include "shadowvol/embree/embree_scene.h"
@@ -142,6 +143,13 @@ NearerSurfaceOracle EmbreeDepthOracle::nearerSurfaces() const {
     const std::span<const TriangleSoup> soups = impl->soupsFor(map.capture);
     findNearerSurfaces(map, soups, limit, flags);
     if (!rimLimit.empty()) findOpenRims(map, soups, rimLimit, flags);
+  };
+}
+
+CasterFaceOracle EmbreeDepthOracle::casterFaces() const {
+  Impl* impl = impl_.get();
+  return [impl](const DepthMap& map, std::span<const std::uint8_t> quads) {
+    return findCasterFaces(map, impl->soupsFor(CaptureMode::Entry), quads);  // `closed` set as entry capture needs
   };
 }
 

@@ -74,6 +74,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const std::vector<const Tri
     rtcAttachGeometry(scene_.get(), geom);  // IDs are assigned 0, 1, 2, ... in order
     rtcReleaseGeometry(geom);
   }
+  geometries_ = unsigned(meshes.size());
   rtcCommitScene(scene_.get());
   device.throwIfError();
 }

@@ -1,6 +1,7 @@
 #include "shadowvol/embree/ray_queries.h"
 
 #include <algorithm>
+#include <span>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -24,6 +25,7 @@ TexelUnprojector::Ray pixelRay(const TexelUnprojector& u, int x, int r, int heig
 struct CollectContext {
   RTCIntersectContext ctx;
   std::vector<VolumeCrossing>* hits;
+  const std::vector<const unsigned*>* indices;  // each geometry's index buffer, by geometry ID
 };
 
 void collectAll(const RTCFilterFunctionNArguments* args) {
@@ -34,7 +36,11 @@ void collectAll(const RTCFilterFunctionNArguments* args) {
   const float nx = RTCHitN_Ng_x(args->hit, args->N, 0), ny = RTCHitN_Ng_y(args->hit, args->N, 0),
               nz = RTCHitN_Ng_z(args->hit, args->N, 0);
   const double d = double(dx) * nx + double(dy) * ny + double(dz) * nz;
-  c->hits->push_back({double(RTCRayN_tfar(args->ray, args->N, 0)), d > 0 ? 1 : (d < 0 ? -1 : 0)});
+  const unsigned geom = RTCHitN_geomID(args->hit, args->N, 0), prim = RTCHitN_primID(args->hit, args->N, 0);
+  const unsigned* index = (*c->indices)[geom] + 3 * std::size_t(prim);
+  const double u = RTCHitN_u(args->hit, args->N, 0), v = RTCHitN_v(args->hit, args->N, 0);
+  c->hits->push_back({double(RTCRayN_tfar(args->ray, args->N, 0)), d > 0 ? 1 : (d < 0 ? -1 : 0),
+                      {index[0], index[1], index[2]}, std::min({u, v, 1.0 - u - v}) <= kCrossingEdgeTolerance});
   args->valid[0] = 0;  // reject: traversal goes on and reports every hit
 }
 
@@ -172,27 +178,71 @@ double tieTolerance(const Camera& camera, double d) {
   return std::max(1e-4, 16.0 * std::ldexp(1.0, -24) * d * (f - n) / (f * n));
 }
 
+bool VolumeCrossing::touches(const VolumeCrossing& o) const {
+  if (corners == kUnknownCorners || o.corners == kUnknownCorners) return true;
+  if (!onBorder || !o.onBorder) return false;
+  for (const std::uint32_t a : corners)
+    for (const std::uint32_t b : o.corners)
+      if (a == b) return true;
+  return false;
+}
+
+namespace {
+
+// The summed signs of a group of hits at one distance, one sum per set of hits whose triangles
+// touch (VolumeCrossing::touches, joined transitively), in order of their first hit. `stack` and
+// `cluster` are scratch.
+void mergedSigns(std::span<const VolumeCrossing> group, std::vector<std::size_t>& stack, std::vector<int>& cluster,
+                 std::vector<int>& sums) {
+  const std::size_t n = group.size();
+  cluster.assign(n, -1);
+  sums.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (cluster[i] >= 0) continue;
+    const int id = int(sums.size());
+    sums.push_back(0);
+    cluster[i] = id;
+    stack.assign(1, i);
+    while (!stack.empty()) {  // every hit that touches one of the set joins it
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      sums.back() += group[k].sign;
+      for (std::size_t m = i + 1; m < n; ++m)
+        if (cluster[m] < 0 && group[k].touches(group[m])) {
+          cluster[m] = id;
+          stack.push_back(m);
+        }
+    }
+  }
+}
+
+}  // namespace
+
 PixelCounts countPixel(std::vector<VolumeCrossing>& crossings, double tVisible, double band) {
   std::sort(crossings.begin(), crossings.end(), [](const VolumeCrossing& a, const VolumeCrossing& b) {
     return a.t < b.t || (a.t == b.t && a.sign < b.sign);
   });
   int zfail = 0, zpass = 0;
   std::vector<int> tieSigns;
+  thread_local std::vector<std::size_t> stack;  // scratch of mergedSigns, kept between pixels
+  thread_local std::vector<int> cluster, sums;
   for (std::size_t g = 0; g < crossings.size();) {
-    // One event: every hit within the tolerance of the group's first hit.
+    // The hits within the tolerance of the group's first hit; each set of touching triangles among
+    // them is one event (mergedSigns).
     const double t0 = crossings[g].t, tol = kCrossingMergeTolerance * std::max(t0, 1e-30);
-    int sum = 0;
-    std::size_t e = g;
-    do sum += crossings[e++].sign;  // the first always (an infinite t0 compares false below)
-    while (e < crossings.size() && crossings[e].t - t0 <= tol);
-    const int sign = (sum > 0) - (sum < 0);
-    if (std::abs(t0 - tVisible) <= band) {
-      zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)
-      if (sign != 0) tieSigns.push_back(sign);
-    } else if (t0 > tVisible) {
-      zfail += sign;
-    } else {
-      zpass -= sign;
+    std::size_t e = g + 1;  // the first always (an infinite t0 compares false below)
+    while (e < crossings.size() && crossings[e].t - t0 <= tol) ++e;
+    mergedSigns(std::span<const VolumeCrossing>(crossings).subspan(g, e - g), stack, cluster, sums);
+    for (const int sum : sums) {
+      const int sign = (sum > 0) - (sum < 0);
+      if (std::abs(t0 - tVisible) <= band) {
+        zfail += sign;  // nominal: behind (reversed-Z GL_GREATER fails on equal depths)
+        if (sign != 0) tieSigns.push_back(sign);
+      } else if (t0 > tVisible) {
+        zfail += sign;
+      } else {
+        zpass -= sign;
+      }
     }
     g = e;
   }
@@ -225,6 +275,12 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
   out.zfailMin.assign(hits.depth.size(), 0);
   out.zfailMax.assign(hits.depth.size(), 0);
   const TexelUnprojector u(cameraView(camera), cameraProjection(camera), camera.width, camera.height);
+  // The merge rule's vertex indices: a volume is one mesh (indices of two meshes would not compare).
+  SV_CHECK_LE(volume.geometryCount(), 1u);
+  std::vector<const unsigned*> indices;
+  for (unsigned g = 0; g < volume.geometryCount(); ++g)
+    indices.push_back(
+        static_cast<const unsigned*>(rtcGetGeometryBufferData(rtcGetGeometry(volume.get(), g), RTC_BUFFER_TYPE_INDEX, 0)));
   tbb::enumerable_thread_specific<std::vector<VolumeCrossing>> buffers;
   tbb::parallel_for(tbb::blocked_range<int>(0, hits.height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<VolumeCrossing>& buf = buffers.local();
@@ -239,6 +295,7 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
         rtcInitIntersectContext(&c.ctx);
         c.ctx.filter = collectAll;
         c.hits = &buf;
+        c.indices = &indices;
         rtcIntersect1(volume.get(), &c.ctx, &rh);
         const PixelCounts pc = countPixel(buf, hits.depth[k], tieTolerance(camera, hits.depth[k]) * hits.depth[k]);
         out.zfail[k] = pc.zfail;

@@ -23,14 +23,22 @@ bool Renderer::Impl::chooseZPass(const RenderOptions& o, const CameraSetup& cam,
 }
 
 std::size_t Renderer::Impl::useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer,
-                                           RenderResult& result) {
+                                           RenderResult& result, std::size_t leftOut) {
   result.biasUsed = built.stats.biasUsed;
   result.volumeStats = built.stats;
   const auto t0 = Clock::now();
+  auto& tris = built.mesh.triangles;
+  const std::size_t firstPartEnd = built.mesh.partStarts.empty() ? tris.size() : built.mesh.partStarts[0];
+  SV_CHECK_LE(leftOut, firstPartEnd);
+  const auto leftFirst = tris.begin() + std::ptrdiff_t(firstPartEnd - leftOut);
+  const auto later = tris.begin() + std::ptrdiff_t(firstPartEnd);
+  const std::ptrdiff_t laterCount = tris.end() - later;
+  std::rotate(leftFirst, later, tris.end());  // the later parts before the triangles left out
   uploadVolume(built.mesh);
+  std::rotate(leftFirst, leftFirst + laterCount, tris.end());  // and back: the parts as listed
   glFinish();
   timer.cpu("upload", msSince(t0));
-  const std::size_t triangles = built.mesh.triangleCount();
+  const std::size_t triangles = built.mesh.triangleCount() - leftOut;
   if (o.keepVolume) result.volume = std::move(built.mesh);
   return triangles;
 }
@@ -154,9 +162,10 @@ std::size_t Renderer::Impl::explicitVolume(const RenderOptions& o, const LightFr
   t0 = Clock::now();
   VolumeBuildResult built = buildVolume(*result.depthMap, walkCrossings(o) ? withWalk(vo) : vo);
   timer.cpu("build", msSince(t0));
-  // The cap comes last in the mesh (volume_builder.h): z-pass draws the sheet alone.
+  // The cap comes last in the volume's first part (volume_builder.h): z-pass draws the rest, the
+  // face prisms' part whole (its far caps lie behind every visible point too, as the cap does).
   const std::size_t cap = zPassFrame ? built.stats.capTrianglesAfter : 0;
-  return useBuiltVolume(std::move(built), o, timer, result) - cap;
+  return useBuiltVolume(std::move(built), o, timer, result, cap);
 }
 
 std::size_t Renderer::Impl::silhouetteVolume(PassTimer& timer, RenderResult& result) {

@@ -542,8 +542,11 @@ struct Renderer::Impl {
   bool chooseZPass(const RenderOptions& o, const CameraSetup& cam, bool givenVolume, RenderResult& result) const;
 
   /// A CPU-built volume into the frame: its stats and bias into `result`, uploaded (timed as
-  /// `upload`), kept when the options ask; returns its triangle count.
-  std::size_t useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer, RenderResult& result);
+  /// `upload`), kept when the options ask; returns the triangles to draw: all, or with `leftOut` >
+  /// 0 all but the first part's last `leftOut` (a z-pass frame's far cap), the later parts (the face
+  /// prisms) uploaded before them and the kept mesh as built.
+  std::size_t useBuiltVolume(VolumeBuildResult&& built, const RenderOptions& o, PassTimer& timer, RenderResult& result,
+                             std::size_t leftOut = 0);
 
   /// Light k of the scene as the renderer's light while `f` runs; lights[0] again afterwards.
   template <class F>

@@ -37,6 +37,11 @@ bool crossing(const K::Triangle_3& t, const glm::dvec3& o, const glm::dvec3& d, 
   if (denom == 0.0) return false;  // edge-on: counts 0, as in countCrossings
   out.t = glm::dot(n, a - o) / denom;
   out.sign = denom > 0.0 ? 1 : -1;
+  // Barycentric coordinates of the plane's point, for the merge rule's border test.
+  const glm::dvec3 p = o + out.t * d - a;
+  const double n2 = glm::dot(n, n);
+  const double u = glm::dot(glm::cross(p, e2), n) / n2, v = glm::dot(glm::cross(e1, p), n) / n2;
+  out.onBorder = std::min({u, v, 1.0 - u - v}) <= kCrossingEdgeTolerance;
   return out.t >= 0.0;
 }
 
@@ -89,6 +94,7 @@ class DoubleCounter {
     for (std::size_t k : which) {
       const auto& t = volume.triangles[k];
       triangles_.emplace_back(point(t[0]), point(t[1]), point(t[2]));
+      corners_.push_back(t);
     }
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
@@ -108,12 +114,16 @@ class DoubleCounter {
     const TexelUnprojector::Ray& along = depth ? *depth : r;
     VolumeCrossing c;
     for (const auto& id : hit_)
-      if (crossing(*id, along.origin, along.direction, c)) crossings_.push_back(c);
+      if (crossing(*id, along.origin, along.direction, c)) {
+        c.corners = corners_[std::size_t(id - triangles_.begin())];  // the merge rule's vertex indices
+        crossings_.push_back(c);
+      }
     return countPixel(crossings_, tVisible, band);
   }
 
  private:
   Triangles triangles_;
+  std::vector<std::array<std::uint32_t, 3>> corners_;  // triangles_[k]'s vertex indices
   Tree tree_;
   std::vector<Primitive::Id> hit_;
   std::vector<VolumeCrossing> crossings_;
@@ -254,12 +264,12 @@ SquareRange squareRange(const std::vector<const ImagePolygon*>& polys, const std
     // Its contribution is lowest as a -1 at its farthest depth or a +1 at its nearest (or not
     // drawn, unless it holds the square), highest the other way round.
     if (cover == SquareCover::Holds && !flips) {
-      low.push_back({sign < 0 ? t1 : t0, sign});
-      high.push_back({sign > 0 ? t1 : t0, sign});
+      low.push_back({sign < 0 ? t1 : t0, sign, tri});
+      high.push_back({sign > 0 ? t1 : t0, sign, tri});
       continue;
     }
-    if (sign < 0 || flips) low.push_back({t1, -1});
-    if (sign > 0 || flips) high.push_back({t1, 1});
+    if (sign < 0 || flips) low.push_back({t1, -1, tri});
+    if (sign > 0 || flips) high.push_back({t1, 1, tri});
   }
   return {countPixel(low, tVisible, band).zfailMin, countPixel(high, tVisible, band).zfailMax};
 }

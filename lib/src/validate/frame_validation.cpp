@@ -48,8 +48,16 @@ struct CountedVolume {
   std::size_t recounted = 0;
 };
 
+// A volume of several overlapping parts (VolumeMesh::partStarts): each part checked and counted
+// alone, the counts added (a z-fail count is a sum over the faces: the parts' add up, as in the
+// stencil), the ranges too. Alone because crossings of two parts at one ray parameter (coincident
+// faces) would merge into one event (countPixel).
+CountedVolume countParts(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
+                         const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits);
+
 CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
                           const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
+  if (volume.partCount() > 1) return countParts(device, volume, gpuVolume, co, camera, hits);
   CountedVolume c;
   c.mesh = checkMesh(volume, co);
   if (gpuVolume) c.gpuMesh = checkMesh(*gpuVolume, co);
@@ -65,32 +73,27 @@ CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, 
   return c;
 }
 
-// Several meshes' checks as one report: every count summed, outward when every non-empty one is.
-MeshCheckReport summed(const std::vector<MeshCheckReport>& reports) {
-  MeshCheckReport r;
-  r.outward = true;
-  bool selfChecked = true;
-  std::size_t selfPairs = 0;
-  for (const MeshCheckReport& m : reports) {
-    r.vertices += m.vertices;
-    r.triangles += m.triangles;
-    r.nonFiniteVertices += m.nonFiniteVertices;
-    r.badIndexTriangles += m.badIndexTriangles;
-    r.degenerateTriangles += m.degenerateTriangles;
-    r.boundaryEdges += m.boundaryEdges;
-    r.overusedEdges += m.overusedEdges;
-    r.nonManifoldVertices += m.nonManifoldVertices;
-    r.isolatedVertices += m.isolatedVertices;
-    r.coincidentVertices += m.coincidentVertices;
-    if (m.triangles > 0) r.outward = r.outward && m.outward;  // an empty mesh is valid, not outward
-    r.volume += m.volume;
-    selfChecked = selfChecked && m.selfIntersectingPairs.has_value();
-    selfPairs += m.selfIntersectingPairs.value_or(0);
-    r.allowedTouchingPairs += m.allowedTouchingPairs;
+CountedVolume countParts(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
+                         const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
+  CountedVolume c;
+  c.mesh = checkMesh(volume, co);
+  if (gpuVolume) c.gpuMesh = checkMesh(*gpuVolume, co);
+  for (std::size_t k = 0; k < volume.partCount(); ++k) {
+    const CountedVolume p = countVolume(device, volume.partMesh(k), nullptr, co, camera, hits);
+    if (k == 0) {
+      c.counts = p.counts;
+    } else {
+      for (std::size_t i = 0; i < c.counts.zfail.size(); ++i) {
+        c.counts.zfail[i] += p.counts.zfail[i];
+        c.counts.zpass[i] += p.counts.zpass[i];
+        c.counts.zfailMin[i] += p.counts.zfailMin[i];
+        c.counts.zfailMax[i] += p.counts.zfailMax[i];
+      }
+    }
+    c.eyeInside = c.eyeInside || p.eyeInside;
+    c.recounted += p.recounted;
   }
-  if (selfChecked) r.selfIntersectingPairs = selfPairs;
-  r.outward = r.outward && r.triangles > 0;
-  return r;
+  return c;
 }
 
 // The faces a surface point's counts may come from (RenderedFrame::faceVolumes): cubeLookup's, and
@@ -131,8 +134,8 @@ CountedVolume countFaceVolumes(const EmbreeDevice& device, const RenderedFrame& 
     if (faces.back().gpuMesh) gpuMeshes.push_back(*faces.back().gpuMesh);
   }
   CountedVolume c;
-  c.mesh = summed(meshes);
-  if (!gpuMeshes.empty()) c.gpuMesh = summed(gpuMeshes);
+  c.mesh = sumReports(meshes);
+  if (!gpuMeshes.empty()) c.gpuMesh = sumReports(gpuMeshes);
   c.counts = faces[0].counts;
   for (std::size_t k = 0; k < hits.point.size(); ++k) {
     if (hits.isBackground(k)) continue;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -53,11 +54,20 @@ struct MeshCheckReport {
   std::string summary() const;  ///< one line with every count, for test failures and the CLI
 };
 
-/// Checks a triangle mesh (triangles counter-clockwise seen from outside).
+/// Checks a triangle mesh (triangles counter-clockwise seen from outside). A mesh of several
+/// parts (VolumeMesh::partStarts) is checked part by part (partMesh), the reports summed
+/// (sumReports): each part must be a closed volume on its own; parts may overlap. A part after the
+/// first is outward when each of its connected components has a positive signed volume (it may
+/// overlap itself, volume_mesh.h).
 MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options = {});
 
+/// Several meshes' checks as one report: every count summed, outward when every non-empty one is,
+/// self-intersections counted when every one was checked.
+MeshCheckReport sumReports(const std::vector<MeshCheckReport>& reports);
+
 /// Point-in-volume queries on a closed mesh (CGAL Side_of_triangle_mesh over an AABB tree, built
-/// once). The mesh must satisfy MeshCheckReport::closedManifold(); it is copied.
+/// once). The mesh must satisfy MeshCheckReport::closedManifold(); it is copied. A mesh of several
+/// parts is their union: inside when inside a part, else on the boundary when on a part's surface.
 class VolumeClassifier {
  public:
   enum class Side { Inside, Boundary, Outside };

@@ -29,6 +29,9 @@ class EmbreeDepthOracle {
   /// findOpenRims (nearer_surfaces.h) over the triangles the oracle's rays see (their rims found
   /// once, on the first search).
   NearerSurfaceOracle nearerSurfaces() const;
+  /// The CasterFaceOracle (depth_oracle.h) of the same scene: findCasterFaces (caster_faces.h)
+  /// over its triangles, the closed ones as entry capture finds them (found once, on the first call).
+  CasterFaceOracle casterFaces() const;
 
  private:
   struct Impl;

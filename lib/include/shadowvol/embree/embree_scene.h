@@ -40,12 +40,15 @@ class EmbreeScene {
  public:
   EmbreeScene(const EmbreeDevice& device, const std::vector<const TriangleMesh*>& meshes);
   RTCScene get() const { return scene_.get(); }
+  /// The meshes given, one geometry each: IDs 0 .. geometryCount() - 1 in their order.
+  unsigned geometryCount() const { return geometries_; }
 
  private:
   struct Deleter {
     void operator()(RTCScene s) const { rtcReleaseScene(s); }
   };
   std::unique_ptr<RTCSceneTy, Deleter> scene_;
+  unsigned geometries_ = 0;
 };
 
 }  // namespace shadowvol

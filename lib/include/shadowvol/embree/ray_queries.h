@@ -6,6 +6,7 @@
 // ((x + 0.5) / W * 2 - 1, (y_gl + 0.5) / H * 2 - 1), exactly where OpenGL samples.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -88,9 +89,14 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
 /// Background pixels (nothing visible) get zfail = zpass = 0.
 /// Merge rule: a ray through a shared edge or vertex may report one crossing several times
 /// (Embree's robust mode guarantees no crossing is missed, not that it is reported once). Hits
-/// whose distances differ by at most kCrossingMergeTolerance (relative) form one event whose sign
-/// is the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
-/// grazes a fold without crossing). Edge-on hits (normal perpendicular to the ray) count 0.
+/// whose distances differ by at most kCrossingMergeTolerance (relative), each on its triangle's
+/// border (a barycentric coordinate within kCrossingEdgeTolerance of 0) and whose triangles touch
+/// (share a vertex index; directly or through others of the group) form one event whose sign is
+/// the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
+/// grazes a fold without crossing). Other hits are crossings of their own however close: two walls
+/// a hair apart, two faces that overlap (the face prisms' far caps around a vertex where the faces
+/// fold over as seen from the light), two parts' coincident caps (VolumeMesh::partStarts).
+/// Edge-on hits (normal perpendicular to the ray) count 0.
 /// Ties with the visible point: where the volume's surface lies on the visible surface (a back
 /// capture's sheet on an occluder's back face that the camera sees), the GPU's depth test and the
 /// ray parameter decide the order of coincident surfaces by round-off. Events within the tie band
@@ -110,14 +116,27 @@ inline constexpr double kCrossingMergeTolerance = 1e-6;
 /// camera buffer is 32-bit float with reversed Z, finer at every depth: the band is conservative.
 double tieTolerance(const Camera& camera, double d);
 
+/// `volume` holds one mesh (the merge rule compares its vertex indices).
 CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, const CameraHits& hits);
 
 /// One crossing of a pixel ray with the volume: the ray parameter (camera view depth, as
-/// CameraHits::depth) and +1 leaving (normal along the ray), -1 entering, 0 edge-on.
+/// CameraHits::depth) and +1 leaving (normal along the ray), -1 entering, 0 edge-on; for the merge
+/// rule the vertex indices of the triangle crossed and whether the hit lies on its border
+/// (unknown: kUnknownCorners, which touches every other crossing, so that such hits within the
+/// tolerance always merge).
 struct VolumeCrossing {
+  static constexpr std::array<std::uint32_t, 3> kUnknownCorners{0xffffffffu, 0xffffffffu, 0xffffffffu};
   double t;
   int sign;
+  std::array<std::uint32_t, 3> corners = kUnknownCorners;
+  bool onBorder = true;
+  /// Whether the two hits may be one crossing reported twice: either is unknown, or both lie on
+  /// their triangles' borders and the triangles share a vertex index.
+  bool touches(const VolumeCrossing& o) const;
 };
+/// A hit lies on its triangle's border when its smallest barycentric coordinate is at most this
+/// (Embree's float hits at a shared edge: a few float ulps; the double recount's: round-off).
+inline constexpr double kCrossingEdgeTolerance = 1e-5;
 
 /// A pixel's counts (see CrossingCounts).
 struct PixelCounts {

@@ -57,6 +57,9 @@ void validate(const CubeDepthMap& cube, const VolumeBuildOptions& o) {
     throw InputError("volume options", "refine steps", std::to_string(o.refineSteps),
                      "refinement casts rays into the scene: it needs a depth oracle (an Embree scene on the "
                      "command line)");
+  if (o.facePrisms)
+    throw OptionConflict("volume options", "face prisms", "true",
+                         "are made for spot and directional lights; a point light's cube volume has none yet");
   if (o.cap != FarCap::Exact)
     throw OptionConflict("volume options", "cap", toString(o.cap), kCubeVolumeCapRule);
   for (int f = 0; f < kCubeFaces; ++f)

@@ -1,0 +1,107 @@
+#include "shadowvol/caster_faces.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol {
+namespace {
+
+// Flagged quads in a rectangle of the quad grid, in O(1): a summed-area table of the flags.
+class FlagSums {
+ public:
+  FlagSums(std::span<const std::uint8_t> flags, int qw, int qh)
+      : qw_(qw), qh_(qh), sum_(std::size_t(qw + 1) * std::size_t(qh + 1), 0) {
+    for (int j = 0; j < qh; ++j)
+      for (int i = 0; i < qw; ++i)
+        at(i + 1, j + 1) = at(i, j + 1) + at(i + 1, j) - at(i, j) + (flags[std::size_t(j) * qw + i] != 0);
+  }
+  bool any() const { return sum_.back() > 0; }
+  /// Whether a quad whose closed square meets the box [x0, x1] x [y0, y1] (texel coordinates: quad
+  /// (qi, qj) is [qi, qi + 1] x [qj, qj + 1]) is flagged.
+  bool anyIn(double x0, double x1, double y0, double y1) const {
+    if (!(x1 >= 0.0 && y1 >= 0.0 && x0 <= qw_ && y0 <= qh_)) return false;
+    const int i0 = std::clamp(int(std::ceil(x0)) - 1, 0, qw_ - 1), i1 = std::clamp(int(std::floor(x1)), 0, qw_ - 1);
+    const int j0 = std::clamp(int(std::ceil(y0)) - 1, 0, qh_ - 1), j1 = std::clamp(int(std::floor(y1)), 0, qh_ - 1);
+    return at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0) > 0;
+  }
+
+ private:
+  std::uint32_t& at(int i, int j) { return sum_[std::size_t(j) * std::size_t(qw_ + 1) + std::size_t(i)]; }
+  std::uint32_t at(int i, int j) const { return sum_[std::size_t(j) * std::size_t(qw_ + 1) + std::size_t(i)]; }
+  int qw_, qh_;
+  std::vector<std::uint32_t> sum_;
+};
+
+// A vertex in light view and its image in texel coordinates; `inRange` when its light-view depth
+// lies strictly between the near and far planes.
+struct ViewVertex {
+  glm::dvec3 view;
+  double x = 0.0, y = 0.0;
+  bool inRange = false;
+};
+
+}  // namespace
+
+std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std::span<const TriangleSoup> meshes,
+                                                      std::span<const std::uint8_t> quads) {
+  const int qw = map.width - 1, qh = map.height - 1;
+  std::vector<std::array<glm::dvec3, 3>> faces;
+  if (qw < 1 || qh < 1) return faces;
+  SV_CHECK_EQ(quads.size(), std::size_t(qw) * std::size_t(qh));
+  const FlagSums flagged(quads, qw, qh);
+  if (!flagged.any()) return faces;
+  const bool perspective = map.lightType != LightType::Directional;
+  const glm::dmat4 view = map.lightView, projection = map.lightProjection;
+  for (const TriangleSoup& mesh : meshes) {
+    if (!mesh.closed) continue;
+    SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
+    SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
+    const std::size_t vertices = mesh.xyz.size() / 3, triangles = mesh.indices.size() / 3;
+    const auto world = [&](std::size_t k) {
+      return glm::dvec3(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2]);
+    };
+    std::vector<ViewVertex> image(vertices);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        ViewVertex& v = image[k];
+        v.view = glm::dvec3(view * glm::dvec4(world(k), 1.0));
+        const double depth = -v.view.z;
+        v.inRange = depth > map.nearPlane && depth < map.farPlane;
+        if (!v.inRange) continue;
+        const glm::dvec4 c = projection * glm::dvec4(v.view, 1.0);
+        v.x = (c.x / c.w + 1.0) * 0.5 * map.width - 0.5;
+        v.y = (c.y / c.w + 1.0) * 0.5 * map.height - 0.5;
+      }
+    });
+    std::vector<std::uint8_t> keep(triangles, 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t t = r.begin(); t != r.end(); ++t) {
+        const std::size_t k0 = mesh.indices[3 * t], k1 = mesh.indices[3 * t + 1], k2 = mesh.indices[3 * t + 2];
+        SV_CHECK_LT(std::max({k0, k1, k2}), vertices);
+        const ViewVertex &a = image[k0], &b = image[k1], &c = image[k2];
+        if (!(a.inRange && b.inRange && c.inRange)) continue;
+        // Facing away from the light: the normal along the ray (nearer_surfaces.h's rule).
+        const glm::dvec3 n = glm::cross(b.view - a.view, c.view - a.view);
+        const glm::dvec3 ray = perspective ? a.view : glm::dvec3(0.0, 0.0, -1.0);
+        if (!(glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray))) continue;
+        keep[t] = flagged.anyIn(std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}),
+                                std::max({a.y, b.y, c.y}));
+      }
+    });
+    for (std::size_t t = 0; t < triangles; ++t)
+      if (keep[t])
+        faces.push_back({world(mesh.indices[3 * t]), world(mesh.indices[3 * t + 1]), world(mesh.indices[3 * t + 2])});
+  }
+  return faces;
+}
+
+}  // namespace shadowvol

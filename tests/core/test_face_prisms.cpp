@@ -1,0 +1,120 @@
+// The refined volume's face prisms (caster_faces.h, volume/face_prisms.h; docs/volume.md "Face
+// prisms"): which faces are taken, and the closed part their prisms make, on hand-made faces under
+// a directional light straight down (from y = 5, far plane 6: the far plane is y = -1).
+#include <array>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mesh_invariants.h"
+#include "shadowvol/caster_faces.h"
+#include "shadowvol/depth_map.h"
+#include "shadowvol/nearer_surfaces.h"
+#include "shadowvol/primitives.h"
+#include "test_util.h"
+#include "volume/face_prisms.h"
+
+namespace shadowvol {
+namespace {
+
+using Face = std::array<glm::dvec3, 3>;
+
+DepthMap mapDown(int n = 16) { return makeDepthMap(test::directionalDown(6.0), n, n, CaptureMode::Entry); }
+
+TriangleMesh moved(TriangleMesh m, const glm::vec3& by) {
+  for (auto& p : m.positions) p += by;
+  return m;
+}
+
+std::vector<Face> facesOf(const TriangleMesh& m) {
+  std::vector<Face> f;
+  for (const auto& t : m.triangles) f.push_back({glm::dvec3(m.positions[t[0]]), glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]])});
+  return f;
+}
+
+// A unit box at height 2: of its 12 faces only the bottom's two face away from the light (the
+// sides are edge-on); with every quad flagged they are taken, with none nothing is, and an open
+// plate is never taken.
+TEST(CasterFaces, TheBackFacesOfClosedMeshesInFlaggedColumns) {
+  const DepthMap map = mapDown();
+  const TriangleMesh box = moved(makeBox(1.0, 1.0, 1.0), {0.0f, 2.0f, 0.0f});
+  const TriangleMesh plate = moved(makePlane(2.0, 2.0, 1), {0.0f, 1.0f, 0.0f});
+  const std::vector<TriangleSoup> soups{soupOf(box), soupOf(plate)};
+  ASSERT_TRUE(soups[0].closed);
+  ASSERT_FALSE(soups[1].closed);
+  std::vector<std::uint8_t> all(std::size_t(15 * 15), 1), none(all.size(), 0);
+  const std::vector<Face> faces = findCasterFaces(map, soups, all);
+  ASSERT_EQ(faces.size(), 2u);
+  for (const Face& f : faces)
+    for (const glm::dvec3& p : f) EXPECT_EQ(p.y, 1.5);  // the bottom
+  EXPECT_TRUE(findCasterFaces(map, soups, none).empty());
+  // One flagged quad far from the box: its faces' images (texels 6.5 to 8.5 of 16 over 8 units)
+  // do not reach it; a quad under the box does.
+  std::vector<std::uint8_t> one = none;
+  one[0] = 1;
+  EXPECT_TRUE(findCasterFaces(map, soups, one).empty());
+  one.assign(one.size(), 0);
+  one[7 * 15 + 7] = 1;
+  EXPECT_EQ(findCasterFaces(map, soups, one).size(), 2u);
+}
+
+// The box's bottom: one prism from y = 1.5 down to the far plane (y = -1), closed and outward,
+// with a wall on each of the bottom's four outer edges and none on its diagonal.
+TEST(FacePrisms, ABoxsBottomGivesOnePrismToTheFarPlane) {
+  const DepthMap map = mapDown();
+  const TriangleMesh box = moved(makeBox(1.0, 1.0, 1.0), {0.0f, 2.0f, 0.0f});
+  std::vector<std::uint8_t> all(std::size_t(15 * 15), 1);
+  const std::vector<TriangleSoup> soups{soupOf(box)};
+  VolumeMesh mesh;
+  const volume::FacePrismCounts c = volume::appendFacePrisms(map, findCasterFaces(map, soups, all), mesh);
+  EXPECT_EQ(c.faces, 2u);
+  EXPECT_EQ(c.walls, 4u);
+  EXPECT_EQ(c.triangles, 2u + 2u + 8u);
+  EXPECT_EQ(mesh.partStarts, std::vector<std::size_t>{0});
+  EXPECT_TRUE(test::closedOrientedManifold(mesh));
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, 1.0, 0.2}), 1);    // under the box
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, -0.9, 0.2}), 1);   // just above the far plane
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, -1.1, 0.2}), 0);   // beyond it
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, 1.7, 0.2}), 0);    // inside the box: in front of its bottom
+  EXPECT_EQ(test::windingNumber(mesh, {0.6, 1.0, 0.2}), 0);    // beside
+  for (const auto& p : mesh.positions) EXPECT_TRUE(p.y == 1.5 || p.y == -1.0);
+}
+
+// Two faces meeting at one vertex (a pinch of the patch's border): each fan gets its own copy of
+// the vertex, near and far, so that every vertex is a single fan; the copies coincide.
+TEST(FacePrisms, TwoFacesMeetingAtOneVertexGetACopyEach) {
+  const DepthMap map = mapDown();
+  // Facing down (away from the light): counter-clockwise seen from below.
+  const std::vector<Face> faces{Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 0), glm::dvec3(0, 2, 1)},
+                                Face{glm::dvec3(0, 2, 0), glm::dvec3(-1, 2, 0), glm::dvec3(0, 2, -1)}};
+  VolumeMesh mesh;
+  const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
+  EXPECT_EQ(c.walls, 6u);
+  EXPECT_EQ(mesh.positions.size(), 12u);  // 3 near and 3 far corners per face: the shared one twice
+  EXPECT_TRUE(test::closedOrientedManifold(mesh));
+  EXPECT_EQ(test::windingNumber(mesh, {0.2, 0.0, 0.2}), 1);
+  EXPECT_EQ(test::windingNumber(mesh, {-0.2, 0.0, -0.2}), 1);
+  EXPECT_EQ(test::windingNumber(mesh, {0.2, 0.0, -0.2}), 0);
+}
+
+// Faces that overlap as seen from the light: their prisms overlap, and the winding number counts
+// both where they do (the stencil's count); the part is still closed and oriented. Two adjacent
+// faces share their edge without a wall.
+TEST(FacePrisms, OverlappingFacesAddUp) {
+  const DepthMap map = mapDown();
+  const std::vector<Face> faces{
+      Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 0), glm::dvec3(1, 2, 1)},        // a square at y = 2 ...
+      Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 1), glm::dvec3(0, 2, 1)},        // ... in two faces
+      Face{glm::dvec3(0.5, 1, 0.5), glm::dvec3(1.5, 1, 0.5), glm::dvec3(0.5, 1, 1.5)}};  // one lower, overlapping
+  VolumeMesh mesh;
+  const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
+  EXPECT_EQ(c.walls, 4u + 3u);
+  EXPECT_TRUE(test::closedOrientedManifold(mesh));
+  EXPECT_EQ(test::windingNumber(mesh, {0.6, 0.0, 0.6}), 2);  // under both
+  EXPECT_EQ(test::windingNumber(mesh, {0.6, 1.5, 0.6}), 1);  // between them
+  EXPECT_EQ(test::windingNumber(mesh, {0.2, 0.0, 0.2}), 1);  // under the square alone
+  EXPECT_EQ(test::windingNumber(mesh, {1.2, 0.0, 0.6}), 1);  // under the lower face alone
+}
+
+}  // namespace
+}  // namespace shadowvol

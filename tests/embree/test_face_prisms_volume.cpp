@@ -1,0 +1,81 @@
+// The refined volume's face prisms on a whole build (VolumeBuildOptions::facePrisms, docs/volume.md
+// "Face prisms"): a closed sphere over an open ground plane under a directional light straight
+// down, entry capture, the 4 x 4 sub-grid. The prisms are a second closed part after the volume
+// the build makes without them (which is left as it was); they hold shadow only: every point inside
+// them has the sphere between it and the light.
+#include <gtest/gtest.h>
+
+#include "mesh_invariants.h"
+#include "refined_options.h"
+#include "shadowvol/embree/depth_capture.h"
+#include "shadowvol/primitives.h"
+#include "shadowvol/scene.h"
+#include "test_util.h"
+
+namespace shadowvol {
+namespace {
+
+Scene sphereOverGround() {
+  TriangleMesh sphere = makeIcoSphere(1.0, 3);
+  for (auto& p : sphere.positions) p.y += 2.0f;
+  return test::sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)}, SceneObject{"sphere", "mesh", sphere}});
+}
+
+VolumeBuildResult build(const Scene& scene, bool prisms) {
+  const EmbreeDepthOracle oracle(scene);
+  const DepthMap map = captureDepthEmbree(scene, 32, 32, CaptureMode::Entry);
+  VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
+  o.refineSubdivisions = 4;
+  o.nearerSurfaces = oracle.nearerSurfaces();
+  o.casterFaces = oracle.casterFaces();
+  o.facePrisms = prisms;
+  return buildVolume(map, o);
+}
+
+// Whether the ray from p straight up (towards the light) meets a triangle of `mesh`.
+bool blockedFromAbove(const TriangleMesh& mesh, const glm::dvec3& p) {
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a(mesh.positions[t[0]]), b(mesh.positions[t[1]]), c(mesh.positions[t[2]]);
+    const glm::dvec3 d(0, 1, 0), e1 = b - a, e2 = c - a, h = glm::cross(d, e2);
+    const double det = glm::dot(e1, h);
+    if (det == 0.0) continue;
+    const glm::dvec3 s = p - a;
+    const double u = glm::dot(s, h) / det, v = glm::dot(d, glm::cross(s, e1)) / det;
+    if (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && glm::dot(e2, glm::cross(s, e1)) / det > 0.0) return true;
+  }
+  return false;
+}
+
+TEST(FacePrismsVolume, APartOfItsOwnThatHoldsShadowOnly) {
+  const Scene scene = sphereOverGround();
+  const VolumeBuildResult without = build(scene, false), with = build(scene, true);
+  EXPECT_TRUE(without.mesh.partStarts.empty());
+  EXPECT_EQ(without.stats.prismFaces, 0u);
+  ASSERT_EQ(with.mesh.partCount(), 2u);
+  EXPECT_GT(with.stats.prismFaces, 0u);
+  EXPECT_EQ(with.stats.prismTriangles, with.mesh.triangleCount() - with.mesh.partStarts[0]);
+  // The first part is the volume without prisms, to the bit.
+  ASSERT_EQ(with.mesh.partStarts[0], without.mesh.triangleCount());
+  EXPECT_TRUE(std::equal(without.mesh.triangles.begin(), without.mesh.triangles.end(), with.mesh.triangles.begin()));
+  EXPECT_TRUE(std::equal(without.mesh.positions.begin(), without.mesh.positions.end(), with.mesh.positions.begin()));
+  EXPECT_TRUE(test::closedOrientedManifold(with.mesh));
+  const VolumeMesh prisms = with.mesh.partMesh(1);
+  EXPECT_TRUE(test::closedOrientedManifold(prisms));
+  // Points on a grid around the sphere's shadow: inside the prisms only where the sphere is above.
+  const TriangleMesh& sphere = scene.objects[1].mesh;
+  int inside = 0;
+  for (double x = -1.2; x <= 1.2; x += 0.05)
+    for (double y : {0.05, 0.5, 1.2})
+      for (double z : {-0.33, 0.0, 0.71}) {
+        const glm::dvec3 p(x, y, z);
+        const int w = test::windingNumber(prisms, p - prisms.origin);
+        EXPECT_GE(w, 0);
+        if (w == 0) continue;
+        ++inside;
+        EXPECT_TRUE(blockedFromAbove(sphere, p)) << x << " " << y << " " << z;
+      }
+  EXPECT_GT(inside, 20);  // the test looks at something
+}
+
+}  // namespace
+}  // namespace shadowvol
