@@ -74,16 +74,7 @@ inline bool insideVolume(const VolumeMesh& m, const glm::dvec3& p) {
   return in;
 }
 
-// The winding number of a closed, outward mesh at p: the signed crossings of a ray from p along
-// kParityRayDirection (+1 where it leaves through a triangle facing along it). 1 inside a simple
-// solid; the number of parts or prisms holding p where they overlap (VolumeMesh::partStarts).
-inline int windingNumber(const VolumeMesh& m, const glm::dvec3& p) {
-  int w = 0;
-  for (const auto& t : m.triangles) {
-    const glm::dvec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    if (parityRayCrosses(p, a, b, c)) w += glm::dot(glm::cross(b - a, c - a), kParityRayDirection) > 0.0 ? 1 : -1;
-  }
-  return w;
-}
+// The winding number (the library's rule, volume_mesh.h).
+inline int windingNumber(const VolumeMesh& m, const glm::dvec3& p) { return shadowvol::windingNumber(m, p); }
 
 }  // namespace shadowvol::test

@@ -191,6 +191,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                 {"refineGridEverywhere", options.refineGridEverywhere},
                 {"refineHidden", options.refineHidden},
                 {"facePrisms", options.facePrisms},
+                {"partStarts", r.mesh.partStarts},
                 {"origin", {written.origin.x, written.origin.y, written.origin.z}},
                 {"worldCoordinates", o->worldCoords},
                 {"vertices", r.mesh.vertexCount()},
@@ -248,8 +249,13 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       s.refinedCells, cube ? "cells" : "quads", s.ambiguousCells, s.chordPoints, s.raysCast);
         if (options.facePrisms)
           std::printf("  face prisms: %zu faces in the refined quads' columns, %zu border walls, %zu triangles "
-                      "(%.1f ms)\n",
-                      s.prismFaces, s.prismWalls, s.prismTriangles, s.msPrisms);
+                      "(%.1f ms)%s\n",
+                      s.prismFaces, s.prismWalls, s.prismTriangles, s.msPrisms,
+                      r.mesh.partStarts.empty()
+                          ? ""
+                          : ("; a second closed part from triangle " + std::to_string(r.mesh.partStarts[0]) +
+                             " on (shadowvol check --part-starts " + std::to_string(r.mesh.partStarts[0]) + ")")
+                                .c_str());
         if (options.refineSteps > 0)
           std::printf("  %zu crossings snapped to where their triangle ends%s\n", s.snappedCrossings,
                       !options.refineSnap ? " (--no-snap)" : cube ? " (not for a point light's cube)" : "");

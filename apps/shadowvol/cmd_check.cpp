@@ -52,6 +52,7 @@ std::string failures(const MeshCheckReport& r) {
 void registerCheckCommand(CLI::App& app, Runner& run) {
   struct Options {
     std::string mesh;
+    std::vector<std::size_t> partStarts;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -63,13 +64,28 @@ void registerCheckCommand(CLI::App& app, Runner& run) {
       "nothing is in shadow), 3 when not, naming what failed; "
       "shared corners count only where the file shares them (STL's are welded on reading)");
   cmd->add_option("mesh", o->mesh, "The mesh file (.ply, .obj, .off, .stl, or any format Assimp reads)")->required();
+  cmd->add_option("--part-starts", o->partStarts,
+                  "The file's triangles where a closed part after the first begins (build --face-prisms prints it, "
+                  "and its JSON as partStarts): each part is checked alone, a later one as a union of solids that "
+                  "may overlap (every component outward), as build checks its own volume")
+      ->delimiter(',');
   addJsonOption(*cmd, o->json);
   cmd->callback([&run, o] {
     run = [o] {
       // Rebased (the verdict does not depend on where the mesh lies), so that a volume written in
       // world coordinates far from the origin is judged before float rounds it.
       const TriangleMesh m = readRebasedTriangleMesh(o->mesh, EmptyMesh::Allow).mesh;  // build writes an empty volume
-      const MeshCheckReport r = checkMesh(asVolume(m));
+      VolumeMesh volume = asVolume(m);
+      std::size_t previous = 0;
+      for (const std::size_t start : o->partStarts) {
+        if (start <= previous || start >= volume.triangleCount())
+          throw InputError("command line", "--part-starts", std::to_string(start),
+                           "each must be above the one before (and above 0) and below the file's " +
+                               std::to_string(volume.triangleCount()) + " triangles");
+        previous = start;
+      }
+      volume.partStarts = o->partStarts;
+      const MeshCheckReport r = checkMesh(volume);
       const std::string failed = failures(r);
       if (o->json) {
         nlohmann::json j = meshCheckJson(r);

@@ -258,10 +258,10 @@ void checkRenderOptionConflicts(const RenderCliOptions& o) {
     throw CLI::ValidationError("--depth-from",
                                "rays leaves out the light pass, whose triangle record the walk "
                                "(--crossings gpu-walk) follows: use --crossings rays");
-  if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1))
+  if (o.crossings == "gpu-walk" && (o.shape.chordPoints || o.shape.refineGrid > 1 || o.shape.facePrisms))
     throw CLI::ValidationError("--crossings",
-                               "gpu-walk gives the boundary edges' crossings alone: --chord-points "
-                               "and --refine-grid need --crossings rays");
+                               "gpu-walk gives the boundary edges' crossings alone: --chord-points, --refine-grid "
+                               "and --face-prisms need --crossings rays");
   checkIneffectiveOptions(o);
 }
 

@@ -739,6 +739,17 @@ TEST(Cli, BuildFacePrisms) {
   EXPECT_EQ(j["triangles"].get<int>(), jp["triangles"].get<int>() + j["prismTriangles"].get<int>());
   const CliResult text = runCli("build --resolution 64 --refine 6 --face-prisms --out " + out);
   EXPECT_TRUE(contains(text.out, "face prisms: ")) << text.out;
+  // The written file checked as two parts, where build says the second begins.
+  const std::string start = std::to_string(j["partStarts"][0].get<std::size_t>());
+  EXPECT_EQ(j["partStarts"][0].get<int>(), jp["triangles"].get<int>());
+  const CliResult again = runCli("build --json --resolution 64 --refine 6 --refine-grid 4 --face-prisms --out " + out);
+  ASSERT_EQ(again.code, 0) << again.out;  // the file of j again (the text run wrote another)
+  const CliResult check = runCli("check --json --part-starts " + start + " " + out);
+  EXPECT_EQ(check.code, 0) << check.out;
+  EXPECT_EQ(runCli("check --part-starts 0 " + out).code, 1);
+  const CliResult beyond = runCli("check --part-starts 99999999 " + out);
+  EXPECT_EQ(beyond.code, 1) << beyond.out;
+  EXPECT_TRUE(contains(beyond.out, "--part-starts")) << beyond.out;
   const std::string bad = (dir / "bad.ply").string();
   const CliResult noRefine = runCli("build --resolution 16 --face-prisms --out " + bad);
   EXPECT_EQ(noRefine.code, 2) << noRefine.out;
@@ -748,6 +759,10 @@ TEST(Cli, BuildFacePrisms) {
   const CliResult point = runCli("build --resolution 16 --refine 2 --face-prisms --scene " + room + " --out " + bad);
   EXPECT_EQ(point.code, 2) << point.out;
   EXPECT_TRUE(contains(point.out, "--face-prisms")) << point.out;
+  const CliResult walk = runCli("render --volume explicit --refine 2 --crossings gpu-walk --face-prisms --resolution 16 "
+                                "--out " + (dir / "w.png").string());
+  EXPECT_EQ(walk.code, 2) << walk.out;
+  EXPECT_TRUE(contains(walk.out, "--face-prisms need --crossings rays")) << walk.out;
   EXPECT_FALSE(std::filesystem::exists(bad));
 }
 

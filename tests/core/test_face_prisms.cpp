@@ -80,6 +80,31 @@ TEST(FacePrisms, ABoxsBottomGivesOnePrismToTheFarPlane) {
   for (const auto& p : mesh.positions) EXPECT_TRUE(p.y == 1.5 || p.y == -1.0);
 }
 
+// The same under a spot light (test::refinementSpot, apex (0.6, 7, 0.4), far plane 9): the prism
+// widens away from the apex; inside it along a light ray from a point under the bottom, outside
+// beside it and beyond the far plane; its far corners on the far plane, on their light rays.
+TEST(FacePrisms, UnderASpotLightThePrismFollowsTheRays) {
+  const DepthMap map = makeDepthMap(test::refinementSpot(), 32, 32, CaptureMode::Entry);
+  const TriangleMesh box = moved(makeBox(1.0, 1.0, 1.0), {0.0f, 2.0f, 0.0f});
+  std::vector<std::uint8_t> all(std::size_t(31 * 31), 1);
+  const std::vector<TriangleSoup> soups{soupOf(box)};
+  const std::vector<Face> faces = findCasterFaces(map, soups, all);
+  ASSERT_GE(faces.size(), 2u);  // the bottom, and sides the apex sees from behind
+  VolumeMesh mesh;
+  volume::appendFacePrisms(map, faces, mesh);
+  EXPECT_TRUE(test::closedOrientedManifold(mesh));
+  const glm::dvec3 apex(0.6, 7.0, 0.4), under(0.1, 1.5, -0.2);  // a point of the bottom
+  for (const double s : {1.2, 2.0, 3.0}) {  // farther along the ray from the apex through it
+    const glm::dvec3 p = apex + s * (under - apex);
+    EXPECT_EQ(test::windingNumber(mesh, p) > 0, map.viewDepthOf(p) < map.farPlane) << s;
+  }
+  EXPECT_EQ(test::windingNumber(mesh, {2.5, 0.5, 0.0}), 0);  // beside the shadow
+  for (const auto& p : mesh.positions) {
+    const double d = map.viewDepthOf(p);
+    EXPECT_TRUE(d < map.farPlane * (1.0 - 1e-12) || std::abs(d - map.farPlane) <= 1e-9 * map.farPlane) << d;
+  }
+}
+
 // Two faces meeting at one vertex (a pinch of the patch's border): each fan gets its own copy of
 // the vertex, near and far, so that every vertex is a single fan; the copies coincide.
 TEST(FacePrisms, TwoFacesMeetingAtOneVertexGetACopyEach) {

@@ -14,8 +14,10 @@
 // light (the capture's facing rule, nearer_surfaces.h: the normal of the counter-clockwise front
 // along the ray from the apex through the triangle, -z for a directional light; edge-on, cosine
 // below 1e-9, is left out), whose three corners lie strictly between the map's near and far planes
-// (light-view depth), and whose image's bounding box (texel coordinates) reaches the closed square
-// of a flagged quad. Open meshes give no face here: behind them the shadow is the prisms of their
+// (light-view depth), whose image's bounding box (texel coordinates) lies inside the map's window
+// [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the light's frustum, where
+// the z-pass rule of zpass.h assumes the volume is) and reaches the closed square of a flagged
+// quad. Open meshes give no face here: behind them the shadow is the prisms of their
 // faces of either facing, and a face towards the light would put its prism's near cap on a lit
 // surface, a tie that the camera's depth test decides by round-off (left for later).
 #pragma once

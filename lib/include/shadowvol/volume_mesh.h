@@ -52,4 +52,11 @@ struct VolumeMesh {
   void sortTriangles();
 };
 
+/// The winding number of a closed, outward mesh at `p` (the mesh's own coordinates: relative to
+/// its origin): the signed crossings of the ray from p along kParityRayDirection (ray_parity.h),
+/// +1 where it leaves through a triangle. 1 inside a simple solid, 0 outside; where the parts of a
+/// mesh or the prisms of its face-prism part overlap (VolumeMesh::partStarts), the number of them
+/// holding p, which a parity test would call outside at 2. In double, O(triangles).
+int windingNumber(const VolumeMesh& mesh, const glm::dvec3& p);
+
 }  // namespace shadowvol

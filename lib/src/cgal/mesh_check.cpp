@@ -352,6 +352,9 @@ MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& option
     std::vector<MeshCheckReport> parts;
     for (std::size_t k = 0; k < mesh.partCount(); ++k) parts.push_back(checkPart(mesh.partMesh(k), options, k > 0));
     MeshCheckReport r = sumReports(parts);
+    // Self-intersections are the first part's: the later ones overlap themselves by design.
+    r.selfIntersectingPairs = parts[0].selfIntersectingPairs;
+    r.allowedTouchingPairs = parts[0].allowedTouchingPairs;
     // Vertices no part uses are still isolated: count the whole mesh's (a part's are renumbered).
     r.vertices = mesh.positions.size();
     std::vector<std::uint8_t> used(mesh.positions.size(), 0);
@@ -387,7 +390,7 @@ MeshCheckReport checkPart(const VolumeMesh& mesh, const MeshCheckOptions& option
   }
   r.outward = overlapping ? everyComponentOutward(sm) : isOutward(sm);
   r.volume = CGAL::to_double(PMP::volume(sm));
-  if (options.selfIntersections && r.degenerateTriangles == 0) checkSelfIntersections(sm, options, r);
+  if (options.selfIntersections && !overlapping && r.degenerateTriangles == 0) checkSelfIntersections(sm, options, r);
   return r;
 }
 

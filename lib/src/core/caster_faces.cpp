@@ -29,8 +29,10 @@ class FlagSums {
   /// (qi, qj) is [qi, qi + 1] x [qj, qj + 1]) is flagged.
   bool anyIn(double x0, double x1, double y0, double y1) const {
     if (!(x1 >= 0.0 && y1 >= 0.0 && x0 <= qw_ && y0 <= qh_)) return false;
-    const int i0 = std::clamp(int(std::ceil(x0)) - 1, 0, qw_ - 1), i1 = std::clamp(int(std::floor(x1)), 0, qw_ - 1);
-    const int j0 = std::clamp(int(std::ceil(y0)) - 1, 0, qh_ - 1), j1 = std::clamp(int(std::floor(y1)), 0, qh_ - 1);
+    // Clamped in double before the conversion (a corner just past a small near plane lies far out).
+    const auto index = [](double v, int n) { return int(std::clamp(v, 0.0, double(n - 1))); };
+    const int i0 = index(std::ceil(x0) - 1.0, qw_), i1 = index(std::floor(x1), qw_);
+    const int j0 = index(std::ceil(y0) - 1.0, qh_), j1 = index(std::floor(y1), qh_);
     return at(i1 + 1, j1 + 1) - at(i0, j1 + 1) - at(i1 + 1, j0) + at(i0, j0) > 0;
   }
 
@@ -93,8 +95,11 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
         const glm::dvec3 n = glm::cross(b.view - a.view, c.view - a.view);
         const glm::dvec3 ray = perspective ? a.view : glm::dvec3(0.0, 0.0, -1.0);
         if (!(glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray))) continue;
-        keep[t] = flagged.anyIn(std::min({a.x, b.x, c.x}), std::max({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}),
-                                std::max({a.y, b.y, c.y}));
+        const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
+        const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
+        // Inside the light's window, so that every prism stays in its frustum (zpass.h's rule).
+        if (!(x0 >= -0.5 && y0 >= -0.5 && x1 <= map.width - 0.5 && y1 <= map.height - 0.5)) continue;
+        keep[t] = flagged.anyIn(x0, x1, y0, y1);
       }
     });
     for (std::size_t t = 0; t < triangles; ++t)

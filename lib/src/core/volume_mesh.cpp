@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "shadowvol/check.h"
+#include "shadowvol/ray_parity.h"
 
 namespace shadowvol {
 
@@ -16,6 +17,8 @@ TriangleMesh VolumeMesh::toTriangleMesh() const {
 }
 
 void VolumeMesh::sortTriangles() {
+  SV_CHECK(std::is_sorted(partStarts.begin(), partStarts.end()));
+  SV_CHECK(partStarts.empty() || partStarts.back() <= triangles.size());
   for (auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
   std::size_t begin = 0;
   for (std::size_t k = 0; k < partCount(); ++k) {
@@ -23,6 +26,15 @@ void VolumeMesh::sortTriangles() {
     std::sort(triangles.begin() + std::ptrdiff_t(begin), triangles.begin() + std::ptrdiff_t(end));
     begin = end;
   }
+}
+
+int windingNumber(const VolumeMesh& mesh, const glm::dvec3& p) {
+  int w = 0;
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    if (parityRayCrosses(p, a, b, c)) w += glm::dot(glm::cross(b - a, c - a), kParityRayDirection) > 0.0 ? 1 : -1;
+  }
+  return w;
 }
 
 VolumeMesh VolumeMesh::partMesh(std::size_t k) const {

@@ -180,11 +180,12 @@ double tieTolerance(const Camera& camera, double d) {
 
 bool VolumeCrossing::touches(const VolumeCrossing& o) const {
   if (corners == kUnknownCorners || o.corners == kUnknownCorners) return true;
-  if (!onBorder || !o.onBorder) return false;
+  int shared = 0;
   for (const std::uint32_t a : corners)
-    for (const std::uint32_t b : o.corners)
-      if (a == b) return true;
-  return false;
+    for (const std::uint32_t b : o.corners) shared += a == b;
+  // A shared edge: one crossing (two faces meeting there lie on two sides of it as the ray sees
+  // them, or fold over it); a shared vertex alone: only where both hits lie on their borders.
+  return shared >= 2 || (shared == 1 && onBorder && o.onBorder);
 }
 
 namespace {

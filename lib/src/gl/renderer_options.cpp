@@ -22,6 +22,9 @@ void Renderer::Impl::validatePointLight(const RenderOptions& o) const {
     if (o.volumeOptions.refineSteps > 0 && o.volumeOptions.refineSubdivisions > 1)
       throw OptionConflict("volume options", "refine subdivisions", std::to_string(o.volumeOptions.refineSubdivisions),
                            MarkedProblem{kCubeRefinementRule});
+    if (o.volumeOptions.facePrisms)
+      throw OptionConflict("volume options", "face prisms", "true",
+                           "are made for spot and directional lights; a point light's cube volume has none yet");
     if (o.volumeOptions.cap != FarCap::Exact)
       throw OptionConflict("RenderOptions", "volumeOptions.cap", toString(o.volumeOptions.cap), kCubeVolumeCapRule);
     if (o.volume == VolumeSource::Gpu) validateGpuCubeVolume(o);
@@ -130,10 +133,10 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
     if (o.volumeOptions.cap != FarCap::Exact)
       refuse("needs ${volumeOptions.cap} exact: the quad cap keeps the far-plane sheet that refinement replaces by "
              "walls");
-    if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
+    if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1 || o.volumeOptions.facePrisms)
       refuse(
-          "finds the boundary edges' crossings alone: chord points and the sub-grid need ${volume} explicit "
-          "with ${refineCrossings} rays");
+          "finds the boundary edges' crossings alone: chord points, the sub-grid and the face prisms need ${volume} "
+          "explicit with ${refineCrossings} rays");
     // The maps it walks, with their guard band: one (W + 2 G) x (H + 2 G) (mapFrame, G =
     // kVolumeGuardTexels), or a point light's six faces (drawRefinedCubeFaces), each (N + 2 G)^2
     // with G = kCubeGuardTexels.
@@ -169,10 +172,10 @@ void Renderer::Impl::validate(const RenderOptions& o, const CameraSetup& cam) co
       refuse("gpu-walk", std::string("the silhouette walk follows one layer; ") + toString(o.capture) +
                              " capture reads two: use ${refineCrossings} rays (gpu-rays for the GPU volume), or back "
                                            "or front ${capture}");
-    if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1)
+    if (o.volumeOptions.refineChords || o.volumeOptions.refineSubdivisions > 1 || o.volumeOptions.facePrisms)
       refuse("gpu-walk",
-             "chord points and the sub-grid need ${refineCrossings} rays (a depth oracle); the walk gives the "
-             "boundary edges' crossings alone");
+             "chord points, the sub-grid and the face prisms need ${refineCrossings} rays (a depth oracle); the walk "
+             "gives the boundary edges' crossings alone");
   }
   if (o.refineCrossings == RefineCrossings::GpuRays && !refinedGpuVolume(o))
     throw OptionConflict("RenderOptions", "refineCrossings", "gpu-rays",

@@ -48,40 +48,51 @@ struct CountedVolume {
   std::size_t recounted = 0;
 };
 
-// A volume of several overlapping parts (VolumeMesh::partStarts): each part checked and counted
-// alone, the counts added (a z-fail count is a sum over the faces: the parts' add up, as in the
-// stencil), the ranges too. Alone because crossings of two parts at one ray parameter (coincident
-// faces) would merge into one event (countPixel).
-CountedVolume countParts(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
-                         const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits);
-
-CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
-                          const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
-  if (volume.partCount() > 1) return countParts(device, volume, gpuVolume, co, camera, hits);
-  CountedVolume c;
-  c.mesh = checkMesh(volume, co);
-  if (gpuVolume) c.gpuMesh = checkMesh(*gpuVolume, co);
-  const TriangleMesh volumeF = volume.toTriangleMesh();
-  const EmbreeScene volumeRt(device, {&volumeF});
-  c.counts = countCrossings(volumeRt, camera, hits);
-  if (c.mesh.closedManifold() && volume.triangleCount() > 0) {
-    const auto side = VolumeClassifier(volume).classify(camera.eye);
-    c.eyeInside = side != VolumeClassifier::Side::Outside;
-    if (side != VolumeClassifier::Side::Boundary)
-      c.recounted = recountInconsistentPixels(volume, camera, hits, c.eyeInside ? 1 : 0, c.counts);
+// One part's crossing counts (its mesh checked already: `closed` when a closed 2-manifold), the
+// eye's side and the double recount of the pixels that contradict it. The eye's winding number in
+// the part: the classifier's side for a simple solid (a part that does not overlap itself: the
+// first), the signed count of windingNumber for one that may (the face prisms, where two overlapping
+// prisms put the eye at 2 and parity would say outside).
+void countPart(const EmbreeDevice& device, const VolumeMesh& part, bool overlapping, bool closed, const Camera& camera,
+               const CameraHits& hits, CountedVolume& c) {
+  const TriangleMesh partF = part.toTriangleMesh();
+  const EmbreeScene partRt(device, {&partF});
+  c.counts = countCrossings(partRt, camera, hits);
+  if (!closed || part.triangleCount() == 0) return;
+  int winding = 0;
+  if (overlapping) {
+    winding = windingNumber(part, camera.eye - part.origin);
+  } else {
+    const auto side = VolumeClassifier(part).classify(camera.eye);
+    if (side == VolumeClassifier::Side::Boundary) {
+      c.eyeInside = true;
+      return;  // no recount: the eye on the surface has no side
+    }
+    winding = side == VolumeClassifier::Side::Inside ? 1 : 0;
   }
-  return c;
+  c.eyeInside = winding != 0;
+  c.recounted = recountInconsistentPixels(part, camera, hits, winding, c.counts);
 }
 
-CountedVolume countParts(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
-                         const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
+// A volume's mesh checks and crossing counts. A volume of several overlapping parts
+// (VolumeMesh::partStarts) is counted part by part, the counts added (a z-fail count is a sum over
+// the faces: the parts' add up, as in the stencil), the ranges too, so that each part's eye side
+// and recount are its own.
+CountedVolume countVolume(const EmbreeDevice& device, const VolumeMesh& volume, const VolumeMesh* gpuVolume,
+                          const MeshCheckOptions& co, const Camera& camera, const CameraHits& hits) {
   CountedVolume c;
   c.mesh = checkMesh(volume, co);
   if (gpuVolume) c.gpuMesh = checkMesh(*gpuVolume, co);
+  const bool closed = c.mesh.closedManifold();
+  if (volume.partCount() == 1) {
+    countPart(device, volume, false, closed, camera, hits, c);
+    return c;
+  }
   for (std::size_t k = 0; k < volume.partCount(); ++k) {
-    const CountedVolume p = countVolume(device, volume.partMesh(k), nullptr, co, camera, hits);
+    CountedVolume p;
+    countPart(device, volume.partMesh(k), k > 0, closed, camera, hits, p);
     if (k == 0) {
-      c.counts = p.counts;
+      c.counts = std::move(p.counts);
     } else {
       for (std::size_t i = 0; i < c.counts.zfail.size(); ++i) {
         c.counts.zfail[i] += p.counts.zfail[i];

@@ -58,7 +58,8 @@ struct MeshCheckReport {
 /// parts (VolumeMesh::partStarts) is checked part by part (partMesh), the reports summed
 /// (sumReports): each part must be a closed volume on its own; parts may overlap. A part after the
 /// first is outward when each of its connected components has a positive signed volume (it may
-/// overlap itself, volume_mesh.h).
+/// overlap itself, volume_mesh.h), and self-intersections (MeshCheckOptions::selfIntersections)
+/// are the first part's alone.
 MeshCheckReport checkMesh(const VolumeMesh& mesh, const MeshCheckOptions& options = {});
 
 /// Several meshes' checks as one report: every count summed, outward when every non-empty one is,
@@ -68,6 +69,8 @@ MeshCheckReport sumReports(const std::vector<MeshCheckReport>& reports);
 /// Point-in-volume queries on a closed mesh (CGAL Side_of_triangle_mesh over an AABB tree, built
 /// once). The mesh must satisfy MeshCheckReport::closedManifold(); it is copied. A mesh of several
 /// parts is their union: inside when inside a part, else on the boundary when on a part's surface.
+/// Each part is classified by parity, which takes a point where two solids of a part that overlaps
+/// itself (the face prisms) overlap for outside: windingNumber (volume_mesh.h) counts them.
 class VolumeClassifier {
  public:
   enum class Side { Inside, Boundary, Outside };

@@ -89,9 +89,9 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
 /// Background pixels (nothing visible) get zfail = zpass = 0.
 /// Merge rule: a ray through a shared edge or vertex may report one crossing several times
 /// (Embree's robust mode guarantees no crossing is missed, not that it is reported once). Hits
-/// whose distances differ by at most kCrossingMergeTolerance (relative), each on its triangle's
-/// border (a barycentric coordinate within kCrossingEdgeTolerance of 0) and whose triangles touch
-/// (share a vertex index; directly or through others of the group) form one event whose sign is
+/// whose distances differ by at most kCrossingMergeTolerance (relative) and whose triangles touch
+/// (share an edge, or share a vertex with both hits on their triangles' borders: a barycentric
+/// coordinate within kCrossingEdgeTolerance of 0; directly or through others of the group) form one event whose sign is
 /// the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
 /// grazes a fold without crossing). Other hits are crossings of their own however close: two walls
 /// a hair apart, two faces that overlap (the face prisms' far caps around a vertex where the faces
@@ -130,8 +130,8 @@ struct VolumeCrossing {
   int sign;
   std::array<std::uint32_t, 3> corners = kUnknownCorners;
   bool onBorder = true;
-  /// Whether the two hits may be one crossing reported twice: either is unknown, or both lie on
-  /// their triangles' borders and the triangles share a vertex index.
+  /// Whether the two hits may be one crossing reported twice: either is unknown, the triangles
+  /// share an edge (two vertex indices), or they share a vertex and both hits lie on their borders.
   bool touches(const VolumeCrossing& o) const;
 };
 /// A hit lies on its triangle's border when its smallest barycentric coordinate is at most this
