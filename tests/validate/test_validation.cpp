@@ -847,8 +847,8 @@ TEST(Validation, CountPixelTakesAnInfiniteDepth) {
   EXPECT_GE(c.zfail, 1);
 }
 
-// The merge rule: hits at one distance merge into one event only where their triangles share an
-// edge, or a vertex with both hits on their borders (a crossing reported twice; a fold grazed),
+// The merge rule: hits at one distance merge into one event only where their triangles share a
+// vertex and both hits lie on their borders (a crossing reported twice; a fold grazed),
 // else each counts: two walls a hair apart, two faces that overlap around a shared vertex, two
 // parts' coincident caps (VolumeMesh::partStarts). Touching is transitive within the group.
 TEST(Validation, CountPixelMergesOnlyHitsOfTouchingTriangles) {
@@ -860,8 +860,12 @@ TEST(Validation, CountPixelMergesOnlyHitsOfTouchingTriangles) {
   EXPECT_EQ(countPixel(apart, 1.0, 1e-4).zfail, 2);  // two crossings
   std::vector<VolumeCrossing> overlap{{t, 1, C{0, 1, 2}, false}, {t, 1, C{2, 3, 4}, false}};
   EXPECT_EQ(countPixel(overlap, 1.0, 1e-4).zfail, 2);  // inside both: two faces that overlap at a vertex
-  std::vector<VolumeCrossing> edge{{t, 1, C{0, 1, 2}, false}, {t + hair, 1, C{2, 1, 5}, false}};
-  EXPECT_EQ(countPixel(edge, 1.0, 1e-4).zfail, 1);  // a shared edge: one crossing, whatever the border test says
+  std::vector<VolumeCrossing> edge{{t, 1, C{0, 1, 2}, true}, {t + hair, 1, C{2, 1, 5}, false}};
+  EXPECT_EQ(countPixel(edge, 1.0, 1e-4).zfail, 2);  // a shared edge met apart (a sharp fold): two crossings
+  // The border test in world units: a sliver's hit a hair from its long edge is on it.
+  EXPECT_TRUE(onTriangleBorder({0, 0, 0}, {10, 0, 0}, {5, 1e-3, 0}, 0.5, 0.001, 5.0));
+  EXPECT_FALSE(onTriangleBorder({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0.3, 0.3, 5.0));
+  EXPECT_TRUE(onTriangleBorder({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0.5, 1e-7, 5.0));
   std::vector<VolumeCrossing> fold{{t, 1, C{0, 1, 2}, true}, {t + hair, -1, C{2, 3, 4}, true},
                                    {t + hair, 1, C{7, 8, 9}, true}};
   EXPECT_EQ(countPixel(fold, 1.0, 1e-4).zfail, 1);  // a grazed fold (0) and a crossing of its own

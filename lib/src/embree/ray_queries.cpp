@@ -26,6 +26,7 @@ struct CollectContext {
   RTCIntersectContext ctx;
   std::vector<VolumeCrossing>* hits;
   const std::vector<const unsigned*>* indices;  // each geometry's index buffer, by geometry ID
+  const std::vector<const float*>* vertices;    // and vertex buffer
 };
 
 void collectAll(const RTCFilterFunctionNArguments* args) {
@@ -39,8 +40,14 @@ void collectAll(const RTCFilterFunctionNArguments* args) {
   const unsigned geom = RTCHitN_geomID(args->hit, args->N, 0), prim = RTCHitN_primID(args->hit, args->N, 0);
   const unsigned* index = (*c->indices)[geom] + 3 * std::size_t(prim);
   const double u = RTCHitN_u(args->hit, args->N, 0), v = RTCHitN_v(args->hit, args->N, 0);
-  c->hits->push_back({double(RTCRayN_tfar(args->ray, args->N, 0)), d > 0 ? 1 : (d < 0 ? -1 : 0),
-                      {index[0], index[1], index[2]}, std::min({u, v, 1.0 - u - v}) <= kCrossingEdgeTolerance});
+  const double t = RTCRayN_tfar(args->ray, args->N, 0);
+  const float* xyz = (*c->vertices)[geom];
+  const auto corner = [&](int k) {
+    const float* p = xyz + 3 * std::size_t(index[k]);
+    return glm::dvec3(p[0], p[1], p[2]);
+  };
+  c->hits->push_back({t, d > 0 ? 1 : (d < 0 ? -1 : 0), {index[0], index[1], index[2]},
+                      onTriangleBorder(corner(0), corner(1), corner(2), u, v, t)});
   args->valid[0] = 0;  // reject: traversal goes on and reports every hit
 }
 
@@ -178,14 +185,24 @@ double tieTolerance(const Camera& camera, double d) {
   return std::max(1e-4, 16.0 * std::ldexp(1.0, -24) * d * (f - n) / (f * n));
 }
 
+bool onTriangleBorder(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double u, double v, double t) {
+  const double area2 = glm::length(glm::cross(b - a, c - a));  // twice the area
+  const double tol = kCrossingMergeTolerance * std::abs(t);
+  // The distance to the edge opposite a corner: its weight times the height over that edge.
+  const auto near = [&](double weight, const glm::dvec3& p, const glm::dvec3& q) {
+    return weight * area2 <= tol * glm::length(q - p);
+  };
+  return near(1.0 - u - v, b, c) || near(u, c, a) || near(v, a, b);
+}
+
 bool VolumeCrossing::touches(const VolumeCrossing& o) const {
   if (corners == kUnknownCorners || o.corners == kUnknownCorners) return true;
   int shared = 0;
   for (const std::uint32_t a : corners)
     for (const std::uint32_t b : o.corners) shared += a == b;
-  // A shared edge: one crossing (two faces meeting there lie on two sides of it as the ray sees
-  // them, or fold over it); a shared vertex alone: only where both hits lie on their borders.
-  return shared >= 2 || (shared == 1 && onBorder && o.onBorder);
+  // Both on their borders: two faces that share an edge but meet the ray apart (a near cap and the
+  // wall on its edge at a sharp fold, hit within the distance tolerance) are two crossings.
+  return shared >= 1 && onBorder && o.onBorder;
 }
 
 namespace {
@@ -279,9 +296,12 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
   // The merge rule's vertex indices: a volume is one mesh (indices of two meshes would not compare).
   SV_CHECK_LE(volume.geometryCount(), 1u);
   std::vector<const unsigned*> indices;
-  for (unsigned g = 0; g < volume.geometryCount(); ++g)
-    indices.push_back(
-        static_cast<const unsigned*>(rtcGetGeometryBufferData(rtcGetGeometry(volume.get(), g), RTC_BUFFER_TYPE_INDEX, 0)));
+  std::vector<const float*> vertices;
+  for (unsigned g = 0; g < volume.geometryCount(); ++g) {
+    RTCGeometry geom = rtcGetGeometry(volume.get(), g);
+    indices.push_back(static_cast<const unsigned*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0)));
+    vertices.push_back(static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)));
+  }
   tbb::enumerable_thread_specific<std::vector<VolumeCrossing>> buffers;
   tbb::parallel_for(tbb::blocked_range<int>(0, hits.height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<VolumeCrossing>& buf = buffers.local();
@@ -297,6 +317,7 @@ CrossingCounts countCrossings(const EmbreeScene& volume, const Camera& camera, c
         c.ctx.filter = collectAll;
         c.hits = &buf;
         c.indices = &indices;
+        c.vertices = &vertices;
         rtcIntersect1(volume.get(), &c.ctx, &rh);
         const PixelCounts pc = countPixel(buf, hits.depth[k], tieTolerance(camera, hits.depth[k]) * hits.depth[k]);
         out.zfail[k] = pc.zfail;

@@ -41,7 +41,7 @@ bool crossing(const K::Triangle_3& t, const glm::dvec3& o, const glm::dvec3& d, 
   const glm::dvec3 p = o + out.t * d - a;
   const double n2 = glm::dot(n, n);
   const double u = glm::dot(glm::cross(p, e2), n) / n2, v = glm::dot(glm::cross(e1, p), n) / n2;
-  out.onBorder = std::min({u, v, 1.0 - u - v}) <= kCrossingEdgeTolerance;
+  out.onBorder = onTriangleBorder(a, a + e1, a + e2, u, v, out.t);
   return out.t >= 0.0;
 }
 

@@ -90,8 +90,8 @@ std::vector<PixelClass> exactShadows(const EmbreeScene& scene, const Scene& desc
 /// Merge rule: a ray through a shared edge or vertex may report one crossing several times
 /// (Embree's robust mode guarantees no crossing is missed, not that it is reported once). Hits
 /// whose distances differ by at most kCrossingMergeTolerance (relative) and whose triangles touch
-/// (share an edge, or share a vertex with both hits on their triangles' borders: a barycentric
-/// coordinate within kCrossingEdgeTolerance of 0; directly or through others of the group) form one event whose sign is
+/// (share a vertex, both hits on their triangles' borders: within kCrossingMergeTolerance x t of
+/// an edge, onTriangleBorder; directly or through others of the group) form one event whose sign is
 /// the sign of the sum of their signs: +1+1 -> +1 (one crossing seen twice), +1-1 -> 0 (the ray
 /// grazes a fold without crossing). Other hits are crossings of their own however close: two walls
 /// a hair apart, two faces that overlap (the face prisms' far caps around a vertex where the faces
@@ -130,13 +130,17 @@ struct VolumeCrossing {
   int sign;
   std::array<std::uint32_t, 3> corners = kUnknownCorners;
   bool onBorder = true;
-  /// Whether the two hits may be one crossing reported twice: either is unknown, the triangles
-  /// share an edge (two vertex indices), or they share a vertex and both hits lie on their borders.
+  /// Whether the two hits may be one crossing reported twice: either is unknown, or the triangles
+  /// share a vertex index and both hits lie on their borders.
   bool touches(const VolumeCrossing& o) const;
 };
-/// A hit lies on its triangle's border when its smallest barycentric coordinate is at most this
-/// (Embree's float hits at a shared edge: a few float ulps; the double recount's: round-off).
-inline constexpr double kCrossingEdgeTolerance = 1e-5;
+
+/// Whether the point of barycentric coordinates (u, v) (weights of b and c) on triangle (a, b, c)
+/// lies within kCrossingMergeTolerance x t (world units, t the hit's ray parameter) of one of its
+/// edges: a crossing that a ray through a shared edge or vertex may report once per triangle.
+/// Measured in world units, so that a sliver's hits (whose barycentric coordinates err most) are
+/// judged as a large triangle's are.
+bool onTriangleBorder(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, double u, double v, double t);
 
 /// A pixel's counts (see CrossingCounts).
 struct PixelCounts {
