@@ -453,7 +453,7 @@ def test_crossings_keyword_and_frame_refusals_name_keywords(scene):
                      (dict(refine=4, crossings="gpu-walk", capture="entry"),
                       r"python: crossings = gpu-walk: .*use crossings rays .*or back or front capture"),
                      (dict(volume="explicit", refine=4, crossings="gpu-walk", refine_grid=4),
-                      r"python: crossings = gpu-walk: chord points and the sub-grid need crossings rays")]:
+                      r"python: crossings = gpu-walk: chord points, the sub-grid and the face prisms need crossings rays")]:
         with pytest.raises(sv.InputError, match=said) as raised:
             sv.render(scene, resolution=16, size=(16, 12), **kw)
         text = str(raised.value)
