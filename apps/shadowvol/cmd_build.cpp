@@ -133,6 +133,7 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
         options.surfaceEnds = oracle->surfaceEnds();
         options.nearerSurfaces = oracle->nearerSurfaces();
         options.casterFaces = oracle->casterFaces();
+        options.withoutCasters = oracle->withoutCasters();
       }
       const VolumeBuildResult r = cube ? buildCubeVolume(*cube, options) : buildVolume(map, options);
       const auto t1 = std::chrono::steady_clock::now();
@@ -248,9 +249,9 @@ void registerBuildCommand(CLI::App& app, Runner& run) {
                       options.refineSteps, s.boundaryEdges, s.farBoundaryEdges, cube ? "cube" : "plane",
                       s.refinedCells, cube ? "cells" : "quads", s.ambiguousCells, s.chordPoints, s.raysCast);
         if (options.facePrisms)
-          std::printf("  face prisms: %zu faces in the refined quads' columns, %zu border walls, %zu triangles "
-                      "(%.1f ms)%s\n",
-                      s.prismFaces, s.prismWalls, s.prismTriangles, s.msPrisms,
+          std::printf("  face prisms: %zu texels' columns handed over by the sheet, %zu faces in them, %zu border "
+                      "walls, %zu triangles (%.1f ms)%s\n",
+                      s.prismColumnTexels, s.prismFaces, s.prismWalls, s.prismTriangles, s.msPrisms,
                       r.mesh.partStarts.empty()
                           ? ""
                           : ("; a second closed part from triangle " + std::to_string(r.mesh.partStarts[0]) +

@@ -272,6 +272,7 @@ std::unique_ptr<EmbreeDepthOracle> attachDepthOracle(const Scene& scene, gl::Ren
   ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
   ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
   ro.volumeOptions.casterFaces = oracle->casterFaces();
+  ro.volumeOptions.withoutCasters = oracle->withoutCasters();
   return oracle;
 }
 

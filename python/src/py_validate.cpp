@@ -122,6 +122,7 @@ struct FrameRenderer {
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line
       ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();  // the hidden-surface search, as the command line
       ro.volumeOptions.casterFaces = oracle->casterFaces();        // as the command line (no keyword sets it yet)
+      ro.volumeOptions.withoutCasters = oracle->withoutCasters();  // the sheet hands their columns over
     }
     renderer.setScene(scene);
   } catch (const InputError& e) {  // the context's options (platform) by this module's keywords

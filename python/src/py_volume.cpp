@@ -162,6 +162,7 @@ py::tuple buildVolumeArrays(const DepthMap& depth, const std::string& triangulat
       o.surfaceEnds = oracle->surfaceEnds();  // the snap, as the command line (crossing_snap.h)
       o.nearerSurfaces = oracle->nearerSurfaces();  // the sub-grid's search for hidden surfaces
       o.casterFaces = oracle->casterFaces();        // the face prisms' faces
+      o.withoutCasters = oracle->withoutCasters();  // the sheet hands their columns over
       checkMapFromScene(depth, o.depthOracle);
     }
     try {

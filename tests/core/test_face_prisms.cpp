@@ -1,7 +1,9 @@
 // The refined volume's face prisms (caster_faces.h, volume/face_prisms.h; docs/volume.md "Face
 // prisms"): which faces are taken, and the closed part their prisms make, on hand-made faces under
 // a directional light straight down (from y = 5, far plane 6: the far plane is y = -1).
+#include <algorithm>
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include "shadowvol/primitives.h"
 #include "test_util.h"
 #include "volume/face_prisms.h"
+#include "volume/prism_columns.h"
 
 namespace shadowvol {
 namespace {
@@ -56,6 +59,57 @@ TEST(CasterFaces, TheBackFacesOfClosedMeshesInFlaggedColumns) {
   one.assign(one.size(), 0);
   one[7 * 15 + 7] = 1;
   EXPECT_EQ(findCasterFaces(map, soups, one).size(), 2u);
+}
+
+// The hand-over's rule (handedToPrisms): a closed mesh wholly between the near and far planes and
+// inside the window; not an open one, not one reaching past the far plane (y = -1) or the window's
+// edge (x = 4).
+TEST(CasterFaces, HandedToThePrismsOnlyWhenWholeInsideTheFrustum) {
+  const DepthMap map = mapDown();
+  const TriangleMesh box = makeBox(1.0, 1.0, 1.0);
+  EXPECT_TRUE(handedToPrisms(map, soupOf(moved(box, {0.0f, 2.0f, 0.0f}))));
+  EXPECT_FALSE(handedToPrisms(map, soupOf(moved(makePlane(2.0, 2.0, 1), {0.0f, 1.0f, 0.0f}))));
+  EXPECT_FALSE(handedToPrisms(map, soupOf(moved(box, {0.0f, -1.0f, 0.0f}))));
+  EXPECT_FALSE(handedToPrisms(map, soupOf(moved(box, {3.8f, 2.0f, 0.0f}))));
+  EXPECT_TRUE(handedToPrisms(map, soupOf(moved(box, {3.2f, 2.0f, 0.0f}))));
+}
+
+// Stage 0p (volume/prism_columns.h): a refined quad's four corner texels are recaptured by the
+// oracle without the casters, the quads with such a corner are the prisms' columns, and the
+// oracles handed on answer from the other oracle inside those texels' squares only.
+TEST(PrismColumns, TheRefinedQuadsCornersAreRecapturedWithoutTheCasters) {
+  DepthMap map = mapDown(8);
+  std::fill(map.depth.begin(), map.depth.end(), 3.0f);
+  int withoutCalls = 0;
+  const DepthOracle without = [&withoutCalls](const DepthMap&, std::span<const glm::dvec2>, std::span<float> d) {
+    ++withoutCalls;
+    std::fill(d.begin(), d.end(), 5.0f);
+  };
+  const std::uint32_t q = 2 * 7 + 3;  // quad (3, 2): texels (3..4, 2..3)
+  const auto columns = std::make_shared<const volume::PrismColumns>(volume::findPrismColumns(map, {{q}}, without));
+  EXPECT_EQ(withoutCalls, 1);
+  EXPECT_EQ(columns->texelCount, 4u);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const bool handed = i >= 3 && i <= 4 && j >= 2 && j <= 3;
+      EXPECT_EQ(columns->texels[std::size_t(j * 8 + i)], handed ? 1 : 0) << i << " " << j;
+      EXPECT_EQ(columns->map.at(i, j), handed ? 5.0f : 3.0f) << i << " " << j;
+    }
+  for (int qj = 0; qj < 7; ++qj)
+    for (int qi = 0; qi < 7; ++qi)  // every quad with a corner among those texels
+      EXPECT_EQ(columns->quads[std::size_t(qj * 7 + qi)], qi >= 2 && qi <= 4 && qj >= 1 && qj <= 3 ? 1 : 0);
+  VolumeBuildOptions o;
+  o.depthOracle = [](const DepthMap&, std::span<const glm::dvec2>, std::span<float> d) {
+    std::fill(d.begin(), d.end(), 3.0f);
+  };
+  o.withoutCasters = without;
+  const VolumeBuildOptions h = volume::handOverColumns(o, columns);
+  const auto ndc = [](double i, double j) { return glm::dvec2((i + 0.5) / 8 * 2 - 1, (j + 0.5) / 8 * 2 - 1); };
+  // Texel (3, 2)'s centre and square, texel (2, 2)'s, and the border between them (to the larger index).
+  const std::vector<glm::dvec2> points{ndc(3, 2), ndc(3.4, 2.4), ndc(2, 2), ndc(2.4, 2), ndc(2.5, 2), ndc(5, 3)};
+  std::vector<float> depth(points.size());
+  h.depthOracle(map, points, depth);
+  EXPECT_EQ(depth, (std::vector<float>{5.0f, 5.0f, 3.0f, 3.0f, 5.0f, 3.0f}));
 }
 
 // The box's bottom: one prism from y = 1.5 down to the far plane (y = -1), closed and outward,

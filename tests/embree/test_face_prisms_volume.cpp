@@ -1,8 +1,9 @@
 // The refined volume's face prisms on a whole build (VolumeBuildOptions::facePrisms, docs/volume.md
 // "Face prisms"): a closed sphere over an open ground plane under a directional light straight
 // down, entry capture, the 4 x 4 sub-grid. The prisms are a second closed part after the volume
-// the build makes without them (which is left as it was); they hold shadow only: every point inside
-// them has the sphere between it and the light.
+// the build makes without them (which is left as it was, unless the sheet hands the columns over:
+// the second test); they hold shadow only: every point inside them has the sphere between it and
+// the light.
 #include <gtest/gtest.h>
 
 #include "mesh_invariants.h"
@@ -21,13 +22,15 @@ Scene sphereOverGround() {
   return test::sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)}, SceneObject{"sphere", "mesh", sphere}});
 }
 
-VolumeBuildResult build(const Scene& scene, bool prisms) {
+// handOver: the sheet hands the refined quads' columns over to the prisms (withoutCasters).
+VolumeBuildResult build(const Scene& scene, bool prisms, bool handOver = false) {
   const EmbreeDepthOracle oracle(scene);
   const DepthMap map = captureDepthEmbree(scene, 32, 32, CaptureMode::Entry);
   VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
   o.refineSubdivisions = 4;
   o.nearerSurfaces = oracle.nearerSurfaces();
   o.casterFaces = oracle.casterFaces();
+  if (handOver) o.withoutCasters = oracle.withoutCasters();
   o.facePrisms = prisms;
   return buildVolume(map, o);
 }
@@ -75,6 +78,43 @@ TEST(FacePrismsVolume, APartOfItsOwnThatHoldsShadowOnly) {
         EXPECT_TRUE(blockedFromAbove(sphere, p)) << x << " " << y << " " << z;
       }
   EXPECT_GT(inside, 20);  // the test looks at something
+}
+
+// With withoutCasters the sheet records the ground in the refined quads' columns and the prisms
+// hold the sphere's shadow there: the union is the exact shadow at every grid point clear of the
+// sphere's surface, and near the outline only the prisms hold it.
+TEST(FacePrismsVolume, TheSheetHandsTheOutlinesColumnsToThePrisms) {
+  const Scene scene = sphereOverGround();
+  const VolumeBuildResult with = build(scene, true, true);
+  ASSERT_EQ(with.mesh.partCount(), 2u);
+  EXPECT_GT(with.stats.prismColumnTexels, 0u);
+  EXPECT_GE(with.stats.raysCast, with.stats.prismColumnTexels);
+  EXPECT_TRUE(test::closedOrientedManifold(with.mesh));
+  const VolumeMesh sheet = with.mesh.partMesh(0), prisms = with.mesh.partMesh(1);
+  EXPECT_TRUE(test::closedOrientedManifold(sheet));
+  EXPECT_TRUE(test::closedOrientedManifold(prisms));
+  const TriangleMesh& sphere = scene.objects[1].mesh;
+  const glm::dvec3 centre(0.0, 2.0, 0.0);
+  int shadowed = 0, lit = 0;
+  for (double x = -1.6; x <= 1.6; x += 0.05)
+    for (double y : {0.05, 0.5, 1.2, 1.9, 2.6, 3.2})
+      for (double z : {-0.33, 0.0, 0.71}) {
+        const glm::dvec3 p(x, y, z);
+        if (std::abs(glm::length(p - centre) - 1.0) < 0.05) continue;  // the surface's own tie
+        if (glm::length(p - centre) < 1.0) continue;                   // inside the caster
+        const bool inside = test::windingNumber(sheet, p - sheet.origin) != 0 ||
+                            test::windingNumber(prisms, p - prisms.origin) != 0;
+        const bool blocked = blockedFromAbove(sphere, p);
+        EXPECT_EQ(inside, blocked) << x << " " << y << " " << z;
+        (blocked ? shadowed : lit) += 1;
+      }
+  EXPECT_GT(shadowed, 50);
+  EXPECT_GT(lit, 50);
+  // Just under the outline, in a handed-over column: the prisms' shadow, not the sheet's.
+  const glm::dvec3 underRim(0.97, 1.5, 0.0);
+  ASSERT_TRUE(blockedFromAbove(sphere, underRim));
+  EXPECT_EQ(test::windingNumber(sheet, underRim - sheet.origin), 0);
+  EXPECT_NE(test::windingNumber(prisms, underRim - prisms.origin), 0);
 }
 
 }  // namespace

@@ -40,5 +40,11 @@ namespace shadowvol {
 /// in index order within each (deterministic). Indices out of range are a logic error (SV_CHECK).
 std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std::span<const TriangleSoup> meshes,
                                                       std::span<const std::uint8_t> quads);
+/// Whether the prisms can hold `mesh`'s whole shadow in any column of the map (the sheet's hand-over
+/// to the prisms, VolumeBuildOptions::withoutCasters): a closed mesh every vertex of which lies
+/// strictly between the near and far planes with its image inside the map's window, so that
+/// findCasterFaces takes each of its faces turned away from the light whose image reaches a
+/// flagged quad (only edge-on faces, which hold no volume, are left out). Empty meshes: false.
+bool handedToPrisms(const DepthMap& map, const TriangleSoup& mesh);
 
 }  // namespace shadowvol

@@ -37,6 +37,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "shadowvol/boundary_edges.h"
@@ -120,6 +121,12 @@ struct VolumeBuildOptions {
                                 ///< cannot follow it, a thin part's self-shadow (docs/volume.md "Face
                                 ///< prisms"). Needs casterFaces. Off by default (README "Face prisms")
   CasterFaceOracle casterFaces; ///< facePrisms only: the faces (depth_oracle.h; EmbreeDepthOracle::casterFaces)
+  DepthOracle withoutCasters;   ///< facePrisms only: the capture without the closed meshes the prisms
+                                ///< hold whole (handedToPrisms in caster_faces.h; EmbreeDepthOracle::
+                                ///< withoutCasters). Set = the sheet hands the refined quads' columns
+                                ///< over to the prisms: it records that scene there, the prisms hold
+                                ///< the casters' shadow (docs/volume.md "Face prisms"); unset = the
+                                ///< sheet keeps the casters and the prisms only add shadow
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -196,6 +203,8 @@ struct VolumeBuildStats {
   std::size_t prismFaces = 0;         ///< face prisms: casters' faces taken (docs/volume.md "Face prisms")
   std::size_t prismWalls = 0;         ///< face prisms: border edges of those faces, a wall each
   std::size_t prismTriangles = 0;     ///< face prisms: the part's triangles (in the mesh's count)
+  std::size_t prismColumnTexels = 0;  ///< face prisms with withoutCasters: texels handed over (one ray
+                                      ///< each, in raysCast; docs/volume.md "Face prisms")
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)
@@ -268,6 +277,10 @@ class VolumeBuilder {
  private:
   struct Scratch;
   void buildInto(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result);
+  // The stages after the checks; prismQuads: the face prisms' quads when the sheet handed them over
+  // (empty: the refined quads).
+  void buildStages(const DepthMap& map, const VolumeBuildOptions& options, std::span<const std::uint8_t> prismQuads,
+                   VolumeBuildResult& result);
   std::unique_ptr<Scratch> scratch_;
 };
 

@@ -549,6 +549,7 @@ std::vector<SweepRow> runSweep(gl::Renderer& renderer, const SweepOptions& o, co
       ro.volumeOptions.surfaceEnds = oracle->surfaceEnds();
       ro.volumeOptions.nearerSurfaces = oracle->nearerSurfaces();
       ro.volumeOptions.casterFaces = oracle->casterFaces();
+      ro.volumeOptions.withoutCasters = oracle->withoutCasters();
     }
     ro.depthWidth = ro.depthHeight = c.resolution > 0 ? c.resolution : 64;
     ro.readStencil = false;

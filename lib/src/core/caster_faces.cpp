@@ -51,7 +51,38 @@ struct ViewVertex {
   bool inRange = false;
 };
 
+// Each vertex of `mesh` in light view, with its image where it lies in range.
+std::vector<ViewVertex> imageOf(const DepthMap& map, const TriangleSoup& mesh) {
+  const glm::dmat4 view = map.lightView, projection = map.lightProjection;
+  std::vector<ViewVertex> image(mesh.xyz.size() / 3);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, image.size(), 8192), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      ViewVertex& v = image[k];
+      v.view = glm::dvec3(view * glm::dvec4(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2], 1.0));
+      const double depth = -v.view.z;
+      v.inRange = depth > map.nearPlane && depth < map.farPlane;
+      if (!v.inRange) continue;
+      const glm::dvec4 c = projection * glm::dvec4(v.view, 1.0);
+      v.x = (c.x / c.w + 1.0) * 0.5 * map.width - 0.5;
+      v.y = (c.y / c.w + 1.0) * 0.5 * map.height - 0.5;
+    }
+  });
+  return image;
+}
+
+// Inside the light's window, so that every prism stays in its frustum (zpass.h's rule).
+bool insideWindow(const DepthMap& map, double x0, double x1, double y0, double y1) {
+  return x0 >= -0.5 && y0 >= -0.5 && x1 <= map.width - 0.5 && y1 <= map.height - 0.5;
+}
+
 }  // namespace
+
+bool handedToPrisms(const DepthMap& map, const TriangleSoup& mesh) {
+  if (!mesh.closed || mesh.xyz.empty()) return false;
+  const std::vector<ViewVertex> image = imageOf(map, mesh);
+  return std::all_of(image.begin(), image.end(),
+                     [&map](const ViewVertex& v) { return v.inRange && insideWindow(map, v.x, v.x, v.y, v.y); });
+}
 
 std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std::span<const TriangleSoup> meshes,
                                                       std::span<const std::uint8_t> quads) {
@@ -62,7 +93,6 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
   const FlagSums flagged(quads, qw, qh);
   if (!flagged.any()) return faces;
   const bool perspective = map.lightType != LightType::Directional;
-  const glm::dmat4 view = map.lightView, projection = map.lightProjection;
   for (const TriangleSoup& mesh : meshes) {
     if (!mesh.closed) continue;
     SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
@@ -71,19 +101,7 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
     const auto world = [&](std::size_t k) {
       return glm::dvec3(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2]);
     };
-    std::vector<ViewVertex> image(vertices);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, vertices, 8192), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        ViewVertex& v = image[k];
-        v.view = glm::dvec3(view * glm::dvec4(world(k), 1.0));
-        const double depth = -v.view.z;
-        v.inRange = depth > map.nearPlane && depth < map.farPlane;
-        if (!v.inRange) continue;
-        const glm::dvec4 c = projection * glm::dvec4(v.view, 1.0);
-        v.x = (c.x / c.w + 1.0) * 0.5 * map.width - 0.5;
-        v.y = (c.y / c.w + 1.0) * 0.5 * map.height - 0.5;
-      }
-    });
+    const std::vector<ViewVertex> image = imageOf(map, mesh);
     std::vector<std::uint8_t> keep(triangles, 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
@@ -97,8 +115,7 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
         if (!(glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray))) continue;
         const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
         const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
-        // Inside the light's window, so that every prism stays in its frustum (zpass.h's rule).
-        if (!(x0 >= -0.5 && y0 >= -0.5 && x1 <= map.width - 0.5 && y1 <= map.height - 0.5)) continue;
+        if (!insideWindow(map, x0, x1, y0, y1)) continue;
         keep[t] = flagged.anyIn(x0, x1, y0, y1);
       }
     });

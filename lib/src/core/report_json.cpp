@@ -80,6 +80,7 @@ nlohmann::json describeVolumeStats(const VolumeBuildStats& s) {
           {"prismFaces", s.prismFaces},
           {"prismWalls", s.prismWalls},
           {"prismTriangles", s.prismTriangles},
+          {"prismColumnTexels", s.prismColumnTexels},
           {"bias", s.biasUsed},
           {"ms", {{"blur", s.msBlur}, {"sheet", s.msSheet}, {"refine", s.msRefine}, {"rays", s.msRays}, {"hidden", s.msHidden}, {"prisms", s.msPrisms},
                   {"cap", s.msCap}, {"total", s.msTotal}}}};

@@ -21,6 +21,7 @@
 #include "volume/cap_boundary.h"
 #include "volume/cap_triangles.h"
 #include "volume/face_prisms.h"
+#include "volume/prism_columns.h"
 #include "volume/crease_quads.h"
 #include "volume/thin_quads.h"
 #include "volume/grid_unprojector.h"
@@ -520,13 +521,18 @@ void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const R
   stats.subgridSplitTriangles = mesh.positions.size() - (base.subgrid + r.sub.positions.size());
 }
 
-// Stage 7f: the casters' faces in the columns of the refined quads (the oracle's selection) and
-// their prisms, appended as the mesh's second part.
-void appendPrismPart(const DepthMap& map, const volume::RefinedQuads& quads, const VolumeBuildOptions& options,
-                     VolumeMesh& mesh, VolumeBuildStats& stats) {
+// Stage 7f: the casters' faces in the columns of the refined quads, or of the quads handed over
+// to them (prismQuads, stage 0p), by the oracle's selection, and their prisms, appended as the
+// mesh's second part.
+void appendPrismPart(const DepthMap& map, const volume::RefinedQuads& quads, std::span<const std::uint8_t> prismQuads,
+                     const VolumeBuildOptions& options, VolumeMesh& mesh, VolumeBuildStats& stats) {
   const auto t0 = volume::Clock::now();
-  std::vector<std::uint8_t> flags(stats.quads, 0);
-  for (const std::uint32_t q : quads.quads) flags[q] = 1;
+  std::vector<std::uint8_t> flags(prismQuads.begin(), prismQuads.end());
+  if (prismQuads.empty()) {
+    flags.assign(stats.quads, 0);
+    for (const std::uint32_t q : quads.quads) flags[q] = 1;
+  }
+  SV_CHECK_EQ(flags.size(), stats.quads);
   const std::vector<std::array<glm::dvec3, 3>> faces = options.casterFaces(map, flags);
   const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
   stats.prismFaces = c.faces;
@@ -580,6 +586,35 @@ void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options
 }
 
 void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
+  using namespace volume;
+  if (!(options.refineSteps > 0 && options.facePrisms && options.withoutCasters && map.width >= 2 && map.height >= 2)) {
+    buildStages(map, options, {}, result);
+    return;
+  }
+  // 0p. The sheet hands the refined quads' columns over to the face prisms (volume/prism_columns.h):
+  // the refined quads of the map as captured, then the build from the map recaptured there.
+  const auto tStart = Clock::now();
+  validateMapAndOptions(map, options);
+  SheetDepths sheet(map, SheetDepthRule(map, options.bias.value_or(defaultBias(map)), options.blurOffset));
+  if (options.blur) sheet.materialiseBlurred(scratch_->blurred);
+  const std::size_t texels = std::size_t(map.width) * std::size_t(map.height);
+  const std::span<const double> blurred =
+      options.blur ? std::span<const double>(scratch_->blurred.data(), texels) : std::span<const double>();
+  const RefinementFound found = findRefinement(sheet, options, blurred, scratch_->splitBits);
+  const auto columns =
+      std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.withoutCasters));
+  const double msHandOver = msSince(tStart);
+  buildStages(columns->map, handOverColumns(options, columns), columns->quads, result);
+  VolumeBuildStats& stats = result.stats;
+  stats.prismColumnTexels = columns->texelCount;
+  stats.raysCast += found.thinRays + columns->texelCount;
+  stats.msPrisms += msHandOver;
+  stats.msRefine += msHandOver;
+  stats.msTotal = msSince(tStart);
+}
+
+void VolumeBuilder::buildStages(const DepthMap& map, const VolumeBuildOptions& options,
+                                std::span<const std::uint8_t> prismQuads, VolumeBuildResult& result) {
   using namespace volume;
   const auto tStart = Clock::now();
   validateMapAndOptions(map, options);
@@ -718,7 +753,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     stats.msRefine += msSince(tc);
   }
   // 7f. The face prisms in the refined quads' columns: a part of their own, after the sheet's.
-  if (refine && options.facePrisms) appendPrismPart(map, found.quads, options, mesh, stats);
+  if (refine && options.facePrisms) appendPrismPart(map, found.quads, prismQuads, options, mesh, stats);
   stats.msTotal = msSince(tStart);
 }
 

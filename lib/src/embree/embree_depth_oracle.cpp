@@ -59,6 +59,26 @@ struct EmbreeDepthOracle::Impl {
     });
     return capture == CaptureMode::Entry ? closedSoups : openSoups;
   }
+  // The scene without the soups handed to the prisms (withoutCasters), for the last set asked for.
+  std::mutex withoutMutex;
+  std::vector<std::uint8_t> withoutHanded;
+  std::unique_ptr<EmbreeScene> withoutScene;
+  RTCScene sceneWithout(const DepthMap& map) {
+    const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);  // `closed` set
+    std::vector<std::uint8_t> handed(closed.size());
+    for (std::size_t g = 0; g < closed.size(); ++g) handed[g] = handedToPrisms(map, closed[g]);
+    const std::lock_guard<std::mutex> lock(withoutMutex);
+    if (!withoutScene || handed != withoutHanded) {
+      std::vector<TriangleMesh> kept;
+      for (std::size_t g = 0; g < closed.size(); ++g)
+        if (!handed[g]) kept.push_back(meshOf(closed[g]));
+      std::vector<const TriangleMesh*> meshes;
+      for (const TriangleMesh& m : kept) meshes.push_back(&m);
+      withoutScene = std::make_unique<EmbreeScene>(device, meshes);  // Embree copies the buffers
+      withoutHanded = std::move(handed);
+    }
+    return withoutScene->get();
+  }
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
     for (const auto& o : s.objects) meshes.push_back(&o.mesh);
@@ -77,25 +97,41 @@ struct EmbreeDepthOracle::Impl {
   }
 };
 
+namespace {
+
+// One ray per point of `ndc`, in parallel, each as captureDepthEmbree casts a texel centre's ray.
+void castOracleRays(RTCScene scene, const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+  SV_CHECK_EQ(ndc.size(), depth.size());
+  const TexelUnprojector unproject(map);
+  const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<TexelUnprojector::Ray> rays(r.size());
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
+      const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
+      rays[k - r.begin()] = unproject.ray(i, j);
+    }
+    captureRays(scene, rays, tNear, tFar, map.capture, depth.subspan(r.begin(), r.size()));
+  });
+}
+
+}  // namespace
+
 EmbreeDepthOracle::EmbreeDepthOracle(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 EmbreeDepthOracle::~EmbreeDepthOracle() = default;
 
 DepthOracle EmbreeDepthOracle::oracle() const {
   const Impl* impl = impl_.get();
   return [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
-    SV_CHECK_EQ(ndc.size(), depth.size());
-    const TexelUnprojector unproject(map);
-    const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
-          std::vector<TexelUnprojector::Ray> rays(r.size());
-          for (std::size_t k = r.begin(); k != r.end(); ++k) {
-            // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
-            const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
-            rays[k - r.begin()] = unproject.ray(i, j);
-          }
-          captureRays(impl->scene.get(), rays, tNear, tFar, map.capture, depth.subspan(r.begin(), r.size()));
-        });
+    castOracleRays(impl->scene.get(), map, ndc, depth);
+    impl->device.throwIfError();
+  };
+}
+
+DepthOracle EmbreeDepthOracle::withoutCasters() const {
+  Impl* impl = impl_.get();
+  return [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+    castOracleRays(impl->sceneWithout(map), map, ndc, depth);
     impl->device.throwIfError();
   };
 }

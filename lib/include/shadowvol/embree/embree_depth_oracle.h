@@ -32,6 +32,10 @@ class EmbreeDepthOracle {
   /// The CasterFaceOracle (depth_oracle.h) of the same scene: findCasterFaces (caster_faces.h)
   /// over its triangles, the closed ones as entry capture finds them (found once, on the first call).
   CasterFaceOracle casterFaces() const;
+  /// The DepthOracle of the scene without the closed meshes that the face prisms hold whole for
+  /// the map asked about (handedToPrisms, caster_faces.h): VolumeBuildOptions::withoutCasters.
+  /// The rays of that scene (one Embree scene per set of meshes left out, kept for the next call).
+  DepthOracle withoutCasters() const;
 
  private:
   struct Impl;

@@ -1,0 +1,115 @@
+#include "volume/prism_columns.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "shadowvol/check.h"
+
+namespace shadowvol::volume {
+
+namespace {
+
+// Whether the point at light NDC `ndc` lies in a handed-over texel's square.
+bool handedAt(const PrismColumns& c, glm::dvec2 ndc) {
+  const DepthMap& m = c.map;
+  const double i = (ndc.x + 1.0) * 0.5 * m.width - 0.5, j = (ndc.y + 1.0) * 0.5 * m.height - 0.5;
+  // Clamped in double before the conversion (a point far outside the window).
+  const auto texel = [](double v, int n) { return int(std::lround(std::clamp(v, 0.0, double(n - 1)))); };
+  return c.texels[std::size_t(texel(j, m.height)) * std::size_t(m.width) + std::size_t(texel(i, m.width))] != 0;
+}
+
+// The full oracle's depths outside the handed-over squares and the other's inside, in one call each.
+void splitDepths(const DepthOracle& full, const DepthOracle& without, const PrismColumns& c, const DepthMap& map,
+                 std::span<const glm::dvec2> ndc, std::span<float> depth) {
+  SV_CHECK_EQ(ndc.size(), depth.size());
+  std::array<std::vector<glm::dvec2>, 2> points;
+  std::array<std::vector<std::size_t>, 2> at;
+  for (std::size_t k = 0; k < ndc.size(); ++k) {
+    const int s = handedAt(c, ndc[k]) ? 1 : 0;
+    points[s].push_back(ndc[k]);
+    at[s].push_back(k);
+  }
+  for (int s = 0; s < 2; ++s) {
+    if (points[s].empty()) continue;
+    std::vector<float> d(points[s].size());
+    (s ? without : full)(map, points[s], d);
+    for (std::size_t k = 0; k < d.size(); ++k) depth[at[s][k]] = d[k];
+  }
+}
+
+}  // namespace
+
+PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
+                              const DepthOracle& withoutCasters) {
+  SV_CHECK(withoutCasters);
+  const int w = map.width, h = map.height;
+  PrismColumns c;
+  c.map = map;
+  c.texels.assign(std::size_t(w) * std::size_t(h), 0);
+  c.quads.assign(std::size_t(w - 1) * std::size_t(h - 1), 0);
+  for (const std::uint32_t q : refinedQuads) {
+    const std::size_t qi = q % std::uint32_t(w - 1), qj = q / std::uint32_t(w - 1);
+    const std::size_t t = qj * std::size_t(w) + qi;
+    c.texels[t] = c.texels[t + 1] = c.texels[t + std::size_t(w)] = c.texels[t + std::size_t(w) + 1] = 1;
+  }
+  std::vector<glm::dvec2> ndc;
+  std::vector<std::size_t> at;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const std::size_t t = std::size_t(j) * std::size_t(w) + std::size_t(i);
+      if (!c.texels[t]) continue;
+      ndc.push_back({(i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0});
+      at.push_back(t);
+    }
+  c.texelCount = at.size();
+  std::vector<float> depth(ndc.size());
+  if (!ndc.empty()) withoutCasters(map, ndc, depth);
+  for (std::size_t k = 0; k < at.size(); ++k) c.map.depth[at[k]] = depth[k];
+  for (int qj = 0; qj + 1 < h; ++qj)
+    for (int qi = 0; qi + 1 < w; ++qi) {
+      const std::size_t t = std::size_t(qj) * std::size_t(w) + std::size_t(qi);
+      if (c.texels[t] | c.texels[t + 1] | c.texels[t + std::size_t(w)] | c.texels[t + std::size_t(w) + 1])
+        c.quads[std::size_t(qj) * std::size_t(w - 1) + std::size_t(qi)] = 1;
+    }
+  return c;
+}
+
+VolumeBuildOptions handOverColumns(const VolumeBuildOptions& options, std::shared_ptr<const PrismColumns> columns) {
+  VolumeBuildOptions o = options;
+  const DepthOracle full = options.depthOracle, without = options.withoutCasters;
+  o.depthOracle = [full, without, columns](const DepthMap& map, std::span<const glm::dvec2> ndc,
+                                           std::span<float> depth) {
+    splitDepths(full, without, *columns, map, ndc, depth);
+  };
+  if (options.surfaceEnds) {
+    const SurfaceEndOracle ends = options.surfaceEnds;
+    o.surfaceEnds = [ends, columns](const DepthMap& map, std::span<const glm::dvec2> from,
+                                    std::span<const glm::dvec2> to, std::span<double> t,
+                                    std::span<std::array<glm::dvec3, 3>> triangle) {
+      ends(map, from, to, t, triangle);
+      for (std::size_t k = 0; k < from.size(); ++k)
+        if (handedAt(*columns, from[k]) || handedAt(*columns, to[k])) {
+          t[k] = std::nan("");
+          triangle[k].fill(glm::dvec3(std::nan("")));
+        }
+    };
+  }
+  if (options.nearerSurfaces) {
+    const NearerSurfaceOracle nearer = options.nearerSurfaces;
+    o.nearerSurfaces = [nearer, columns](const DepthMap& map, std::span<const float> limit,
+                                         std::span<const float> rimLimit, std::span<std::uint8_t> flags) {
+      std::vector<std::uint8_t> before(flags.begin(), flags.end());
+      nearer(map, limit, rimLimit, flags);
+      for (std::size_t q = 0; q < flags.size(); ++q)
+        if (columns->quads[q]) flags[q] = before[q];  // the prisms fill it: not asked about
+    };
+  }
+  return o;
+}
+
+}  // namespace shadowvol::volume
