@@ -23,9 +23,10 @@ Scene sphereOverGround() {
 }
 
 // handOver: the sheet hands the refined quads' columns over to the prisms (withoutCasters).
-VolumeBuildResult build(const Scene& scene, bool prisms, bool handOver = false) {
+VolumeBuildResult build(const Scene& scene, bool prisms, bool handOver = false,
+                        CaptureMode capture = CaptureMode::Entry) {
   const EmbreeDepthOracle oracle(scene);
-  const DepthMap map = captureDepthEmbree(scene, 32, 32, CaptureMode::Entry);
+  const DepthMap map = captureDepthEmbree(scene, 32, 32, capture);
   VolumeBuildOptions o = test::refinedWithRays(oracle, 6);
   o.refineSubdivisions = 4;
   o.nearerSurfaces = oracle.nearerSurfaces();
@@ -115,6 +116,25 @@ TEST(FacePrismsVolume, TheSheetHandsTheOutlinesColumnsToThePrisms) {
   ASSERT_TRUE(blockedFromAbove(sphere, underRim));
   EXPECT_EQ(test::windingNumber(sheet, underRim - sheet.origin), 0);
   EXPECT_NE(test::windingNumber(prisms, underRim - prisms.origin), 0);
+}
+
+// Nothing to hand over: an open plate over the ground (no closed caster; front capture, what
+// --capture auto takes for it) leaves the refined quads to the sheet, and the volume is the one
+// without the hand-over, to the bit.
+TEST(FacePrismsVolume, AnOpenCasterStaysTheSheets) {
+  TriangleMesh plate = makePlane(2.0, 2.0, 1);
+  for (auto& p : plate.positions) p.y += 1.5f;
+  const Scene scene =
+      test::sceneWith({SceneObject{"ground", "plane", makePlane(8.0, 8.0, 1)}, SceneObject{"plate", "mesh", plate}});
+  const VolumeBuildResult kept = build(scene, true, false, CaptureMode::Front),
+                          handed = build(scene, true, true, CaptureMode::Front);
+  EXPECT_GT(handed.stats.refinedCells, 0u);
+  EXPECT_EQ(handed.stats.prismColumnTexels, 0u);
+  EXPECT_EQ(handed.stats.prismFaces, 0u);
+  EXPECT_TRUE(std::equal(kept.mesh.triangles.begin(), kept.mesh.triangles.end(), handed.mesh.triangles.begin(),
+                         handed.mesh.triangles.end()));
+  EXPECT_TRUE(std::equal(kept.mesh.positions.begin(), kept.mesh.positions.end(), handed.mesh.positions.begin(),
+                         handed.mesh.positions.end()));
 }
 
 }  // namespace

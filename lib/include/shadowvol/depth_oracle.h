@@ -56,6 +56,16 @@ using NearerSurfaceOracle = std::function<void(const DepthMap& map, std::span<co
 using CasterFaceOracle =
     std::function<std::vector<std::array<glm::dvec3, 3>>(const DepthMap& map, std::span<const std::uint8_t> quads)>;
 
+/// The oracles of the scene without the closed meshes that the face prisms hold whole for the map
+/// asked about (handedToPrisms, caster_faces.h): the sheet's hand-over of the prisms' columns
+/// (VolumeBuildOptions::withoutCasters; EmbreeDepthOracle::withoutCasters). `depth` answers as a
+/// DepthOracle of that scene; `nearerSurfaces` (optional) as a NearerSurfaceOracle of it (unset:
+/// the full scene's search is kept in the handed-over quads, which sub-grids them all).
+struct CasterFreeOracles {
+  DepthOracle depth;
+  NearerSurfaceOracle nearerSurfaces;
+};
+
 /// Fills every texel of `map` (its size, light matrices, planes and capture mode as given) with
 /// the oracle at the texel's centre: the map a capture by the oracle's rays stores (with
 /// EmbreeDepthOracle, captureDepthEmbree's values). Whole rows of up to 65,536 texels per oracle

@@ -121,12 +121,14 @@ struct VolumeBuildOptions {
                                 ///< cannot follow it, a thin part's self-shadow (docs/volume.md "Face
                                 ///< prisms"). Needs casterFaces. Off by default (README "Face prisms")
   CasterFaceOracle casterFaces; ///< facePrisms only: the faces (depth_oracle.h; EmbreeDepthOracle::casterFaces)
-  DepthOracle withoutCasters;   ///< facePrisms only: the capture without the closed meshes the prisms
-                                ///< hold whole (handedToPrisms in caster_faces.h; EmbreeDepthOracle::
-                                ///< withoutCasters). Set = the sheet hands the refined quads' columns
-                                ///< over to the prisms: it records that scene there, the prisms hold
-                                ///< the casters' shadow (docs/volume.md "Face prisms"); unset = the
-                                ///< sheet keeps the casters and the prisms only add shadow
+  CasterFreeOracles withoutCasters; ///< facePrisms only: the scene without the closed meshes the
+                                ///< prisms hold whole (depth_oracle.h; EmbreeDepthOracle::withoutCasters).
+                                ///< depth set = the sheet hands the prisms' columns over to them: it
+                                ///< records that scene in the refined quads where such a mesh is
+                                ///< recorded, the prisms hold its shadow (docs/volume.md "Face prisms");
+                                ///< unset = the sheet keeps the casters and the prisms only add shadow.
+                                ///< Not with crossingSource or boundaryEdgeSource; with blur the sheet
+                                ///< keeps the casters (the blur would carry the recaptured depths on)
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth
@@ -203,8 +205,9 @@ struct VolumeBuildStats {
   std::size_t prismFaces = 0;         ///< face prisms: casters' faces taken (docs/volume.md "Face prisms")
   std::size_t prismWalls = 0;         ///< face prisms: border edges of those faces, a wall each
   std::size_t prismTriangles = 0;     ///< face prisms: the part's triangles (in the mesh's count)
-  std::size_t prismColumnTexels = 0;  ///< face prisms with withoutCasters: texels handed over (one ray
-                                      ///< each, in raysCast; docs/volume.md "Face prisms")
+  std::size_t prismColumnTexels = 0;  ///< face prisms with withoutCasters: texels handed over (the
+                                      ///< refined quads' corners' rays in raysCast; docs/volume.md
+                                      ///< "Face prisms"; the hand-over's time in msPrisms)
   double biasUsed = 0.0;              ///< world units
   double msBlur = 0.0;                ///< the blur pass (ms); 0 without blur (offsets and clamp are
                                       ///< then part of the sheet passes)

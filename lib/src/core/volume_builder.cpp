@@ -192,6 +192,10 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (options.facePrisms && options.refineSteps == 0)
     throw OptionConflict("volume options", "face prisms", "true",
                          "the face prisms stand in the refined quads' columns: they need refine steps of at least 1");
+  if (options.withoutCasters.depth && (options.crossingSource || options.boundaryEdgeSource))
+    throw OptionConflict("volume options", "without casters", "set",
+                         "the hand-over to the face prisms recaptures the map and asks the rays again: it cannot "
+                         "take crossings or boundary edges from elsewhere");
   if (options.facePrisms && !options.casterFaces)
     throw InputError("volume options", "face prisms", "true",
                      "the prisms are made of the scene's faces: they need a caster-face oracle (an Embree scene on "
@@ -587,27 +591,31 @@ void VolumeBuilder::build(const DepthMap& map, const VolumeBuildOptions& options
 
 void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& options, VolumeBuildResult& result) {
   using namespace volume;
-  if (!(options.refineSteps > 0 && options.facePrisms && options.withoutCasters && map.width >= 2 && map.height >= 2)) {
+  // Not with the blur: it would carry the recaptured depths into the quads beside the prisms' columns.
+  if (!(options.refineSteps > 0 && options.facePrisms && options.withoutCasters.depth && !options.blur &&
+        map.width >= 2 && map.height >= 2)) {
     buildStages(map, options, {}, result);
     return;
   }
-  // 0p. The sheet hands the refined quads' columns over to the face prisms (volume/prism_columns.h):
-  // the refined quads of the map as captured, then the build from the map recaptured there.
+  // 0p. The sheet hands the prisms' columns over (volume/prism_columns.h): the refined quads of the
+  // map as captured, then the build from the map recaptured there (where a caster is handed over).
   const auto tStart = Clock::now();
   validateMapAndOptions(map, options);
-  SheetDepths sheet(map, SheetDepthRule(map, options.bias.value_or(defaultBias(map)), options.blurOffset));
-  if (options.blur) sheet.materialiseBlurred(scratch_->blurred);
-  const std::size_t texels = std::size_t(map.width) * std::size_t(map.height);
-  const std::span<const double> blurred =
-      options.blur ? std::span<const double>(scratch_->blurred.data(), texels) : std::span<const double>();
-  const RefinementFound found = findRefinement(sheet, options, blurred, scratch_->splitBits);
-  const auto columns =
-      std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.withoutCasters));
+  validateDepths(map);  // before any ray (stage 2 checks the recaptured map again)
+  std::shared_ptr<const PrismColumns> columns;
+  std::size_t firstRays = 0;
+  {
+    const SheetDepths sheet(map, SheetDepthRule(map, options.bias.value_or(defaultBias(map)), options.blurOffset));
+    const RefinementFound found = findRefinement(sheet, options, {}, scratch_->splitBits);
+    firstRays = found.thinRays;
+    columns = std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.withoutCasters.depth));
+  }
   const double msHandOver = msSince(tStart);
-  buildStages(columns->map, handOverColumns(options, columns), columns->quads, result);
+  if (columns->texelCount == 0) buildStages(map, options, {}, result);  // no caster to hand over
+  else buildStages(columns->map, handOverColumns(options, columns), columns->quads, result);
   VolumeBuildStats& stats = result.stats;
   stats.prismColumnTexels = columns->texelCount;
-  stats.raysCast += found.thinRays + columns->texelCount;
+  stats.raysCast += firstRays + columns->rays;
   stats.msPrisms += msHandOver;
   stats.msRefine += msHandOver;
   stats.msTotal = msSince(tStart);

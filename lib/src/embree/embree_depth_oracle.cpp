@@ -59,25 +59,32 @@ struct EmbreeDepthOracle::Impl {
     });
     return capture == CaptureMode::Entry ? closedSoups : openSoups;
   }
-  // The scene without the soups handed to the prisms (withoutCasters), for the last set asked for.
+  // The scene without the soups handed to the prisms (withoutCasters), for the last set asked for;
+  // shared with the rays still running on it when a map asks for another set.
   std::mutex withoutMutex;
   std::vector<std::uint8_t> withoutHanded;
-  std::unique_ptr<EmbreeScene> withoutScene;
-  RTCScene sceneWithout(const DepthMap& map) {
+  std::shared_ptr<const EmbreeScene> withoutScene;
+  // Per soup of soupsFor(CaptureMode::Entry): 1 where the prisms hold it whole for `map`.
+  std::vector<std::uint8_t> handedFor(const DepthMap& map) {
     const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);  // `closed` set
     std::vector<std::uint8_t> handed(closed.size());
     for (std::size_t g = 0; g < closed.size(); ++g) handed[g] = handedToPrisms(map, closed[g]);
+    return handed;
+  }
+  std::shared_ptr<const EmbreeScene> sceneWithout(const DepthMap& map) {
+    std::vector<std::uint8_t> handed = handedFor(map);
     const std::lock_guard<std::mutex> lock(withoutMutex);
     if (!withoutScene || handed != withoutHanded) {
+      const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);
       std::vector<TriangleMesh> kept;
       for (std::size_t g = 0; g < closed.size(); ++g)
         if (!handed[g]) kept.push_back(meshOf(closed[g]));
       std::vector<const TriangleMesh*> meshes;
       for (const TriangleMesh& m : kept) meshes.push_back(&m);
-      withoutScene = std::make_unique<EmbreeScene>(device, meshes);  // Embree copies the buffers
+      withoutScene = std::make_shared<const EmbreeScene>(device, meshes);  // Embree copies the buffers
       withoutHanded = std::move(handed);
     }
-    return withoutScene->get();
+    return withoutScene;
   }
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
@@ -128,12 +135,25 @@ DepthOracle EmbreeDepthOracle::oracle() const {
   };
 }
 
-DepthOracle EmbreeDepthOracle::withoutCasters() const {
+CasterFreeOracles EmbreeDepthOracle::withoutCasters() const {
   Impl* impl = impl_.get();
-  return [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
-    castOracleRays(impl->sceneWithout(map), map, ndc, depth);
+  CasterFreeOracles o;
+  o.depth = [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
+    const std::shared_ptr<const EmbreeScene> scene = impl->sceneWithout(map);
+    castOracleRays(scene->get(), map, ndc, depth);
     impl->device.throwIfError();
   };
+  o.nearerSurfaces = [impl](const DepthMap& map, std::span<const float> limit, std::span<const float> rimLimit,
+                            std::span<std::uint8_t> flags) {
+    const std::span<const TriangleSoup> soups = impl->soupsFor(map.capture);
+    const std::vector<std::uint8_t> handed = impl->handedFor(map);  // soupsFor's order either way
+    std::vector<TriangleSoup> kept;
+    for (std::size_t g = 0; g < soups.size(); ++g)
+      if (!handed[g]) kept.push_back(soups[g]);
+    findNearerSurfaces(map, kept, limit, flags);
+    if (!rimLimit.empty()) findOpenRims(map, kept, rimLimit, flags);
+  };
+  return o;
 }
 
 SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {

@@ -32,10 +32,11 @@ class EmbreeDepthOracle {
   /// The CasterFaceOracle (depth_oracle.h) of the same scene: findCasterFaces (caster_faces.h)
   /// over its triangles, the closed ones as entry capture finds them (found once, on the first call).
   CasterFaceOracle casterFaces() const;
-  /// The DepthOracle of the scene without the closed meshes that the face prisms hold whole for
-  /// the map asked about (handedToPrisms, caster_faces.h): VolumeBuildOptions::withoutCasters.
-  /// The rays of that scene (one Embree scene per set of meshes left out, kept for the next call).
-  DepthOracle withoutCasters() const;
+  /// The oracles of the scene without the closed meshes that the face prisms hold whole for the
+  /// map asked about (handedToPrisms, caster_faces.h; depth_oracle.h): VolumeBuildOptions::
+  /// withoutCasters. The depth oracle casts its rays into an Embree scene of the other meshes,
+  /// made for the last set of meshes left out and kept until a map leaves out another set.
+  CasterFreeOracles withoutCasters() const;
 
  private:
   struct Impl;

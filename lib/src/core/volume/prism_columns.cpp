@@ -44,6 +44,13 @@ void splitDepths(const DepthOracle& full, const DepthOracle& without, const Pris
 
 }  // namespace
 
+// Sets the four corner texels of quad q = qj * (W - 1) + qi in `texels`.
+void markCorners(std::vector<std::uint8_t>& texels, int w, std::uint32_t q) {
+  const std::size_t qi = q % std::uint32_t(w - 1), qj = q / std::uint32_t(w - 1);
+  const std::size_t t = qj * std::size_t(w) + qi;
+  texels[t] = texels[t + 1] = texels[t + std::size_t(w)] = texels[t + std::size_t(w) + 1] = 1;
+}
+
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
                               const DepthOracle& withoutCasters) {
   SV_CHECK(withoutCasters);
@@ -52,24 +59,37 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
   c.map = map;
   c.texels.assign(std::size_t(w) * std::size_t(h), 0);
   c.quads.assign(std::size_t(w - 1) * std::size_t(h - 1), 0);
-  for (const std::uint32_t q : refinedQuads) {
-    const std::size_t qi = q % std::uint32_t(w - 1), qj = q / std::uint32_t(w - 1);
-    const std::size_t t = qj * std::size_t(w) + qi;
-    c.texels[t] = c.texels[t + 1] = c.texels[t + std::size_t(w)] = c.texels[t + std::size_t(w) + 1] = 1;
-  }
+  // The refined quads' corners, recaptured without the casters.
+  std::vector<std::uint8_t> corners(c.texels.size(), 0);
+  for (const std::uint32_t q : refinedQuads) markCorners(corners, w, q);
   std::vector<glm::dvec2> ndc;
   std::vector<std::size_t> at;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
       const std::size_t t = std::size_t(j) * std::size_t(w) + std::size_t(i);
-      if (!c.texels[t]) continue;
+      if (!corners[t]) continue;
       ndc.push_back({(i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0});
       at.push_back(t);
     }
-  c.texelCount = at.size();
+  c.rays = at.size();
   std::vector<float> depth(ndc.size());
   if (!ndc.empty()) withoutCasters(map, ndc, depth);
-  for (std::size_t k = 0; k < at.size(); ++k) c.map.depth[at[k]] = depth[k];
+  std::vector<std::uint8_t> changed(c.texels.size(), 0);  // a handed-over mesh recorded there
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    changed[at[k]] = depth[k] != map.depth[at[k]];
+    c.map.depth[at[k]] = depth[k];
+  }
+  // The quads with such a corner hand their corners over; the other corners keep the map's value.
+  for (const std::uint32_t q : refinedQuads) {
+    const std::size_t qi = q % std::uint32_t(w - 1), qj = q / std::uint32_t(w - 1);
+    const std::size_t t = qj * std::size_t(w) + qi;
+    if (changed[t] | changed[t + 1] | changed[t + std::size_t(w)] | changed[t + std::size_t(w) + 1])
+      markCorners(c.texels, w, q);
+  }
+  for (std::size_t t = 0; t < c.texels.size(); ++t) {
+    if (!c.texels[t]) c.map.depth[t] = map.depth[t];
+    c.texelCount += c.texels[t];
+  }
   for (int qj = 0; qj + 1 < h; ++qj)
     for (int qi = 0; qi + 1 < w; ++qi) {
       const std::size_t t = std::size_t(qj) * std::size_t(w) + std::size_t(qi);
@@ -81,7 +101,7 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
 
 VolumeBuildOptions handOverColumns(const VolumeBuildOptions& options, std::shared_ptr<const PrismColumns> columns) {
   VolumeBuildOptions o = options;
-  const DepthOracle full = options.depthOracle, without = options.withoutCasters;
+  const DepthOracle full = options.depthOracle, without = options.withoutCasters.depth;
   o.depthOracle = [full, without, columns](const DepthMap& map, std::span<const glm::dvec2> ndc,
                                            std::span<float> depth) {
     splitDepths(full, without, *columns, map, ndc, depth);
@@ -100,13 +120,15 @@ VolumeBuildOptions handOverColumns(const VolumeBuildOptions& options, std::share
     };
   }
   if (options.nearerSurfaces) {
-    const NearerSurfaceOracle nearer = options.nearerSurfaces;
-    o.nearerSurfaces = [nearer, columns](const DepthMap& map, std::span<const float> limit,
-                                         std::span<const float> rimLimit, std::span<std::uint8_t> flags) {
-      std::vector<std::uint8_t> before(flags.begin(), flags.end());
+    const NearerSurfaceOracle nearer = options.nearerSurfaces, freeNearer = options.withoutCasters.nearerSurfaces;
+    o.nearerSurfaces = [nearer, freeNearer, columns](const DepthMap& map, std::span<const float> limit,
+                                                     std::span<const float> rimLimit, std::span<std::uint8_t> flags) {
+      if (!freeNearer) return nearer(map, limit, rimLimit, flags);
+      std::vector<std::uint8_t> free(flags.begin(), flags.end());
       nearer(map, limit, rimLimit, flags);
+      freeNearer(map, limit, rimLimit, free);
       for (std::size_t q = 0; q < flags.size(); ++q)
-        if (columns->quads[q]) flags[q] = before[q];  // the prisms fill it: not asked about
+        if (columns->quads[q]) flags[q] = free[q];  // the prisms hold the casters there
     };
   }
   return o;

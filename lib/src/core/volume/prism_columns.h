@@ -8,17 +8,21 @@
 // the scene without the closed casters that the prisms hold whole (handedToPrisms): the ground
 // under a caster, or the far plane; the caster's shadow there is the prisms'.
 //
-// Which columns: the refined quads of the map as captured (the first pass of stage 1r); their
-// corner texels are the handed-over texels, and a point of the light's image plane belongs to the
-// texel whose centre is nearest (a square around it; ties towards the larger index, std::lround).
-// The sheet is then built from the map with those texels recaptured, its rays (refinement's
-// bisection, the sub-grid's samples) asking the oracle without the casters inside the squares and
-// the full oracle outside; a quad with a handed-over corner and another not gets a boundary edge
-// at the squares' border, whose walls stand on the caster's interior, inside its shadow. The
-// prisms fill every quad with a handed-over corner (the handed-over squares lie in those quads).
-// The snap (surfaceEnds) is left out where either end of a query lies in a handed-over square (the
-// triangle it follows is not the one recorded there), and the hidden-surface search's flags are
-// not taken for quads the prisms fill.
+// Which columns: the refined quads of the map as captured (the first pass of stage 1r) with a
+// corner at which a handed-over mesh is recorded (its sample differs without those meshes): their
+// corner texels are the handed-over texels (a quad refined for an open mesh, or for a caster
+// between the texel centres alone, stays the sheet's). A point of the light's image plane belongs
+// to the texel whose centre is nearest (a square around it; ties towards the larger index,
+// std::lround). The sheet is then built from the map with those texels recaptured, its rays
+// (refinement's bisection, the sub-grid's samples) asking the oracle without the casters inside
+// their squares and the full oracle outside; a quad with a handed-over corner and another not gets
+// a boundary edge at the squares' border where their depths differ by more than the
+// discontinuity rule's threshold (the caster seen at the other corner), its walls within the
+// caster's shadow. The prisms fill every quad with a handed-over corner (the handed-over squares
+// lie in those quads). The snap (surfaceEnds) is not asked where either end of a query lies in a
+// handed-over square (the triangle it follows is not the one recorded there: bisection decides
+// there), and the hidden-surface search in the quads the prisms fill is the scene's without the
+// casters (CasterFreeOracles::nearerSurfaces; unset: the full scene's).
 #pragma once
 
 #include <cstddef>
@@ -36,11 +40,12 @@ struct PrismColumns {
   DepthMap map;                      ///< the map with the handed-over texels recaptured without the casters
   std::vector<std::uint8_t> texels;  ///< per texel: 1 = handed over
   std::vector<std::uint8_t> quads;   ///< per quad: 1 = a handed-over corner (the prisms' columns)
-  std::size_t texelCount = 0;        ///< handed-over texels (each one ray of the oracle without the casters)
+  std::size_t texelCount = 0;        ///< handed-over texels
+  std::size_t rays = 0;              ///< rays of the oracle without the casters (the refined quads' corners)
 };
 
 /// The columns of `refinedQuads` (quad indices qj * (W - 1) + qi) handed over, the map recaptured
-/// there by `withoutCasters`.
+/// there by `withoutCasters` (see the header comment); texelCount 0 where none is.
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
                               const DepthOracle& withoutCasters);
 
