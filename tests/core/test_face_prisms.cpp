@@ -3,6 +3,7 @@
 // a directional light straight down (from y = 5, far plane 6: the far plane is y = -1).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -88,16 +89,28 @@ TEST(PrismColumns, TheRefinedQuadsWithACasterAreRecapturedWithoutIt) {
     ++withoutCalls;
     for (std::size_t k = 0; k < ndc.size(); ++k) d[k] = ndc[k].y < 0.0 ? 5.0f : 3.0f;
   };
-  const std::uint32_t q = 2 * 7 + 3, kept = 5 * 7 + 3;  // quads (3, 2): texels (3..4, 2..3); (3, 5)
-  const auto columns =
-      std::make_shared<const volume::PrismColumns>(volume::findPrismColumns(map, {{q, kept}}, without));
-  EXPECT_EQ(withoutCalls, 1);
-  EXPECT_EQ(columns->rays, 8u);
-  EXPECT_EQ(columns->texelCount, 4u);
-  VolumeBuildOptions o;
-  o.depthOracle = [](const DepthMap&, std::span<const glm::dvec2>, std::span<float> d) {
+  // The whole scene's oracle: 3 everywhere, the map a few ulps apart (a GPU's light pass).
+  const DepthOracle full = [](const DepthMap&, std::span<const glm::dvec2>, std::span<float> d) {
     std::fill(d.begin(), d.end(), 3.0f);
   };
+  for (float& d : map.depth) d = std::nextafter(d, 4.0f);
+  const std::uint32_t q = 2 * 7 + 3, kept = 5 * 7 + 3;  // quads (3, 2): texels (3..4, 2..3); (3, 5)
+  const auto columns =
+      std::make_shared<const volume::PrismColumns>(volume::findPrismColumns(map, {{q, kept}}, full, without));
+  EXPECT_EQ(withoutCalls, 1);
+  EXPECT_EQ(columns->rays, 16u);
+  EXPECT_EQ(columns->texelCount, 4u);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) {
+      const bool handed = i >= 3 && i <= 4 && j >= 2 && j <= 3;
+      EXPECT_EQ(columns->texels[std::size_t(j * 8 + i)], handed ? 1 : 0) << i << " " << j;
+      EXPECT_EQ(columns->map.at(i, j), handed ? 5.0f : std::nextafter(3.0f, 4.0f)) << i << " " << j;
+    }
+  for (int qj = 0; qj < 7; ++qj)
+    for (int qi = 0; qi < 7; ++qi)  // every quad with a corner among those texels
+      EXPECT_EQ(columns->quads[std::size_t(qj * 7 + qi)], qi >= 2 && qi <= 4 && qj >= 1 && qj <= 3 ? 1 : 0);
+  VolumeBuildOptions o;
+  o.depthOracle = full;
   o.withoutCasters.depth = without;
   const VolumeBuildOptions h = volume::handOverColumns(o, columns);
   const auto ndc = [](double i, double j) { return glm::dvec2((i + 0.5) / 8 * 2 - 1, (j + 0.5) / 8 * 2 - 1); };

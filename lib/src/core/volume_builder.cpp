@@ -608,7 +608,8 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     const SheetDepths sheet(map, SheetDepthRule(map, options.bias.value_or(defaultBias(map)), options.blurOffset));
     const RefinementFound found = findRefinement(sheet, options, {}, scratch_->splitBits);
     firstRays = found.thinRays;
-    columns = std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.withoutCasters.depth));
+    columns = std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.depthOracle,
+                                                                         options.withoutCasters.depth));
   }
   const double msHandOver = msSince(tStart);
   if (columns->texelCount == 0) buildStages(map, options, {}, result);  // no caster to hand over

@@ -52,7 +52,8 @@ void markCorners(std::vector<std::uint8_t>& texels, int w, std::uint32_t q) {
 }
 
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
-                              const DepthOracle& withoutCasters) {
+                              const DepthOracle& full, const DepthOracle& withoutCasters) {
+  SV_CHECK(full);
   SV_CHECK(withoutCasters);
   const int w = map.width, h = map.height;
   PrismColumns c;
@@ -71,12 +72,17 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
       ndc.push_back({(i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0});
       at.push_back(t);
     }
-  c.rays = at.size();
-  std::vector<float> depth(ndc.size());
-  if (!ndc.empty()) withoutCasters(map, ndc, depth);
-  std::vector<std::uint8_t> changed(c.texels.size(), 0);  // a handed-over mesh recorded there
+  // Both oracles' rays (the map may come from another capture, a GPU's light pass, whose depths
+  // differ from the rays' in their last bits): a handed-over mesh is recorded where they differ.
+  c.rays = 2 * at.size();
+  std::vector<float> depth(ndc.size()), withAll(ndc.size());
+  if (!ndc.empty()) {
+    withoutCasters(map, ndc, depth);
+    full(map, ndc, withAll);
+  }
+  std::vector<std::uint8_t> changed(c.texels.size(), 0);
   for (std::size_t k = 0; k < at.size(); ++k) {
-    changed[at[k]] = depth[k] != map.depth[at[k]];
+    changed[at[k]] = depth[k] != withAll[k];
     c.map.depth[at[k]] = depth[k];
   }
   // The quads with such a corner hand their corners over; the other corners keep the map's value.

@@ -9,7 +9,8 @@
 // under a caster, or the far plane; the caster's shadow there is the prisms'.
 //
 // Which columns: the refined quads of the map as captured (the first pass of stage 1r) with a
-// corner at which a handed-over mesh is recorded (its sample differs without those meshes): their
+// corner at which a handed-over mesh is recorded (the oracles with and without those meshes differ
+// there): their
 // corner texels are the handed-over texels (a quad refined for an open mesh, or for a caster
 // between the texel centres alone, stays the sheet's). A point of the light's image plane belongs
 // to the texel whose centre is nearest (a square around it; ties towards the larger index,
@@ -41,13 +42,16 @@ struct PrismColumns {
   std::vector<std::uint8_t> texels;  ///< per texel: 1 = handed over
   std::vector<std::uint8_t> quads;   ///< per quad: 1 = a handed-over corner (the prisms' columns)
   std::size_t texelCount = 0;        ///< handed-over texels
-  std::size_t rays = 0;              ///< rays of the oracle without the casters (the refined quads' corners)
+  std::size_t rays = 0;              ///< rays cast: the refined quads' corners, by both oracles
 };
 
 /// The columns of `refinedQuads` (quad indices qj * (W - 1) + qi) handed over, the map recaptured
-/// there by `withoutCasters` (see the header comment); texelCount 0 where none is.
+/// there by `withoutCasters` (see the header comment): a quad's corner records a handed-over mesh
+/// where `withoutCasters` and `full` (the oracle of the whole scene) answer differently at its
+/// centre (not the map's value, which a GPU's light pass may have stored a few ulps apart).
+/// texelCount 0 where none is handed over.
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
-                              const DepthOracle& withoutCasters);
+                              const DepthOracle& full, const DepthOracle& withoutCasters);
 
 /// `options` with its oracles answering for the handed-over map (see the header comment); the
 /// returned oracles refer to `columns`, which they keep alive.
