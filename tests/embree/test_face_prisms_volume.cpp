@@ -137,5 +137,39 @@ TEST(FacePrismsVolume, AnOpenCasterStaysTheSheets) {
                          handed.mesh.positions.end()));
 }
 
+// An open plate over the sphere stays the sheet's wherever it is recorded: under front capture
+// (what --capture auto takes for a scene with an open mesh) everywhere, under entry capture where
+// the sphere's back face lies behind it (entry capture records no open face with no back face
+// behind it: beyond the sphere's outline the plate is not in the map, with or without the prisms).
+// Between the plate and the sphere its shadow is kept; the union is the exact shadow of both.
+TEST(FacePrismsVolume, AnOpenPlateRecordedInFrontOfAHandedMeshKeepsItsShadow) {
+  TriangleMesh plate = makePlane(1.2, 1.2, 1);
+  for (auto& p : plate.positions) p += glm::vec3(0.6f, 3.6f, 0.0f);
+  Scene scene = sphereOverGround();
+  scene.objects.push_back(SceneObject{"plate", "mesh", plate});
+  for (const CaptureMode capture : {CaptureMode::Front, CaptureMode::Entry}) {
+    const VolumeBuildResult with = build(scene, true, true, capture);
+    ASSERT_EQ(with.mesh.partCount(), 2u);
+    EXPECT_GT(with.stats.prismColumnTexels, 0u);
+    const VolumeMesh sheet = with.mesh.partMesh(0), prisms = with.mesh.partMesh(1);
+    const glm::dvec3 centre(0.0, 2.0, 0.0);
+    const double xMax = capture == CaptureMode::Entry ? 0.85 : 1.6;  // entry: where the sphere lies behind
+    int plateOnly = 0;
+    for (double x = -1.6; x <= xMax; x += 0.05)
+      for (double y : {0.5, 1.2, 3.1, 3.3})
+        for (double z : {-0.33, 0.0, 0.41}) {
+          const glm::dvec3 p(x, y, z);
+          if (std::abs(glm::length(p - centre) - 1.0) < 0.05 || glm::length(p - centre) < 1.0) continue;
+          if (std::abs(x) < 0.03 || std::abs(x - 1.2) < 0.03) continue;  // the plate's edges' own ties
+          const bool inside = test::windingNumber(sheet, p - sheet.origin) != 0 ||
+                              test::windingNumber(prisms, p - prisms.origin) != 0;
+          const bool bySphere = blockedFromAbove(scene.objects[1].mesh, p), byPlate = blockedFromAbove(plate, p);
+          EXPECT_EQ(inside, bySphere || byPlate) << toString(capture) << " " << x << " " << y << " " << z;
+          plateOnly += byPlate && !bySphere;
+        }
+    EXPECT_GT(plateOnly, 10) << toString(capture);  // the plate's own shadow was looked at
+  }
+}
+
 }  // namespace
 }  // namespace shadowvol

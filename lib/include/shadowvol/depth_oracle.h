@@ -56,13 +56,20 @@ using NearerSurfaceOracle = std::function<void(const DepthMap& map, std::span<co
 using CasterFaceOracle =
     std::function<std::vector<std::array<glm::dvec3, 3>>(const DepthMap& map, std::span<const std::uint8_t> quads)>;
 
-/// The oracles of the scene without the closed meshes that the face prisms hold whole for the map
-/// asked about (handedToPrisms, caster_faces.h): the sheet's hand-over of the prisms' columns
-/// (VolumeBuildOptions::withoutCasters; EmbreeDepthOracle::withoutCasters). `depth` answers as a
-/// DepthOracle of that scene; `nearerSurfaces` (optional) as a NearerSurfaceOracle of it (unset:
-/// the full scene's search is kept in the handed-over quads, which sub-grids them all).
+/// The sheet's hand-over of the face prisms' columns (VolumeBuildOptions::withoutCasters): for each
+/// k, handed[k] = 1 where the map's capture records, on the light ray through light NDC ndc[k], a
+/// closed mesh that the prisms hold whole for this map (handedToPrisms, caster_faces.h), and then
+/// depth[k] = what the capture of the scene without those meshes records there; handed[k] = 0 and
+/// depth[k] = the capture's own record elsewhere (and always for midpoint capture, which records
+/// no single surface). Same calling rules as DepthOracle; handed.size() == depth.size() == ndc.size().
+using HandOverOracle = std::function<void(const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth,
+                                          std::span<std::uint8_t> handed)>;
+
+/// The oracles of the hand-over (EmbreeDepthOracle::withoutCasters): `depth` as above;
+/// `nearerSurfaces` (optional) a NearerSurfaceOracle of the scene without the handed-over meshes,
+/// asked about the quads the prisms fill (unset: the whole scene's search is kept there).
 struct CasterFreeOracles {
-  DepthOracle depth;
+  HandOverOracle depth;
   NearerSurfaceOracle nearerSurfaces;
 };
 

@@ -121,14 +121,15 @@ struct VolumeBuildOptions {
                                 ///< cannot follow it, a thin part's self-shadow (docs/volume.md "Face
                                 ///< prisms"). Needs casterFaces. Off by default (README "Face prisms")
   CasterFaceOracle casterFaces; ///< facePrisms only: the faces (depth_oracle.h; EmbreeDepthOracle::casterFaces)
-  CasterFreeOracles withoutCasters; ///< facePrisms only: the scene without the closed meshes the
-                                ///< prisms hold whole (depth_oracle.h; EmbreeDepthOracle::withoutCasters).
-                                ///< depth set = the sheet hands the prisms' columns over to them: it
-                                ///< records that scene in the refined quads where such a mesh is
-                                ///< recorded, the prisms hold its shadow (docs/volume.md "Face prisms");
+  CasterFreeOracles withoutCasters; ///< facePrisms only: the hand-over's oracles (depth_oracle.h;
+                                ///< EmbreeDepthOracle::withoutCasters). depth set = the sheet hands the
+                                ///< prisms' columns over to them: in the refined quads where a closed
+                                ///< mesh they hold whole is recorded, it records the scene without it
+                                ///< and the prisms hold its shadow (docs/volume.md "Face prisms");
                                 ///< unset = the sheet keeps the casters and the prisms only add shadow.
-                                ///< Not with crossingSource or boundaryEdgeSource; with blur the sheet
-                                ///< keeps the casters (the blur would carry the recaptured depths on)
+                                ///< With facePrisms, refused with crossingSource or boundaryEdgeSource;
+                                ///< with blur the sheet keeps the casters (the blur would carry the
+                                ///< recaptured depths on)
 };
 
 /// Largest VolumeBuildOptions::refineSteps: 2^-16 of a texel is far below anything a float depth

@@ -192,7 +192,7 @@ void validateMapAndOptions(const DepthMap& map, const VolumeBuildOptions& option
   if (options.facePrisms && options.refineSteps == 0)
     throw OptionConflict("volume options", "face prisms", "true",
                          "the face prisms stand in the refined quads' columns: they need refine steps of at least 1");
-  if (options.withoutCasters.depth && (options.crossingSource || options.boundaryEdgeSource))
+  if (options.facePrisms && options.withoutCasters.depth && (options.crossingSource || options.boundaryEdgeSource))
     throw OptionConflict("volume options", "without casters", "set",
                          "the hand-over to the face prisms recaptures the map and asks the rays again: it cannot "
                          "take crossings or boundary edges from elsewhere");
@@ -525,18 +525,16 @@ void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const R
   stats.subgridSplitTriangles = mesh.positions.size() - (base.subgrid + r.sub.positions.size());
 }
 
-// Stage 7f: the casters' faces in the columns of the refined quads, or of the quads handed over
-// to them (prismQuads, stage 0p), by the oracle's selection, and their prisms, appended as the
-// mesh's second part.
+// Stage 7f: the casters' faces in the columns of the refined quads and of the quads handed over to
+// them (prismQuads, stage 0p), by the oracle's selection, and their prisms, appended as the mesh's
+// second part.
 void appendPrismPart(const DepthMap& map, const volume::RefinedQuads& quads, std::span<const std::uint8_t> prismQuads,
                      const VolumeBuildOptions& options, VolumeMesh& mesh, VolumeBuildStats& stats) {
   const auto t0 = volume::Clock::now();
   std::vector<std::uint8_t> flags(prismQuads.begin(), prismQuads.end());
-  if (prismQuads.empty()) {
-    flags.assign(stats.quads, 0);
-    for (const std::uint32_t q : quads.quads) flags[q] = 1;
-  }
+  if (prismQuads.empty()) flags.assign(stats.quads, 0);
   SV_CHECK_EQ(flags.size(), stats.quads);
+  for (const std::uint32_t q : quads.quads) flags[q] = 1;  // the build's refined quads too (a thin part's)
   const std::vector<std::array<glm::dvec3, 3>> faces = options.casterFaces(map, flags);
   const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
   stats.prismFaces = c.faces;
@@ -608,8 +606,7 @@ void VolumeBuilder::buildInto(const DepthMap& map, const VolumeBuildOptions& opt
     const SheetDepths sheet(map, SheetDepthRule(map, options.bias.value_or(defaultBias(map)), options.blurOffset));
     const RefinementFound found = findRefinement(sheet, options, {}, scratch_->splitBits);
     firstRays = found.thinRays;
-    columns = std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.depthOracle,
-                                                                         options.withoutCasters.depth));
+    columns = std::make_shared<const PrismColumns>(findPrismColumns(map, found.quads.quads, options.withoutCasters.depth));
   }
   const double msHandOver = msSince(tStart);
   if (columns->texelCount == 0) buildStages(map, options, {}, result);  // no caster to hand over

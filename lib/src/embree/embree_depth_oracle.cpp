@@ -1,10 +1,13 @@
 #include "shadowvol/embree/embree_depth_oracle.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <vector>
 
+#include <glm/mat4x4.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -59,32 +62,47 @@ struct EmbreeDepthOracle::Impl {
     });
     return capture == CaptureMode::Entry ? closedSoups : openSoups;
   }
-  // The scene without the soups handed to the prisms (withoutCasters), for the last set asked for;
-  // shared with the rays still running on it when a map asks for another set.
-  std::mutex withoutMutex;
-  std::vector<std::uint8_t> withoutHanded;
-  std::shared_ptr<const EmbreeScene> withoutScene;
-  // Per soup of soupsFor(CaptureMode::Entry): 1 where the prisms hold it whole for `map`.
-  std::vector<std::uint8_t> handedFor(const DepthMap& map) {
-    const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);  // `closed` set
-    std::vector<std::uint8_t> handed(closed.size());
-    for (std::size_t g = 0; g < closed.size(); ++g) handed[g] = handedToPrisms(map, closed[g]);
-    return handed;
-  }
-  std::shared_ptr<const EmbreeScene> sceneWithout(const DepthMap& map) {
-    std::vector<std::uint8_t> handed = handedFor(map);
-    const std::lock_guard<std::mutex> lock(withoutMutex);
-    if (!withoutScene || handed != withoutHanded) {
-      const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);
-      std::vector<TriangleMesh> kept;
-      for (std::size_t g = 0; g < closed.size(); ++g)
-        if (!handed[g]) kept.push_back(meshOf(closed[g]));
-      std::vector<const TriangleMesh*> meshes;
-      for (const TriangleMesh& m : kept) meshes.push_back(&m);
-      withoutScene = std::make_shared<const EmbreeScene>(device, meshes);  // Embree copies the buffers
-      withoutHanded = std::move(handed);
+  // The hand-over's set for one light (withoutCasters): which soups the prisms hold whole, by
+  // geometry ID, and the Embree scene of the others. Kept for the last light asked about (shared
+  // with the rays still running on it when another light asks).
+  struct HandOverSet {
+    glm::dmat4 view{}, projection{};
+    double nearPlane = 0.0, farPlane = 0.0;
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> soupHanded;      // per soup
+    std::vector<std::uint8_t> geometryHanded;  // per geometry ID
+    std::unique_ptr<EmbreeScene> without;
+    bool sameLight(const DepthMap& m) const {
+      return view == m.lightView && projection == m.lightProjection && nearPlane == m.nearPlane &&
+             farPlane == m.farPlane && width == m.width && height == m.height;
     }
-    return withoutScene;
+  };
+  std::vector<unsigned> soupGeometry;  // per soup: its geometry ID
+  std::mutex handOverMutex;
+  std::shared_ptr<const HandOverSet> handOver;
+  std::shared_ptr<const HandOverSet> handOverFor(const DepthMap& map) {
+    const std::lock_guard<std::mutex> lock(handOverMutex);
+    if (handOver && handOver->sameLight(map)) return handOver;
+    const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);  // `closed` set
+    auto set = std::make_shared<HandOverSet>();
+    set->view = map.lightView;
+    set->projection = map.lightProjection;
+    set->nearPlane = map.nearPlane;
+    set->farPlane = map.farPlane;
+    set->width = map.width;
+    set->height = map.height;
+    set->soupHanded.resize(closed.size());
+    set->geometryHanded.assign(scene.geometryCount(), 0);
+    std::vector<TriangleMesh> kept;
+    for (std::size_t g = 0; g < closed.size(); ++g) {
+      set->soupHanded[g] = set->geometryHanded[soupGeometry[g]] = handedToPrisms(map, closed[g]);
+      if (!set->soupHanded[g]) kept.push_back(meshOf(closed[g]));
+    }
+    std::vector<const TriangleMesh*> meshes;
+    for (const TriangleMesh& m : kept) meshes.push_back(&m);
+    set->without = std::make_unique<EmbreeScene>(device, meshes);  // Embree copies the buffers
+    handOver = set;
+    return handOver;
   }
   static std::vector<const TriangleMesh*> meshesOf(const Scene& s) {
     std::vector<const TriangleMesh*> meshes;
@@ -97,6 +115,7 @@ struct EmbreeDepthOracle::Impl {
       RTCGeometry geom = rtcGetGeometry(scene.get(), unsigned(g));
       const auto* v = static_cast<const float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
       const auto* i = static_cast<const std::uint32_t*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_INDEX, 0));
+      if (v && i && !m.triangles.empty()) soupGeometry.push_back(unsigned(g));
       if (v && i && !m.triangles.empty())
         soups.push_back({std::span<const float>(v, 3 * m.positions.size()), std::span<const std::uint32_t>(i, 3 * m.triangles.size()),
                          false, {}});
@@ -138,18 +157,39 @@ DepthOracle EmbreeDepthOracle::oracle() const {
 CasterFreeOracles EmbreeDepthOracle::withoutCasters() const {
   Impl* impl = impl_.get();
   CasterFreeOracles o;
-  o.depth = [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth) {
-    const std::shared_ptr<const EmbreeScene> scene = impl->sceneWithout(map);
-    castOracleRays(scene->get(), map, ndc, depth);
+  o.depth = [impl](const DepthMap& map, std::span<const glm::dvec2> ndc, std::span<float> depth,
+                   std::span<std::uint8_t> handed) {
+    SV_CHECK_EQ(ndc.size(), depth.size());
+    SV_CHECK_EQ(ndc.size(), handed.size());
+    std::fill(handed.begin(), handed.end(), std::uint8_t(0));
+    if (map.capture == CaptureMode::Midpoint) {  // no single surface recorded: nothing handed over
+      castOracleRays(impl->scene.get(), map, ndc, depth);
+      impl->device.throwIfError();
+      return;
+    }
+    const std::shared_ptr<const Impl::HandOverSet> set = impl->handOverFor(map);
+    const TexelUnprojector unproject(map);
+    const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
+        const TexelUnprojector::Ray ray = unproject.ray(i, j);
+        const CapturedHit hit = captureHit(impl->scene.get(), ray, tNear, tFar, map.capture);
+        depth[k] = hit.depth;
+        if (hit.geomID == RTC_INVALID_GEOMETRY_ID || !set->geometryHanded[hit.geomID]) continue;
+        handed[k] = 1;
+        depth[k] = captureRay(set->without->get(), ray, tNear, tFar, map.capture);
+      }
+    });
     impl->device.throwIfError();
   };
   o.nearerSurfaces = [impl](const DepthMap& map, std::span<const float> limit, std::span<const float> rimLimit,
                             std::span<std::uint8_t> flags) {
     const std::span<const TriangleSoup> soups = impl->soupsFor(map.capture);
-    const std::vector<std::uint8_t> handed = impl->handedFor(map);  // soupsFor's order either way
+    const std::shared_ptr<const Impl::HandOverSet> set = impl->handOverFor(map);  // soupsFor's order either way
     std::vector<TriangleSoup> kept;
     for (std::size_t g = 0; g < soups.size(); ++g)
-      if (!handed[g]) kept.push_back(soups[g]);
+      if (!set->soupHanded[g]) kept.push_back(soups[g]);
     findNearerSurfaces(map, kept, limit, flags);
     if (!rimLimit.empty()) findOpenRims(map, kept, rimLimit, flags);
   };

@@ -32,10 +32,10 @@ class EmbreeDepthOracle {
   /// The CasterFaceOracle (depth_oracle.h) of the same scene: findCasterFaces (caster_faces.h)
   /// over its triangles, the closed ones as entry capture finds them (found once, on the first call).
   CasterFaceOracle casterFaces() const;
-  /// The oracles of the scene without the closed meshes that the face prisms hold whole for the
-  /// map asked about (handedToPrisms, caster_faces.h; depth_oracle.h): VolumeBuildOptions::
-  /// withoutCasters. The depth oracle casts its rays into an Embree scene of the other meshes,
-  /// made for the last set of meshes left out and kept until a map leaves out another set.
+  /// The hand-over's oracles (depth_oracle.h; VolumeBuildOptions::withoutCasters): one ray of the
+  /// capture per point, and where it records a mesh handed to the prisms (handedToPrisms,
+  /// caster_faces.h), one more into an Embree scene of the other meshes (made for the last set of
+  /// meshes left out, kept until a map leaves out another set; the set itself kept per light).
   CasterFreeOracles withoutCasters() const;
 
  private:

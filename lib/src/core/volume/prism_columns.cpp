@@ -23,8 +23,9 @@ bool handedAt(const PrismColumns& c, glm::dvec2 ndc) {
   return c.texels[std::size_t(texel(j, m.height)) * std::size_t(m.width) + std::size_t(texel(i, m.width))] != 0;
 }
 
-// The full oracle's depths outside the handed-over squares and the other's inside, in one call each.
-void splitDepths(const DepthOracle& full, const DepthOracle& without, const PrismColumns& c, const DepthMap& map,
+// The full oracle's depths outside the handed-over squares and the hand-over oracle's inside (the
+// caster-free record where a handed-over mesh is recorded), in one call each.
+void splitDepths(const DepthOracle& full, const HandOverOracle& handOver, const PrismColumns& c, const DepthMap& map,
                  std::span<const glm::dvec2> ndc, std::span<float> depth) {
   SV_CHECK_EQ(ndc.size(), depth.size());
   std::array<std::vector<glm::dvec2>, 2> points;
@@ -37,7 +38,12 @@ void splitDepths(const DepthOracle& full, const DepthOracle& without, const Pris
   for (int s = 0; s < 2; ++s) {
     if (points[s].empty()) continue;
     std::vector<float> d(points[s].size());
-    (s ? without : full)(map, points[s], d);
+    if (s) {
+      std::vector<std::uint8_t> handed(d.size());
+      handOver(map, points[s], d, handed);
+    } else {
+      full(map, points[s], d);
+    }
     for (std::size_t k = 0; k < d.size(); ++k) depth[at[s][k]] = d[k];
   }
 }
@@ -52,15 +58,14 @@ void markCorners(std::vector<std::uint8_t>& texels, int w, std::uint32_t q) {
 }
 
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
-                              const DepthOracle& full, const DepthOracle& withoutCasters) {
-  SV_CHECK(full);
-  SV_CHECK(withoutCasters);
+                              const HandOverOracle& handOver) {
+  SV_CHECK(handOver);
   const int w = map.width, h = map.height;
   PrismColumns c;
   c.map = map;
   c.texels.assign(std::size_t(w) * std::size_t(h), 0);
   c.quads.assign(std::size_t(w - 1) * std::size_t(h - 1), 0);
-  // The refined quads' corners, recaptured without the casters.
+  // The refined quads' corners: where a handed-over mesh is recorded, its caster-free record.
   std::vector<std::uint8_t> corners(c.texels.size(), 0);
   for (const std::uint32_t q : refinedQuads) markCorners(corners, w, q);
   std::vector<glm::dvec2> ndc;
@@ -72,18 +77,16 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
       ndc.push_back({(i + 0.5) / w * 2.0 - 1.0, (j + 0.5) / h * 2.0 - 1.0});
       at.push_back(t);
     }
-  // Both oracles' rays (the map may come from another capture, a GPU's light pass, whose depths
-  // differ from the rays' in their last bits): a handed-over mesh is recorded where they differ.
-  c.rays = 2 * at.size();
-  std::vector<float> depth(ndc.size()), withAll(ndc.size());
-  if (!ndc.empty()) {
-    withoutCasters(map, ndc, depth);
-    full(map, ndc, withAll);
-  }
+  std::vector<float> depth(ndc.size());
+  std::vector<std::uint8_t> handed(ndc.size(), 0);
+  if (!ndc.empty()) handOver(map, ndc, depth, handed);
   std::vector<std::uint8_t> changed(c.texels.size(), 0);
+  c.rays = at.size();
   for (std::size_t k = 0; k < at.size(); ++k) {
-    changed[at[k]] = depth[k] != withAll[k];
+    if (!handed[k]) continue;
+    changed[at[k]] = 1;
     c.map.depth[at[k]] = depth[k];
+    ++c.rays;  // the caster-free ray
   }
   // The quads with such a corner hand their corners over; the other corners keep the map's value.
   for (const std::uint32_t q : refinedQuads) {
@@ -92,10 +95,7 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
     if (changed[t] | changed[t + 1] | changed[t + std::size_t(w)] | changed[t + std::size_t(w) + 1])
       markCorners(c.texels, w, q);
   }
-  for (std::size_t t = 0; t < c.texels.size(); ++t) {
-    if (!c.texels[t]) c.map.depth[t] = map.depth[t];
-    c.texelCount += c.texels[t];
-  }
+  for (const std::uint8_t t : c.texels) c.texelCount += t;
   for (int qj = 0; qj + 1 < h; ++qj)
     for (int qi = 0; qi + 1 < w; ++qi) {
       const std::size_t t = std::size_t(qj) * std::size_t(w) + std::size_t(qi);
@@ -107,7 +107,8 @@ PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t
 
 VolumeBuildOptions handOverColumns(const VolumeBuildOptions& options, std::shared_ptr<const PrismColumns> columns) {
   VolumeBuildOptions o = options;
-  const DepthOracle full = options.depthOracle, without = options.withoutCasters.depth;
+  const DepthOracle full = options.depthOracle;
+  const HandOverOracle without = options.withoutCasters.depth;
   o.depthOracle = [full, without, columns](const DepthMap& map, std::span<const glm::dvec2> ndc,
                                            std::span<float> depth) {
     splitDepths(full, without, *columns, map, ndc, depth);

@@ -9,21 +9,25 @@
 // under a caster, or the far plane; the caster's shadow there is the prisms'.
 //
 // Which columns: the refined quads of the map as captured (the first pass of stage 1r) with a
-// corner at which a handed-over mesh is recorded (the oracles with and without those meshes differ
-// there): their
-// corner texels are the handed-over texels (a quad refined for an open mesh, or for a caster
-// between the texel centres alone, stays the sheet's). A point of the light's image plane belongs
-// to the texel whose centre is nearest (a square around it; ties towards the larger index,
-// std::lround). The sheet is then built from the map with those texels recaptured, its rays
-// (refinement's bisection, the sub-grid's samples) asking the oracle without the casters inside
-// their squares and the full oracle outside; a quad with a handed-over corner and another not gets
-// a boundary edge at the squares' border where their depths differ by more than the
-// discontinuity rule's threshold (the caster seen at the other corner), its walls within the
-// caster's shadow. The prisms fill every quad with a handed-over corner (the handed-over squares
-// lie in those quads). The snap (surfaceEnds) is not asked where either end of a query lies in a
-// handed-over square (the triangle it follows is not the one recorded there: bisection decides
-// there), and the hidden-surface search in the quads the prisms fill is the scene's without the
-// casters (CasterFreeOracles::nearerSurfaces; unset: the full scene's).
+// corner at which the capture records a handed-over mesh (the hand-over oracle says so: the
+// recorded hit's mesh, so an open mesh recorded in front of a handed one, or entry capture's front
+// face before a handed mesh's back face, stays recorded); their corner texels are the handed-over
+// texels, and a quad refined for an open mesh, or for a caster between the texel centres alone,
+// stays the sheet's. A point of the light's image plane belongs to the texel whose centre is
+// nearest (a square around it; a tie may go either way: both texels are corners of the quads the
+// prisms fill). The sheet is then built from the map with the handed-over texels recaptured: its
+// rays (refinement's bisection, the sub-grid's samples) ask the hand-over oracle inside those
+// squares (the caster-free record where a handed-over mesh is recorded, the capture's own
+// elsewhere) and the full oracle outside. A quad with a handed-over corner and another that sees
+// the caster gets a boundary edge at the squares' border where their depths differ by more than
+// the discontinuity rule's threshold, its walls within the caster's shadow. The prisms fill every
+// quad with a handed-over corner (the handed-over squares lie in those quads) and, as without the
+// hand-over, the refined quads of the build. The snap's (surfaceEnds) answers are dropped where
+// either end of a query lies in a handed-over square (the triangle it follows may not be the one
+// recorded there: bisection decides there), and the hidden-surface search in the quads the prisms
+// fill looks at the scene without the handed-over meshes (CasterFreeOracles::nearerSurfaces; unset:
+// the whole scene's flags are kept there). Midpoint capture records no single mesh: nothing is
+// handed over.
 #pragma once
 
 #include <cstddef>
@@ -42,16 +46,13 @@ struct PrismColumns {
   std::vector<std::uint8_t> texels;  ///< per texel: 1 = handed over
   std::vector<std::uint8_t> quads;   ///< per quad: 1 = a handed-over corner (the prisms' columns)
   std::size_t texelCount = 0;        ///< handed-over texels
-  std::size_t rays = 0;              ///< rays cast: the refined quads' corners, by both oracles
+  std::size_t rays = 0;              ///< rays cast: one per refined quad's corner, one more where handed over
 };
 
-/// The columns of `refinedQuads` (quad indices qj * (W - 1) + qi) handed over, the map recaptured
-/// there by `withoutCasters` (see the header comment): a quad's corner records a handed-over mesh
-/// where `withoutCasters` and `full` (the oracle of the whole scene) answer differently at its
-/// centre (not the map's value, which a GPU's light pass may have stored a few ulps apart).
-/// texelCount 0 where none is handed over.
+/// The columns of `refinedQuads` (quad indices qj * (W - 1) + qi) handed over and the map
+/// recaptured there by `handOver` (see the header comment); texelCount 0 where none is.
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
-                              const DepthOracle& full, const DepthOracle& withoutCasters);
+                              const HandOverOracle& handOver);
 
 /// `options` with its oracles answering for the handed-over map (see the header comment); the
 /// returned oracles refer to `columns`, which they keep alive.
