@@ -48,14 +48,14 @@ void splitDepths(const DepthOracle& full, const HandOverOracle& handOver, const 
   }
 }
 
-}  // namespace
-
 // Sets the four corner texels of quad q = qj * (W - 1) + qi in `texels`.
 void markCorners(std::vector<std::uint8_t>& texels, int w, std::uint32_t q) {
   const std::size_t qi = q % std::uint32_t(w - 1), qj = q / std::uint32_t(w - 1);
   const std::size_t t = qj * std::size_t(w) + qi;
   texels[t] = texels[t + 1] = texels[t + std::size_t(w)] = texels[t + std::size_t(w) + 1] = 1;
 }
+
+}  // namespace
 
 PrismColumns findPrismColumns(const DepthMap& map, std::span<const std::uint32_t> refinedQuads,
                               const HandOverOracle& handOver) {
