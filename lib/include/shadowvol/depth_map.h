@@ -97,6 +97,11 @@ struct DepthMap {
   /// Continuous texel coordinates (i, j) of a world point, texel centres at integers; the light's
   /// window spans [-0.5, W - 0.5] x [-0.5, H - 0.5].
   glm::dvec2 texelOf(const glm::dvec3& world) const;
+  /// The same coordinates of a point given in light NDC (x, y in [-1, 1] across the window): the
+  /// rule of the depth oracles' rays and of the face prisms' hand-over.
+  glm::dvec2 texelOfNdc(glm::dvec2 ndc) const {
+    return {(ndc.x + 1.0) * 0.5 * width - 0.5, (ndc.y + 1.0) * 0.5 * height - 0.5};
+  }
 
   std::size_t hitCount() const;  ///< texels that are not kNoHit
 };

@@ -63,8 +63,9 @@ std::vector<ViewVertex> imageOf(const DepthMap& map, const TriangleSoup& mesh) {
       v.inRange = depth > map.nearPlane && depth < map.farPlane;
       if (!v.inRange) continue;
       const glm::dvec4 c = projection * glm::dvec4(v.view, 1.0);
-      v.x = (c.x / c.w + 1.0) * 0.5 * map.width - 0.5;
-      v.y = (c.y / c.w + 1.0) * 0.5 * map.height - 0.5;
+      const glm::dvec2 t = map.texelOfNdc({c.x / c.w, c.y / c.w});
+      v.x = t.x;
+      v.y = t.y;
     }
   });
   return image;

@@ -133,9 +133,8 @@ void castOracleRays(RTCScene scene, const DepthMap& map, std::span<const glm::dv
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<TexelUnprojector::Ray> rays(r.size());
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
-      // Texel coordinates of the point (texel centres at integers), as captureDepthEmbree's rays.
-      const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
-      rays[k - r.begin()] = unproject.ray(i, j);
+      const glm::dvec2 t = map.texelOfNdc(ndc[k]);  // as captureDepthEmbree's rays
+      rays[k - r.begin()] = unproject.ray(t.x, t.y);
     }
     captureRays(scene, rays, tNear, tFar, map.capture, depth.subspan(r.begin(), r.size()));
   });
@@ -172,8 +171,8 @@ CasterFreeOracles EmbreeDepthOracle::withoutCasters() const {
     const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ndc.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        const double i = (ndc[k].x + 1.0) * 0.5 * map.width - 0.5, j = (ndc[k].y + 1.0) * 0.5 * map.height - 0.5;
-        const TexelUnprojector::Ray ray = unproject.ray(i, j);
+        const glm::dvec2 t = map.texelOfNdc(ndc[k]);
+        const TexelUnprojector::Ray ray = unproject.ray(t.x, t.y);
         const CapturedHit hit = captureHit(impl->scene.get(), ray, tNear, tFar, map.capture);
         depth[k] = hit.depth;
         if (hit.geomID == RTC_INVALID_GEOMETRY_ID || !set->geometryHanded[hit.geomID]) continue;
@@ -205,12 +204,9 @@ SurfaceEndOracle EmbreeDepthOracle::surfaceEnds() const {
     SV_CHECK_EQ(from.size(), triangle.size());
     const TexelUnprojector unproject(map);
     const float tNear = float(map.nearPlane), tFar = float(map.farPlane);
-    const auto texel = [&map](glm::dvec2 ndc) {
-      return glm::dvec2((ndc.x + 1.0) * 0.5 * map.width - 0.5, (ndc.y + 1.0) * 0.5 * map.height - 0.5);
-    };
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, from.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t k = r.begin(); k != r.end(); ++k) {
-        const glm::dvec2 a = texel(from[k]), b = texel(to[k]);
+        const glm::dvec2 a = map.texelOfNdc(from[k]), b = map.texelOfNdc(to[k]);
         const CapturedHit hit = captureHit(impl->scene.get(), unproject.ray(a.x, a.y), tNear, tFar, map.capture);
         t[k] = std::nan("");
         triangle[k].fill(glm::dvec3(std::nan("")));

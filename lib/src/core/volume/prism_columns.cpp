@@ -17,10 +17,10 @@ namespace {
 // Whether the point at light NDC `ndc` lies in a handed-over texel's square.
 bool handedAt(const PrismColumns& c, glm::dvec2 ndc) {
   const DepthMap& m = c.map;
-  const double i = (ndc.x + 1.0) * 0.5 * m.width - 0.5, j = (ndc.y + 1.0) * 0.5 * m.height - 0.5;
+  const glm::dvec2 t = m.texelOfNdc(ndc);
   // Clamped in double before the conversion (a point far outside the window).
   const auto texel = [](double v, int n) { return int(std::lround(std::clamp(v, 0.0, double(n - 1)))); };
-  return c.texels[std::size_t(texel(j, m.height)) * std::size_t(m.width) + std::size_t(texel(i, m.width))] != 0;
+  return c.texels[std::size_t(texel(t.y, m.height)) * std::size_t(m.width) + std::size_t(texel(t.x, m.width))] != 0;
 }
 
 // The full oracle's depths outside the handed-over squares and the hand-over oracle's inside (the
