@@ -168,11 +168,12 @@ CLI::Option* addVolumeOptions(CLI::App& cmd, VolumeCliOptions& o) {
                "a hole, a sheet's edge), which by default also go on the sub-grid, found from the scene's "
                "triangles without rays; for comparison (docs/volume.md 'Hidden surfaces')");
   cmd.add_flag("--face-prisms", o.facePrisms,
-               "With --refine: add the prisms of the closed meshes' faces turned away from the light in the columns "
-               "of the refined quads, from each face to the far plane, as a second closed part of the volume: the "
-               "mesh's own shadow where the sheet between texel centres cannot follow it (a thin part's "
-               "self-shadow); more triangles, set by the faces in those columns; spot and directional lights "
-               "(docs/volume.md 'Face prisms')");
+               "With --refine: add the prisms of the closed meshes' faces turned towards the light in the columns "
+               "of the refined quads (each region of such faces whole), from each face to the far plane, as a "
+               "second closed part of the volume, and hand those columns over to them (the sheet records the "
+               "scene without those meshes there): the mesh's own shadow where the sheet between texel centres "
+               "cannot follow it (a thin part's self-shadow, an outline); more triangles, set by the faces "
+               "taken; spot and directional lights (docs/volume.md 'Face prisms')");
   cmd.add_flag("--no-snap", o.noSnap,
                "With --refine: leave each crossing in the middle of its last bisection bracket (within 2^-(K+1) "
                "texel of the outline) instead of moving it to where the triangle recorded on its near side ends "

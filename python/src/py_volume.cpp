@@ -231,8 +231,9 @@ void registerVolume(py::module_& m) {
         "the sub-grid's samples on an S x S sub-grid, every such quad with refine_grid_everywhere=True "
         "(docs/volume.md, \"Sub-grid\"), and the quads whose square hides a surface between the texel centres "
         "(found from the scene's triangles; hidden_search=False: not; docs/volume.md, \"Hidden surfaces\"). "
-        "face_prisms=True (with refine) adds the prisms of the closed meshes' faces turned away from the light in the "
-        "refined quads' columns as a second closed part, whose first row in F is stats['partStarts'][0] "
+        "face_prisms=True (with refine) adds the prisms of the closed meshes' faces turned towards the light in the "
+        "refined quads' columns (each region of such faces whole) as a second closed part, whose first row in F is "
+        "stats['partStarts'][0], the sheet handing those columns over to them "
         "(docs/volume.md, \"Face prisms\"). bias=None: the default (0 for back capture).");
   m.def(
       "export",

@@ -14,6 +14,7 @@
 #include "shadowvol/depth_map.h"
 #include "shadowvol/nearer_surfaces.h"
 #include "shadowvol/primitives.h"
+#include "shadowvol/triangle_adjacency.h"
 #include "test_util.h"
 #include "volume/face_prisms.h"
 #include "volume/prism_columns.h"
@@ -30,16 +31,10 @@ TriangleMesh moved(TriangleMesh m, const glm::vec3& by) {
   return m;
 }
 
-std::vector<Face> facesOf(const TriangleMesh& m) {
-  std::vector<Face> f;
-  for (const auto& t : m.triangles) f.push_back({glm::dvec3(m.positions[t[0]]), glm::dvec3(m.positions[t[1]]), glm::dvec3(m.positions[t[2]])});
-  return f;
-}
-
-// A unit box at height 2: of its 12 faces only the bottom's two face away from the light (the
-// sides are edge-on); with every quad flagged they are taken, with none nothing is, and an open
-// plate is never taken.
-TEST(CasterFaces, TheBackFacesOfClosedMeshesInFlaggedColumns) {
+// A unit box at height 2: of its 12 faces only the top's two face the light (the sides are
+// edge-on); with every quad flagged they are taken, with none nothing is, and an open plate is
+// never taken.
+TEST(CasterFaces, TheLitFacesOfClosedMeshesInFlaggedColumns) {
   const DepthMap map = mapDown();
   const TriangleMesh box = moved(makeBox(1.0, 1.0, 1.0), {0.0f, 2.0f, 0.0f});
   const TriangleMesh plate = moved(makePlane(2.0, 2.0, 1), {0.0f, 1.0f, 0.0f});
@@ -50,7 +45,7 @@ TEST(CasterFaces, TheBackFacesOfClosedMeshesInFlaggedColumns) {
   const std::vector<Face> faces = findCasterFaces(map, soups, all);
   ASSERT_EQ(faces.size(), 2u);
   for (const Face& f : faces)
-    for (const glm::dvec3& p : f) EXPECT_EQ(p.y, 1.5);  // the bottom
+    for (const glm::dvec3& p : f) EXPECT_EQ(p.y, 2.5);  // the top
   EXPECT_TRUE(findCasterFaces(map, soups, none).empty());
   // One flagged quad far from the box: its faces' images (texels 6.5 to 8.5 of 16 over 8 units)
   // do not reach it; a quad under the box does.
@@ -60,6 +55,32 @@ TEST(CasterFaces, TheBackFacesOfClosedMeshesInFlaggedColumns) {
   one.assign(one.size(), 0);
   one[7 * 15 + 7] = 1;
   EXPECT_EQ(findCasterFaces(map, soups, one).size(), 2u);
+}
+
+// A face reaching a flagged quad brings the whole region of faces towards the light that it lies
+// in: one quad under a sphere takes all of its lit side, as every quad does;
+// a second sphere whose faces reach no flagged quad gives none. Given neighbours are used as found.
+TEST(CasterFaces, AFlaggedQuadTakesItsWholeLitRegion) {
+  const DepthMap map = mapDown(32);  // 32 texels over 8 units: texel (i, j) at x = (i + 0.5) / 4 - 4
+  const TriangleMesh sphere = moved(makeIcoSphere(1.0, 2), {-2.0f, 2.0f, 0.0f});
+  const TriangleMesh other = moved(makeIcoSphere(1.0, 2), {2.0f, 2.0f, 0.0f});
+  std::vector<TriangleSoup> soups{soupOf(sphere), soupOf(other)};
+  ASSERT_TRUE(soups[0].closed && soups[1].closed);
+  std::size_t lit = 0;  // the first sphere's faces towards the light
+  for (const auto& t : sphere.triangles) {
+    const glm::dvec3 a(sphere.positions[t[0]]), b(sphere.positions[t[1]]), c(sphere.positions[t[2]]);
+    lit += glm::cross(b - a, c - a).y > 1e-9 * glm::length(glm::cross(b - a, c - a));
+  }
+  ASSERT_GT(lit, 100u);
+  std::vector<std::uint8_t> all(std::size_t(31 * 31), 1), rim(all.size(), 0);
+  EXPECT_EQ(findCasterFaces(map, soups, all).size(), 2 * lit);
+  rim[std::size_t(16 * 31 + 8)] = 1;  // quad (8, 16): x from -1.875 to -1.625, z from 0.125 to 0.375
+  const std::vector<Face> faces = findCasterFaces(map, soups, rim);
+  EXPECT_EQ(faces.size(), lit);
+  for (const Face& f : faces) EXPECT_LT(f[0].x, 0.0);  // the first sphere's
+  const std::vector<std::int32_t> neighbours = triangleNeighbours(sphere);
+  soups[0].neighbours = neighbours;
+  EXPECT_EQ(findCasterFaces(map, soups, rim), faces);
 }
 
 // The hand-over's rule (handedToPrisms): a closed mesh wholly between the near and far planes and
@@ -125,9 +146,9 @@ TEST(PrismColumns, TheRefinedQuadsWithACasterAreRecapturedWithoutIt) {
   EXPECT_EQ(depth, (std::vector<float>{5.0f, 5.0f, 3.0f, 3.0f, 5.0f, 3.0f}));
 }
 
-// The box's bottom: one prism from y = 1.5 down to the far plane (y = -1), closed and outward,
-// with a wall on each of the bottom's four outer edges and none on its diagonal.
-TEST(FacePrisms, ABoxsBottomGivesOnePrismToTheFarPlane) {
+// The box's top: one prism from y = 2.5 down to the far plane (y = -1), through the box, closed and
+// outward, with a wall on each of the top's four outer edges and none on its diagonal.
+TEST(FacePrisms, ABoxsTopGivesOnePrismToTheFarPlane) {
   const DepthMap map = mapDown();
   const TriangleMesh box = moved(makeBox(1.0, 1.0, 1.0), {0.0f, 2.0f, 0.0f});
   std::vector<std::uint8_t> all(std::size_t(15 * 15), 1);
@@ -142,9 +163,10 @@ TEST(FacePrisms, ABoxsBottomGivesOnePrismToTheFarPlane) {
   EXPECT_EQ(test::windingNumber(mesh, {0.1, 1.0, 0.2}), 1);    // under the box
   EXPECT_EQ(test::windingNumber(mesh, {0.1, -0.9, 0.2}), 1);   // just above the far plane
   EXPECT_EQ(test::windingNumber(mesh, {0.1, -1.1, 0.2}), 0);   // beyond it
-  EXPECT_EQ(test::windingNumber(mesh, {0.1, 1.7, 0.2}), 0);    // inside the box: in front of its bottom
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, 1.7, 0.2}), 1);    // inside the box, behind its top
+  EXPECT_EQ(test::windingNumber(mesh, {0.1, 2.7, 0.2}), 0);    // above it
   EXPECT_EQ(test::windingNumber(mesh, {0.6, 1.0, 0.2}), 0);    // beside
-  for (const auto& p : mesh.positions) EXPECT_TRUE(p.y == 1.5 || p.y == -1.0);
+  for (const auto& p : mesh.positions) EXPECT_TRUE(p.y == 2.5 || p.y == -1.0);
 }
 
 // The same under a spot light (test::refinementSpot, apex (0.6, 7, 0.4), far plane 9): the prism
@@ -156,11 +178,11 @@ TEST(FacePrisms, UnderASpotLightThePrismFollowsTheRays) {
   std::vector<std::uint8_t> all(std::size_t(31 * 31), 1);
   const std::vector<TriangleSoup> soups{soupOf(box)};
   const std::vector<Face> faces = findCasterFaces(map, soups, all);
-  ASSERT_GE(faces.size(), 2u);  // the bottom, and sides the apex sees from behind
+  ASSERT_GE(faces.size(), 2u);  // the top, and sides the apex sees from the front
   VolumeMesh mesh;
   volume::appendFacePrisms(map, faces, mesh);
   EXPECT_TRUE(test::closedOrientedManifold(mesh));
-  const glm::dvec3 apex(0.6, 7.0, 0.4), under(0.1, 1.5, -0.2);  // a point of the bottom
+  const glm::dvec3 apex(0.6, 7.0, 0.4), under(0.1, 1.5, -0.2);  // a point of the bottom, behind the top
   for (const double s : {1.2, 2.0, 3.0}) {  // farther along the ray from the apex through it
     const glm::dvec3 p = apex + s * (under - apex);
     EXPECT_EQ(test::windingNumber(mesh, p) > 0, map.viewDepthOf(p) < map.farPlane) << s;
@@ -176,9 +198,9 @@ TEST(FacePrisms, UnderASpotLightThePrismFollowsTheRays) {
 // the vertex, near and far, so that every vertex is a single fan; the copies coincide.
 TEST(FacePrisms, TwoFacesMeetingAtOneVertexGetACopyEach) {
   const DepthMap map = mapDown();
-  // Facing down (away from the light): counter-clockwise seen from below.
-  const std::vector<Face> faces{Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 0), glm::dvec3(0, 2, 1)},
-                                Face{glm::dvec3(0, 2, 0), glm::dvec3(-1, 2, 0), glm::dvec3(0, 2, -1)}};
+  // Facing up (towards the light): counter-clockwise seen from above.
+  const std::vector<Face> faces{Face{glm::dvec3(0, 2, 0), glm::dvec3(0, 2, 1), glm::dvec3(1, 2, 0)},
+                                Face{glm::dvec3(0, 2, 0), glm::dvec3(0, 2, -1), glm::dvec3(-1, 2, 0)}};
   VolumeMesh mesh;
   const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
   EXPECT_EQ(c.walls, 6u);
@@ -195,9 +217,9 @@ TEST(FacePrisms, TwoFacesMeetingAtOneVertexGetACopyEach) {
 TEST(FacePrisms, OverlappingFacesAddUp) {
   const DepthMap map = mapDown();
   const std::vector<Face> faces{
-      Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 0), glm::dvec3(1, 2, 1)},        // a square at y = 2 ...
-      Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 1), glm::dvec3(0, 2, 1)},        // ... in two faces
-      Face{glm::dvec3(0.5, 1, 0.5), glm::dvec3(1.5, 1, 0.5), glm::dvec3(0.5, 1, 1.5)}};  // one lower, overlapping
+      Face{glm::dvec3(0, 2, 0), glm::dvec3(1, 2, 1), glm::dvec3(1, 2, 0)},        // a square at y = 2 ...
+      Face{glm::dvec3(0, 2, 0), glm::dvec3(0, 2, 1), glm::dvec3(1, 2, 1)},        // ... in two faces
+      Face{glm::dvec3(0.5, 1, 0.5), glm::dvec3(0.5, 1, 1.5), glm::dvec3(1.5, 1, 0.5)}};  // one lower, overlapping
   VolumeMesh mesh;
   const volume::FacePrismCounts c = volume::appendFacePrisms(map, faces, mesh);
   EXPECT_EQ(c.walls, 4u + 3u);

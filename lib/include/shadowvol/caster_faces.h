@@ -1,25 +1,40 @@
 // The casters' own faces where a depth map's sheet cannot follow them (the refined volume's face
 // prisms, VolumeBuildOptions::facePrisms; docs/volume.md "Face prisms").
 //
-// Why these faces: every point behind a face along the light's rays is in shadow (its ray to the
-// light crosses the face), so the prism a face sweeps from itself to the far plane holds shadow
-// only, and so does the union of any set of them. Behind a closed occluder the shadow is exactly
-// the union of the prisms of its faces turned away from the light (a light ray leaves a closed
-// mesh through such a face). Taking those faces wherever the depth map's sheet may be wrong, in the
-// columns of the quads that refinement works on (the points whose light ray passes through such a
-// quad's square), gives the mesh's own shadow there, as a silhouette volume would, at a cost set
-// by the faces in those columns.
+// Why these faces: every point behind a face along the light's rays is in shadow or inside the
+// mesh (its ray to the light crosses the face), so the prism a face sweeps from itself to the far
+// plane holds nothing lit, and neither does a union of such prisms. Behind a closed occluder its
+// shadow and its inside are exactly the union of the prisms of its faces turned towards the light
+// (a light ray enters a closed mesh through such a face). Taking those faces wherever the depth
+// map's sheet may be wrong, in the columns of the quads that refinement works on (the points whose
+// light ray passes through such a quad's square), gives the mesh's own shadow there, as a
+// silhouette volume would.
 //
-// Selection: every triangle of a closed mesh (TriangleSoup::closed) that faces away from the
-// light (the capture's facing rule, nearer_surfaces.h: the normal of the counter-clockwise front
-// along the ray from the apex through the triangle, -z for a directional light; edge-on, cosine
-// below 1e-9, is left out), whose three corners lie strictly between the map's near and far planes
-// (light-view depth), whose image's bounding box (texel coordinates) lies inside the map's window
+// Why the faces towards the light, each region of them whole: the prisms' near caps then lie on the
+// lit surface itself, at the camera pass's own depths (volume.vert's invariant position), so the
+// stencil's depth test decides every lit pixel of them as it does for a silhouette volume's light
+// cap; and their walls stand only where the region ends (silhouette edges, where a face towards
+// the light meets one turned away or edge-on), never across a lit surface, where a wall hanging
+// from an edge between two lit faces would meet the surface at the camera's depth, a tie decided by
+// round-off. Measured on issue 10's 48 closed-mesh scenes at 256², five frames each against the
+// silhouette volumes' 303 wrong pixels (docs/results/tie-noise): the faces turned away from the
+// light in the flagged columns gave 311, within 1.5x of the silhouette volume's count on 42 of the
+// scenes (their near caps meet the lit surface at the terminator); the faces towards the light in
+// those columns only, 344 (the walls across lit surfaces); these, 319, the silhouette volume's own
+// count in every frame on 46 of the scenes and within 1.5x of it on all 48 (15 of the 16 more on
+// the coupling, whose silhouette volume has 208 of its own).
+//
+// Selection: every triangle of a closed mesh (TriangleSoup::closed) that faces the light (the
+// capture's facing rule, nearer_surfaces.h: the normal of the counter-clockwise front points
+// against the ray from the apex through the triangle, the light's -z for a directional light;
+// edge-on, cosine below 1e-9, is left out), whose three corners lie strictly between the map's near and far planes (light-view
+// depth) and whose image's bounding box (texel coordinates) lies inside the map's window
 // [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the light's frustum, where
-// the z-pass rule of zpass.h assumes the volume is) and reaches the closed square of a flagged
-// quad. Open meshes give no face here: behind them the shadow is the prisms of their
-// faces of either facing, and a face towards the light would put its prism's near cap on a lit
-// surface, a tie that the camera's depth test decides by round-off (left for later).
+// the z-pass rule of zpass.h assumes the volume is): such a face is eligible. Taken: each eligible
+// face whose image's bounding box reaches the closed square of a flagged quad, and every eligible
+// face connected to one across edges between eligible faces (TriangleSoup::neighbours; a link
+// between faces wound against each other is not crossed). Open meshes give no face here: behind
+// them the shadow is the prisms of their faces of either facing (left for later).
 #pragma once
 
 #include <array>
@@ -43,8 +58,8 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
 /// Whether the prisms can hold `mesh`'s whole shadow in any column of the map (the sheet's hand-over
 /// to the prisms, VolumeBuildOptions::withoutCasters): a closed mesh every vertex of which lies
 /// strictly between the near and far planes with its image inside the map's window, so that
-/// findCasterFaces takes each of its faces turned away from the light whose image reaches a
-/// flagged quad (only edge-on faces, which hold no volume, are left out). Empty meshes: false.
+/// findCasterFaces takes each of its faces towards the light whose image reaches a flagged quad
+/// (only edge-on faces, which hold no volume, are left out). Empty meshes: false.
 bool handedToPrisms(const DepthMap& map, const TriangleSoup& mesh);
 
 }  // namespace shadowvol

@@ -47,6 +47,9 @@ struct TriangleSoup {
   bool closed = false;
   /// The open rims (openRims: vertex index pairs, two per edge) for findOpenRims; empty: none.
   std::span<const std::uint32_t> rims;
+  /// The edge neighbours (triangleNeighbours, triangle_adjacency.h) for findCasterFaces
+  /// (caster_faces.h), which finds them itself where this is empty.
+  std::span<const std::int32_t> neighbours;
 };
 
 /// Rims closer than this share of a mesh's bounding-box diagonal to another (a seam of a soup whose
@@ -66,6 +69,9 @@ std::vector<std::uint32_t> openRims(const TriangleMesh& mesh, bool* closed = nul
 
 /// The soup view of a mesh (no copy; valid while the mesh is); `closed` as isClosedSurface(mesh).
 TriangleSoup soupOf(const TriangleMesh& mesh);
+/// A copy of the soup's triangles as a mesh (for the rules written for meshes: openRims,
+/// triangleNeighbours).
+TriangleMesh meshOf(const TriangleSoup& soup);
 
 /// For each quad q = qj * (W - 1) + qi of the map's grid, sets flags[q] = 1 when a triangle of
 /// `meshes` that the map's capture mode can record has a point in the quad's square, within the map's

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "shadowvol/check.h"
+#include "shadowvol/triangle_adjacency.h"
 
 namespace shadowvol {
 namespace {
@@ -76,6 +77,45 @@ bool insideWindow(const DepthMap& map, double x0, double x1, double y0, double y
   return x0 >= -0.5 && y0 >= -0.5 && x1 <= map.width - 0.5 && y1 <= map.height - 0.5;
 }
 
+// Facing the light: the normal against the ray (nearer_surfaces.h's facing rule); edge-on, a
+// cosine within 1e-9, is not.
+bool facesTheLight(const ViewVertex& a, const ViewVertex& b, const ViewVertex& c, bool perspective) {
+  const glm::dvec3 n = glm::cross(b.view - a.view, c.view - a.view);
+  const glm::dvec3 ray = perspective ? a.view : glm::dvec3(0.0, 0.0, -1.0);
+  return -glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray);
+}
+
+// A face's state in the selection.
+constexpr std::uint8_t kNotTaken = 0, kEligible = 1, kTaken = 2;
+
+// Takes every eligible face connected to a taken one across edges between eligible faces (a link
+// of triangleNeighbours; one between faces wound against each other is not crossed): each region
+// of light-facing faces that reaches a flagged quad, whole.
+void growOverEdges(const TriangleSoup& mesh, std::vector<std::uint8_t>& take) {
+  std::vector<std::uint32_t> stack;
+  for (std::size_t t = 0; t < take.size(); ++t)
+    if (take[t] == kTaken) stack.push_back(std::uint32_t(t));
+  if (stack.empty()) return;
+  std::vector<std::int32_t> own;
+  std::span<const std::int32_t> neighbours = mesh.neighbours;
+  if (neighbours.empty()) {
+    own = triangleNeighbours(meshOf(mesh));
+    neighbours = own;
+  }
+  SV_CHECK_EQ(neighbours.size(), 3 * take.size());
+  while (!stack.empty()) {
+    const std::uint32_t t = stack.back();
+    stack.pop_back();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int32_t link = neighbours[3 * std::size_t(t) + k];
+      if (link < 0 || (link & kFlippedNeighbour) != 0) continue;
+      if (take[std::size_t(link)] != kEligible) continue;
+      take[std::size_t(link)] = kTaken;
+      stack.push_back(std::uint32_t(link));
+    }
+  }
+}
+
 }  // namespace
 
 bool handedToPrisms(const DepthMap& map, const TriangleSoup& mesh) {
@@ -99,29 +139,26 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
     SV_CHECK_EQ(mesh.xyz.size() % 3, 0u);
     SV_CHECK_EQ(mesh.indices.size() % 3, 0u);
     const std::size_t vertices = mesh.xyz.size() / 3, triangles = mesh.indices.size() / 3;
-    const auto world = [&](std::size_t k) {
-      return glm::dvec3(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2]);
-    };
     const std::vector<ViewVertex> image = imageOf(map, mesh);
-    std::vector<std::uint8_t> keep(triangles, 0);
+    std::vector<std::uint8_t> take(triangles, kNotTaken);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t t = r.begin(); t != r.end(); ++t) {
         const std::size_t k0 = mesh.indices[3 * t], k1 = mesh.indices[3 * t + 1], k2 = mesh.indices[3 * t + 2];
         SV_CHECK_LT(std::max({k0, k1, k2}), vertices);
         const ViewVertex &a = image[k0], &b = image[k1], &c = image[k2];
-        if (!(a.inRange && b.inRange && c.inRange)) continue;
-        // Facing away from the light: the normal along the ray (nearer_surfaces.h's rule).
-        const glm::dvec3 n = glm::cross(b.view - a.view, c.view - a.view);
-        const glm::dvec3 ray = perspective ? a.view : glm::dvec3(0.0, 0.0, -1.0);
-        if (!(glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray))) continue;
+        if (!(a.inRange && b.inRange && c.inRange) || !facesTheLight(a, b, c, perspective)) continue;
         const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
         const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
         if (!insideWindow(map, x0, x1, y0, y1)) continue;
-        keep[t] = flagged.anyIn(x0, x1, y0, y1);
+        take[t] = flagged.anyIn(x0, x1, y0, y1) ? kTaken : kEligible;
       }
     });
+    growOverEdges(mesh, take);
+    const auto world = [&](std::size_t k) {
+      return glm::dvec3(mesh.xyz[3 * k], mesh.xyz[3 * k + 1], mesh.xyz[3 * k + 2]);
+    };
     for (std::size_t t = 0; t < triangles; ++t)
-      if (keep[t])
+      if (take[t] == kTaken)
         faces.push_back({world(mesh.indices[3 * t]), world(mesh.indices[3 * t + 1]), world(mesh.indices[3 * t + 2])});
   }
   return faces;

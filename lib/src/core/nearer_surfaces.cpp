@@ -27,7 +27,18 @@ TriangleSoup soupOf(const TriangleMesh& mesh) {
   return {std::span<const float>(reinterpret_cast<const float*>(mesh.positions.data()), 3 * mesh.positions.size()),
           std::span<const std::uint32_t>(reinterpret_cast<const std::uint32_t*>(mesh.triangles.data()),
                                          3 * mesh.triangles.size()),
-          isClosedSurface(mesh), {}};
+          isClosedSurface(mesh), {}, {}};
+}
+
+TriangleMesh meshOf(const TriangleSoup& soup) {
+  TriangleMesh m;
+  m.positions.resize(soup.xyz.size() / 3);
+  for (std::size_t k = 0; k < m.positions.size(); ++k)
+    m.positions[k] = {soup.xyz[3 * k], soup.xyz[3 * k + 1], soup.xyz[3 * k + 2]};
+  m.triangles.resize(soup.indices.size() / 3);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    m.triangles[t] = {soup.indices[3 * t], soup.indices[3 * t + 1], soup.indices[3 * t + 2]};
+  return m;
 }
 
 namespace {

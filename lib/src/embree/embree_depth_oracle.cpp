@@ -31,15 +31,6 @@ struct EmbreeDepthOracle::Impl {
   std::vector<std::vector<std::uint32_t>> rims;
   std::vector<TriangleSoup> closedSoups;  // soups with `closed` and `rims` set (entry capture)
   std::vector<TriangleSoup> openSoups;    // soups with `rims` set, `closed` false (the other captures)
-  static TriangleMesh meshOf(const TriangleSoup& s) {
-    TriangleMesh m;
-    m.positions.resize(s.xyz.size() / 3);
-    for (std::size_t k = 0; k < m.positions.size(); ++k) m.positions[k] = {s.xyz[3 * k], s.xyz[3 * k + 1], s.xyz[3 * k + 2]};
-    m.triangles.resize(s.indices.size() / 3);
-    for (std::size_t t = 0; t < m.triangles.size(); ++t)
-      m.triangles[t] = {s.indices[3 * t], s.indices[3 * t + 1], s.indices[3 * t + 2]};
-    return m;
-  }
   // Entry capture reads `closed` (its faces towards the light count); the others must not.
   std::span<const TriangleSoup> soupsFor(CaptureMode capture) {
     std::call_once(shapeOnce, [this] {
@@ -61,6 +52,24 @@ struct EmbreeDepthOracle::Impl {
       }
     });
     return capture == CaptureMode::Entry ? closedSoups : openSoups;
+  }
+  // The closed soups with their edge neighbours (TriangleSoup::neighbours) for the face prisms,
+  // found on the first selection of faces.
+  std::once_flag neighboursOnce;
+  std::vector<std::vector<std::int32_t>> neighbours;
+  std::vector<TriangleSoup> prismSoups;
+  std::span<const TriangleSoup> soupsForPrisms() {
+    std::call_once(neighboursOnce, [this] {
+      const std::span<const TriangleSoup> closed = soupsFor(CaptureMode::Entry);  // `closed` set
+      prismSoups.assign(closed.begin(), closed.end());
+      neighbours.resize(prismSoups.size());
+      for (std::size_t g = 0; g < prismSoups.size(); ++g)
+        if (prismSoups[g].closed) {
+          neighbours[g] = triangleNeighbours(meshOf(prismSoups[g]));
+          prismSoups[g].neighbours = neighbours[g];
+        }
+    });
+    return prismSoups;
   }
   // The hand-over's set for one light (withoutCasters): which soups the prisms hold whole, by
   // geometry ID, and the Embree scene of the others. Kept for the last light asked about (shared
@@ -118,7 +127,7 @@ struct EmbreeDepthOracle::Impl {
       if (v && i && !m.triangles.empty()) soupGeometry.push_back(unsigned(g));
       if (v && i && !m.triangles.empty())
         soups.push_back({std::span<const float>(v, 3 * m.positions.size()), std::span<const std::uint32_t>(i, 3 * m.triangles.size()),
-                         false, {}});
+                         false, {}, {}});
     }
   }
 };
@@ -241,7 +250,7 @@ NearerSurfaceOracle EmbreeDepthOracle::nearerSurfaces() const {
 CasterFaceOracle EmbreeDepthOracle::casterFaces() const {
   Impl* impl = impl_.get();
   return [impl](const DepthMap& map, std::span<const std::uint8_t> quads) {
-    return findCasterFaces(map, impl->soupsFor(CaptureMode::Entry), quads);  // `closed` set as entry capture needs
+    return findCasterFaces(map, impl->soupsForPrisms(), quads);
   };
 }
 

@@ -137,21 +137,21 @@ FacePrismCounts appendFacePrisms(const DepthMap& map, std::span<const std::array
   for (std::size_t c = 0; c < copies; ++c) mesh.positions.push_back(toFar(w.points[copyPoint[c]]));
   mesh.partStarts.push_back(mesh.triangles.size());
   const std::size_t first = mesh.triangles.size();
-  for (std::size_t f = 0; f < n; ++f) {  // near caps, reversed: the prism lies behind the face
+  for (std::size_t f = 0; f < n; ++f) {  // near caps: the face as it is, its front towards the light
     const std::uint32_t* s = &copy[3 * f];
-    mesh.triangles.push_back({nearBase + s[0], nearBase + s[2], nearBase + s[1]});
+    mesh.triangles.push_back({nearBase + s[0], nearBase + s[1], nearBase + s[2]});
   }
-  for (std::size_t f = 0; f < n; ++f) {  // far caps: the face's own winding faces away from the light
+  for (std::size_t f = 0; f < n; ++f) {  // far caps, reversed: their front away from the light
     const std::uint32_t* s = &copy[3 * f];
-    mesh.triangles.push_back({farBase + s[0], farBase + s[1], farBase + s[2]});
+    mesh.triangles.push_back({farBase + s[0], farBase + s[2], farBase + s[1]});
   }
-  for (std::size_t f = 0; f < n; ++f)  // walls on the border edges a -> b: near a, near b, far b, far a
+  for (std::size_t f = 0; f < n; ++f)  // walls on the border edges a -> b: near b, near a, far a, far b
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = w.faces[f][std::size_t(k)], b = w.faces[f][std::size_t((k + 1) % 3)];
       if (inner(a, b)) continue;
       const std::uint32_t sa = copy[3 * f + std::size_t(k)], sb = copy[3 * f + std::size_t((k + 1) % 3)];
-      mesh.triangles.push_back({nearBase + sa, nearBase + sb, farBase + sb});
-      mesh.triangles.push_back({nearBase + sa, farBase + sb, farBase + sa});
+      mesh.triangles.push_back({nearBase + sb, nearBase + sa, farBase + sa});
+      mesh.triangles.push_back({nearBase + sb, farBase + sa, farBase + sb});
       ++counts.walls;
     }
   counts.faces = n;

@@ -1,8 +1,8 @@
 // Stage 0p of the volume build (VolumeBuildOptions::facePrisms with withoutCasters; docs/volume.md
 // "Face prisms"): the sheet hands the refined quads' columns over to the face prisms.
 //
-// Why: behind a closed caster the prisms of its faces turned away from the light are its shadow,
-// exactly (caster_faces.h). The sheet in the same columns adds only its own errors there: between
+// Why: behind a closed caster the prisms of its faces turned towards the light are its shadow (and
+// its inside), exactly (caster_faces.h). The sheet in the same columns adds only its own errors there: between
 // its samples it crosses the lit surfaces near an outline (false shadow) and its walls stand at the
 // bisected contour, a fraction of a texel off the true one. So in those columns the sheet records
 // the scene without the closed casters that the prisms hold whole (handedToPrisms): the ground
