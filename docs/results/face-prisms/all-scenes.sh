@@ -4,7 +4,7 @@
 # one line per scene and variant: name, resolution, variant, exit code, passed, missed, false,
 # stencil-vs-count disagreements, texels handed over to the prisms. Fetch the meshes first
 # (docs/results/light-fit/run.sh says how), build, run from the repository root (about 10 minutes
-# on 2 cores). EXE as run.sh's. all-scenes.txt is the output at bf93608.
+# on 2 cores). EXE as run.sh's. all-scenes.txt is the output at 4f1ea0e.
 exe=${EXE:-build/apps/shadowvol}
 tmp=$(mktemp -d)
 for s in data/scenes/*.json data/scenes/unseen/*.json docs/results/subgrid-bias/probe-scenes/*.json \
