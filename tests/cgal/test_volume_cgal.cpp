@@ -196,8 +196,9 @@ TEST(VolumeCgal, RefinedInvariantsOnEveryScene) {
           ASSERT_TRUE(fr.valid()) << what << " face prisms: " << fr.summary();
           EXPECT_EQ(f.mesh.partStarts.size(), f.stats.prismFaces > 0 ? 1u : 0u) << what;
           EXPECT_TRUE(f.stats.prismColumnTexels == 0 || g.stats.refinedCells > 0) << what;
-          if (f.stats.prismColumnTexels == 0)  // nothing handed over: the first part is the volume above
+          if (f.stats.prismColumnTexels == 0) {  // nothing handed over: the first part is the volume above
             EXPECT_EQ(f.mesh.triangleCount(), g.mesh.triangleCount() + f.stats.prismTriangles) << what;
+          }
           columnTexels += f.stats.prismColumnTexels;
           prismFaces += f.stats.prismFaces;
         }

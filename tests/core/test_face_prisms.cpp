@@ -58,8 +58,9 @@ TEST(CasterFaces, TheLitFacesOfClosedMeshesInFlaggedColumns) {
 }
 
 // A face reaching a flagged quad brings the whole region of faces towards the light that it lies
-// in: one quad under a sphere takes all of its lit side, as every quad does;
-// a second sphere whose faces reach no flagged quad gives none. Given neighbours are used as found.
+// in: one quad under a sphere takes all of its lit side, as every quad does; a second sphere whose
+// faces reach no flagged quad gives none. Given neighbours are used: the same links as found give
+// the same faces, no links leave only the faces whose images reach the quad.
 TEST(CasterFaces, AFlaggedQuadTakesItsWholeLitRegion) {
   const DepthMap map = mapDown(32);  // 32 texels over 8 units: texel (i, j) at x = (i + 0.5) / 4 - 4
   const TriangleMesh sphere = moved(makeIcoSphere(1.0, 2), {-2.0f, 2.0f, 0.0f});
@@ -81,6 +82,11 @@ TEST(CasterFaces, AFlaggedQuadTakesItsWholeLitRegion) {
   const std::vector<std::int32_t> neighbours = triangleNeighbours(sphere);
   soups[0].neighbours = neighbours;
   EXPECT_EQ(findCasterFaces(map, soups, rim), faces);
+  const std::vector<std::int32_t> none(neighbours.size(), kNoNeighbour);
+  soups[0].neighbours = none;
+  const std::size_t seeds = findCasterFaces(map, soups, rim).size();
+  EXPECT_GT(seeds, 0u);
+  EXPECT_LT(seeds, 20u);
 }
 
 // The hand-over's rule (handedToPrisms): a closed mesh wholly between the near and far planes and

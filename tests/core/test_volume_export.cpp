@@ -74,8 +74,9 @@ TEST(VolumeExport, FloatOutputFarFromTheOriginIsRebasedAndNamed) {
     EXPECT_EQ(back.mesh.positions.size(), box.positions.size()) << ext;  // welded by position: none joined
     for (const glm::vec3& p : back.mesh.positions)
       EXPECT_LE(glm::length(glm::dvec3(p) + placed - glm::dvec3(1e6, 2.0, -3.0)), step) << ext;
-    if (std::string(ext) == ".ply" || std::string(ext) == ".obj")  // the origin named in the header
+    if (std::string(ext) == ".ply" || std::string(ext) == ".obj") {  // the origin named in the header
       EXPECT_NE(test::readText(path).find("shadowvol origin 1000000 2 -3"), std::string::npos) << ext;
+    }
   }
   // An origin whose text does not fit STL's 80-byte header is refused, not cut.
   VolumeMesh odd = v;

@@ -2,8 +2,8 @@
 // "Face prisms"): a closed sphere over an open ground plane under a directional light straight
 // down, entry capture, the 4 x 4 sub-grid. The prisms are a second closed part after the volume
 // the build makes without them (which is left as it was, unless the sheet hands the columns over:
-// the second test); they hold shadow only: every point inside them has the sphere between it and
-// the light.
+// the second test); they hold no lit point: every point inside them has the sphere between it and
+// the light, or lies inside the sphere.
 #include <gtest/gtest.h>
 
 #include "mesh_invariants.h"
@@ -50,7 +50,7 @@ bool blockedFromAbove(const TriangleMesh& mesh, const glm::dvec3& p) {
   return false;
 }
 
-TEST(FacePrismsVolume, APartOfItsOwnThatHoldsShadowOnly) {
+TEST(FacePrismsVolume, APartOfItsOwnThatHoldsNoLitPoint) {
   const Scene scene = sphereOverGround();
   const VolumeBuildResult without = build(scene, false), with = build(scene, true);
   EXPECT_TRUE(without.mesh.partStarts.empty());
@@ -65,7 +65,8 @@ TEST(FacePrismsVolume, APartOfItsOwnThatHoldsShadowOnly) {
   EXPECT_TRUE(test::closedOrientedManifold(with.mesh));
   const VolumeMesh prisms = with.mesh.partMesh(1);
   EXPECT_TRUE(test::closedOrientedManifold(prisms));
-  // Points on a grid around the sphere's shadow: inside the prisms only where the sphere is above.
+  // Points on a grid around the sphere's shadow (some inside the sphere): inside the prisms only
+  // where the sphere is above or around them.
   const TriangleMesh& sphere = scene.objects[1].mesh;
   int inside = 0;
   for (double x = -1.2; x <= 1.2; x += 0.05)

@@ -3,7 +3,8 @@
 //
 // Why these faces: every point behind a face along the light's rays is in shadow or inside the
 // mesh (its ray to the light crosses the face), so the prism a face sweeps from itself to the far
-// plane holds nothing lit, and neither does a union of such prisms. Behind a closed occluder its
+// plane holds nothing lit (its near cap, the face itself, is lit, and counts as outside by the
+// camera depth test's rule, below), and neither does a union of such prisms. Behind a closed occluder its
 // shadow and its inside are exactly the union of the prisms of its faces turned towards the light
 // (a light ray enters a closed mesh through such a face). Taking those faces wherever the depth
 // map's sheet may be wrong, in the columns of the quads that refinement works on (the points whose
@@ -13,28 +14,32 @@
 // Why the faces towards the light, each region of them whole: the prisms' near caps then lie on the
 // lit surface itself, at the camera pass's own depths (volume.vert's invariant position), so the
 // stencil's depth test decides every lit pixel of them as it does for a silhouette volume's light
-// cap; and their walls stand only where the region ends (silhouette edges, where a face towards
-// the light meets one turned away or edge-on), never across a lit surface, where a wall hanging
-// from an edge between two lit faces would meet the surface at the camera's depth, a tie decided by
-// round-off. Measured on issue 10's 48 closed-mesh scenes at 256², five frames each against the
-// silhouette volumes' 303 wrong pixels (docs/results/tie-noise): the faces turned away from the
-// light in the flagged columns gave 311, within 1.5x of the silhouette volume's count on 42 of the
-// scenes (their near caps meet the lit surface at the terminator); the faces towards the light in
-// those columns only, 344 (the walls across lit surfaces); these, 319, the silhouette volume's own
-// count in every frame on 46 of the scenes and within 1.5x of it on all 48 (15 of the 16 more on
-// the coupling, whose silhouette volume has 208 of its own).
+// cap; and their walls stand only where the region ends: on silhouette edges (where a face towards
+// the light meets one turned away or edge-on), not across a lit surface, where a wall hanging from
+// an edge between two lit faces meets the surface at the camera's depth, a tie decided by round-off.
+// (A region also ends where faces leave the near-far range or the window, and at an edge without a
+// neighbour link: there a wall may cross a lit surface.) Measured on issue 10's 48 closed-mesh
+// scenes at 256², five frames each, against the silhouette volumes' 303 wrong pixels
+// (docs/results/tie-noise): the faces turned away from the light in the flagged columns gave 311,
+// within 1.5x of the silhouette volume's count on 42 of the scenes (their near caps are not the lit
+// surface); the faces towards the light in those columns only, 344 (the walls across lit
+// surfaces); these, 319, the silhouette volume's own count in every frame on 46 of the scenes and
+// within 1.5x of it on all 48 (15 of the 16 more on the coupling, whose silhouette volume has 208).
 //
 // Selection: every triangle of a closed mesh (TriangleSoup::closed) that faces the light (the
 // capture's facing rule, nearer_surfaces.h: the normal of the counter-clockwise front points
 // against the ray from the apex through the triangle, the light's -z for a directional light;
-// edge-on, cosine below 1e-9, is left out), whose three corners lie strictly between the map's near and far planes (light-view
-// depth) and whose image's bounding box (texel coordinates) lies inside the map's window
-// [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the light's frustum, where
-// the z-pass rule of zpass.h assumes the volume is): such a face is eligible. Taken: each eligible
+// edge-on, cosine below 1e-9, is left out), whose three corners lie strictly between the map's
+// near and far planes (light-view depth) and whose image's bounding box (texel coordinates) lies
+// inside the map's window [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the
+// light's frustum, where the z-pass rule of zpass.h assumes the volume is): such a face is
+// eligible. Taken: each eligible
 // face whose image's bounding box reaches the closed square of a flagged quad, and every eligible
 // face connected to one across edges between eligible faces (TriangleSoup::neighbours; a link
-// between faces wound against each other is not crossed). Open meshes give no face here: behind
-// them the shadow is the prisms of their faces of either facing (left for later).
+// between faces wound against each other is not crossed). The cost is the taken faces': a closed
+// mesh whose lit side is one region (a sphere, a closed slab under the caster) is taken whole
+// once any of it reaches a flagged quad. Open meshes give no face here: behind them the shadow is
+// the prisms of their faces of either facing (left for later).
 #pragma once
 
 #include <array>

@@ -47,8 +47,8 @@ struct TriangleSoup {
   bool closed = false;
   /// The open rims (openRims: vertex index pairs, two per edge) for findOpenRims; empty: none.
   std::span<const std::uint32_t> rims;
-  /// The edge neighbours (triangleNeighbours, triangle_adjacency.h) for findCasterFaces
-  /// (caster_faces.h), which finds them itself where this is empty.
+  /// The edge neighbours (triangleNeighbours, triangle_adjacency.h) of these triangles, for
+  /// findCasterFaces (caster_faces.h), which finds them itself where this is empty.
   std::span<const std::int32_t> neighbours;
 };
 

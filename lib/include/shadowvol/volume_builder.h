@@ -115,8 +115,9 @@ struct VolumeBuildOptions {
   bool refineHidden = true;     ///< false: no search even with nearerSurfaces (for comparison;
                                 ///< --no-hidden-search)
   bool facePrisms = false;      ///< refinement only: add the prisms of the closed casters' faces turned
-                                ///< away from the light in the columns of the refined quads, from each
-                                ///< face to the far plane, as a second closed part of the mesh
+                                ///< towards the light in the columns of the refined quads (each region
+                                ///< of such faces whole), from each face to the far plane, as a second
+                                ///< closed part of the mesh
                                 ///< (VolumeMesh::partStarts): the mesh's own shadow where the sheet
                                 ///< cannot follow it, a thin part's self-shadow (docs/volume.md "Face
                                 ///< prisms"). Needs casterFaces. Off by default (README "Face prisms")

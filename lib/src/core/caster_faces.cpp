@@ -109,6 +109,7 @@ void growOverEdges(const TriangleSoup& mesh, std::vector<std::uint8_t>& take) {
     for (std::size_t k = 0; k < 3; ++k) {
       const std::int32_t link = neighbours[3 * std::size_t(t) + k];
       if (link < 0 || (link & kFlippedNeighbour) != 0) continue;
+      SV_CHECK_LT(std::size_t(link), take.size());  // neighbours of another mesh: a caller's logic error
       if (take[std::size_t(link)] != kEligible) continue;
       take[std::size_t(link)] = kTaken;
       stack.push_back(std::uint32_t(link));

@@ -525,9 +525,9 @@ void emitRefinedCells(const DepthMap& map, const RefinementFound& found, const R
   stats.subgridSplitTriangles = mesh.positions.size() - (base.subgrid + r.sub.positions.size());
 }
 
-// Stage 7f: the casters' faces in the columns of the refined quads and of the quads handed over to
-// them (prismQuads, stage 0p), by the oracle's selection, and their prisms, appended as the mesh's
-// second part.
+// Stage 7f: the casters' faces towards the light in the columns of the refined quads and of the quads
+// handed over to them (prismQuads, stage 0p), with the lit regions they lie in (the oracle's
+// selection, caster_faces.h), and their prisms, appended as the mesh's second part.
 void appendPrismPart(const DepthMap& map, const volume::RefinedQuads& quads, std::span<const std::uint8_t> prismQuads,
                      const VolumeBuildOptions& options, VolumeMesh& mesh, VolumeBuildStats& stats) {
   const auto t0 = volume::Clock::now();
