@@ -4,7 +4,7 @@
 # of a pixel (jitter.py: the light, its depth map and the volume stay as they are), the silhouette
 # volume and the refined volume (the 4 x 4 sub-grid with --face-prisms, as docs/results/face-prisms)
 # validated against the sharp exact reference in every frame. Fetch the meshes first
-# (docs/results/light-fit/run.sh says how), build, run from the repository root: about 25 minutes on
+# (docs/results/light-fit/run.sh says how), build, run from the repository root: about 6 minutes on
 # 2 cores. EXE (default build/apps/shadowvol), OUT (default out/tie-noise), FLAGS (the refined
 # volume's options). A rerun with the same OUT reuses the reports already there.
 set -e
