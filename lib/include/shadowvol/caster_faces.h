@@ -4,9 +4,9 @@
 // Why these faces: every point behind a face along the light's rays is in shadow or inside the
 // mesh (its ray to the light crosses the face), so the prism a face sweeps from itself to the far
 // plane holds nothing lit (its near cap, the face itself, is lit, and counts as outside by the
-// camera depth test's rule, below), and neither does a union of such prisms. Behind a closed occluder its
-// shadow and its inside are exactly the union of the prisms of its faces turned towards the light
-// (a light ray enters a closed mesh through such a face). Taking those faces wherever the depth
+// camera depth test's rule, below), and neither does a union of such prisms. Behind a closed
+// occluder its shadow and its inside are exactly the union of the prisms of its faces turned
+// towards the light (a light ray enters a closed mesh through such a face). Taking those faces wherever the depth
 // map's sheet may be wrong, in the columns of the quads that refinement works on (the points whose
 // light ray passes through such a quad's square), gives the mesh's own shadow there, as a
 // silhouette volume would.
@@ -33,10 +33,9 @@
 // near and far planes (light-view depth) and whose image's bounding box (texel coordinates) lies
 // inside the map's window [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the
 // light's frustum, where the z-pass rule of zpass.h assumes the volume is): such a face is
-// eligible. Taken: each eligible
-// face whose image's bounding box reaches the closed square of a flagged quad, and every eligible
-// face connected to one across edges between eligible faces (TriangleSoup::neighbours; a link
-// between faces wound against each other is not crossed). The cost is the taken faces': a closed
+// eligible. Taken: each eligible face whose image's bounding box reaches the closed square of a
+// flagged quad, and every eligible face connected to one across edges between eligible faces
+// (TriangleSoup::neighbours; a link between faces wound against each other is not crossed). The cost is the taken faces': a closed
 // mesh whose lit side is one region (a sphere, a closed slab under the caster) is taken whole
 // once any of it reaches a flagged quad. Open meshes give no face here: behind them the shadow is
 // the prisms of their faces of either facing (left for later).

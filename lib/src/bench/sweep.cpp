@@ -157,9 +157,9 @@ SweepMethod refinedGrid(CaptureMode capture, int subdivisions = kSweepRefineSubd
 }
 
 // The refined volume on the sub-grid with the face prisms (docs/volume.md "Face prisms": the closed
-// meshes' faces turned towards the light in the refined quads' columns, each region of them whole, a
-// second closed part; the
-// oracle's casterFaces that runSweep attaches). Keys: hybrid-refined-grid[S]-prisms[-capture]/explicit.
+// meshes' faces turned towards the light in the refined quads' columns, each region of them whole,
+// a second closed part; the oracle's casterFaces that runSweep attaches). Keys:
+// hybrid-refined-grid[S]-prisms[-capture]/explicit.
 SweepMethod refinedPrisms(CaptureMode capture, int subdivisions = kSweepRefineSubdivisions) {
   SweepMethod m = refinedGrid(capture, subdivisions);
   const std::string s = std::to_string(subdivisions);

@@ -2,11 +2,12 @@
 // "Face prisms"): the sheet hands the refined quads' columns over to the face prisms.
 //
 // Why: behind a closed caster the prisms of its faces turned towards the light are its shadow (and
-// its inside), exactly (caster_faces.h). The sheet in the same columns adds only its own errors there: between
-// its samples it crosses the lit surfaces near an outline (false shadow) and its walls stand at the
-// bisected contour, a fraction of a texel off the true one. So in those columns the sheet records
-// the scene without the closed casters that the prisms hold whole (handedToPrisms): the ground
-// under a caster, or the far plane; the caster's shadow there is the prisms'.
+// its inside), exactly (caster_faces.h). The sheet in the same columns adds only its own errors
+// there: between its samples it crosses the lit surfaces near an outline (false shadow) and its
+// walls stand at the bisected contour, a fraction of a texel off the true one. So in those columns
+// the sheet records the scene without the closed casters that the prisms hold whole
+// (handedToPrisms): the ground under a caster, or the far plane; the caster's shadow there is the
+// prisms'.
 //
 // Which columns: the refined quads of the map as captured (the first pass of stage 1r) with a
 // corner at which the capture records a handed-over mesh (the hand-over oracle says so: the
