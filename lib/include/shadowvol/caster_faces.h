@@ -27,18 +27,18 @@
 // within 1.5x of it on all 48 (15 of the 16 more on the coupling, whose silhouette volume has 208).
 //
 // Selection: every triangle of a closed mesh (TriangleSoup::closed) that faces the light (the
-// capture's facing rule, nearer_surfaces.h: the normal of the counter-clockwise front points
-// against the ray from the apex through the triangle, the light's -z for a directional light;
-// edge-on, cosine below 1e-9, is left out), whose three corners lie strictly between the map's
-// near and far planes (light-view depth) and whose image's bounding box (texel coordinates) lies
-// inside the map's window [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism stays inside the
-// light's frustum, where the z-pass rule of zpass.h assumes the volume is): such a face is
-// eligible. Taken: each eligible face whose image's bounding box reaches the closed square of a
-// flagged quad, and every eligible face connected to one across edges between eligible faces
-// (TriangleSoup::neighbours; a link between faces wound against each other is not crossed). The cost is the taken faces': a closed
-// mesh whose lit side is one region (a sphere, a closed slab under the caster) is taken whole
-// once any of it reaches a flagged quad. Open meshes give no face here: behind them the shadow is
-// the prisms of their faces of either facing (left for later).
+// capture's facing rule, lightFacing in nearer_surfaces.h: the normal of the counter-clockwise
+// front points against the ray from the apex through the triangle, the light's -z for a
+// directional light; edge-on, cosine below 1e-9, is left out), whose three corners lie strictly
+// between the map's near and far planes (light-view depth) and whose image's bounding box (texel
+// coordinates) lies inside the map's window [-0.5, W - 0.5] x [-0.5, H - 0.5] (so that every prism
+// stays inside the light's frustum, where the z-pass rule of zpass.h assumes the volume is): such
+// a face is eligible. Taken: each eligible face whose image's bounding box reaches the closed
+// square of a flagged quad, and every eligible face connected to one across edges between eligible
+// faces (TriangleSoup::neighbours; a link between faces wound against each other is not crossed).
+// The cost is the taken faces': a closed mesh whose lit side is one region (a sphere, a closed
+// slab under the caster) is taken whole once any of it reaches a flagged quad. Open meshes give no
+// face here: behind them the shadow is the prisms of their faces of either facing (left for later).
 #pragma once
 
 #include <array>

@@ -33,6 +33,8 @@
 #include <span>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "shadowvol/depth_map.h"
 #include "shadowvol/triangle_mesh.h"
 
@@ -72,6 +74,14 @@ TriangleSoup soupOf(const TriangleMesh& mesh);
 /// A copy of the soup's triangles as a mesh (for the rules written for meshes: openRims,
 /// triangleNeighbours).
 TriangleMesh meshOf(const TriangleSoup& soup);
+
+/// The capture's facing rule, for every stage that asks it: how the triangle with light-view
+/// corners a, b, c (counter-clockwise seen from its front) faces the light. +1 towards it (the
+/// normal of the front points against the ray from the apex through a; for a directional light,
+/// `perspective` false, against the light's -z), -1 away from it (back capture records only
+/// these), 0 edge-on or without area (the cosine of normal and ray within 1e-9: its image has no
+/// area; no capture records it), and 0 for non-finite corners.
+int lightFacing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, bool perspective);
 
 /// For each quad q = qj * (W - 1) + qi of the map's grid, sets flags[q] = 1 when a triangle of
 /// `meshes` that the map's capture mode can record has a point in the quad's square, within the map's

@@ -77,14 +77,6 @@ bool insideWindow(const DepthMap& map, double x0, double x1, double y0, double y
   return x0 >= -0.5 && y0 >= -0.5 && x1 <= map.width - 0.5 && y1 <= map.height - 0.5;
 }
 
-// Facing the light: the normal against the ray (nearer_surfaces.h's facing rule); edge-on, a
-// cosine within 1e-9, is not.
-bool facesTheLight(const ViewVertex& a, const ViewVertex& b, const ViewVertex& c, bool perspective) {
-  const glm::dvec3 n = glm::cross(b.view - a.view, c.view - a.view);
-  const glm::dvec3 ray = perspective ? a.view : glm::dvec3(0.0, 0.0, -1.0);
-  return -glm::dot(n, ray) > 1e-9 * glm::length(n) * glm::length(ray);
-}
-
 // A face's state in the selection.
 constexpr std::uint8_t kNotTaken = 0, kEligible = 1, kTaken = 2;
 
@@ -147,7 +139,7 @@ std::vector<std::array<glm::dvec3, 3>> findCasterFaces(const DepthMap& map, std:
         const std::size_t k0 = mesh.indices[3 * t], k1 = mesh.indices[3 * t + 1], k2 = mesh.indices[3 * t + 2];
         SV_CHECK_LT(std::max({k0, k1, k2}), vertices);
         const ViewVertex &a = image[k0], &b = image[k1], &c = image[k2];
-        if (!(a.inRange && b.inRange && c.inRange) || !facesTheLight(a, b, c, perspective)) continue;
+        if (!(a.inRange && b.inRange && c.inRange) || lightFacing(a.view, b.view, c.view, perspective) != 1) continue;
         const double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
         const double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
         if (!insideWindow(map, x0, x1, y0, y1)) continue;

@@ -30,6 +30,13 @@ TriangleSoup soupOf(const TriangleMesh& mesh) {
           isClosedSurface(mesh), {}, {}};
 }
 
+int lightFacing(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, bool perspective) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const glm::dvec3 ray = perspective ? a : glm::dvec3(0.0, 0.0, -1.0);
+  const double along = glm::dot(n, ray), edgeOn = 1e-9 * glm::length(n) * glm::length(ray);
+  return along > edgeOn ? -1 : -along > edgeOn ? 1 : 0;
+}
+
 TriangleMesh meshOf(const TriangleSoup& soup) {
   TriangleMesh m;
   m.positions.resize(soup.xyz.size() / 3);
@@ -389,14 +396,10 @@ void findNearerSurfaces(const DepthMap& map, std::span<const TriangleSoup> meshe
         // Nearest depth first: most triangles lie on or behind the sheet.
         const double nearest = -std::max({v[0].z, v[1].z, v[2].z});
         if (!(nearest < double(maxLimit)) || -std::min({v[0].z, v[1].z, v[2].z}) < p.nearDepth) continue;
-        // The capture's facing rule: back capture records only triangles facing away from the light
-        // (the normal of the counter-clockwise front along the ray from the apex through the
-        // triangle; -z for a directional light); no capture records one edge-on to the light or
-        // without area (the cosine of normal and ray below 1e-9: its image has no area).
-        const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-        const glm::dvec3 ray = p.perspective ? v[0] : glm::dvec3(0.0, 0.0, -1.0);
-        const double along = glm::dot(n, ray), edgeOn = 1e-9 * glm::length(n) * glm::length(ray);
-        if (backOnly ? !(along > edgeOn) : !(std::abs(along) > edgeOn)) continue;
+        // The capture's facing rule: back capture records only triangles facing away from the light;
+        // no capture records one edge-on to the light or without area.
+        const int facing = lightFacing(v[0], v[1], v[2], p.perspective);
+        if (backOnly ? facing != -1 : facing == 0) continue;
         flagPolygon(p, v.data(), 3, qw, qh, limit, flags, 1);
       }
     });
